@@ -1,0 +1,179 @@
+//! `source` (`load file`), `pushd`, `popd`, `cd`, `dirs`, `ls` (spec §6a, §6d, §7).
+
+use super::options::{self, opt};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::source::Diagnostic;
+use std::path::{Path, PathBuf};
+
+/// 9.6 refuses to nest `source` deeper than this.
+const MAX_SOURCE_DEPTH: usize = 100;
+
+impl Interpreter {
+    fn resolve(&self, p: &str) -> PathBuf {
+        let path = Path::new(p);
+        if path.is_absolute() {
+            path.to_path_buf()
+        } else {
+            self.cwd.join(path)
+        }
+    }
+
+    pub(super) fn cmd_load(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let sub = args.first().map(String::as_str);
+        match sub {
+            Some("file") => self.cmd_source(ctx, &args[1..]),
+            Some(other) => Err(Diagnostic::error(format!(
+                "load {other}: not yet supported by rusoar"
+            ))
+            .at(ctx.cmd.span)
+            .with_label("only `load file` (source) is supported")),
+            None => Err(ctx.error("load: expected a sub-command (file)")),
+        }
+    }
+
+    /// `source FILE`: runs the file's commands in the file's directory when the path names
+    /// one, stops at the first failing command, and reports the productions sourced.
+    fn cmd_source(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let specs = [opt('a', "all"), opt('d', "disable"), opt('v', "verbose")];
+        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        let Some(name) = parsed.args.first() else {
+            return Err(ctx.error("source: expected a file name"));
+        };
+        let top_level = self.source_stack.is_empty();
+        if top_level {
+            self.report = super::LoadReport::default();
+        }
+        let result = self.source_file(ctx, name);
+        if !top_level {
+            return result.map(|_| String::new());
+        }
+        let r = &self.report;
+        let mut summary = format!(
+            "Total: {} production{} sourced.",
+            r.added,
+            if r.added == 1 { "" } else { "s" }
+        );
+        if r.excised > 0 {
+            summary.push_str(&format!(
+                " {} production{} excised.",
+                r.excised,
+                if r.excised == 1 { "" } else { "s" }
+            ));
+        }
+        match result {
+            Ok(()) => Ok(summary),
+            Err(d) => Err(d.with_note(summary)),
+        }
+    }
+
+    fn source_file(&mut self, ctx: &Ctx, name: &str) -> Result<(), Diagnostic> {
+        if self.source_stack.len() >= MAX_SOURCE_DEPTH {
+            return Err(ctx.error(format!(
+                "source: nested more than {MAX_SOURCE_DEPTH} files deep"
+            )));
+        }
+        let path = self.resolve(name);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            Diagnostic::error(format!("Failed to open file for reading: {name}"))
+                .at(ctx.arg_span(0))
+                .with_label(format!("{e}"))
+                .with_note(format!("looked for {}", path.display()))
+        })?;
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        let shown = path.display().to_string();
+        let file = self.sources.add(shown, text);
+        // `source dir/f` runs in `dir` (spec §6a): push it now, pop it afterwards, even on error.
+        let changes_dir = name.contains('/');
+        if changes_dir {
+            let dir = path
+                .parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_else(|| self.cwd.clone());
+            self.dir_stack.push(std::mem::replace(&mut self.cwd, dir));
+        }
+        self.source_stack.push(path.clone());
+        self.report.per_file.entry(path.clone()).or_insert(0);
+        let result = self.run_file_id(file).map_err(|d| {
+            let (line, _) = d
+                .span
+                .map(|s| self.sources.line_col(s.file, s.start))
+                .unwrap_or((0, 0));
+            if d.span.is_some_and(|s| s.file == file) {
+                d
+            } else {
+                let (l, _) = self.sources.line_col(ctx.cmd.span.file, ctx.cmd.span.start);
+                let _ = line;
+                d.with_note(format!("while sourcing {}:{}", path.display(), l))
+            }
+        });
+        self.source_stack.pop();
+        if changes_dir {
+            if let Some(prev) = self.dir_stack.pop() {
+                self.cwd = prev;
+            }
+        }
+        result
+    }
+
+    pub(super) fn cmd_pushd(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let Some(d) = args.first() else {
+            return Err(ctx.error("pushd: expected a directory"));
+        };
+        let dir = self.resolve(d);
+        if !dir.is_dir() {
+            return Err(Diagnostic::error(format!("Error changing to {d}"))
+                .at(ctx.arg_span(0))
+                .with_label("no such directory")
+                .with_note(format!("looked for {}", dir.display())));
+        }
+        let dir = dir.canonicalize().unwrap_or(dir);
+        self.dir_stack.push(std::mem::replace(&mut self.cwd, dir));
+        Ok(String::new())
+    }
+
+    pub(super) fn cmd_popd(&mut self, ctx: &Ctx) -> CmdResult {
+        match self.dir_stack.pop() {
+            Some(d) => {
+                self.cwd = d;
+                Ok(String::new())
+            }
+            None => Err(ctx.error("Directory stack empty, no directory to change to.")),
+        }
+    }
+
+    pub(super) fn cmd_cd(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let dir = match args.first() {
+            None => self.home.clone(),
+            Some(d) => self.resolve(d),
+        };
+        if !dir.is_dir() {
+            return Err(Diagnostic::error(format!(
+                "Error changing to {}",
+                args.first().map(String::as_str).unwrap_or("")
+            ))
+            .at(ctx.arg_span(0))
+            .with_label("no such directory"));
+        }
+        self.cwd = dir.canonicalize().unwrap_or(dir);
+        Ok(String::new())
+    }
+
+    pub(super) fn cmd_dirs(&self) -> String {
+        let mut s = self.cwd.display().to_string();
+        for d in self.dir_stack.iter().rev() {
+            s.push(' ');
+            s.push_str(&d.display().to_string());
+        }
+        s
+    }
+
+    pub(super) fn cmd_ls(&self, ctx: &Ctx) -> CmdResult {
+        let mut names: Vec<String> = std::fs::read_dir(&self.cwd)
+            .map_err(|e| ctx.error(format!("ls: {e}")))?
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .collect();
+        names.sort();
+        Ok(names.join("\n"))
+    }
+}

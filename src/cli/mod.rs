@@ -1,0 +1,365 @@
+//! Soar's command language over an [`Agent`]: alias expansion, unique-prefix command names,
+//! option clusters, `source` with its directory handling and first-error abort (spec §1a,
+//! §6, §6d, §7). The interpreter runs without a terminal; front ends drain its [`Event`]s.
+
+pub mod aliases;
+mod files;
+pub mod options;
+mod rules;
+mod settings;
+
+use crate::agent::Agent;
+use crate::source::{Diagnostic, SourceMap, Span};
+use crate::tokenizer::{Command, Tokenizer, WordKind};
+use aliases::Aliases;
+use indexmap::IndexMap;
+use std::path::PathBuf;
+
+/// The real (non-alias) top-level command names of 9.6 (`help`), plus `learn` and `exit`.
+pub const COMMANDS: &[&str] = &[
+    "alias",
+    "cd",
+    "chunk",
+    "debug",
+    "decide",
+    "dirs",
+    "echo",
+    "epmem",
+    "exit",
+    "explain",
+    "file-system",
+    "gp",
+    "help",
+    "learn",
+    "load",
+    "ls",
+    "output",
+    "popd",
+    "preferences",
+    "print",
+    "production",
+    "pushd",
+    "pwd",
+    "rl",
+    "run",
+    "save",
+    "smem",
+    "soar",
+    "sp",
+    "stats",
+    "svs",
+    "trace",
+    "visualize",
+    "wm",
+];
+
+/// What the interpreter has to show, in order.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Event {
+    /// Text as Soar prints it (command results, `echo`, progress marks).
+    Text(String),
+    /// A located warning or error.
+    Diag(Diagnostic),
+}
+
+/// Productions loaded per file by `source`, for the load report.
+#[derive(Debug, Default, Clone)]
+pub struct LoadReport {
+    pub per_file: IndexMap<PathBuf, usize>,
+    pub added: usize,
+    pub excised: usize,
+    pub ignored: usize,
+}
+
+pub struct Interpreter {
+    pub agent: Agent,
+    pub sources: SourceMap,
+    aliases: Aliases,
+    cwd: PathBuf,
+    home: PathBuf,
+    dir_stack: Vec<PathBuf>,
+    /// Files being sourced, innermost last.
+    source_stack: Vec<PathBuf>,
+    events: Vec<Event>,
+    pub report: LoadReport,
+    /// Set by `exit`.
+    pub exit_requested: bool,
+    /// The last thing printed was an `sp` progress mark, so other output starts a new line.
+    after_star: bool,
+}
+
+/// A command's outcome: its result text, or the diagnostic that made it fail.
+pub type CmdResult = Result<String, Diagnostic>;
+
+impl Default for Interpreter {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Interpreter {
+    pub fn new() -> Self {
+        let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+        Interpreter {
+            agent: Agent::new("soar"),
+            sources: SourceMap::new(),
+            aliases: Aliases::default(),
+            home: cwd.clone(),
+            cwd,
+            dir_stack: Vec::new(),
+            source_stack: Vec::new(),
+            events: Vec::new(),
+            report: LoadReport::default(),
+            exit_requested: false,
+            after_star: false,
+        }
+    }
+
+    /// The directory relative paths resolve against (Soar's working directory).
+    pub fn cwd(&self) -> &std::path::Path {
+        &self.cwd
+    }
+
+    pub fn set_cwd(&mut self, dir: PathBuf) {
+        self.home = dir.clone();
+        self.cwd = dir;
+    }
+
+    /// Takes everything printed so far.
+    pub fn take_events(&mut self) -> Vec<Event> {
+        std::mem::take(&mut self.events)
+    }
+
+    /// Renders an event as a terminal shows it (diagnostics through codespan).
+    pub fn render(&self, e: &Event) -> String {
+        match e {
+            Event::Text(t) => t.clone(),
+            Event::Diag(d) => self.sources.render(d),
+        }
+    }
+
+    /// Renders and takes everything printed so far, as one string.
+    pub fn take_output(&mut self) -> String {
+        let events = self.take_events();
+        let mut s = String::new();
+        for e in &events {
+            let r = self.render(e);
+            if matches!(e, Event::Diag(_)) && !s.is_empty() && !s.ends_with('\n') {
+                s.push('\n');
+            }
+            s.push_str(&r);
+        }
+        s
+    }
+
+    pub(crate) fn warn(&mut self, d: Diagnostic) {
+        if self.after_star {
+            self.events.push(Event::Text("\n".into()));
+            self.after_star = false;
+        }
+        self.events.push(Event::Diag(d));
+    }
+
+    /// Runs a text of commands (a `-c` argument, a REPL line, standard input) under a display
+    /// name, stopping at the first failing command. Results are printed as events.
+    pub fn run_text(&mut self, name: &str, text: &str) -> Result<(), Diagnostic> {
+        let file = self.sources.add(name, text);
+        self.run_file_id(file)
+    }
+
+    fn run_file_id(&mut self, file: usize) -> Result<(), Diagnostic> {
+        let text = self.sources.text(file).to_string();
+        for cmd in Tokenizer::new(&text, file) {
+            let cmd = cmd?;
+            let result = self.execute(&cmd)?;
+            self.print_result(result);
+            if self.exit_requested {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Prints a command's result; `*` progress marks of `sp` run together on one line.
+    fn print_result(&mut self, result: String) {
+        if result.is_empty() {
+            return;
+        }
+        let this_is_star = result.chars().all(|c| c == '*' || c == '#');
+        if self.after_star && !this_is_star {
+            self.events.push(Event::Text("\n".into()));
+        }
+        self.after_star = this_is_star;
+        let mut r = result;
+        if !this_is_star && !r.ends_with('\n') {
+            r.push('\n');
+        }
+        self.events.push(Event::Text(r));
+    }
+
+    /// Executes one tokenized command.
+    pub fn execute(&mut self, cmd: &Command) -> CmdResult {
+        let mut words: Vec<String> = cmd.words.iter().map(|w| w.text.clone()).collect();
+        let first = cmd.words.first().map(|w| w.span).unwrap_or(cmd.span);
+        // Alias expansion: only the first word, by exact match (spec §1a).
+        let mut expanded_from = None;
+        if cmd.words[0].kind == WordKind::Bare {
+            if let Some(exp) = self.aliases.get(&words[0]) {
+                expanded_from = Some(words[0].clone());
+                let mut new = exp.to_vec();
+                new.extend(words.drain(1..));
+                words = new;
+            }
+        }
+        let name = match self.resolve_command(&words[0]) {
+            Some(n) => n,
+            None => {
+                let mut d = Diagnostic::error(format!("No such command: {}", words[0]))
+                    .at(first)
+                    .with_label("unknown command");
+                let near = nearest_commands(&words[0], &self.aliases);
+                if !near.is_empty() {
+                    d = d.with_note(format!("did you mean: {}", near.join(", ")));
+                }
+                return Err(d);
+            }
+        };
+        let ctx = Ctx {
+            cmd,
+            alias: expanded_from.as_deref(),
+        };
+        let args = &words[1..];
+        match name {
+            "sp" => self.cmd_sp(&ctx),
+            "load" => self.cmd_load(&ctx, args),
+            "pushd" => self.cmd_pushd(&ctx, args),
+            "popd" => self.cmd_popd(&ctx),
+            "cd" => self.cmd_cd(&ctx, args),
+            "pwd" => Ok(self.cwd.display().to_string()),
+            "dirs" => Ok(self.cmd_dirs()),
+            "ls" => self.cmd_ls(&ctx),
+            "echo" => Ok(cmd_echo(args)),
+            "alias" => self.cmd_alias(&ctx, args),
+            "learn" => self.cmd_learn(&ctx, args),
+            "chunk" => self.cmd_chunk(&ctx, args),
+            "soar" => self.cmd_soar(&ctx, args),
+            "trace" => self.cmd_trace(&ctx, args),
+            "decide" => self.cmd_decide(&ctx, args),
+            "output" => self.cmd_output(&ctx, args),
+            "print" => self.cmd_print(&ctx, args),
+            "production" => self.cmd_production(&ctx, args),
+            "help" => Ok(cmd_help(args)),
+            "exit" => {
+                self.exit_requested = true;
+                Ok(String::new())
+            }
+            other => Err(not_yet(&ctx, other)),
+        }
+    }
+
+    /// Exact name, else a unique prefix of a real command name (aliases are not prefixes).
+    fn resolve_command(&self, word: &str) -> Option<&'static str> {
+        if let Some(c) = COMMANDS.iter().find(|c| **c == word) {
+            return Some(c);
+        }
+        let mut it = COMMANDS.iter().filter(|c| c.starts_with(word));
+        match (it.next(), it.next()) {
+            (Some(c), None) if !word.is_empty() => Some(c),
+            _ => None,
+        }
+    }
+}
+
+/// Where a command came from, for diagnostics.
+pub(crate) struct Ctx<'a> {
+    pub cmd: &'a Command,
+    /// The alias the command was written as, if any.
+    pub alias: Option<&'a str>,
+}
+
+impl Ctx<'_> {
+    /// Span of argument `i` (0 = first argument after the command word), or the command.
+    pub fn arg_span(&self, i: usize) -> Span {
+        self.cmd
+            .words
+            .get(i + 1)
+            .map(|w| w.span)
+            .unwrap_or(self.cmd.span)
+    }
+    pub fn error(&self, msg: impl Into<String>) -> Diagnostic {
+        Diagnostic::error(msg)
+            .at(self.cmd.span)
+            .with_label("in this command")
+    }
+}
+
+/// A clear error for a command whose issue has not landed yet.
+fn not_yet(ctx: &Ctx, name: &str) -> Diagnostic {
+    let shown = ctx.alias.unwrap_or(name);
+    Diagnostic::error(format!("{shown}: not yet supported by rusoar"))
+        .at(ctx.cmd.span)
+        .with_label("this command parses but does not run yet")
+        .with_note(format!(
+            "`{name}` needs working memory and the decision cycle, which later issues add; see README.md \"What works\""
+        ))
+}
+
+fn cmd_echo(args: &[String]) -> String {
+    let (newline, words) = match args.first().map(String::as_str) {
+        Some("--nonewline") | Some("-n") => (false, &args[1..]),
+        _ => (true, args),
+    };
+    let mut s = words.join(" ");
+    if newline {
+        s.push('\n');
+    }
+    s
+}
+
+fn cmd_help(args: &[String]) -> String {
+    if let Some(name) = args.first() {
+        return match COMMANDS.iter().find(|c| *c == name) {
+            Some(c) => format!(
+                "{c}: see the Soar manual's command reference; `{c} ?` lists its settings\n"
+            ),
+            None => format!("No help entry for {name}\n"),
+        };
+    }
+    let mut s = String::from("Soar 9.6 Command List (rusoar):\n\n");
+    for c in COMMANDS {
+        s.push_str(c);
+        s.push('\n');
+    }
+    s.push_str("\nTo read an in-depth description of the command:               help <command>\n");
+    s
+}
+
+/// Up to three command names or aliases close to `word` (edit distance), for "did you mean".
+pub fn nearest_commands(word: &str, aliases: &Aliases) -> Vec<String> {
+    let mut cands: Vec<(usize, String)> = COMMANDS
+        .iter()
+        .map(|c| c.to_string())
+        .chain(aliases::DEFAULT_ALIASES.iter().map(|(a, _)| a.to_string()))
+        .filter(|c| aliases.get(c).is_some() || COMMANDS.contains(&c.as_str()))
+        .map(|c| (edit_distance(word, &c), c))
+        .filter(|(d, c)| *d <= 2.max(word.len() / 3) && c.len() > 1)
+        .collect();
+    cands.sort();
+    cands.dedup_by(|a, b| a.1 == b.1);
+    cands.into_iter().take(3).map(|(_, c)| c).collect()
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for i in 1..=a.len() {
+        let mut cur = vec![i; b.len() + 1];
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            cur[j] = (prev[j] + 1).min(cur[j - 1] + 1).min(prev[j - 1] + cost);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}

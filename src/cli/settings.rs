@@ -1,0 +1,317 @@
+//! Settings commands: `learn` (with Soar 8 spellings), `chunk`, `soar`, `trace`, `decide`,
+//! `output`, `alias` (spec §6a, §6b, §7).
+
+use super::options::{self, opt, opt_arg};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::agent::LearnMode;
+use crate::source::Diagnostic;
+
+/// Soar 8 single-dash words and their 9.6 spellings (spec §7).
+const LEARN_SOAR8: &[(&str, &str)] = &[
+    ("-off", "--off"),
+    ("-on", "--on"),
+    ("-only", "--only"),
+    ("-except", "--except"),
+    ("-list", "--list"),
+    ("-all-levels", "--all-levels"),
+    ("-bottom-up", "--bottom-up"),
+];
+
+impl Interpreter {
+    /// The deprecated `learn` command. Soar 8's `learn -off` is accepted with a warning
+    /// (9.6 reads it as `-o -f -f` and aborts the load: spec §7, E:t3).
+    pub(super) fn cmd_learn(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let mut args = args.to_vec();
+        for (i, a) in args.iter_mut().enumerate() {
+            if let Some((old, new)) = LEARN_SOAR8.iter().find(|(old, _)| a == old) {
+                let nine_six = match *new {
+                    "--off" => "chunk never",
+                    "--on" => "chunk always",
+                    "--only" => "chunk only",
+                    "--except" => "chunk except",
+                    _ => "chunk",
+                };
+                self.warn(
+                    Diagnostic::warning(format!(
+                        "Soar 8 spelling `learn {old}`: Soar 9.6 reads it as a cluster of one-letter options and rejects it; read as `learn {new}` (9.6: `{nine_six}`)"
+                    ))
+                    .at(ctx.arg_span(i))
+                    .with_label(format!("Soar 9.6 spelling: {nine_six}")),
+                );
+                *a = new.to_string();
+            }
+        }
+        let specs = [
+            opt('a', "all-levels"),
+            opt('b', "bottom-up"),
+            opt('d', "disable"),
+            super::options::long_only("off"),
+            opt('e', "enable"),
+            super::options::long_only("on"),
+            opt('E', "except"),
+            opt('l', "list"),
+            opt('o', "only"),
+            opt('n', "local-negations"),
+            opt('N', "no-local-negations"),
+            opt('p', "desirability-prefs"),
+            opt('P', "no-desirability-prefs"),
+        ];
+        let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
+        let mut mode = None;
+        for (o, _) in &parsed.options {
+            mode = match *o {
+                "disable" | "off" => Some(LearnMode::Never),
+                "enable" | "on" => Some(LearnMode::Always),
+                "except" => Some(LearnMode::Except),
+                "only" => Some(LearnMode::Only),
+                _ => mode,
+            };
+        }
+        match mode {
+            Some(m) => {
+                self.agent.settings.learn = m;
+                Ok(format!(
+                    "learn is now {}\nWarning:  'learn' has been deprecated.  New corresponding command is: chunk {}\n",
+                    m.word(),
+                    m.word()
+                ))
+            }
+            None => Ok(format!("learn is {}\n", self.agent.settings.learn.word())),
+        }
+    }
+
+    pub(super) fn cmd_chunk(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let s = &mut self.agent.settings;
+        match args.first().map(String::as_str) {
+            None => Ok(format!(
+                "=======================================================\n           Explanation-Based Chunking Summary\n=======================================================\nWhen Soar will learn rules{:>29}\n",
+                s.learn.word()
+            )),
+            Some(w @ ("always" | "never" | "only" | "except" | "on" | "off")) => {
+                // `chunk on` means `only` in 9.6 (spec §4, E:t3).
+                s.learn = match w {
+                    "always" => LearnMode::Always,
+                    "never" | "off" => LearnMode::Never,
+                    "only" | "on" => LearnMode::Only,
+                    _ => LearnMode::Except,
+                };
+                let shown = if w == "off" { "off\n" } else { s.learn.word() };
+                Ok(format!("Learns rules in states: {shown}\n"))
+            }
+            Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, |n| format!("max-chunks is now {n}\n")),
+            Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, |n| format!("max-dupes is now {n}\n")),
+            Some(_) => Err(super::not_yet(ctx, "chunk")),
+        }
+    }
+
+    pub(super) fn cmd_soar(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let s = &mut self.agent.settings;
+        match args.first().map(String::as_str) {
+            Some("max-elaborations") => int_setting(
+                ctx,
+                &args[1..],
+                "max-elaborations",
+                &mut s.max_elaborations,
+                |n| format!("The maximum number of elaborations in a phase is now {n}.\n"),
+            ),
+            Some("max-goal-depth") => int_setting(
+                ctx,
+                &args[1..],
+                "max-goal-depth",
+                &mut s.max_goal_depth,
+                |n| format!("The maximum goal depth is now {n}.\n"),
+            ),
+            Some("max-nil-output-cycles") => int_setting(
+                ctx,
+                &args[1..],
+                "max-nil-output-cycles",
+                &mut s.max_nil_output_cycles,
+                |n| format!("max-nil-output-cycles is now {n}\n"),
+            ),
+            Some("wait-snc") => {
+                match args.get(1).map(String::as_str) {
+                    None => Ok(format!(
+                        "wait-snc is {}\n",
+                        if s.wait_snc { "on" } else { "off" }
+                    )),
+                    Some("on") => {
+                        s.wait_snc = true;
+                        Ok("Soar will now wait instead of impassing when a state doesn't change.\n".into())
+                    }
+                    Some("off") => {
+                        s.wait_snc = false;
+                        Ok("Soar will now impasse when a state doesn't change.\n".into())
+                    }
+                    Some(other) => Err(Diagnostic::error(format!(
+                        "Invalid value for wait-snc: {other}"
+                    ))
+                    .at(ctx.arg_span(1))
+                    .with_label("expected on or off")),
+                }
+            }
+            Some("version") => Ok(format!(
+                "rusoar {} (Soar 9.6 semantics)\n",
+                env!("CARGO_PKG_VERSION")
+            )),
+            Some(_) | None => Err(super::not_yet(ctx, "soar")),
+        }
+    }
+
+    /// `trace N` / `watch N`: the level is stored for the decision cycle's traces.
+    pub(super) fn cmd_trace(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        const LEVELS: [&str; 6] = [
+            "Trace level 0 enabled:  All trace messages disabled.",
+            "Trace level 1 enabled:  Decision cycles, state creation and operator selection",
+            "Trace level 2 enabled:  All phases, state removals caused by operator selection\n                        or a GDS violation, and any learning issues detected",
+            "Trace level 3 enabled:  All rule firings",
+            "Trace level 4 enabled:  Working memory element additions and removals",
+            "Trace level 5 enabled: Preferences",
+        ];
+        let Some(first) = args.first() else {
+            return Err(super::not_yet(ctx, "trace"));
+        };
+        let Ok(level) = first.parse::<u8>() else {
+            return Err(super::not_yet(ctx, "trace"));
+        };
+        if level > 5 {
+            return Err(Diagnostic::error(format!("Invalid trace level: {level}"))
+                .at(ctx.arg_span(0))
+                .with_label("levels are 0 to 5"));
+        }
+        self.agent.settings.trace_level = level;
+        let mut s = String::new();
+        if level == 0 {
+            s.push_str(LEVELS[0]);
+            s.push('\n');
+        } else {
+            for l in (1..=level as usize).rev() {
+                s.push_str(LEVELS[l]);
+                s.push('\n');
+            }
+        }
+        s.push_str("\nFor a full list of trace options, use 'trace' (no arguments)\n");
+        Ok(s)
+    }
+
+    /// `decide`: only the settings that need no decision cycle (`srand` is stored).
+    pub(super) fn cmd_decide(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        match args.first().map(String::as_str) {
+            Some("indifferent-selection") => {
+                let mut rest = args[1..].to_vec();
+                if let Some(pos) = rest.iter().position(|a| a == "-random") {
+                    self.warn(
+                        Diagnostic::warning(
+                            "Soar 8 spelling `indifferent-selection -random`: Soar 9.6 has no such policy; its default softmax is already uniform over plain indifferent operators",
+                        )
+                        .at(ctx.cmd.span)
+                        .with_label("read as `indifferent-selection --softmax`"),
+                    );
+                    rest[pos] = "--softmax".into();
+                }
+                let specs = [
+                    opt('b', "boltzmann"),
+                    opt('g', "epsilon-greedy"),
+                    opt('f', "first"),
+                    opt('l', "last"),
+                    opt('x', "softmax"),
+                    opt_arg('e', "epsilon"),
+                    opt_arg('t', "temperature"),
+                ];
+                let parsed = options::parse(&rest, &specs).map_err(|m| ctx.error(m))?;
+                let mut policy = None;
+                for (o, _) in &parsed.options {
+                    if matches!(
+                        *o,
+                        "boltzmann" | "epsilon-greedy" | "first" | "last" | "softmax"
+                    ) {
+                        policy = Some(*o);
+                    }
+                }
+                match policy {
+                    Some(p) => {
+                        self.agent.settings_policy = p.to_string();
+                        Ok(String::new())
+                    }
+                    None => Ok(self.agent.settings_policy.clone()),
+                }
+            }
+            Some("srand") => {
+                let seed = match args.get(1) {
+                    Some(s) => s.parse::<u32>().map_err(|_| {
+                        Diagnostic::error(format!("Integer expected: {s}"))
+                            .at(ctx.arg_span(1))
+                            .with_label("not a seed")
+                    })?,
+                    None => 0,
+                };
+                self.agent.seed = Some(seed);
+                Ok(format!("Random number generator seed set to {seed}\n"))
+            }
+            _ => Err(super::not_yet(ctx, "decide")),
+        }
+    }
+
+    pub(super) fn cmd_output(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        match (
+            args.first().map(String::as_str),
+            args.get(1).map(String::as_str),
+        ) {
+            (Some("warnings"), Some("on")) => {
+                self.agent.settings.warnings = true;
+                Ok(String::new())
+            }
+            (Some("warnings"), Some("off")) => {
+                self.agent.settings.warnings = false;
+                Ok(String::new())
+            }
+            _ => Err(super::not_yet(ctx, "output")),
+        }
+    }
+
+    pub(super) fn cmd_alias(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        match args {
+            [] => Ok(self.aliases.listing()),
+            [flag, name] if flag == "-r" || flag == "--remove" => {
+                if self.aliases.remove(name) {
+                    Ok(String::new())
+                } else {
+                    Err(Diagnostic::error(format!("Alias not found: {name}"))
+                        .at(ctx.arg_span(1))
+                        .with_label("no such alias"))
+                }
+            }
+            [name] => match self.aliases.get(name) {
+                Some(exp) => Ok(format!("{name} = {}\n", exp.join(" "))),
+                None => Err(Diagnostic::error(format!("Alias not found: {name}"))
+                    .at(ctx.arg_span(0))
+                    .with_label("no such alias")),
+            },
+            [name, rest @ ..] => {
+                self.aliases.set(name, rest.to_vec());
+                Ok(String::new())
+            }
+        }
+    }
+}
+
+/// `setting [N]`: shows or sets a non-negative integer setting.
+fn int_setting(
+    ctx: &Ctx,
+    args: &[String],
+    name: &str,
+    slot: &mut i64,
+    msg: impl Fn(i64) -> String,
+) -> CmdResult {
+    match args.first() {
+        None => Ok(format!("{name} is {slot}\n")),
+        Some(v) => match v.parse::<i64>() {
+            Ok(n) if n > 0 => {
+                *slot = n;
+                Ok(msg(n))
+            }
+            _ => Err(Diagnostic::error(format!("Invalid value for {name}: {v}"))
+                .at(ctx.cmd.words.last().map(|w| w.span).unwrap_or(ctx.cmd.span))
+                .with_label("expected a positive integer")),
+        },
+    }
+}

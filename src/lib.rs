@@ -1,0 +1,12 @@
+//! rusoar: the Soar cognitive architecture in Rust, and Soar-SLAM.
+pub mod agent;
+pub mod ast;
+pub mod cli;
+pub mod lexer;
+pub mod parser;
+pub mod printer;
+pub mod production;
+pub mod rhs_functions;
+pub mod robot;
+pub mod source;
+pub mod tokenizer;

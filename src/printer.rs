@@ -1,0 +1,358 @@
+//! Printing productions and symbols back in Soar 9.6's form (`print <rule>`, spec §6a):
+//! constants in rereadable form, conditions grouped by identifier, 80-column wrapping.
+
+use crate::ast::{Constant, Head};
+use crate::lexer::{is_int_lexeme, is_variable};
+use crate::production::{
+    Action, Cond, Condition, FuncCall, Make, PrefKind, Production, RhsTerm, Term, Test,
+};
+
+fn is_constituent(c: char) -> bool {
+    c.is_ascii_alphanumeric() || "$%&*+-/:<=>?_@".contains(c)
+}
+
+/// Would the lexer read `s` back as something other than this string constant? Observed on
+/// the official kernel: `a1`, `a*b`, `a-b`, `z9-`, `-a`, `*a`, `1.5`, `+`, `a b` need bars;
+/// `a1b`, `ab-c`, `1e5`, `1a`, `*` do not.
+fn needs_bars(s: &str) -> bool {
+    if s.is_empty() || !s.chars().all(is_constituent) {
+        return true;
+    }
+    if is_int_lexeme(s) || is_variable(s) || looks_like_float(s) {
+        return true;
+    }
+    if matches!(
+        s,
+        "+" | "-" | "<" | ">" | "=" | "<=" | ">=" | "<>" | "<=>" | "<<" | ">>" | "&" | "@" | "-->"
+    ) {
+        return true;
+    }
+    let b = s.as_bytes();
+    if b[0].is_ascii_alphabetic() {
+        // letter, digits*, then the end (with at least one digit) or a non-alphanumeric.
+        let mut i = 1;
+        while i < b.len() && b[i].is_ascii_digit() {
+            i += 1;
+        }
+        if i == b.len() {
+            return i > 1;
+        }
+        return !b[i].is_ascii_alphabetic();
+    }
+    !b[0].is_ascii_alphanumeric() && b.len() > 1
+}
+
+fn looks_like_float(s: &str) -> bool {
+    s.contains('.') && s.parse::<f64>().is_ok()
+}
+
+/// A string constant as Soar prints it: with `|...|` when it would not read back as itself.
+pub fn rereadable(s: &str) -> String {
+    if needs_bars(s) {
+        let mut out = String::with_capacity(s.len() + 2);
+        out.push('|');
+        for c in s.chars() {
+            if c == '|' || c == '\\' {
+                out.push('\\');
+            }
+            out.push(c);
+        }
+        out.push('|');
+        out
+    } else {
+        s.to_string()
+    }
+}
+
+/// Floats print with 6 decimals as `std::fixed` does (spec §2).
+pub fn float_text(f: f64) -> String {
+    format!("{f:.6}")
+}
+
+pub fn constant_text(c: &Constant) -> String {
+    match c {
+        Constant::Str(s) => rereadable(s),
+        Constant::Int(i) => i.to_string(),
+        Constant::Float(f) => float_text(*f),
+    }
+}
+
+fn term_text(t: &Term) -> String {
+    match t {
+        Term::Var(v) => v.clone(),
+        Term::Const(c) => constant_text(c),
+    }
+}
+
+pub fn test_text(t: &Test) -> String {
+    match t {
+        Test::Equal(term) => term_text(term),
+        Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
+        Test::Disjunction(cs) => {
+            let items: Vec<String> = cs.iter().map(constant_text).collect();
+            format!("<< {} >>", items.join(" "))
+        }
+        Test::Conjunction(ts) => {
+            let items: Vec<String> = ts.iter().map(test_text).collect();
+            format!("{{ {} }}", items.join(" "))
+        }
+    }
+}
+
+pub fn rhs_term_text(t: &RhsTerm) -> String {
+    match t {
+        RhsTerm::Var(v) => v.clone(),
+        RhsTerm::Const(c) => constant_text(c),
+        RhsTerm::Call(f) => call_text(f),
+    }
+}
+
+pub fn call_text(f: &FuncCall) -> String {
+    let mut s = format!("({}", f.name);
+    for a in &f.args {
+        s.push(' ');
+        s.push_str(&rhs_term_text(a));
+    }
+    s.push(')');
+    s
+}
+
+fn is_operator(t: &RhsTerm) -> bool {
+    matches!(t, RhsTerm::Const(Constant::Str(s)) if s == "operator")
+}
+
+/// ` ^attr value [pref [referent]]` as it appears inside a printed make action.
+fn make_item(m: &Make) -> String {
+    let mut s = format!("^{} {}", rhs_term_text(&m.attr), rhs_term_text(&m.value));
+    let show_pref = match m.pref {
+        PrefKind::Acceptable => is_operator(&m.attr),
+        _ => true,
+    };
+    if show_pref {
+        s.push(' ');
+        s.push_str(m.pref.symbol());
+        if let Some(r) = &m.referent {
+            s.push(' ');
+            s.push_str(&rhs_term_text(r));
+        }
+    }
+    s
+}
+
+/// One make action alone, as in Soar's ungrounded-action message: `(<x> ^a 1 +)`.
+pub fn make_text(m: &Make) -> String {
+    let mut s = format!(
+        "({} ^{} {} {}",
+        rhs_term_text(&m.id),
+        rhs_term_text(&m.attr),
+        rhs_term_text(&m.value),
+        m.pref.symbol()
+    );
+    if let Some(r) = &m.referent {
+        s.push(' ');
+        s.push_str(&rhs_term_text(r));
+    }
+    s.push(')');
+    s
+}
+
+/// Appends `items` after `head`, wrapping before an item that would reach column 80.
+fn wrap_items(out: &mut String, head: &str, items: &[String], indent: usize, close: &str) {
+    let mut line = head.to_string();
+    let mut first = true;
+    for it in items {
+        let sep = if first { "" } else { " " };
+        if !first && line.len() + sep.len() + it.len() >= 80 {
+            out.push_str(&line);
+            out.push('\n');
+            line = " ".repeat(indent);
+            line.push_str(it);
+        } else {
+            line.push_str(sep);
+            line.push_str(it);
+        }
+        first = false;
+    }
+    line.push_str(close);
+    out.push_str(&line);
+}
+
+fn cond_item(c: &Cond, negated: bool) -> String {
+    let mut s = String::new();
+    if negated {
+        s.push('-');
+    }
+    s.push('^');
+    s.push_str(&test_text(&c.attr));
+    s.push(' ');
+    s.push_str(&test_text(&c.value));
+    if c.acceptable {
+        s.push_str(" +");
+    }
+    s
+}
+
+/// Prints a list of conditions, grouping those on the same id (at this level) into one
+/// parenthesised condition at the place of the first, as Soar prints them.
+fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
+    enum Item<'a> {
+        Group(String, Vec<(&'a Cond, bool)>),
+        Ncc(&'a [Condition]),
+    }
+    let mut items: Vec<Item> = Vec::new();
+    for c in conds {
+        let (cc, neg) = match c {
+            Condition::Ncc(inner) => {
+                items.push(Item::Ncc(inner));
+                continue;
+            }
+            Condition::Positive(cc) => (cc, false),
+            Condition::Negative(cc) => (cc, true),
+        };
+        let id = test_text(&cc.id);
+        let existing = items.iter_mut().find_map(|it| match it {
+            Item::Group(gid, members) if *gid == id => Some(members),
+            _ => None,
+        });
+        match existing {
+            Some(members) => members.push((cc, neg)),
+            None => items.push(Item::Group(id, vec![(cc, neg)])),
+        }
+    }
+    for it in items {
+        match it {
+            Item::Ncc(inner) => {
+                out.push_str(&" ".repeat(indent.saturating_sub(1)));
+                out.push_str("-{ ");
+                let mut body = String::new();
+                print_conditions(&mut body, inner, indent + 2);
+                // The first line sits after "-{ ", the rest keep their own indent.
+                out.push_str(body.trim_start().trim_end_matches('\n'));
+                out.push_str("}\n");
+            }
+            Item::Group(id, members) => {
+                let goal = members
+                    .iter()
+                    .find(|(c, neg)| !neg && c.goal != Head::None)
+                    .map(|(c, _)| c.goal)
+                    .unwrap_or(Head::None);
+                let mut texts: Vec<String> =
+                    members.iter().map(|(c, neg)| cond_item(c, *neg)).collect();
+                let mut head = " ".repeat(indent);
+                if members.len() == 1 && members[0].1 {
+                    // A lone negated condition prints as -(id ^a v).
+                    head.truncate(indent.saturating_sub(1));
+                    head.push('-');
+                    texts[0].remove(0);
+                }
+                head.push('(');
+                match goal {
+                    Head::State => head.push_str("state "),
+                    Head::Impasse => head.push_str("impasse "),
+                    Head::None => {}
+                }
+                head.push_str(&id);
+                head.push(' ');
+                let cont = head.len() + 1;
+                wrap_items(out, &head, &texts, cont, ")");
+                out.push('\n');
+            }
+        }
+    }
+}
+
+fn print_actions(out: &mut String, actions: &[Action]) {
+    let mut i = 0;
+    while i < actions.len() {
+        match &actions[i] {
+            Action::Call(f) => {
+                out.push_str("    ");
+                out.push_str(&call_text(f));
+                out.push('\n');
+                i += 1;
+            }
+            Action::Make(m) => {
+                let id = rhs_term_text(&m.id);
+                let mut items = Vec::new();
+                let mut j = i;
+                while let Some(Action::Make(mm)) = actions.get(j) {
+                    if rhs_term_text(&mm.id) != id {
+                        break;
+                    }
+                    items.push(make_item(mm));
+                    j += 1;
+                }
+                let head = format!("    ({id} ");
+                let cont = head.len() + 2;
+                wrap_items(out, &head, &items, cont, ")");
+                out.push('\n');
+                i = j;
+            }
+        }
+    }
+}
+
+/// `print <rule>` text (without the trailing blank line Soar adds after the brace).
+pub fn production_text(p: &Production) -> String {
+    let mut out = format!("sp {{{}\n", rereadable(&p.name));
+    if let Some(doc) = &p.doc {
+        out.push_str(&format!(
+            "    \"{}\"\n",
+            doc.replace('\\', "\\\\").replace('"', "\\\"")
+        ));
+    }
+    let f = &p.flags;
+    for (on, name) in [
+        (f.default, ":default"),
+        (f.chunk, ":chunk"),
+        (f.o_support, ":o-support"),
+        (f.i_support, ":i-support"),
+        (f.template, ":template"),
+        (f.interrupt, ":interrupt"),
+        (f.explain, ":explain"),
+    ] {
+        if on {
+            out.push_str(&format!("    {name}\n"));
+        }
+    }
+    print_conditions(&mut out, &p.conditions, 4);
+    out.push_str("    -->\n");
+    print_actions(&mut out, &p.actions);
+    out.push_str("}\n");
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bars_as_the_official_kernel_prints_them() {
+        for s in [
+            "a*b", "a-b", "z9-", "a1-", "-a", "*a", "1.5", "+", "a b", "", "P1", "123", "<x>",
+            "a.b",
+        ] {
+            assert!(rereadable(s).starts_with('|'), "{s} should have bars");
+        }
+        for s in [
+            "a1b",
+            "ab-c",
+            "1e5",
+            "1a",
+            "*",
+            "a",
+            "gp*test*1",
+            "propose*init",
+            "wall01",
+            "w1b",
+        ] {
+            assert_eq!(rereadable(s), s, "{s} should print bare");
+        }
+    }
+
+    #[test]
+    fn floats_have_six_decimals() {
+        assert_eq!(float_text(2.5), "2.500000");
+        assert_eq!(float_text(150.0), "150.000000");
+    }
+}

@@ -1,0 +1,932 @@
+//! Compiling a parsed `sp` into a production: dot paths and structured values are flattened
+//! into single conditions with placeholder variables, preferences become one action each,
+//! and the load-time checks Soar makes are applied (spec §1c–§1g).
+
+use crate::ast::{self, Constant, Head, Pref, Relation};
+use crate::rhs_functions::{self, Use};
+use crate::source::{Diagnostic, Span};
+use rustc_hash::{FxHashMap, FxHashSet};
+
+/// Declared support and other `:flags` (spec §1c).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Flags {
+    pub o_support: bool,
+    pub i_support: bool,
+    pub chunk: bool,
+    pub default: bool,
+    pub template: bool,
+    pub interrupt: bool,
+    pub explain: bool,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Production {
+    pub name: String,
+    pub doc: Option<String>,
+    pub flags: Flags,
+    pub conditions: Vec<Condition>,
+    pub actions: Vec<Action>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Condition {
+    Positive(Cond),
+    Negative(Cond),
+    Ncc(Vec<Condition>),
+}
+
+/// One `(id ^attr value)` condition after flattening.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cond {
+    pub id: Test,
+    pub attr: Test,
+    pub value: Test,
+    /// Matches only acceptable-preference WMEs (`+` after the value).
+    pub acceptable: bool,
+    /// `(state ...)` or `(impasse ...)` put a goal or impasse test on the id.
+    pub goal: Head,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Test {
+    Equal(Term),
+    Relational(Relation, Term),
+    Disjunction(Vec<Constant>),
+    /// At most one `Equal` inside, always last (as Soar prints it).
+    Conjunction(Vec<Test>),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Term {
+    Var(String),
+    Const(Constant),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PrefKind {
+    Acceptable,
+    Reject,
+    Require,
+    Prohibit,
+    Best,
+    Worst,
+    Indifferent,
+    Better,
+    Worse,
+    BinaryIndifferent,
+    NumericIndifferent,
+}
+
+impl PrefKind {
+    pub fn symbol(self) -> &'static str {
+        match self {
+            PrefKind::Acceptable => "+",
+            PrefKind::Reject => "-",
+            PrefKind::Require => "!",
+            PrefKind::Prohibit => "~",
+            PrefKind::Best | PrefKind::Better => ">",
+            PrefKind::Worst | PrefKind::Worse => "<",
+            PrefKind::Indifferent | PrefKind::BinaryIndifferent | PrefKind::NumericIndifferent => {
+                "="
+            }
+        }
+    }
+    pub fn is_binary(self) -> bool {
+        matches!(
+            self,
+            PrefKind::Better
+                | PrefKind::Worse
+                | PrefKind::BinaryIndifferent
+                | PrefKind::NumericIndifferent
+        )
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum Action {
+    Make(Box<Make>),
+    Call(FuncCall),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct Make {
+    pub id: RhsTerm,
+    pub attr: RhsTerm,
+    pub value: RhsTerm,
+    pub pref: PrefKind,
+    pub referent: Option<RhsTerm>,
+    pub span: Span,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum RhsTerm {
+    Var(String),
+    Const(Constant),
+    Call(FuncCall),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub struct FuncCall {
+    pub name: String,
+    pub args: Vec<RhsTerm>,
+    pub span: Span,
+}
+
+/// What compiling said besides the result: warnings and informational messages that Soar
+/// prints while still adding the rule.
+#[derive(Debug, Default)]
+pub struct CompileOutput {
+    pub warnings: Vec<Diagnostic>,
+}
+
+/// Placeholder variables `<s*1>` named after the attribute's first letter, counted per letter.
+#[derive(Default)]
+struct Placeholders {
+    counters: FxHashMap<char, u32>,
+    used: FxHashSet<String>,
+}
+
+impl Placeholders {
+    fn fresh(&mut self, letter: char) -> String {
+        let letter = letter.to_ascii_lowercase();
+        loop {
+            let n = self.counters.entry(letter).or_insert(0);
+            *n += 1;
+            let name = format!("<{letter}*{n}>");
+            if !self.used.contains(&name) {
+                self.used.insert(name.clone());
+                return name;
+            }
+        }
+    }
+}
+
+fn letter_of_test(t: &ast::Test) -> char {
+    match t {
+        ast::Test::Equal(ast::Atom::Const(Constant::Str(s)), _) => s
+            .chars()
+            .next()
+            .filter(|c| c.is_ascii_alphabetic())
+            .unwrap_or('v'),
+        ast::Test::Conjunction(ts, _) => ts
+            .iter()
+            .find_map(|t| match t {
+                ast::Test::Equal(ast::Atom::Const(Constant::Str(s)), _) => {
+                    s.chars().next().filter(|c| c.is_ascii_alphabetic())
+                }
+                _ => None,
+            })
+            .unwrap_or('a'),
+        ast::Test::Equal(ast::Atom::Var(_), _) => 'a',
+        _ => 'a',
+    }
+}
+
+fn letter_of_rhs(v: &ast::RhsValue) -> char {
+    match v {
+        ast::RhsValue::Const(Constant::Str(s), _) => s
+            .chars()
+            .next()
+            .filter(|c| c.is_ascii_alphabetic())
+            .unwrap_or('v'),
+        _ => 'a',
+    }
+}
+
+/// Compiles a parsed production, applying Soar's load-time checks. Errors reject the rule.
+pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Production, Diagnostic> {
+    let flags = compile_flags(p)?;
+    let mut ph = Placeholders::default();
+    collect_vars_ast(p, &mut ph.used);
+    let mut conditions = Vec::new();
+    for c in &p.conditions {
+        compile_condition(c, &mut ph, &mut conditions, out)?;
+    }
+    let mut actions = Vec::new();
+    for a in &p.actions {
+        compile_action(a, &mut ph, &mut actions, out, &p.name)?;
+    }
+    let prod = Production {
+        name: p.name.clone(),
+        doc: p.doc.clone(),
+        flags,
+        conditions,
+        actions,
+        span: p.span,
+    };
+    check_goal_test(&prod, p)?;
+    check_connected(&prod, out);
+    check_grounded(&prod, p)?;
+    Ok(prod)
+}
+
+fn compile_flags(p: &ast::Production) -> Result<Flags, Diagnostic> {
+    let mut f = Flags::default();
+    for (flag, span) in &p.flags {
+        match flag.as_str() {
+            ":o-support" => f.o_support = true,
+            ":i-support" => f.i_support = true,
+            ":chunk" => f.chunk = true,
+            ":default" => f.default = true,
+            ":template" => f.template = true,
+            ":interrupt" => f.interrupt = true,
+            ":explain" => f.explain = true,
+            other => {
+                let mut d = Diagnostic::error("Expected ( to begin condition element")
+                    .at(*span)
+                    .with_label(format!("`{other}` is not a production flag"));
+                d = d.with_note(
+                    "the flags are :o-support, :i-support, :chunk, :default, :template, :interrupt and :explain",
+                );
+                if other == ":no-support" {
+                    d = d.with_note(
+                        "`:no-support` is a Soar 8 flag that Soar 9.6 no longer accepts; remove it",
+                    );
+                }
+                return Err(d);
+            }
+        }
+    }
+    Ok(f)
+}
+
+fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
+    fn test(t: &ast::Test, used: &mut FxHashSet<String>) {
+        match t {
+            ast::Test::Equal(ast::Atom::Var(v), _)
+            | ast::Test::Relational(_, ast::Atom::Var(v), _) => {
+                used.insert(v.clone());
+            }
+            ast::Test::Conjunction(ts, _) => ts.iter().for_each(|t| test(t, used)),
+            _ => {}
+        }
+    }
+    fn avt(a: &ast::AttrValueTests, used: &mut FxHashSet<String>) {
+        a.path.iter().for_each(|t| test(t, used));
+        for v in &a.values {
+            match v {
+                ast::ValueTest::Test { test: t, .. } => test(t, used),
+                ast::ValueTest::Structured { tests, .. } => tests.iter().for_each(|a| avt(a, used)),
+            }
+        }
+    }
+    fn cond(c: &ast::Condition, used: &mut FxHashSet<String>) {
+        match c {
+            ast::Condition::Positive(c) | ast::Condition::Negative(c) => {
+                if let Some(t) = &c.id_test {
+                    test(t, used);
+                }
+                c.attr_value_tests.iter().for_each(|a| avt(a, used));
+            }
+            ast::Condition::Ncc(cs, _) => cs.iter().for_each(|c| cond(c, used)),
+        }
+    }
+    fn rhs(v: &ast::RhsValue, used: &mut FxHashSet<String>) {
+        match v {
+            ast::RhsValue::Var(name, _) => {
+                used.insert(name.clone());
+            }
+            ast::RhsValue::Call(f) => f.args.iter().for_each(|a| rhs(a, used)),
+            ast::RhsValue::Const(..) => {}
+        }
+    }
+    p.conditions.iter().for_each(|c| cond(c, used));
+    for a in &p.actions {
+        match a {
+            ast::Action::Make { id, attrs, .. } => {
+                rhs(id, used);
+                for am in attrs {
+                    am.path.iter().for_each(|v| rhs(v, used));
+                    for vm in &am.values {
+                        rhs(&vm.value, used);
+                    }
+                }
+            }
+            ast::Action::Call(f) => f.args.iter().for_each(|a| rhs(a, used)),
+        }
+    }
+}
+
+/// A simple test from the AST, applying the conjunction rules of spec §1d: one equality test
+/// at most (a second is dropped with Soar's message), non-equality tests first.
+fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
+    match t {
+        ast::Test::Equal(a, _) => Test::Equal(term(a)),
+        ast::Test::Relational(r, a, _) => Test::Relational(*r, term(a)),
+        ast::Test::Disjunction(cs, _) => Test::Disjunction(cs.clone()),
+        ast::Test::Conjunction(ts, span) => {
+            let mut others = Vec::new();
+            let mut eq: Option<Term> = None;
+            for sub in ts {
+                match compile_test(sub, out) {
+                    Test::Equal(t) => match &eq {
+                        None => eq = Some(t),
+                        Some(existing) => {
+                            // A constant equality test wins over a variable one.
+                            let (keep, drop) = match (existing, &t) {
+                                (Term::Var(_), Term::Const(_)) => (t.clone(), existing.clone()),
+                                _ => (existing.clone(), t.clone()),
+                            };
+                            out.warnings.push(
+                                Diagnostic::warning(format!(
+                                    "Soar does not support having two equality tests in one conjunctive test!\nIgnoring {} in favor of existing {}.  Rule semantics may have changed!",
+                                    term_text(&drop),
+                                    term_text(&keep)
+                                ))
+                                .at(*span)
+                                .with_label("two equality tests"),
+                            );
+                            eq = Some(keep);
+                        }
+                    },
+                    Test::Conjunction(inner) => others.extend(inner),
+                    other => others.push(other),
+                }
+            }
+            if let Some(e) = eq {
+                others.push(Test::Equal(e));
+            }
+            if others.len() == 1 {
+                others.pop().unwrap_or(Test::Conjunction(Vec::new()))
+            } else {
+                Test::Conjunction(others)
+            }
+        }
+    }
+}
+
+fn term(a: &ast::Atom) -> Term {
+    match a {
+        ast::Atom::Var(v) => Term::Var(v.clone()),
+        ast::Atom::Const(c) => Term::Const(c.clone()),
+    }
+}
+
+pub fn term_text(t: &Term) -> String {
+    match t {
+        Term::Var(v) => v.clone(),
+        Term::Const(c) => crate::printer::constant_text(c),
+    }
+}
+
+/// The equality variable of a test, adding a placeholder when the test binds nothing.
+fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> (Test, Option<Term>) {
+    match t {
+        Test::Equal(term) => (Test::Equal(term.clone()), Some(term)),
+        Test::Conjunction(mut ts) => {
+            if let Some(Test::Equal(term)) = ts.last() {
+                let term = term.clone();
+                return (Test::Conjunction(ts), Some(term));
+            }
+            let v = Term::Var(ph.fresh(letter));
+            ts.push(Test::Equal(v.clone()));
+            (Test::Conjunction(ts), Some(v))
+        }
+        other => {
+            let v = Term::Var(ph.fresh(letter));
+            (
+                Test::Conjunction(vec![other, Test::Equal(v.clone())]),
+                Some(v),
+            )
+        }
+    }
+}
+
+fn compile_condition(
+    c: &ast::Condition,
+    ph: &mut Placeholders,
+    dest: &mut Vec<Condition>,
+    out: &mut CompileOutput,
+) -> Result<(), Diagnostic> {
+    match c {
+        ast::Condition::Positive(c) => compile_cond_for_one_id(c, false, ph, dest, out),
+        ast::Condition::Negative(c) => {
+            let mut inner = Vec::new();
+            compile_cond_for_one_id(c, false, ph, &mut inner, out)?;
+            dest.push(negate(inner));
+            Ok(())
+        }
+        ast::Condition::Ncc(cs, _) => {
+            let mut inner = Vec::new();
+            for c in cs {
+                compile_condition(c, ph, &mut inner, out)?;
+            }
+            dest.push(Condition::Ncc(inner));
+            Ok(())
+        }
+    }
+}
+
+/// `-(...)`: one negative condition, or a conjunctive negation when it expanded to several.
+fn negate(mut inner: Vec<Condition>) -> Condition {
+    if inner.len() == 1 {
+        match inner.pop() {
+            Some(Condition::Positive(c)) => return Condition::Negative(c),
+            Some(other) => inner.push(other),
+            None => {}
+        }
+    }
+    Condition::Ncc(inner)
+}
+
+fn compile_cond_for_one_id(
+    c: &ast::CondForOneId,
+    _negated: bool,
+    ph: &mut Placeholders,
+    dest: &mut Vec<Condition>,
+    out: &mut CompileOutput,
+) -> Result<(), Diagnostic> {
+    if c.head != Head::None && c.attr_value_tests.is_empty() {
+        return Err(Diagnostic::error(
+            "Expected attribute-value test after state/impasse test. Did you forget to add \"^type state\" or \"^superstate nil\"?",
+        )
+        .at(c.span)
+        .with_label("this condition tests nothing"));
+    }
+    if c.attr_value_tests.is_empty() {
+        return Err(Diagnostic::error("Expected ^ followed by attribute")
+            .at(c.span)
+            .with_label("a condition needs at least one attribute test"));
+    }
+    let id = match &c.id_test {
+        Some(t) => {
+            let test = compile_test(t, out);
+            if let Some(k) = constant_equality(&test) {
+                return Err(Diagnostic::error(format!(
+                    "Warning: Constant {} in id field test.\n         This will never match.",
+                    crate::printer::constant_text(&k)
+                ))
+                .at(t.span())
+                .with_label("identifiers are matched by variables, never by constants"));
+            }
+            ensure_equality(test, ph, 's').0
+        }
+        None => Test::Equal(Term::Var(ph.fresh(if c.head == Head::None {
+            'i'
+        } else {
+            's'
+        }))),
+    };
+    for avt in &c.attr_value_tests {
+        compile_attr_value_tests(&id, c.head, avt, ph, dest, out)?;
+    }
+    Ok(())
+}
+
+fn constant_equality(t: &Test) -> Option<Constant> {
+    match t {
+        Test::Equal(Term::Const(c)) => Some(c.clone()),
+        Test::Conjunction(ts) => ts.iter().find_map(constant_equality),
+        _ => None,
+    }
+}
+
+fn compile_attr_value_tests(
+    id: &Test,
+    head: Head,
+    avt: &ast::AttrValueTests,
+    ph: &mut Placeholders,
+    dest: &mut Vec<Condition>,
+    out: &mut CompileOutput,
+) -> Result<(), Diagnostic> {
+    // Conditions made here go to `local`; a negated chain becomes one negation (spec §1d).
+    let mut local = Vec::new();
+    let mut cur_id = id.clone();
+    let mut goal = head;
+    let n = avt.path.len();
+    for step in &avt.path[..n.saturating_sub(1)] {
+        let attr = compile_test(step, out);
+        let v = Term::Var(ph.fresh(letter_of_test(step)));
+        local.push(Condition::Positive(Cond {
+            id: cur_id.clone(),
+            attr,
+            value: Test::Equal(v.clone()),
+            acceptable: false,
+            goal,
+            span: avt.span,
+        }));
+        cur_id = Test::Equal(v);
+        goal = Head::None;
+    }
+    let last_attr = &avt.path[n - 1];
+    let values: Vec<ast::ValueTest> = if avt.values.is_empty() {
+        vec![ast::ValueTest::Test {
+            test: ast::Test::Equal(
+                ast::Atom::Var(ph.fresh(letter_of_test(last_attr))),
+                avt.span,
+            ),
+            acceptable: false,
+        }]
+    } else {
+        avt.values.clone()
+    };
+    for v in &values {
+        let attr = compile_test(last_attr, out);
+        match v {
+            ast::ValueTest::Test { test, acceptable } => {
+                // A value test that binds nothing gets a placeholder, as Soar prints it.
+                let (value, _) =
+                    ensure_equality(compile_test(test, out), ph, letter_of_test(last_attr));
+                local.push(Condition::Positive(Cond {
+                    id: cur_id.clone(),
+                    attr,
+                    value,
+                    acceptable: *acceptable,
+                    goal,
+                    span: avt.span,
+                }));
+            }
+            ast::ValueTest::Structured {
+                tests, acceptable, ..
+            } => {
+                let pv = Term::Var(ph.fresh(letter_of_test(last_attr)));
+                local.push(Condition::Positive(Cond {
+                    id: cur_id.clone(),
+                    attr,
+                    value: Test::Equal(pv.clone()),
+                    acceptable: *acceptable,
+                    goal,
+                    span: avt.span,
+                }));
+                for inner in tests {
+                    compile_attr_value_tests(
+                        &Test::Equal(pv.clone()),
+                        Head::None,
+                        inner,
+                        ph,
+                        &mut local,
+                        out,
+                    )?;
+                }
+            }
+        }
+    }
+    if avt.negated {
+        // `-^a v1 v2` negates each value; `-^a.b v` negates the chain as a whole.
+        if n == 1
+            && local.iter().all(|c| matches!(c, Condition::Positive(_)))
+            && !has_structured(&values)
+        {
+            for c in local {
+                dest.push(negate(vec![c]));
+            }
+        } else {
+            dest.push(negate(local));
+        }
+    } else {
+        dest.extend(local);
+    }
+    Ok(())
+}
+
+fn has_structured(v: &[ast::ValueTest]) -> bool {
+    v.iter()
+        .any(|v| matches!(v, ast::ValueTest::Structured { .. }))
+}
+
+// ------------------------------------------------------------------------------- actions
+
+fn compile_action(
+    a: &ast::Action,
+    ph: &mut Placeholders,
+    dest: &mut Vec<Action>,
+    out: &mut CompileOutput,
+    rule: &str,
+) -> Result<(), Diagnostic> {
+    match a {
+        ast::Action::Call(f) => {
+            let call = compile_call(f, true, out, rule)?;
+            dest.push(Action::Call(call));
+            Ok(())
+        }
+        ast::Action::Make { id, attrs, span } => {
+            let id_term = rhs_term(id, out, rule)?;
+            for am in attrs {
+                let mut cur = id_term.clone();
+                let n = am.path.len();
+                for step in &am.path[..n - 1] {
+                    let v = RhsTerm::Var(ph.fresh(letter_of_rhs(step)));
+                    dest.push(Action::Make(Box::new(Make {
+                        id: cur.clone(),
+                        attr: rhs_term(step, out, rule)?,
+                        value: v.clone(),
+                        pref: PrefKind::Acceptable,
+                        referent: None,
+                        span: am.span,
+                    })));
+                    cur = v;
+                }
+                let attr = rhs_term(&am.path[n - 1], out, rule)?;
+                let is_operator =
+                    matches!(&attr, RhsTerm::Const(Constant::Str(s)) if s == "operator");
+                for vm in &am.values {
+                    let value = rhs_term(&vm.value, out, rule)?;
+                    let prefs: Vec<&Pref> = if vm.prefs.is_empty() {
+                        vec![&Pref::Acceptable]
+                    } else {
+                        vm.prefs.iter().collect()
+                    };
+                    let mut warned = false;
+                    for pref in prefs {
+                        let (kind, referent) = match pref {
+                            Pref::Acceptable => (PrefKind::Acceptable, None),
+                            Pref::Reject => (PrefKind::Reject, None),
+                            Pref::Require => (PrefKind::Require, None),
+                            Pref::Prohibit => (PrefKind::Prohibit, None),
+                            Pref::Best => (PrefKind::Best, None),
+                            Pref::Worst => (PrefKind::Worst, None),
+                            Pref::Indifferent => (PrefKind::Indifferent, None),
+                            Pref::Better(r) => (PrefKind::Better, Some(r)),
+                            Pref::Worse(r) => (PrefKind::Worse, Some(r)),
+                            Pref::BinaryIndifferent(r) => (PrefKind::BinaryIndifferent, Some(r)),
+                            Pref::Numeric(r) => (PrefKind::NumericIndifferent, Some(r)),
+                        };
+                        let mut kind = kind;
+                        if !is_operator {
+                            if kind.is_binary() {
+                                return Err(Diagnostic::error(format!(
+                                    "ERROR: Binary preference illegal for non-operator.id = {}\t attr = {}\t value = {}",
+                                    rhs_text(&id_term),
+                                    rhs_text(&attr),
+                                    rhs_text(&value)
+                                ))
+                                .at(am.span)
+                                .with_label("binary preferences are allowed only on ^operator"));
+                            }
+                            if !matches!(kind, PrefKind::Acceptable | PrefKind::Reject) {
+                                if !warned {
+                                    out.warnings.push(
+                                        Diagnostic::warning(format!(
+                                            "WARNING: The only allowable non-operator preference \nis REJECT - .\nIgnoring specified preferences.\nid = {}\t attr = {}\t value = {}",
+                                            rhs_text(&id_term),
+                                            rhs_text(&attr),
+                                            rhs_text(&value)
+                                        ))
+                                        .at(am.span)
+                                        .with_label("only + and - apply to attributes other than ^operator"),
+                                    );
+                                    warned = true;
+                                }
+                                kind = PrefKind::Acceptable;
+                            }
+                        }
+                        let referent = match referent {
+                            Some(r) => Some(rhs_term(r, out, rule)?),
+                            None => None,
+                        };
+                        dest.push(Action::Make(Box::new(Make {
+                            id: cur.clone(),
+                            attr: attr.clone(),
+                            value: value.clone(),
+                            pref: kind,
+                            referent,
+                            span: *span,
+                        })));
+                    }
+                }
+            }
+            Ok(())
+        }
+    }
+}
+
+fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<RhsTerm, Diagnostic> {
+    Ok(match v {
+        ast::RhsValue::Var(name, _) => RhsTerm::Var(name.clone()),
+        ast::RhsValue::Const(c, _) => RhsTerm::Const(c.clone()),
+        ast::RhsValue::Call(f) => RhsTerm::Call(compile_call(f, false, out, rule)?),
+    })
+}
+
+/// Checks a call against the built-in table; an unknown name becomes `exec name ...`
+/// with Soar's message (spec §1e).
+fn compile_call(
+    f: &ast::FuncCall,
+    standalone: bool,
+    out: &mut CompileOutput,
+    rule: &str,
+) -> Result<FuncCall, Diagnostic> {
+    let mut args = Vec::with_capacity(f.args.len() + 1);
+    let name = match rhs_functions::lookup(&f.name) {
+        Some(info) => {
+            if let Some(n) = info.arity {
+                if n != f.args.len() {
+                    return Err(Diagnostic::error(format!(
+                        "Wrong number of arguments to function {} (expected {})",
+                        f.name, n
+                    ))
+                    .at(f.span)
+                    .with_label(format!("{} argument(s) given", f.args.len())));
+                }
+            }
+            match (standalone, info.usage) {
+                (true, Use::Value) => {
+                    return Err(Diagnostic::error(format!(
+                        "Function {} cannot be used as a stand-alone action",
+                        f.name
+                    ))
+                    .at(f.span)
+                    .with_label("its value would be thrown away"))
+                }
+                (false, Use::Standalone) => {
+                    return Err(Diagnostic::error(format!(
+                        "Function {} can only be used as a stand-alone action",
+                        f.name
+                    ))
+                    .at(f.span)
+                    .with_label("it returns no value"))
+                }
+                _ => {}
+            }
+            info.name.to_string()
+        }
+        None => {
+            out.warnings.push(
+                Diagnostic::warning(format!("Adding exec to RHS function: {}", f.name))
+                    .at(f.name_span)
+                    .with_label(format!("read as (exec {} ...)", f.name))
+                    .with_note(format!("in production {rule}")),
+            );
+            args.push(RhsTerm::Const(Constant::Str(f.name.clone())));
+            "exec".to_string()
+        }
+    };
+    for a in &f.args {
+        args.push(rhs_term(a, out, rule)?);
+    }
+    Ok(FuncCall {
+        name,
+        args,
+        span: f.span,
+    })
+}
+
+fn rhs_text(t: &RhsTerm) -> String {
+    crate::printer::rhs_term_text(t)
+}
+
+// --------------------------------------------------------------------------------- checks
+
+/// Spec §1d: at least one positive condition must test a state.
+fn check_goal_test(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
+    let has_goal = p
+        .conditions
+        .iter()
+        .any(|c| matches!(c, Condition::Positive(c) if c.goal != Head::None));
+    if has_goal {
+        return Ok(());
+    }
+    Err(Diagnostic::error(format!(
+        "Error: production {} has no positive conditions that reference a goal state.\nDid you forget to add \"^type state\" or \"^superstate nil\"?",
+        p.name
+    ))
+    .at(ast.name_span)
+    .with_label("no condition of this rule starts with (state ...) or (impasse ...)"))
+}
+
+fn equality_var(t: &Test) -> Option<&str> {
+    match t {
+        Test::Equal(Term::Var(v)) => Some(v),
+        Test::Conjunction(ts) => ts.iter().find_map(equality_var),
+        _ => None,
+    }
+}
+
+fn all_conds(cs: &[Condition]) -> Vec<&Cond> {
+    let mut v = Vec::new();
+    for c in cs {
+        match c {
+            Condition::Positive(c) | Condition::Negative(c) => v.push(c),
+            Condition::Ncc(inner) => v.extend(all_conds(inner)),
+        }
+    }
+    v
+}
+
+/// Spec §1d: a condition whose id is not reachable from a state or impasse test warns.
+fn check_connected(p: &Production, out: &mut CompileOutput) {
+    let conds = all_conds(&p.conditions);
+    let mut connected: FxHashSet<&str> = FxHashSet::default();
+    for c in &conds {
+        if c.goal != Head::None {
+            if let Some(v) = equality_var(&c.id) {
+                connected.insert(v);
+            }
+        }
+    }
+    loop {
+        let before = connected.len();
+        for c in &conds {
+            if let Some(id) = equality_var(&c.id) {
+                if connected.contains(id) {
+                    if let Some(v) = equality_var(&c.value) {
+                        connected.insert(v);
+                    }
+                    if let Some(a) = equality_var(&c.attr) {
+                        connected.insert(a);
+                    }
+                }
+            }
+        }
+        if connected.len() == before {
+            break;
+        }
+    }
+    let mut warned: FxHashSet<&str> = FxHashSet::default();
+    for c in &conds {
+        if let Some(id) = equality_var(&c.id) {
+            if !connected.contains(id) && warned.insert(id) {
+                out.warnings.push(
+                    Diagnostic::warning(format!(
+                        "Warning: On the LHS of production {}, identifier {} is not connected to any goal or impasse.",
+                        p.name, id
+                    ))
+                    .at(c.span)
+                    .with_label("no chain of conditions links this identifier to a state"),
+                );
+            }
+        }
+    }
+}
+
+/// Variables bound by an equality test in a positive, non-negated condition.
+pub fn bound_variables(p: &Production) -> FxHashSet<String> {
+    let mut bound = FxHashSet::default();
+    for c in &p.conditions {
+        if let Condition::Positive(c) = c {
+            for t in [&c.id, &c.attr, &c.value] {
+                if let Some(v) = equality_var(t) {
+                    bound.insert(v.to_string());
+                }
+            }
+        }
+    }
+    bound
+}
+
+fn term_vars(t: &RhsTerm, in_call: bool, acc: &mut Vec<(String, bool)>) {
+    match t {
+        RhsTerm::Var(v) => acc.push((v.clone(), in_call)),
+        RhsTerm::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, acc)),
+        RhsTerm::Const(_) => {}
+    }
+}
+
+/// Spec §1g: RHS action ids and function arguments must be bound on the LHS or be new
+/// identifiers made by this rule (an unbound variable in value position).
+fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
+    let bound = bound_variables(p);
+    let mut new_ids: FxHashSet<String> = FxHashSet::default();
+    for a in &p.actions {
+        if let Action::Make(m) = a {
+            for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
+                if let RhsTerm::Var(v) = t {
+                    if !bound.contains(v) {
+                        new_ids.insert(v.clone());
+                    }
+                }
+            }
+        }
+    }
+    let ok = |v: &str| bound.contains(v) || new_ids.contains(v);
+    let mut bad: Vec<(String, Span)> = Vec::new();
+    let mut seen: FxHashSet<String> = FxHashSet::default();
+    for a in &p.actions {
+        let mut vars = Vec::new();
+        let (text, span) = match a {
+            Action::Make(m) => {
+                term_vars(&m.id, true, &mut vars);
+                for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
+                    term_vars(t, false, &mut vars);
+                }
+                (crate::printer::make_text(m), m.span)
+            }
+            Action::Call(f) => {
+                term_vars(&RhsTerm::Call(f.clone()), false, &mut vars);
+                (crate::printer::call_text(f), f.span)
+            }
+        };
+        if vars.iter().any(|(v, must)| *must && !ok(v)) && seen.insert(text.clone()) {
+            bad.push((text, span));
+        }
+    }
+    if bad.is_empty() {
+        return Ok(());
+    }
+    let mut msg = String::from(
+        "Attempted to add rule with ungrounded action(s).\nThe following RHS actions contain variables that are not tested\nin a positive condition on the LHS: \n",
+    );
+    for (t, _) in &bad {
+        msg.push_str(&format!("\n        {t}\n"));
+    }
+    let mut d = Diagnostic::error(msg.trim_end().to_string())
+        .at(bad[0].1)
+        .with_label("uses a variable the conditions never bind");
+    for (_, s) in bad.iter().skip(1) {
+        d = d.with_secondary(*s, "also ungrounded");
+    }
+    let _ = ast;
+    Ok(()).and(Err(d))
+}
