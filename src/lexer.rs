@@ -123,7 +123,7 @@ fn punct_text(t: &Tok) -> &'static str {
     }
 }
 
-/// A lexing failure: an unexpected character or an unterminated `|` or `"`.
+/// A lexing failure: an unterminated `|` or `"`, or parentheses and braces nested too deep.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LexError {
     pub message: String,
@@ -141,88 +141,237 @@ pub fn lex(
     file: FileId,
     warnings: &mut Vec<Diagnostic>,
 ) -> Result<Vec<Spanned>, LexError> {
-    let mut raw: Vec<(Raw, usize, usize)> = Vec::new();
-    let mut lexer = Raw::lexer(text);
-    while let Some(r) = lexer.next() {
-        let span = lexer.span();
-        match r {
-            Ok(t) => raw.push((t, span.start, span.end)),
-            Err(()) => return Err(lex_error(text, span.start, base)),
+    Lexer::new(text, base, file, warnings).collect()
+}
+
+/// At most this many "unknown character" warnings per production; binary junk would
+/// otherwise make one per run.
+const MAX_UNKNOWN_WARNINGS: usize = 5;
+
+/// Parentheses and braces may nest this deep. Real rules nest a few levels; the limit keeps
+/// the recursive passes over the syntax tree (compiling, printing, dropping it) within the
+/// stack, whatever the input.
+pub const MAX_NESTING: usize = 200;
+
+/// The production lexer as a lazy iterator, as Soar's lexer is: the parser pulls tokens one
+/// at a time, so a production that goes wrong early is not lexed to its end (a 10 MB body
+/// costs nothing past its first error). Warnings go to the borrowed vector as tokens are read.
+pub struct Lexer<'a, 'w> {
+    text: &'a str,
+    base: usize,
+    file: FileId,
+    warnings: &'w mut Vec<Diagnostic>,
+    raw: logos::Lexer<'a, Raw>,
+    /// Raw tokens read ahead (at most two are needed to join `1` `.` `5`).
+    ahead: std::collections::VecDeque<(Raw, usize, usize)>,
+    /// End of the raw token consumed last, to tell a glued `.` from a `.5` float.
+    prev_end: Option<usize>,
+    /// A run of unknown characters not yet reported, and how many runs were.
+    unknown: Option<(usize, usize)>,
+    unknown_runs: usize,
+    /// An unterminated `|` or `"`, reported once the tokens before it are out.
+    fatal: Option<LexError>,
+    depth: usize,
+    done: bool,
+}
+
+impl<'a, 'w> Lexer<'a, 'w> {
+    pub fn new(
+        text: &'a str,
+        base: usize,
+        file: FileId,
+        warnings: &'w mut Vec<Diagnostic>,
+    ) -> Self {
+        Lexer {
+            text,
+            base,
+            file,
+            warnings,
+            raw: Raw::lexer(text),
+            ahead: std::collections::VecDeque::new(),
+            prev_end: None,
+            unknown: None,
+            unknown_runs: 0,
+            fatal: None,
+            depth: 0,
+            done: false,
         }
     }
-    let mut out = Vec::with_capacity(raw.len());
-    let mut i = 0;
-    while i < raw.len() {
-        let (kind, s, e) = raw[i];
-        let at = |k: usize| raw.get(k).copied();
-        let adjacent = |a: usize, b: usize| a == b;
-        match kind {
+
+    /// Reads raw tokens until `n` are buffered (or the input or a fatal error ends them).
+    fn fill(&mut self, n: usize) {
+        while self.ahead.len() < n && self.fatal.is_none() {
+            let Some(r) = self.raw.next() else {
+                self.flush_unknown();
+                return;
+            };
+            let span = self.raw.span();
+            match r {
+                Ok(t) => {
+                    self.flush_unknown();
+                    self.ahead.push_back((t, span.start, span.end));
+                }
+                Err(()) if self.text[span.start..].starts_with(['|', '"']) => {
+                    self.flush_unknown();
+                    self.fatal = Some(lex_error(self.text, span.start, self.base));
+                }
+                // Soar's lexer skips characters it does not know (`lex_unknown`).
+                Err(()) => match &mut self.unknown {
+                    Some(run) if run.1 == span.start => run.1 = span.end,
+                    _ => {
+                        self.flush_unknown();
+                        self.unknown = Some((span.start, span.end));
+                    }
+                },
+            }
+        }
+    }
+
+    /// Characters that are neither constituents, whitespace nor punctuation are separators
+    /// to Soar (`b\x02c` reads as `b c`); we skip them too, with a warning.
+    fn flush_unknown(&mut self) {
+        let Some((s, e)) = self.unknown.take() else {
+            return;
+        };
+        self.unknown_runs += 1;
+        if self.unknown_runs > MAX_UNKNOWN_WARNINGS {
+            return;
+        }
+        let run = &self.text[s..e];
+        let shown: String = run.chars().take(8).flat_map(char::escape_debug).collect();
+        let more = if run.chars().count() > 8 { "..." } else { "" };
+        let mut d = Diagnostic::warning(format!(
+            "Ignoring unknown character{} \"{shown}{more}\" in production",
+            if run.chars().count() == 1 { "" } else { "s" }
+        ))
+        .at(Span::new(self.file, self.base + s, self.base + e))
+        .with_label("Soar's lexer skips this, as if it were a space");
+        if run.contains('\u{fffd}') {
+            d = d.with_note("U+FFFD stands for bytes that are not valid UTF-8");
+        }
+        if self.unknown_runs == MAX_UNKNOWN_WARNINGS {
+            d = d.with_note("further unknown characters in this production are skipped silently");
+        }
+        self.warnings.push(d);
+    }
+
+    fn pop(&mut self) -> Option<(Raw, usize, usize)> {
+        let t = self.ahead.pop_front();
+        if let Some((_, _, e)) = t {
+            self.prev_end = Some(e);
+        }
+        t
+    }
+
+    fn tok(&self, s: usize, t: Tok, e: usize) -> Spanned {
+        (self.base + s, t, self.base + e)
+    }
+
+    fn next_token(&mut self) -> Option<Result<Spanned, LexError>> {
+        self.fill(1);
+        let prev_end = self.prev_end;
+        let Some((kind, s, e)) = self.pop() else {
+            return self.fatal.take().map(Err);
+        };
+        let text = self.text;
+        Some(Ok(match kind {
             Raw::Constituent => {
                 let word = &text[s..e];
                 // `1` `.` `5e3` with no gaps is the float `1.5e3`; `5.` alone is a float too.
                 if is_int_lexeme(word) {
-                    if let Some((Raw::Dot, ds, de)) = at(i + 1) {
-                        if adjacent(e, ds) {
-                            match at(i + 2) {
+                    self.fill(2);
+                    if let Some(&(Raw::Dot, ds, de)) = self.ahead.front() {
+                        if e == ds {
+                            self.fill(2);
+                            match self.ahead.get(1).copied() {
                                 Some((Raw::Constituent, fs, fe))
-                                    if adjacent(de, fs) && is_fraction(&text[fs..fe]) =>
+                                    if de == fs && is_fraction(&text[fs..fe]) =>
                                 {
-                                    let lexeme = &text[s..fe];
-                                    out.push((base + s, float_tok(lexeme), base + fe));
-                                    i += 3;
-                                    continue;
+                                    self.pop();
+                                    self.pop();
+                                    return Some(Ok(self.tok(s, float_tok(&text[s..fe]), fe)));
                                 }
-                                Some((Raw::Constituent, fs, _)) if adjacent(de, fs) => {}
+                                Some((Raw::Constituent, fs, _)) if de == fs => {}
                                 _ => {
-                                    out.push((base + s, float_tok(&text[s..de]), base + de));
-                                    i += 2;
-                                    continue;
+                                    self.pop();
+                                    return Some(Ok(self.tok(s, float_tok(&text[s..de]), de)));
                                 }
                             }
                         }
                     }
                 }
-                out.push((base + s, classify(word, s + base, file, warnings), base + e));
+                let t = classify(word, s + self.base, self.file, self.warnings);
+                self.tok(s, t, e)
             }
             Raw::Dot => {
                 // `.5` after whitespace (not glued to a previous lexeme) is a float.
-                let glued_before = i > 0 && raw[i - 1].2 == s;
-                if !glued_before {
-                    if let Some((Raw::Constituent, fs, fe)) = at(i + 1) {
-                        if adjacent(e, fs) && is_fraction(&text[fs..fe]) {
-                            out.push((base + s, float_tok(&text[s..fe]), base + fe));
-                            i += 2;
-                            continue;
+                if prev_end != Some(s) {
+                    self.fill(1);
+                    if let Some(&(Raw::Constituent, fs, fe)) = self.ahead.front() {
+                        if e == fs && is_fraction(&text[fs..fe]) {
+                            self.pop();
+                            return Some(Ok(self.tok(s, float_tok(&text[s..fe]), fe)));
                         }
                     }
                 }
-                out.push((base + s, Tok::Dot, base + e));
+                self.tok(s, Tok::Dot, e)
             }
-            Raw::Pipe => out.push((
-                base + s,
-                Tok::Quoted(unescape(&text[s + 1..e - 1])),
-                base + e,
-            )),
-            Raw::Quote => out.push((base + s, Tok::Doc(unescape(&text[s + 1..e - 1])), base + e)),
-            Raw::LParen => out.push((base + s, Tok::LParen, base + e)),
-            Raw::RParen => out.push((base + s, Tok::RParen, base + e)),
-            Raw::LBrace => out.push((base + s, Tok::LBrace, base + e)),
-            Raw::RBrace => out.push((base + s, Tok::RBrace, base + e)),
-            Raw::Caret => out.push((base + s, Tok::Caret, base + e)),
-            Raw::Bang => out.push((base + s, Tok::Bang, base + e)),
-            Raw::Tilde => out.push((base + s, Tok::Tilde, base + e)),
-            Raw::Comma => out.push((base + s, Tok::Comma, base + e)),
-        }
-        i += 1;
+            Raw::Pipe => self.tok(s, Tok::Quoted(unescape(&text[s + 1..e - 1])), e),
+            Raw::Quote => self.tok(s, Tok::Doc(unescape(&text[s + 1..e - 1])), e),
+            Raw::LParen | Raw::LBrace => {
+                self.depth += 1;
+                if self.depth > MAX_NESTING {
+                    return Some(Err(LexError {
+                        message: format!(
+                            "production nested too deeply (more than {MAX_NESTING} levels of ( and {{)"
+                        ),
+                        start: self.base + s,
+                        end: self.base + e,
+                    }));
+                }
+                let t = if kind == Raw::LParen {
+                    Tok::LParen
+                } else {
+                    Tok::LBrace
+                };
+                self.tok(s, t, e)
+            }
+            Raw::RParen | Raw::RBrace => {
+                self.depth = self.depth.saturating_sub(1);
+                let t = if kind == Raw::RParen {
+                    Tok::RParen
+                } else {
+                    Tok::RBrace
+                };
+                self.tok(s, t, e)
+            }
+            Raw::Caret => self.tok(s, Tok::Caret, e),
+            Raw::Bang => self.tok(s, Tok::Bang, e),
+            Raw::Tilde => self.tok(s, Tok::Tilde, e),
+            Raw::Comma => self.tok(s, Tok::Comma, e),
+        }))
     }
-    Ok(out)
+}
+
+impl Iterator for Lexer<'_, '_> {
+    type Item = Result<Spanned, LexError>;
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let item = self.next_token();
+        if !matches!(item, Some(Ok(_))) {
+            self.done = true;
+        }
+        item
+    }
 }
 
 fn lex_error(text: &str, start: usize, base: usize) -> LexError {
     let rest = &text[start..];
     let (message, len) = match rest.chars().next() {
-        Some('|') => ("opening '|' without closing '|'".to_string(), 1),
-        Some('"') => ("opening '\"' without closing '\"'".to_string(), 1),
+        Some('|') => ("Error:  opening '|' without closing '|'".to_string(), 1),
+        Some('"') => ("Error:  opening '\"' without closing '\"'".to_string(), 1),
         Some(c) if c.is_control() => (
             format!("unexpected control character (code {})", c as u32),
             c.len_utf8(),
@@ -327,7 +476,7 @@ fn classify(word: &str, offset: usize, file: FileId, warnings: &mut Vec<Diagnost
             Ok(v) => Tok::Int(v),
             Err(_) => {
                 warnings.push(
-                    Diagnostic::warning("bad integer")
+                    Diagnostic::warning("Error: bad integer (probably too large)")
                         .at(Span::new(file, offset, offset + word.len()))
                         .with_label("does not fit in 64 bits; Soar reads it as 0"),
                 );
@@ -337,6 +486,14 @@ fn classify(word: &str, offset: usize, file: FileId, warnings: &mut Vec<Diagnost
     }
     if is_identifier_shaped(word) {
         return Tok::Ident(word.to_string());
+    }
+    if word.starts_with('<') || word.ends_with('>') {
+        // Probably a mistyped variable (spec 1b).
+        warnings.push(
+            Diagnostic::warning(format!("Warning: Suspicious string constant \"{word}\""))
+                .at(Span::new(file, offset, offset + word.len()))
+                .with_label("a string constant, not a variable: variables are <name>"),
+        );
     }
     Tok::Sym(word.to_string())
 }
@@ -376,7 +533,7 @@ mod tests {
         let mut w = Vec::new();
         let t = lex("99999999999999999999", 0, 0, &mut w).unwrap();
         assert_eq!(t[0].1, Tok::Int(0));
-        assert_eq!(w[0].message, "bad integer");
+        assert_eq!(w[0].message, "Error: bad integer (probably too large)");
     }
 
     #[test]
@@ -424,6 +581,26 @@ mod tests {
             toks("|a \\| b| # x\n|| ;"),
             vec![Tok::Quoted("a | b".into()), Tok::Quoted("".into())]
         );
+    }
+
+    #[test]
+    fn unknown_characters_are_skipped_as_separators() {
+        let mut w = Vec::new();
+        let t: Vec<Tok> = lex("b\u{2}c `d", 0, 0, &mut w)
+            .unwrap()
+            .into_iter()
+            .map(|t| t.1)
+            .collect();
+        assert_eq!(
+            t,
+            vec![
+                Tok::Sym("b".into()),
+                Tok::Sym("c".into()),
+                Tok::Sym("d".into())
+            ]
+        );
+        assert_eq!(w.len(), 2);
+        assert_eq!(w[1].span.map(|s| s.start), Some(4));
     }
 
     #[test]

@@ -19,22 +19,35 @@ pub fn parse_production(
     offset: usize,
     warnings: &mut Vec<Diagnostic>,
 ) -> Result<crate::ast::Production, Diagnostic> {
-    let tokens = lexer::lex(text, offset, file, warnings).map_err(|e| {
-        Diagnostic::error(e.message.clone())
-            .at(Span::new(file, e.start, e.end))
-            .with_label("here")
-    })?;
     let end = offset + text.len();
-    if tokens.is_empty() {
+    // Tokens stream into the parser; a lexing error travels as a grammar "user" error.
+    let mut tokens = lexer::Lexer::new(text, offset, file, warnings)
+        .map(|t| t.map_err(|e| format!("@{}:{}:{}", e.start, e.end, e.message)))
+        .peekable();
+    if tokens.peek().is_none() {
         return Err(Diagnostic::error("Expected symbol for production name")
             .at(Span::new(file, offset, end))
             .with_label("the production body is empty"));
     }
     let parser = grammar::ProductionParser::new();
-    let token_list = tokens.to_vec();
-    parser
-        .parse(file, token_list.into_iter().map(Ok::<_, String>))
-        .map_err(|e| translate_error(e, &tokens, file, end))
+    parser.parse(file, tokens).map_err(|e| {
+        // Only on the error path: the tokens before the error, to tell which side of
+        // `-->` and how deep in parentheses it happened.
+        let location = match &e {
+            lalrpop_util::ParseError::UnrecognizedToken {
+                token: (l, _, _), ..
+            } => *l,
+            lalrpop_util::ParseError::UnrecognizedEof { .. } => end,
+            _ => offset,
+        };
+        let cut = crate::source::clamp_to_char_boundary(text, location.saturating_sub(offset));
+        let mut scratch = Vec::new();
+        let before: Vec<lexer::Spanned> =
+            lexer::Lexer::new(&text[..cut], offset, file, &mut scratch)
+                .map_while(Result::ok)
+                .collect();
+        translate_error(e, &before, file, end)
+    })
 }
 
 type LalrError = lalrpop_util::ParseError<usize, Tok, String>;
@@ -62,7 +75,7 @@ fn translate_error(
                 .with_label("here")
         }
         P::UnrecognizedEof { location, expected } => {
-            let msg = soar_message(None, &expected, tokens, location);
+            let msg = soar_message(&expected, tokens, location);
             Diagnostic::error(msg)
                 .at(Span::new(file, end, end))
                 .with_label("the production ends here")
@@ -72,7 +85,7 @@ fn translate_error(
             token: (l, tok, r),
             expected,
         } => {
-            let msg = soar_message(Some(&tok), &expected, tokens, l);
+            let msg = soar_message(&expected, tokens, l);
             Diagnostic::error(msg)
                 .at(Span::new(file, l, r))
                 .with_label(format!("unexpected `{}`", tok.describe()))
@@ -114,53 +127,57 @@ fn on_rhs(tokens: &[lexer::Spanned], location: usize) -> bool {
         .any(|(s, t, _)| *t == Tok::Arrow && *s < location)
 }
 
+/// Parentheses opened and not yet closed before `location`.
+fn paren_depth(tokens: &[lexer::Spanned], location: usize) -> i64 {
+    tokens
+        .iter()
+        .take_while(|(s, _, _)| *s < location)
+        .map(|(_, t, _)| match t {
+            Tok::LParen => 1,
+            Tok::RParen => -1,
+            _ => 0,
+        })
+        .sum()
+}
+
 /// Soar's message for a syntax error (spec §1g), chosen from what the grammar expected.
-fn soar_message(
-    found: Option<&Tok>,
-    expected: &[String],
-    tokens: &[lexer::Spanned],
-    location: usize,
-) -> String {
+fn soar_message(expected: &[String], tokens: &[lexer::Spanned], location: usize) -> String {
     let has = |t: &str| expected.iter().any(|e| e == t);
     if on_rhs(tokens, location) {
+        // After `(<id>`: parse_attr_value_make wants `^`.
         if has("\"^\"") && has("\")\"") && !has("\"var\"") {
-            return "Expected ^ followed by attribute".into();
+            return "Expected ^ in RHS make action".into();
         }
-        if has("\"var\"") && !has("\"(\"") {
-            return "Expected variable or identifier for id of make action".into();
+        // Between actions: parse_rhs_action wants `(`.
+        if has("\"(\"") && !has("\"^\"") && !has("\"var\"") {
+            return "Expected ( to begin RHS action".into();
         }
-        if has("\"var\"") || has("\"sym\"") {
-            if found == Some(&Tok::Dot) || found.is_none() || matches!(found, Some(Tok::RParen)) {
-                return "Illegal value for RHS value".into();
-            }
-            return "Illegal value for RHS value".into();
-        }
-        if has("\"(\"") && !has("\"^\"") {
-            return "Expected ( to begin action".into();
-        }
+        // Anything else (a bad id, which Soar reads as a function name, a bad value or
+        // attribute, an unclosed action) ends in parse_rhs_value's message.
         return "Illegal value for RHS value".into();
     }
-    if has("\"-->\"") && found.is_none() {
-        return "Expected --> in production".into();
-    }
+    // Inside `<< ... >>`: parse_disjunction_test.
     if has("\">>\"") {
         return "Expected constant or >> while reading disjunction test".into();
     }
-    if has("\"}\"") && !has("\"^\"") && !has("\"(\"") {
+    // Inside a condition group `{ <cond>+ }` (not inside a condition's parentheses, where
+    // braces make a conjunctive test) after at least one condition: parse_cond.
+    if has("\"}\"") && paren_depth(tokens, location) == 0 {
         return "Expected } to end conjunctive condition".into();
     }
-    if has("\"-->\"") && !has("\"^\"") {
-        return match found {
-            Some(Tok::Caret) => "Expected ( to begin condition element".into(),
-            _ => "Expected --> in production".into(),
-        };
+    // After the conditions at top level: parse_production wants the arrow.
+    if has("\"-->\"") {
+        return "Expected --> in production".into();
     }
+    // Where a condition must start (after the name, flags, or a `-`).
     if has("\"(\"") && !has("\"^\"") && !has("\"var\"") {
         return "Expected ( to begin condition element".into();
     }
+    // Inside a condition, where `^attr` must come: parse_attr_value_tests.
     if has("\"^\"") && !has("\"var\"") {
         return "Expected ^ followed by attribute".into();
     }
+    // Where a test must come: parse_relational_test.
     if has("\"var\"") {
         return "Expected variable or constant for test".into();
     }

@@ -2,7 +2,7 @@
 //! constants in rereadable form, conditions grouped by identifier, 80-column wrapping.
 
 use crate::ast::{Constant, Head};
-use crate::lexer::{is_int_lexeme, is_variable};
+use crate::lexer::{is_identifier_shaped, is_int_lexeme, is_variable};
 use crate::production::{
     Action, Cond, Condition, FuncCall, Make, PrefKind, Production, RhsTerm, Term, Test,
 };
@@ -11,35 +11,21 @@ fn is_constituent(c: char) -> bool {
     c.is_ascii_alphanumeric() || "$%&*+-/:<=>?_@".contains(c)
 }
 
-/// Would the lexer read `s` back as something other than this string constant? Observed on
-/// the official kernel: `a1`, `a*b`, `a-b`, `z9-`, `-a`, `*a`, `1.5`, `+`, `a b` need bars;
-/// `a1b`, `ab-c`, `1e5`, `1a`, `*` do not.
+/// Would the lexer read `s` back as something other than this string constant? This is the
+/// kernel's `determine_possible_symbol_types_for_string`: a string is rereadable when it is
+/// all alphanumeric, longer than the longest special lexeme (3, `<=>`), or `*`; and it must
+/// not read as a number, a variable or an identifier. Observed on the official kernel:
+/// `a1`, `a*b`, `a-b`, `z9-`, `-a`, `*a`, `1.5`, `+`, `a b`, `x/y` need bars; `a1b`, `ab-c`,
+/// `1e5`, `1a`, `*`, `x/y:z`, `a-b-c`, `-abc`, `1-23` do not.
 fn needs_bars(s: &str) -> bool {
     if s.is_empty() || !s.chars().all(is_constituent) {
         return true;
     }
-    if is_int_lexeme(s) || is_variable(s) || looks_like_float(s) {
+    if is_int_lexeme(s) || is_variable(s) || looks_like_float(s) || is_identifier_shaped(s) {
         return true;
     }
-    if matches!(
-        s,
-        "+" | "-" | "<" | ">" | "=" | "<=" | ">=" | "<>" | "<=>" | "<<" | ">>" | "&" | "@" | "-->"
-    ) {
-        return true;
-    }
-    let b = s.as_bytes();
-    if b[0].is_ascii_alphabetic() {
-        // letter, digits*, then the end (with at least one digit) or a non-alphanumeric.
-        let mut i = 1;
-        while i < b.len() && b[i].is_ascii_digit() {
-            i += 1;
-        }
-        if i == b.len() {
-            return i > 1;
-        }
-        return !b[i].is_ascii_alphabetic();
-    }
-    !b[0].is_ascii_alphanumeric() && b.len() > 1
+    let rereadable = s.bytes().all(|b| b.is_ascii_alphanumeric()) || s.len() > 3 || s == "*";
+    !rereadable
 }
 
 fn looks_like_float(s: &str) -> bool {
@@ -89,8 +75,13 @@ pub fn test_text(t: &Test) -> String {
         Test::Equal(term) => term_text(term),
         Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
         Test::Disjunction(cs) => {
-            let items: Vec<String> = cs.iter().map(constant_text).collect();
-            format!("<< {} >>", items.join(" "))
+            let mut s = String::from("<< ");
+            for c in cs {
+                s.push_str(&constant_text(c));
+                s.push(' ');
+            }
+            s.push_str(">>");
+            s
         }
         Test::Conjunction(ts) => {
             let items: Vec<String> = ts.iter().map(test_text).collect();
@@ -104,6 +95,14 @@ pub fn rhs_term_text(t: &RhsTerm) -> String {
         RhsTerm::Var(v) => v.clone(),
         RhsTerm::Const(c) => constant_text(c),
         RhsTerm::Call(f) => call_text(f),
+    }
+}
+
+/// An action's id: identifier-shaped constants (`S1`) print bare, as they were written.
+fn rhs_id_text(t: &RhsTerm) -> String {
+    match t {
+        RhsTerm::Const(Constant::Str(s)) if crate::lexer::is_identifier_shaped(s) => s.clone(),
+        other => rhs_term_text(other),
     }
 }
 
@@ -196,7 +195,7 @@ fn cond_item(c: &Cond, negated: bool) -> String {
 /// parenthesised condition at the place of the first, as Soar prints them.
 fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
     enum Item<'a> {
-        Group(String, Vec<(&'a Cond, bool)>),
+        Group(String, Head, Vec<(&'a Cond, bool)>),
         Ncc(&'a [Condition]),
     }
     let mut items: Vec<Item> = Vec::new();
@@ -210,13 +209,22 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
             Condition::Negative(cc) => (cc, true),
         };
         let id = test_text(&cc.id);
+        // A negated condition's state/impasse test can ride on the group's head only if a
+        // positive condition on the same id (at this level) has the same test; otherwise the
+        // condition gets a group of its own, `(state <x> -^a v)`, so the test is not lost.
+        let own = neg
+            && cc.goal != Head::None
+            && !conds
+                .iter()
+                .any(|o| matches!(o, Condition::Positive(p) if p.id == cc.id && p.goal == cc.goal));
+        let key = if own { cc.goal } else { Head::None };
         let existing = items.iter_mut().find_map(|it| match it {
-            Item::Group(gid, members) if *gid == id => Some(members),
+            Item::Group(gid, k, members) if *gid == id && *k == key => Some(members),
             _ => None,
         });
         match existing {
             Some(members) => members.push((cc, neg)),
-            None => items.push(Item::Group(id, vec![(cc, neg)])),
+            None => items.push(Item::Group(id, key, vec![(cc, neg)])),
         }
     }
     for it in items {
@@ -230,21 +238,16 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
                 out.push_str(body.trim_start().trim_end_matches('\n'));
                 out.push_str("}\n");
             }
-            Item::Group(id, members) => {
+            Item::Group(id, key, members) => {
                 let goal = members
                     .iter()
                     .find(|(c, neg)| !neg && c.goal != Head::None)
                     .map(|(c, _)| c.goal)
-                    .unwrap_or(Head::None);
-                let mut texts: Vec<String> =
+                    .unwrap_or(key);
+                let texts: Vec<String> =
                     members.iter().map(|(c, neg)| cond_item(c, *neg)).collect();
+                // A lone negated condition prints inside the parentheses too: `(<w> -^a v)`.
                 let mut head = " ".repeat(indent);
-                if members.len() == 1 && members[0].1 {
-                    // A lone negated condition prints as -(id ^a v).
-                    head.truncate(indent.saturating_sub(1));
-                    head.push('-');
-                    texts[0].remove(0);
-                }
                 head.push('(');
                 match goal {
                     Head::State => head.push_str("state "),
@@ -253,7 +256,8 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
                 }
                 head.push_str(&id);
                 head.push(' ');
-                let cont = head.len() + 1;
+                // Continuation lines start 6 past the indent, whatever the id (observed).
+                let cont = indent + 6;
                 wrap_items(out, &head, &texts, cont, ")");
                 out.push('\n');
             }
@@ -272,18 +276,19 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                 i += 1;
             }
             Action::Make(m) => {
-                let id = rhs_term_text(&m.id);
+                let id = rhs_id_text(&m.id);
                 let mut items = Vec::new();
                 let mut j = i;
                 while let Some(Action::Make(mm)) = actions.get(j) {
-                    if rhs_term_text(&mm.id) != id {
+                    if rhs_id_text(&mm.id) != id {
                         break;
                     }
                     items.push(make_item(mm));
                     j += 1;
                 }
                 let head = format!("    ({id} ");
-                let cont = head.len() + 2;
+                // Continuation lines of an action start in column 12, whatever the id.
+                let cont = 11;
                 wrap_items(out, &head, &items, cont, ")");
                 out.push('\n');
                 i = j;
@@ -303,20 +308,28 @@ pub fn production_text(p: &Production) -> String {
     }
     let f = &p.flags;
     for (on, name) in [
-        (f.default, ":default"),
-        (f.chunk, ":chunk"),
-        (f.o_support, ":o-support"),
-        (f.i_support, ":i-support"),
-        (f.template, ":template"),
-        (f.interrupt, ":interrupt"),
-        (f.explain, ":explain"),
+        (f.default, "    :default"),
+        (f.chunk, "    :chunk"),
+        (f.o_support, "    :o-support"),
+        (f.i_support, "    :i-support"),
+        // The kernel indents :template one space less than the others (observed).
+        (f.template, "   :template"),
+        (f.interrupt, "    :interrupt"),
+        // 9.6 does not print :explain back; we do, so that printing and re-reading a rule
+        // keeps it (the round-trip property of issue 2).
+        (f.explain, "    :explain"),
     ] {
         if on {
-            out.push_str(&format!("    {name}\n"));
+            out.push_str(name);
+            out.push('\n');
         }
     }
     print_conditions(&mut out, &p.conditions, 4);
     out.push_str("    -->\n");
+    if p.actions.is_empty() {
+        // Soar prints an indented empty line for an empty right-hand side.
+        out.push_str("    \n");
+    }
     print_actions(&mut out, &p.actions);
     out.push_str("}\n");
     out
@@ -330,13 +343,17 @@ mod tests {
     fn bars_as_the_official_kernel_prints_them() {
         for s in [
             "a*b", "a-b", "z9-", "a1-", "-a", "*a", "1.5", "+", "a b", "", "P1", "123", "<x>",
-            "a.b",
+            "a.b", "x/y", "a_b", "<<>>",
         ] {
             assert!(rereadable(s).starts_with('|'), "{s} should have bars");
         }
         for s in [
             "a1b",
             "ab-c",
+            "x/y:z",
+            "a-b-c",
+            "-abc",
+            "1-23",
             "1e5",
             "1a",
             "*",

@@ -146,6 +146,9 @@ pub struct CompileOutput {
 struct Placeholders {
     counters: FxHashMap<char, u32>,
     used: FxHashSet<String>,
+    /// The placeholders made so far. Soar names them `<#a*1>` while parsing, so a letter taken
+    /// from one is `#`, which is not a letter: the next placeholder is named after `v`.
+    generated: FxHashSet<String>,
 }
 
 impl Placeholders {
@@ -157,41 +160,55 @@ impl Placeholders {
             let name = format!("<{letter}*{n}>");
             if !self.used.contains(&name) {
                 self.used.insert(name.clone());
+                self.generated.insert(name.clone());
                 return name;
             }
         }
     }
-}
 
-fn letter_of_test(t: &ast::Test) -> char {
-    match t {
-        ast::Test::Equal(ast::Atom::Const(Constant::Str(s)), _) => s
-            .chars()
-            .next()
-            .filter(|c| c.is_ascii_alphabetic())
-            .unwrap_or('v'),
-        ast::Test::Conjunction(ts, _) => ts
-            .iter()
-            .find_map(|t| match t {
-                ast::Test::Equal(ast::Atom::Const(Constant::Str(s)), _) => {
-                    s.chars().next().filter(|c| c.is_ascii_alphabetic())
-                }
-                _ => None,
-            })
-            .unwrap_or('a'),
-        ast::Test::Equal(ast::Atom::Var(_), _) => 'a',
-        _ => 'a',
+    /// Soar's `first_letter_from_test`: the letter of the test's equality symbol (a
+    /// variable's first letter, a string's first character, `i`/`f` for numbers), or `v`
+    /// when that is not a letter.
+    fn letter_of(&self, t: &Test) -> char {
+        match t {
+            Test::Equal(term) => self.letter_of_term(term),
+            Test::Conjunction(ts) => ts
+                .iter()
+                .find_map(|t| match t {
+                    Test::Equal(term) => Some(self.letter_of_term(term)),
+                    _ => None,
+                })
+                .unwrap_or('v'),
+            _ => 'v',
+        }
+    }
+
+    fn letter_of_term(&self, term: &Term) -> char {
+        let c = match term {
+            Term::Var(v) if self.generated.contains(v) => None,
+            Term::Var(v) => v.chars().nth(1),
+            Term::Const(c) => letter_of_constant(c),
+        };
+        c.filter(char::is_ascii_alphabetic).unwrap_or('v')
+    }
+
+    /// `first_letter_from_rhs_value`: as for tests; a function call gives `v`.
+    fn letter_of_rhs(&self, t: &RhsTerm) -> char {
+        match t {
+            RhsTerm::Var(v) => self.letter_of_term(&Term::Var(v.clone())),
+            RhsTerm::Const(c) => letter_of_constant(c)
+                .filter(char::is_ascii_alphabetic)
+                .unwrap_or('v'),
+            RhsTerm::Call(_) => 'v',
+        }
     }
 }
 
-fn letter_of_rhs(v: &ast::RhsValue) -> char {
-    match v {
-        ast::RhsValue::Const(Constant::Str(s), _) => s
-            .chars()
-            .next()
-            .filter(|c| c.is_ascii_alphabetic())
-            .unwrap_or('v'),
-        _ => 'a',
+fn letter_of_constant(c: &Constant) -> Option<char> {
+    match c {
+        Constant::Str(s) => s.chars().next(),
+        Constant::Int(_) => Some('i'),
+        Constant::Float(_) => Some('f'),
     }
 }
 
@@ -216,8 +233,9 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
         actions,
         span: p.span,
     };
-    check_goal_test(&prod, p)?;
-    check_connected(&prod, out);
+    let mut prod = prod;
+    drop_unbound_relational(&mut prod.conditions, &FxHashSet::default(), &prod.name)?;
+    check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
     Ok(prod)
 }
@@ -325,13 +343,16 @@ fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
                         None => eq = Some(t),
                         Some(existing) => {
                             // A constant equality test wins over a variable one.
-                            let (keep, drop) = match (existing, &t) {
-                                (Term::Var(_), Term::Const(_)) => (t.clone(), existing.clone()),
-                                _ => (existing.clone(), t.clone()),
+                            // "constant" when a later constant replaces a variable.
+                            let (keep, drop, which) = match (existing, &t) {
+                                (Term::Var(_), Term::Const(_)) => {
+                                    (t.clone(), existing.clone(), "constant")
+                                }
+                                _ => (existing.clone(), t.clone(), "existing"),
                             };
                             out.warnings.push(
                                 Diagnostic::warning(format!(
-                                    "Soar does not support having two equality tests in one conjunctive test!\nIgnoring {} in favor of existing {}.  Rule semantics may have changed!",
+                                    "Soar does not support having two equality tests in one conjunctive test!\nIgnoring {} in favor of {which} {}.  Rule semantics may have changed!",
                                     term_text(&drop),
                                     term_text(&keep)
                                 ))
@@ -405,7 +426,7 @@ fn compile_condition(
         ast::Condition::Negative(c) => {
             let mut inner = Vec::new();
             compile_cond_for_one_id(c, false, ph, &mut inner, out)?;
-            dest.push(negate(inner));
+            dest.extend(negate(inner));
             Ok(())
         }
         ast::Condition::Ncc(cs, _) => {
@@ -413,22 +434,25 @@ fn compile_condition(
             for c in cs {
                 compile_condition(c, ph, &mut inner, out)?;
             }
-            dest.push(Condition::Ncc(inner));
+            dest.extend(negate(inner));
             Ok(())
         }
     }
 }
 
-/// `-(...)`: one negative condition, or a conjunctive negation when it expanded to several.
-fn negate(mut inner: Vec<Condition>) -> Condition {
+/// Soar's `negate_condition_list`: a single condition toggles between positive and
+/// negative (a single conjunctive negation is unwrapped); several become a conjunctive
+/// negation. So `-{ (<s> ^a b) }` is the plain negation `-(<s> ^a b)`.
+fn negate(mut inner: Vec<Condition>) -> Vec<Condition> {
     if inner.len() == 1 {
         match inner.pop() {
-            Some(Condition::Positive(c)) => return Condition::Negative(c),
-            Some(other) => inner.push(other),
+            Some(Condition::Positive(c)) => return vec![Condition::Negative(c)],
+            Some(Condition::Negative(c)) => return vec![Condition::Positive(c)],
+            Some(Condition::Ncc(cs)) => return cs,
             None => {}
         }
     }
-    Condition::Ncc(inner)
+    vec![Condition::Ncc(inner)]
 }
 
 fn compile_cond_for_one_id(
@@ -440,15 +464,10 @@ fn compile_cond_for_one_id(
 ) -> Result<(), Diagnostic> {
     if c.head != Head::None && c.attr_value_tests.is_empty() {
         return Err(Diagnostic::error(
-            "Expected attribute-value test after state/impasse test. Did you forget to add \"^type state\" or \"^superstate nil\"?",
+            "Error: Expected attribute-value test after state/impasse test. Did you forget to add \"^type state\" or \"^superstate nil\"?",
         )
         .at(c.span)
         .with_label("this condition tests nothing"));
-    }
-    if c.attr_value_tests.is_empty() {
-        return Err(Diagnostic::error("Expected ^ followed by attribute")
-            .at(c.span)
-            .with_label("a condition needs at least one attribute test"));
     }
     let id = match &c.id_test {
         Some(t) => {
@@ -463,12 +482,23 @@ fn compile_cond_for_one_id(
             }
             ensure_equality(test, ph, 's').0
         }
-        None => Test::Equal(Term::Var(ph.fresh(if c.head == Head::None {
-            'i'
-        } else {
-            's'
-        }))),
+        // A condition with no id test gets a placeholder named after `s` (parse_cond).
+        None => Test::Equal(Term::Var(ph.fresh('s'))),
     };
+    if c.attr_value_tests.is_empty() {
+        // `(<x>)` tests that <x> has some attribute: `(<x> ^<a*1> <v*1>)`.
+        let attr = Test::Equal(Term::Var(ph.fresh('a')));
+        let value = Test::Equal(Term::Var(ph.fresh('v')));
+        dest.push(Condition::Positive(Cond {
+            id,
+            attr,
+            value,
+            acceptable: false,
+            goal: c.head,
+            span: c.span,
+        }));
+        return Ok(());
+    }
     for avt in &c.attr_value_tests {
         compile_attr_value_tests(&id, c.head, avt, ph, dest, out)?;
     }
@@ -495,10 +525,12 @@ fn compile_attr_value_tests(
     let mut local = Vec::new();
     let mut cur_id = id.clone();
     let mut goal = head;
-    let n = avt.path.len();
-    for step in &avt.path[..n.saturating_sub(1)] {
-        let attr = compile_test(step, out);
-        let v = Term::Var(ph.fresh(letter_of_test(step)));
+    // An attribute test with no equality test gets a placeholder `<a*N>`
+    // (parse_attr_value_tests); each path step then links through a placeholder named
+    // after the step's attribute.
+    let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a').0;
+    for step in &avt.path[1..] {
+        let v = Term::Var(ph.fresh(ph.letter_of(&attr)));
         local.push(Condition::Positive(Cond {
             id: cur_id.clone(),
             attr,
@@ -509,26 +541,37 @@ fn compile_attr_value_tests(
         }));
         cur_id = Test::Equal(v);
         goal = Head::None;
+        attr = ensure_equality(compile_test(step, out), ph, 'a').0;
     }
-    let last_attr = &avt.path[n - 1];
+    let letter = ph.letter_of(&attr);
+    // The whole attribute test goes on the first condition, its equality test on the
+    // others (fill_in_attr_tests).
+    let attr_eq = match &attr {
+        Test::Conjunction(ts) => ts
+            .iter()
+            .find(|t| matches!(t, Test::Equal(_)))
+            .cloned()
+            .unwrap_or_else(|| attr.clone()),
+        other => other.clone(),
+    };
     let values: Vec<ast::ValueTest> = if avt.values.is_empty() {
         vec![ast::ValueTest::Test {
-            test: ast::Test::Equal(
-                ast::Atom::Var(ph.fresh(letter_of_test(last_attr))),
-                avt.span,
-            ),
+            test: ast::Test::Equal(ast::Atom::Var(ph.fresh(letter)), avt.span),
             acceptable: false,
         }]
     } else {
         avt.values.clone()
     };
-    for v in &values {
-        let attr = compile_test(last_attr, out);
+    for (k, v) in values.iter().enumerate() {
+        let attr = if k == 0 {
+            attr.clone()
+        } else {
+            attr_eq.clone()
+        };
         match v {
             ast::ValueTest::Test { test, acceptable } => {
                 // A value test that binds nothing gets a placeholder, as Soar prints it.
-                let (value, _) =
-                    ensure_equality(compile_test(test, out), ph, letter_of_test(last_attr));
+                let (value, _) = ensure_equality(compile_test(test, out), ph, letter);
                 local.push(Condition::Positive(Cond {
                     id: cur_id.clone(),
                     attr,
@@ -541,7 +584,7 @@ fn compile_attr_value_tests(
             ast::ValueTest::Structured {
                 tests, acceptable, ..
             } => {
-                let pv = Term::Var(ph.fresh(letter_of_test(last_attr)));
+                let pv = Term::Var(ph.fresh(letter));
                 local.push(Condition::Positive(Cond {
                     id: cur_id.clone(),
                     attr,
@@ -563,6 +606,7 @@ fn compile_attr_value_tests(
             }
         }
     }
+    let n = avt.path.len();
     if avt.negated {
         // `-^a v1 v2` negates each value; `-^a.b v` negates the chain as a whole.
         if n == 1
@@ -570,10 +614,10 @@ fn compile_attr_value_tests(
             && !has_structured(&values)
         {
             for c in local {
-                dest.push(negate(vec![c]));
+                dest.extend(negate(vec![c]));
             }
         } else {
-            dest.push(negate(local));
+            dest.extend(negate(local));
         }
     } else {
         dest.extend(local);
@@ -607,10 +651,11 @@ fn compile_action(
                 let mut cur = id_term.clone();
                 let n = am.path.len();
                 for step in &am.path[..n - 1] {
-                    let v = RhsTerm::Var(ph.fresh(letter_of_rhs(step)));
+                    let step_attr = rhs_term(step, out, rule)?;
+                    let v = RhsTerm::Var(ph.fresh(ph.letter_of_rhs(&step_attr)));
                     dest.push(Action::Make(Box::new(Make {
                         id: cur.clone(),
-                        attr: rhs_term(step, out, rule)?,
+                        attr: step_attr,
                         value: v.clone(),
                         pref: PrefKind::Acceptable,
                         referent: None,
@@ -628,7 +673,10 @@ fn compile_action(
                     } else {
                         vm.prefs.iter().collect()
                     };
-                    let mut warned = false;
+                    // Non-operator attributes keep only `-` (one reject per `-`), else one
+                    // acceptable; other unary preferences warn each time (spec §1e; the
+                    // kernel's `parse_preferences_soar8_non_operator`).
+                    let mut rejects = 0usize;
                     for pref in prefs {
                         let (kind, referent) = match pref {
                             Pref::Acceptable => (PrefKind::Acceptable, None),
@@ -643,7 +691,6 @@ fn compile_action(
                             Pref::BinaryIndifferent(r) => (PrefKind::BinaryIndifferent, Some(r)),
                             Pref::Numeric(r) => (PrefKind::NumericIndifferent, Some(r)),
                         };
-                        let mut kind = kind;
                         if !is_operator {
                             if kind.is_binary() {
                                 return Err(Diagnostic::error(format!(
@@ -655,8 +702,10 @@ fn compile_action(
                                 .at(am.span)
                                 .with_label("binary preferences are allowed only on ^operator"));
                             }
-                            if !matches!(kind, PrefKind::Acceptable | PrefKind::Reject) {
-                                if !warned {
+                            match kind {
+                                PrefKind::Acceptable => continue,
+                                PrefKind::Reject => rejects += 1,
+                                _ => {
                                     out.warnings.push(
                                         Diagnostic::warning(format!(
                                             "WARNING: The only allowable non-operator preference \nis REJECT - .\nIgnoring specified preferences.\nid = {}\t attr = {}\t value = {}",
@@ -667,9 +716,8 @@ fn compile_action(
                                         .at(am.span)
                                         .with_label("only + and - apply to attributes other than ^operator"),
                                     );
-                                    warned = true;
+                                    continue;
                                 }
-                                kind = PrefKind::Acceptable;
                             }
                         }
                         let referent = match referent {
@@ -682,6 +730,16 @@ fn compile_action(
                             value: value.clone(),
                             pref: kind,
                             referent,
+                            span: *span,
+                        })));
+                    }
+                    if !is_operator && rejects == 0 {
+                        dest.push(Action::Make(Box::new(Make {
+                            id: cur.clone(),
+                            attr: attr.clone(),
+                            value: value.clone(),
+                            pref: PrefKind::Acceptable,
+                            referent: None,
                             span: *span,
                         })));
                     }
@@ -769,23 +827,6 @@ fn rhs_text(t: &RhsTerm) -> String {
 
 // --------------------------------------------------------------------------------- checks
 
-/// Spec §1d: at least one positive condition must test a state.
-fn check_goal_test(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
-    let has_goal = p
-        .conditions
-        .iter()
-        .any(|c| matches!(c, Condition::Positive(c) if c.goal != Head::None));
-    if has_goal {
-        return Ok(());
-    }
-    Err(Diagnostic::error(format!(
-        "Error: production {} has no positive conditions that reference a goal state.\nDid you forget to add \"^type state\" or \"^superstate nil\"?",
-        p.name
-    ))
-    .at(ast.name_span)
-    .with_label("no condition of this rule starts with (state ...) or (impasse ...)"))
-}
-
 fn equality_var(t: &Test) -> Option<&str> {
     match t {
         Test::Equal(Term::Var(v)) => Some(v),
@@ -794,61 +835,147 @@ fn equality_var(t: &Test) -> Option<&str> {
     }
 }
 
-fn all_conds(cs: &[Condition]) -> Vec<&Cond> {
-    let mut v = Vec::new();
-    for c in cs {
-        match c {
-            Condition::Positive(c) | Condition::Negative(c) => v.push(c),
-            Condition::Ncc(inner) => v.extend(all_conds(inner)),
-        }
+/// Spec §1d, as the kernel's reorderer checks it (`collect_root_variables`, `reorder_lhs`):
+/// the roots are the variables in the id field of a positive condition that are not the
+/// value of another positive condition. A root with no `(state ...)`/`(impasse ...)` test
+/// warns; a rule with no root at all must have a positive goal test, or it is rejected.
+/// Conjunctive negations are checked the same way, with the outer variables counted bound.
+fn check_roots(
+    p: &Production,
+    ast: &ast::Production,
+    out: &mut CompileOutput,
+) -> Result<(), Diagnostic> {
+    let roots = root_variables(&p.conditions, &FxHashSet::default(), &p.name, out);
+    if !roots.is_empty() {
+        return Ok(());
     }
-    v
+    let has_goal = p.conditions.iter().any(|c| {
+        matches!(c, Condition::Positive(c) if c.goal != Head::None && equality_var(&c.id).is_some())
+    });
+    if has_goal {
+        return Ok(());
+    }
+    Err(Diagnostic::error(format!(
+        "Error: production {} has no positive conditions that reference a goal state.\nDid you forget to add \"^type state\" or \"^superstate nil\"?",
+        p.name
+    ))
+    .at(ast.name_span)
+    .with_label("no positive condition of this rule tests a state, so nothing connects it to working memory"))
 }
 
-/// Spec §1d: a condition whose id is not reachable from a state or impasse test warns.
-fn check_connected(p: &Production, out: &mut CompileOutput) {
-    let conds = all_conds(&p.conditions);
-    let mut connected: FxHashSet<&str> = FxHashSet::default();
-    for c in &conds {
-        if c.goal != Head::None {
-            if let Some(v) = equality_var(&c.id) {
-                connected.insert(v);
+/// The root variables of one condition list (see [`check_roots`]), warning for each root
+/// that is not tested as a state or impasse, then recursing into conjunctive negations.
+fn root_variables<'a>(
+    conds: &'a [Condition],
+    outside: &FxHashSet<&'a str>,
+    name: &str,
+    out: &mut CompileOutput,
+) -> Vec<&'a str> {
+    let positives: Vec<&Cond> = conds
+        .iter()
+        .filter_map(|c| match c {
+            Condition::Positive(c) => Some(c),
+            _ => None,
+        })
+        .collect();
+    let in_value: FxHashSet<&str> = positives
+        .iter()
+        .filter_map(|c| equality_var(&c.value))
+        .collect();
+    let mut roots: Vec<&str> = Vec::new();
+    for c in &positives {
+        if let Some(id) = equality_var(&c.id) {
+            if !outside.contains(id) && !in_value.contains(id) && !roots.contains(&id) {
+                roots.push(id);
             }
         }
     }
-    loop {
-        let before = connected.len();
-        for c in &conds {
-            if let Some(id) = equality_var(&c.id) {
-                if connected.contains(id) {
-                    if let Some(v) = equality_var(&c.value) {
-                        connected.insert(v);
-                    }
-                    if let Some(a) = equality_var(&c.attr) {
-                        connected.insert(a);
-                    }
+    for root in &roots {
+        let tested_as_goal = positives
+            .iter()
+            .any(|c| c.goal != Head::None && equality_var(&c.id) == Some(root));
+        if tested_as_goal {
+            continue;
+        }
+        if let Some(c) = positives.iter().find(|c| equality_var(&c.id) == Some(root)) {
+            out.warnings.push(
+                Diagnostic::warning(format!(
+                    "Warning: On the LHS of production {name}, identifier {root} is not connected to any goal or impasse."
+                ))
+                .at(c.span)
+                .with_label("no chain of conditions links this identifier to a state"),
+            );
+        }
+    }
+    let mut bound = outside.clone();
+    for c in &positives {
+        for t in [&c.id, &c.attr, &c.value] {
+            if let Some(v) = equality_var(t) {
+                bound.insert(v);
+            }
+        }
+    }
+    for c in conds {
+        if let Condition::Ncc(inner) = c {
+            root_variables(inner, &bound, name, out);
+        }
+    }
+    roots
+}
+
+/// Spec §1g, as the kernel's reorderer does it: a relational test on a variable that no
+/// positive condition binds (at this level or outside it) can never be evaluated. In a
+/// positive condition it is dropped silently; in a negated condition it is an error
+/// (`check_negative_relational_test_bindings`).
+fn drop_unbound_relational(
+    conds: &mut [Condition],
+    outside: &FxHashSet<String>,
+    name: &str,
+) -> Result<(), Diagnostic> {
+    let mut bound = outside.clone();
+    for c in conds.iter() {
+        if let Condition::Positive(c) = c {
+            for t in [&c.id, &c.attr, &c.value] {
+                if let Some(v) = equality_var(t) {
+                    bound.insert(v.to_string());
                 }
             }
         }
-        if connected.len() == before {
-            break;
-        }
     }
-    let mut warned: FxHashSet<&str> = FxHashSet::default();
-    for c in &conds {
-        if let Some(id) = equality_var(&c.id) {
-            if !connected.contains(id) && warned.insert(id) {
-                out.warnings.push(
-                    Diagnostic::warning(format!(
-                        "Warning: On the LHS of production {}, identifier {} is not connected to any goal or impasse.",
-                        p.name, id
-                    ))
-                    .at(c.span)
-                    .with_label("no chain of conditions links this identifier to a state"),
-                );
+    let unbound = |t: &Test| matches!(t, Test::Relational(_, Term::Var(v)) if !bound.contains(v));
+    for c in conds.iter_mut() {
+        match c {
+            Condition::Positive(c) => {
+                for t in [&mut c.id, &mut c.attr, &mut c.value] {
+                    if let Test::Conjunction(ts) = t {
+                        ts.retain(|m| !unbound(m));
+                        if let [only] = ts.as_slice() {
+                            *t = only.clone();
+                        }
+                    }
+                }
             }
+            Condition::Negative(c) => {
+                for t in [&c.id, &c.attr, &c.value] {
+                    let members = match t {
+                        Test::Conjunction(ts) => ts.as_slice(),
+                        other => std::slice::from_ref(other),
+                    };
+                    if let Some(rel) = members.iter().find(|m| unbound(m)) {
+                        return Err(Diagnostic::error(format!(
+                            "Error: production {name} has an unbound referent in negated relational test {}.",
+                            crate::printer::test_text(rel)
+                        ))
+                        .at(c.span)
+                        .with_label("no positive condition binds this variable")
+                        .with_note("Attempted to add an invalid rule:\n      Unbound relational test in negative condition of rule"));
+                    }
+                }
+            }
+            Condition::Ncc(inner) => drop_unbound_relational(inner, &bound, name)?,
         }
     }
+    Ok(())
 }
 
 /// Variables bound by an equality test in a positive, non-negated condition.

@@ -45,16 +45,29 @@ pub struct Tokenizer<'a> {
     pos: usize,
     file: FileId,
     failed: bool,
+    /// Offset of the first NUL byte: Soar's tokenizer reads a C string, so the text ends there.
+    nul_at: Option<usize>,
 }
 
 impl<'a> Tokenizer<'a> {
     pub fn new(text: &'a str, file: FileId) -> Self {
+        let nul_at = text.find('\0');
+        let text = &text[..nul_at.unwrap_or(text.len())];
         Tokenizer {
             text,
             bytes: text.as_bytes(),
             pos: 0,
             file,
             failed: false,
+            nul_at,
+        }
+    }
+
+    /// An end-of-text error, pointing also at the NUL byte that ended the text early.
+    fn at_eof(&self, d: Diagnostic) -> Diagnostic {
+        match self.nul_at {
+            Some(n) => d.with_secondary(self.span(n, n + 1), "the text ends at this NUL byte"),
+            None => d,
         }
     }
 
@@ -80,10 +93,6 @@ impl<'a> Tokenizer<'a> {
         while let Some(c) = self.peek() {
             match c {
                 b' ' | b'\t' | b'\r' | b'\x0b' | b'\x0c' => self.pos += 1,
-                b'\\' if self.bytes.get(self.pos + 1) == Some(&b'\n') => {
-                    // Backslash-newline is one space and swallows following whitespace.
-                    self.pos += 2;
-                }
                 b'#' => self.skip_comment(),
                 _ => break,
             }
@@ -152,6 +161,7 @@ impl<'a> Tokenizer<'a> {
         let mut d = Diagnostic::error("unexpected eof, unmatched opening brace")
             .at(self.span(open, open + 1))
             .with_label("this brace is never closed");
+        d = self.at_eof(d);
         if in_pipe {
             d = d.with_note(
                 "a `|` inside the braces opened a quoted constant that is never closed, \
@@ -180,9 +190,11 @@ impl<'a> Tokenizer<'a> {
                 _ => self.push_char(&mut out),
             }
         }
-        Err(Diagnostic::error("unexpected eof, unmatched opening quote")
-            .at(self.span(open, open + 1))
-            .with_label("this quote is never closed"))
+        Err(self.at_eof(
+            Diagnostic::error("unexpected eof")
+                .at(self.span(open, open + 1))
+                .with_label("this quote is never closed"),
+        ))
     }
 
     /// Appends the (possibly multi-byte) character at `pos`.
@@ -240,9 +252,11 @@ impl<'a> Tokenizer<'a> {
             loop {
                 match self.peek() {
                     None => {
-                        return Err(Diagnostic::error("unexpected eof, unmatched '|'")
-                            .at(self.span(start, start + 1))
-                            .with_label("this `|` is never closed"))
+                        return Err(self.at_eof(
+                            Diagnostic::error("unexpected eof")
+                                .at(self.span(start, start + 1))
+                                .with_label("this `|` is never closed"),
+                        ))
                     }
                     Some(b'|') => {
                         out.push('|');
@@ -263,7 +277,8 @@ impl<'a> Tokenizer<'a> {
         while let Some(c) = self.peek() {
             match c {
                 b' ' | b'\t' | b'\r' | b'\n' | b';' | b'\x0b' | b'\x0c' | b'#' => break,
-                b'\\' if self.bytes.get(self.pos + 1) == Some(&b'\n') => break,
+                // Backslash-newline is one space that swallows the following blanks and
+                // continues the word: `echo a \<newline>  b` prints `a  b`, as in Soar.
                 b'\\' => self.read_escape(&mut out),
                 _ => self.push_char(&mut out),
             }
@@ -281,7 +296,14 @@ impl<'a> Tokenizer<'a> {
             self.skip_blanks();
             match self.peek() {
                 Some(b'\n' | b';') => self.pos += 1,
-                None => return None,
+                None => {
+                    let n = self.nul_at?;
+                    self.failed = true;
+                    return Some(Err(Diagnostic::error("unexpected NUL byte")
+                        .at(self.span(n, n + 1))
+                        .with_label("Soar reads no further than this NUL byte")
+                        .with_note("the rest of the text is ignored")));
+                }
                 _ => break,
             }
         }
@@ -391,10 +413,12 @@ mod tests {
 
     #[test]
     fn backslash_newline_continues_command() {
+        // The backslash-newline becomes a space that starts (or continues) a word.
         assert_eq!(
             words("echo a \\\n   b\nc"),
-            vec![vec!["echo", "a", "b"], vec!["c"]]
+            vec![vec!["echo", "a", " b"], vec!["c"]]
         );
+        assert_eq!(words("echo a\\\n   b"), vec![vec!["echo", "a b"]]);
     }
 
     #[test]
@@ -412,6 +436,19 @@ mod tests {
         assert!(t.next().unwrap().is_ok());
         assert!(t.next().unwrap().is_err());
         assert!(t.next().is_none());
+    }
+
+    #[test]
+    fn nul_byte_ends_the_text() {
+        let mut t = Tokenizer::new("echo a\n\0echo b", 0);
+        assert!(t.next().unwrap().is_ok());
+        let e = t.next().unwrap().unwrap_err();
+        assert_eq!(e.message, "unexpected NUL byte");
+        assert_eq!(e.span.unwrap().start, 7);
+        assert!(t.next().is_none());
+        let e = tokenize("sp {a \0 }", 0).unwrap_err();
+        assert_eq!(e.message, "unexpected eof, unmatched opening brace");
+        assert_eq!(e.secondary[0].0.start, 6);
     }
 
     #[test]

@@ -22,12 +22,16 @@ impl Interpreter {
         let sub = args.first().map(String::as_str);
         match sub {
             Some("file") => self.cmd_source(ctx, &args[1..]),
-            Some(other) => Err(Diagnostic::error(format!(
-                "load {other}: not yet supported by rusoar"
-            ))
+            Some(other @ ("library" | "percepts" | "rete-network")) => Err(Diagnostic::error(
+                format!("load {other}: not yet supported by rusoar"),
+            )
             .at(ctx.cmd.span)
             .with_label("only `load file` (source) is supported")),
-            None => Err(ctx.error("load: expected a sub-command (file)")),
+            Some(_) | None => Err(Diagnostic::error(
+                "Invalid load command.  Use 'load ?' to see a list of valid settings.",
+            )
+            .at(ctx.cmd.span)
+            .with_label("the sub-commands are file, library, percepts and rete-network")),
         }
     }
 
@@ -37,7 +41,7 @@ impl Interpreter {
         let specs = [opt('a', "all"), opt('d', "disable"), opt('v', "verbose")];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
         let Some(name) = parsed.args.first() else {
-            return Err(ctx.error("source: expected a file name"));
+            return Err(ctx.error("Syntax: load file [--all | --disable | --verbose] <filename>"));
         };
         let top_level = self.source_stack.is_empty();
         if top_level {
@@ -58,6 +62,13 @@ impl Interpreter {
                 " {} production{} excised.",
                 r.excised,
                 if r.excised == 1 { "" } else { "s" }
+            ));
+        }
+        if r.ignored > 0 {
+            summary.push_str(&format!(
+                " {} production{} ignored.",
+                r.ignored,
+                if r.ignored == 1 { "" } else { "s" }
             ));
         }
         match result {
@@ -93,17 +104,14 @@ impl Interpreter {
         }
         self.source_stack.push(path.clone());
         self.report.per_file.entry(path.clone()).or_insert(0);
-        let result = self.run_file_id(file).map_err(|d| {
-            let (line, _) = d
-                .span
-                .map(|s| self.sources.line_col(s.file, s.start))
-                .unwrap_or((0, 0));
+        // An error in a nested file names each enclosing file and the line of its `source`
+        // command, as Soar's "\t<path>:<line>" trail does.
+        let result = self.run_file_id_at(file).map_err(|(d, at)| {
             if d.span.is_some_and(|s| s.file == file) {
                 d
             } else {
-                let (l, _) = self.sources.line_col(ctx.cmd.span.file, ctx.cmd.span.start);
-                let _ = line;
-                d.with_note(format!("while sourcing {}:{}", path.display(), l))
+                let (line, _) = self.sources.line_col(at.file, at.start);
+                d.with_note(format!("while sourcing {}:{}", path.display(), line))
             }
         });
         self.source_stack.pop();
@@ -137,7 +145,7 @@ impl Interpreter {
                 self.cwd = d;
                 Ok(String::new())
             }
-            None => Err(ctx.error("Directory stack empty, no directory to change to.")),
+            None => Err(ctx.error("Directory stack is empty.")),
         }
     }
 

@@ -168,16 +168,40 @@ impl Interpreter {
     }
 
     fn run_file_id(&mut self, file: usize) -> Result<(), Diagnostic> {
+        self.run_file_id_at(file).map_err(|(d, _)| d)
+    }
+
+    /// Runs a registered text; a failure also gives the span of the command that failed in
+    /// this text (for `source`'s "while sourcing FILE:LINE" trail).
+    fn run_file_id_at(&mut self, file: usize) -> Result<(), (Diagnostic, Span)> {
         let text = self.sources.text(file).to_string();
         for cmd in Tokenizer::new(&text, file) {
-            let cmd = cmd?;
-            let result = self.execute(&cmd)?;
+            let cmd = match cmd {
+                Ok(c) => c,
+                Err(d) => {
+                    let at = d.span.unwrap_or_default();
+                    return Err((self.failing(d), at));
+                }
+            };
+            let result = match self.execute(&cmd) {
+                Ok(r) => r,
+                Err(d) => return Err((self.failing(d), cmd.span)),
+            };
             self.print_result(result);
             if self.exit_requested {
                 break;
             }
         }
         Ok(())
+    }
+
+    /// A failure ends a line of `*` progress marks first, as a warning does.
+    fn failing(&mut self, d: Diagnostic) -> Diagnostic {
+        if self.after_star {
+            self.events.push(Event::Text("\n".into()));
+            self.after_star = false;
+        }
+        d
     }
 
     /// Prints a command's result; `*` progress marks of `sp` run together on one line.
@@ -212,8 +236,16 @@ impl Interpreter {
             }
         }
         let name = match self.resolve_command(&words[0]) {
-            Some(n) => n,
-            None => {
+            Ok(n) => n,
+            Err(possible) if !possible.is_empty() => {
+                let list: String = possible.iter().map(|c| format!("'{c}' ")).collect();
+                return Err(
+                    Diagnostic::error(format!("Ambiguous command, possibilities: {list}"))
+                        .at(first)
+                        .with_label("a prefix of several commands"),
+                );
+            }
+            Err(_) => {
                 let mut d = Diagnostic::error(format!("No such command: {}", words[0]))
                     .at(first)
                     .with_label("unknown command");
@@ -258,14 +290,22 @@ impl Interpreter {
     }
 
     /// Exact name, else a unique prefix of a real command name (aliases are not prefixes).
-    fn resolve_command(&self, word: &str) -> Option<&'static str> {
+    /// A prefix of several commands gives them all back as the error.
+    fn resolve_command(&self, word: &str) -> Result<&'static str, Vec<&'static str>> {
         if let Some(c) = COMMANDS.iter().find(|c| **c == word) {
-            return Some(c);
+            return Ok(c);
         }
-        let mut it = COMMANDS.iter().filter(|c| c.starts_with(word));
-        match (it.next(), it.next()) {
-            (Some(c), None) if !word.is_empty() => Some(c),
-            _ => None,
+        if word.is_empty() {
+            return Err(Vec::new());
+        }
+        let matches: Vec<&'static str> = COMMANDS
+            .iter()
+            .copied()
+            .filter(|c| c.starts_with(word))
+            .collect();
+        match matches.as_slice() {
+            [one] => Ok(one),
+            _ => Err(matches),
         }
     }
 }

@@ -11,10 +11,12 @@ impl Interpreter {
     /// `sp {...}`: parse, compile with Soar's checks, add. `*` per rule, `#*` on redefinition.
     pub(super) fn cmd_sp(&mut self, ctx: &Ctx) -> CmdResult {
         let Some(body) = ctx.cmd.words.get(1) else {
-            return Err(ctx.error("sp: expected a production body in braces"));
+            return Err(ctx
+                .error("Syntax: sp {production_body}")
+                .with_label("no production body"));
         };
         if ctx.cmd.words.len() > 2 {
-            return Err(Diagnostic::error("sp: too many arguments")
+            return Err(Diagnostic::error("Syntax: sp {production_body}")
                 .at(ctx.arg_span(1))
                 .with_label("the production must be a single {...} word"));
         }
@@ -28,24 +30,30 @@ impl Interpreter {
         for w in warnings.drain(..) {
             self.warn(w);
         }
-        let name_hint = body
-            .text
-            .split_whitespace()
-            .next()
-            .unwrap_or("")
-            .to_string();
-        let failed = |d: Diagnostic, name: &str| {
-            d.with_note(format!("(Ignoring production {name})"))
-                .with_note("Production addition failed.")
+        let ast = match parsed {
+            Ok(ast) => ast,
+            Err(d) => {
+                // A bad name fails before anything else, without "(Ignoring production)".
+                if d.message == "Expected symbol for production name" {
+                    return Err(d.with_note("Production addition failed."));
+                }
+                let name = production_name(&body.text);
+                return Err(self.sp_failed(d, name.as_deref()));
+            }
         };
-        let ast = parsed.map_err(|d| failed(d, &name_hint))?;
         let mut out = CompileOutput::default();
         let compiled = production::compile(&ast, &mut out);
         for w in out.warnings {
             self.warn(w);
         }
-        let p = compiled.map_err(|d| failed(d, &ast.name))?;
+        let p = match compiled {
+            Ok(p) => p,
+            Err(d) => return Err(self.sp_failed(d, Some(&ast.name))),
+        };
         let name = p.name.clone();
+        if p.flags.explain {
+            self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
+        }
         let file_path = self.source_stack.last().cloned();
         match self.agent.add_production(p) {
             Added::New => {
@@ -69,6 +77,20 @@ impl Interpreter {
                 Ok(String::new())
             }
         }
+    }
+
+    /// A rule that fails to load. Soar excises a rule of the same name as soon as it has
+    /// read the name, so a failed redefinition still removes the old rule (`#`).
+    fn sp_failed(&mut self, d: Diagnostic, name: Option<&str>) -> Diagnostic {
+        let Some(name) = name else {
+            return d.with_note("Production addition failed.");
+        };
+        if self.agent.excise(name) {
+            self.report.excised += 1;
+            self.print_result("#".into());
+        }
+        d.with_note(format!("(Ignoring production {name})"))
+            .with_note("Production addition failed.")
     }
 
     fn count_loaded(&mut self, file: Option<std::path::PathBuf>) {
@@ -128,6 +150,15 @@ impl Interpreter {
         let Some(target) = parsed.args.first() else {
             return Err(super::not_yet(ctx, "print"));
         };
+        // `print |a quoted name|`: the word keeps its pipes; the rule name does not.
+        let unquoted;
+        let target = match target.strip_prefix('|').and_then(|t| t.strip_suffix('|')) {
+            Some(inner) => {
+                unquoted = inner.replace("\\|", "|").replace("\\\\", "\\");
+                &unquoted
+            }
+            None => target,
+        };
         if let Some(p) = self.agent.production(target) {
             return Ok(format!("{}\n", crate::printer::production_text(p)));
         }
@@ -169,6 +200,7 @@ impl Interpreter {
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
         if parsed.has("all") || parsed.has("user") || parsed.has("task") {
             let n = self.agent.excise_all();
+            self.report.excised += n;
             return Ok(format!(
                 "{n} production{} excised.",
                 if n == 1 { "" } else { "s" }
@@ -180,12 +212,14 @@ impl Interpreter {
         let mut n = 0;
         for name in &parsed.args {
             if !self.agent.excise(name) {
-                return Err(Diagnostic::error(format!("No production named {name}"))
+                return Err(Diagnostic::error("Production not found.")
                     .at(ctx.cmd.span)
-                    .with_label("unknown production"));
+                    .with_label(format!("no production named {name}")));
             }
             n += 1;
         }
+        // `source` counts these in its "N productions excised." summary.
+        self.report.excised += n;
         Ok(format!(
             "{n} production{} excised.",
             if n == 1 { "" } else { "s" }
@@ -199,4 +233,18 @@ fn looks_like_wm_target(s: &str) -> bool {
         || s.parse::<u64>().is_ok()
         || s.starts_with('<')
         || s.starts_with('(')
+}
+
+/// The production name at the start of an `sp` body (a symbol or `|quoted|` constant), as
+/// Soar reads it before the rest of the body.
+fn production_name(body: &str) -> Option<String> {
+    let mut scratch = Vec::new();
+    let toks = match crate::lexer::lex(body, 0, 0, &mut scratch) {
+        Ok(t) => t,
+        Err(e) => crate::lexer::lex(&body[..e.start], 0, 0, &mut scratch).ok()?,
+    };
+    match toks.first().map(|t| &t.1) {
+        Some(crate::lexer::Tok::Sym(s) | crate::lexer::Tok::Quoted(s)) => Some(s.clone()),
+        _ => None,
+    }
 }

@@ -57,27 +57,28 @@ impl Interpreter {
             opt('P', "no-desirability-prefs"),
         ];
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
-        let mut mode = None;
-        for (o, _) in &parsed.options {
-            mode = match *o {
-                "disable" | "off" => Some(LearnMode::Never),
-                "enable" | "on" => Some(LearnMode::Always),
-                "except" => Some(LearnMode::Except),
-                "only" => Some(LearnMode::Only),
-                _ => mode,
-            };
-        }
-        match mode {
-            Some(m) => {
-                self.agent.settings.learn = m;
-                Ok(format!(
+        // 9.6 applies the given modes in a fixed order, whatever the order on the line
+        // (`learn -de` and `learn -ed` both end "never"), reporting each one.
+        let mut text = String::new();
+        for (names, mode) in [
+            (&["only"][..], LearnMode::Only),
+            (&["except"][..], LearnMode::Except),
+            (&["enable", "on"][..], LearnMode::Always),
+            (&["disable", "off"][..], LearnMode::Never),
+        ] {
+            if names.iter().any(|n| parsed.has(n)) {
+                self.agent.settings.learn = mode;
+                text.push_str(&format!(
                     "learn is now {}\nWarning:  'learn' has been deprecated.  New corresponding command is: chunk {}\n",
-                    m.word(),
-                    m.word()
-                ))
+                    mode.word(),
+                    mode.word()
+                ));
             }
-            None => Ok(format!("learn is {}\n", self.agent.settings.learn.word())),
         }
+        if text.is_empty() {
+            return Ok(format!("learn is {}\n", self.agent.settings.learn.word()));
+        }
+        Ok(text)
     }
 
     pub(super) fn cmd_chunk(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
@@ -98,8 +99,8 @@ impl Interpreter {
                 let shown = if w == "off" { "off\n" } else { s.learn.word() };
                 Ok(format!("Learns rules in states: {shown}\n"))
             }
-            Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, |n| format!("max-chunks is now {n}\n")),
-            Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, |n| format!("max-dupes is now {n}\n")),
+            Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, CHUNK_INVALID, |n| format!("max-chunks is now {n}\n")),
+            Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, CHUNK_INVALID, |n| format!("max-dupes is now {n}\n")),
             Some(_) => Err(super::not_yet(ctx, "chunk")),
         }
     }
@@ -107,18 +108,38 @@ impl Interpreter {
     pub(super) fn cmd_soar(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let s = &mut self.agent.settings;
         match args.first().map(String::as_str) {
-            Some("max-elaborations") => int_setting(
-                ctx,
-                &args[1..],
-                "max-elaborations",
-                &mut s.max_elaborations,
-                |n| format!("The maximum number of elaborations in a phase is now {n}.\n"),
-            ),
+            Some("max-elaborations") => match args.get(1) {
+                // 9.6 reads the value with atoi: `max-elaborations lots` sets 0, silently.
+                Some(v) if v.parse::<i64>().is_err() => {
+                    let n = atoi(v);
+                    self.warn(
+                        Diagnostic::warning(format!(
+                            "max-elaborations: `{v}` is not an integer; Soar 9.6 reads it as {n}"
+                        ))
+                        .at(ctx.arg_span(1))
+                        .with_label(format!("read as {n}")),
+                    );
+                    let s = &mut self.agent.settings;
+                    s.max_elaborations = n;
+                    Ok(format!(
+                        "The maximum number of elaborations in a phase is now {n}.\n"
+                    ))
+                }
+                _ => int_setting(
+                    ctx,
+                    &args[1..],
+                    "max-elaborations",
+                    &mut s.max_elaborations,
+                    SOAR_INVALID,
+                    |n| format!("The maximum number of elaborations in a phase is now {n}.\n"),
+                ),
+            },
             Some("max-goal-depth") => int_setting(
                 ctx,
                 &args[1..],
                 "max-goal-depth",
                 &mut s.max_goal_depth,
+                SOAR_INVALID,
                 |n| format!("The maximum goal depth is now {n}.\n"),
             ),
             Some("max-nil-output-cycles") => int_setting(
@@ -126,6 +147,7 @@ impl Interpreter {
                 &args[1..],
                 "max-nil-output-cycles",
                 &mut s.max_nil_output_cycles,
+                SOAR_INVALID,
                 |n| format!("max-nil-output-cycles is now {n}\n"),
             ),
             Some("wait-snc") => {
@@ -294,12 +316,39 @@ impl Interpreter {
     }
 }
 
-/// `setting [N]`: shows or sets a non-negative integer setting.
+/// Soar's message for a bad value of a `chunk` setting.
+const CHUNK_INVALID: &str =
+    "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.";
+/// Soar's message for a bad value of a `soar` setting.
+const SOAR_INVALID: &str = "Invalid argument. Use 'soar ?' to see a list of valid settings.";
+
+/// C's `atoi`: optional blanks and sign, then digits; anything else ends the number.
+fn atoi(s: &str) -> i64 {
+    let t = s.trim_start();
+    let (neg, digits) = match t.as_bytes().first() {
+        Some(b'-') => (true, &t[1..]),
+        Some(b'+') => (false, &t[1..]),
+        _ => (false, t),
+    };
+    let mut n: i64 = 0;
+    for b in digits.bytes().take_while(u8::is_ascii_digit) {
+        n = n.saturating_mul(10).saturating_add(i64::from(b - b'0'));
+    }
+    if neg {
+        -n
+    } else {
+        n
+    }
+}
+
+/// `setting [N]`: shows or sets a non-negative integer setting; `invalid` is Soar's message
+/// for a value that is not one.
 fn int_setting(
     ctx: &Ctx,
     args: &[String],
     name: &str,
     slot: &mut i64,
+    invalid: &str,
     msg: impl Fn(i64) -> String,
 ) -> CmdResult {
     match args.first() {
@@ -309,9 +358,9 @@ fn int_setting(
                 *slot = n;
                 Ok(msg(n))
             }
-            _ => Err(Diagnostic::error(format!("Invalid value for {name}: {v}"))
+            _ => Err(Diagnostic::error(invalid)
                 .at(ctx.cmd.words.last().map(|w| w.span).unwrap_or(ctx.cmd.span))
-                .with_label("expected a positive integer")),
+                .with_label(format!("{name} wants a positive integer"))),
         },
     }
 }

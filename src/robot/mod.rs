@@ -1,1 +1,31 @@
-//! Soar-SLAM: the simulated Pioneer, its sonar, odometry drift and the Hough pipeline (issue 6).
+//! Soar-SLAM's robot side (issue 6): the simulated Pioneer 2-DX, its sonar ring and odometry
+//! drift, the world it drives in, and the thesis's sonar-to-walls Hough pipeline.
+//!
+//! - [`world`]: world files (TOML) and the built-in empty room and partition box;
+//! - [`pioneer`]: differential-drive body with wall collision;
+//! - [`sonar`]: the 16-transducer ring and its noise presets;
+//! - [`odometry`]: Stage 2's drift model and the believed pose;
+//! - [`sim`]: the [`Simulator`] tying them together, deterministic for a seed;
+//! - [`pipeline`]: converter, noise filter, Hough transform and wall extraction;
+//! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share.
+//!
+//! Sources: the thesis's "Hough-Transform Java" section (`soar-slam-thesis.txt`) and
+//! `robotics-anchors.md` (Pioneer geometry, Stage's sonar and odometry models).
+
+pub mod geom;
+pub mod odometry;
+pub mod pioneer;
+pub mod pipeline;
+pub mod rng;
+pub mod sim;
+pub mod sonar;
+pub mod world;
+
+pub use geom::{Point, Pose, Segment};
+pub use odometry::{Biases, DriftParams, Odometry};
+pub use pioneer::{Motion, Pioneer};
+pub use pipeline::{Settings as PipelineSettings, Wall};
+pub use rng::{Rng, Streams};
+pub use sim::{SimStep, Simulator};
+pub use sonar::{NoisePreset, SonarModel, Transducer, NUM_SONARS, P2DX_SONARS};
+pub use world::{RunSettings, World, WorldError};

@@ -1,0 +1,572 @@
+//! Adding productions to the network and excising them (Doorenbos §2.4, §2.6, §4): conditions
+//! are ordered so each joins on bound variables, nodes are shared with existing productions,
+//! and a new node is filled with the matches already present (so a rule added while running
+//! fires at once where it should).
+
+use super::tests::{Field, JoinTest, Op, Operand};
+use super::{AlphaKey, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, NIL, NIL_WME};
+use crate::ast::Head;
+use crate::production::{Cond, Condition, Production, Term, Test};
+use crate::symbols::{Sym, Symbols};
+use rustc_hash::{FxHashMap, FxHashSet};
+
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BuildError {
+    #[error("production {0} has no conditions")]
+    NoConditions(String),
+}
+
+/// Where the next node attaches: under a token holder, or under a join (whose matches the
+/// next holder stores).
+#[derive(Debug, Clone, Copy)]
+enum Cur {
+    Holder(NodeId),
+    Join(NodeId),
+}
+
+type Bindings = FxHashMap<String, (u32, Field)>;
+
+fn term_vars(t: &Test, out: &mut Vec<String>) {
+    match t {
+        Test::Equal(Term::Var(v)) | Test::Relational(_, Term::Var(v)) => out.push(v.clone()),
+        Test::Conjunction(ts) => ts.iter().for_each(|t| term_vars(t, out)),
+        _ => {}
+    }
+}
+
+fn equality_vars(t: &Test, out: &mut Vec<String>) {
+    match t {
+        Test::Equal(Term::Var(v)) => out.push(v.clone()),
+        Test::Conjunction(ts) => ts.iter().for_each(|t| equality_vars(t, out)),
+        _ => {}
+    }
+}
+
+fn relational_vars(t: &Test, out: &mut Vec<String>) {
+    match t {
+        Test::Relational(_, Term::Var(v)) => out.push(v.clone()),
+        Test::Conjunction(ts) => ts.iter().for_each(|t| relational_vars(t, out)),
+        _ => {}
+    }
+}
+
+fn cond_vars(c: &Condition, out: &mut Vec<String>) {
+    match c {
+        Condition::Positive(c) | Condition::Negative(c) => {
+            for t in [&c.id, &c.attr, &c.value] {
+                term_vars(t, out);
+            }
+        }
+        Condition::Ncc(cs) => cs.iter().for_each(|c| cond_vars(c, out)),
+    }
+}
+
+/// Orders conditions for joining: a positive condition goes when its id is bound (or it
+/// tests a state) and the variables of its relational tests are bound; a negation goes as
+/// soon as every variable it shares with positive conditions is bound. Source order breaks
+/// ties, so well-connected rules keep their written order.
+fn order_conditions(conds: &[Condition], bound: &FxHashSet<String>) -> Vec<usize> {
+    let mut positive_vars: FxHashSet<String> = bound.clone();
+    for c in conds {
+        if let Condition::Positive(p) = c {
+            let mut v = Vec::new();
+            for t in [&p.id, &p.attr, &p.value] {
+                equality_vars(t, &mut v);
+            }
+            positive_vars.extend(v);
+        }
+    }
+    let mut bound = bound.clone();
+    let mut done = vec![false; conds.len()];
+    let mut order = Vec::with_capacity(conds.len());
+    let place_negations =
+        |bound: &FxHashSet<String>, done: &mut Vec<bool>, order: &mut Vec<usize>| {
+            for (i, c) in conds.iter().enumerate() {
+                if done[i] || matches!(c, Condition::Positive(_)) {
+                    continue;
+                }
+                let mut v = Vec::new();
+                cond_vars(c, &mut v);
+                if v.iter()
+                    .filter(|x| positive_vars.contains(*x))
+                    .all(|x| bound.contains(x))
+                {
+                    done[i] = true;
+                    order.push(i);
+                }
+            }
+        };
+    place_negations(&bound, &mut done, &mut order);
+    loop {
+        let candidates: Vec<(usize, &Cond)> = conds
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !done[*i])
+            .filter_map(|(i, c)| match c {
+                Condition::Positive(p) => Some((i, p)),
+                _ => None,
+            })
+            .collect();
+        if candidates.is_empty() {
+            break;
+        }
+        let connected = |p: &Cond| {
+            let mut v = Vec::new();
+            equality_vars(&p.id, &mut v);
+            p.goal != Head::None || v.iter().any(|x| bound.contains(x))
+        };
+        let rel_ok = |p: &Cond| {
+            let mut v = Vec::new();
+            for t in [&p.id, &p.attr, &p.value] {
+                relational_vars(t, &mut v);
+            }
+            let mut own = Vec::new();
+            for t in [&p.id, &p.attr, &p.value] {
+                equality_vars(t, &mut own);
+            }
+            v.iter()
+                .all(|x| bound.contains(x) || own.contains(x) || !positive_vars.contains(x))
+        };
+        let pick = candidates
+            .iter()
+            .find(|(_, p)| connected(p) && rel_ok(p))
+            .or_else(|| candidates.iter().find(|(_, p)| rel_ok(p)))
+            .or_else(|| candidates.iter().find(|(_, p)| connected(p)))
+            .or_else(|| candidates.first())
+            .map(|(i, _)| *i);
+        let Some(i) = pick else { break };
+        done[i] = true;
+        order.push(i);
+        if let Condition::Positive(p) = &conds[i] {
+            let mut v = Vec::new();
+            for t in [&p.id, &p.attr, &p.value] {
+                equality_vars(t, &mut v);
+            }
+            bound.extend(v);
+        }
+        place_negations(&bound, &mut done, &mut order);
+    }
+    for (i, d) in done.iter().enumerate() {
+        if !d {
+            order.push(i);
+        }
+    }
+    order
+}
+
+impl Rete {
+    /// Adds a production; its matches against current working memory are reported at once.
+    pub fn add_production(
+        &mut self,
+        p: &Production,
+        syms: &mut Symbols,
+        sink: &mut dyn MatchSink,
+    ) -> Result<ProdId, BuildError> {
+        if p.conditions.is_empty() {
+            return Err(BuildError::NoConditions(p.name.clone()));
+        }
+        let pid = ProdId(self.prods.len() as u32);
+        let mut bindings = Bindings::default();
+        let mut cond_nodes = vec![NIL; p.conditions.len()];
+        let mut positive_order = Vec::new();
+        let cur = self.build_conditions(
+            &p.conditions,
+            Cur::Holder(self.root),
+            &mut bindings,
+            syms,
+            Some((&mut cond_nodes, &mut positive_order)),
+        );
+        let parent = cur_node(cur);
+        let depth = self.next_depth(cur);
+        let pnode = self.new_node(Kind::Production { prod: pid }, parent, depth);
+        self.attach(parent, pnode, true);
+        self.prods.push(Some(ProdInfo {
+            name: p.name.clone(),
+            pnode,
+            positive_order,
+            bindings,
+            cond_nodes,
+        }));
+        self.fill_new_node(pnode, syms, sink);
+        Ok(pid)
+    }
+
+    fn next_depth(&self, cur: Cur) -> u32 {
+        match cur {
+            Cur::Holder(h) => self.nodes[h as usize].depth + 1,
+            Cur::Join(j) => self.nodes[self.nodes[j as usize].parent as usize].depth + 1,
+        }
+    }
+
+    fn holder_under(&mut self, cur: Cur, syms: &Symbols) -> NodeId {
+        match cur {
+            Cur::Holder(h) => h,
+            Cur::Join(j) => {
+                let existing = self.nodes[j as usize]
+                    .all_children
+                    .iter()
+                    .copied()
+                    .find(|&c| self.nodes[c as usize].kind == Kind::Memory);
+                if let Some(m) = existing {
+                    return m;
+                }
+                let depth = self.next_depth(cur);
+                let m = self.new_node(Kind::Memory, j, depth);
+                self.attach(j, m, true);
+                self.fill_new_node(m, syms, &mut super::NullSink);
+                m
+            }
+        }
+    }
+
+    /// Links `child` under `parent`: at the head of the children (activated first), or at
+    /// the tail when `head` is false.
+    fn attach(&mut self, parent: NodeId, child: NodeId, head: bool) {
+        let p = &mut self.nodes[parent as usize];
+        p.all_children.push(child);
+        if head {
+            p.children.push(child);
+        } else {
+            p.children.insert(0, child);
+        }
+    }
+
+    fn build_conditions(
+        &mut self,
+        conds: &[Condition],
+        mut cur: Cur,
+        bindings: &mut Bindings,
+        syms: &mut Symbols,
+        mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>)>,
+    ) -> Cur {
+        let bound: FxHashSet<String> = bindings.keys().cloned().collect();
+        for i in order_conditions(conds, &bound) {
+            match &conds[i] {
+                Condition::Positive(c) => {
+                    let h = self.holder_under(cur, syms);
+                    let depth = self.nodes[h as usize].depth + 1;
+                    let (key, tests) = cond_tests(c, depth, bindings, syms);
+                    let j = self.share_or_build_join(h, key, tests);
+                    cur = Cur::Join(j);
+                    if let Some((nodes, order)) = record.as_mut() {
+                        nodes[i] = j;
+                        order.push(i);
+                    }
+                }
+                Condition::Negative(c) => {
+                    let parent = cur_node(cur);
+                    let depth = self.next_depth(cur);
+                    let mut local = bindings.clone();
+                    let (key, tests) = cond_tests(c, depth + 1, &mut local, syms);
+                    let n = self.share_or_build_negative(parent, depth, key, tests, syms);
+                    cur = Cur::Holder(n);
+                    if let Some((nodes, _)) = record.as_mut() {
+                        nodes[i] = n;
+                    }
+                }
+                Condition::Ncc(inner) => {
+                    let h = self.holder_under(cur, syms);
+                    let owner_depth = self.nodes[h as usize].depth + 1;
+                    let mut local = bindings.clone();
+                    let sub = self.build_conditions(inner, Cur::Holder(h), &mut local, syms, None);
+                    let sub_parent = cur_node(sub);
+                    let pdepth = self.next_depth(sub);
+                    let partner = self.new_node(
+                        Kind::NccPartner {
+                            ncc: NIL,
+                            owner_depth,
+                            buffer: Vec::new(),
+                        },
+                        sub_parent,
+                        pdepth,
+                    );
+                    self.attach(sub_parent, partner, true);
+                    let ncc = self.new_node(Kind::Ncc { partner }, h, owner_depth);
+                    // The subnetwork is activated before the NCC node (Doorenbos §2.8).
+                    self.attach(h, ncc, false);
+                    if let Kind::NccPartner { ncc: slot, .. } =
+                        &mut self.nodes[partner as usize].kind
+                    {
+                        *slot = ncc;
+                    }
+                    self.fill_new_node(ncc, syms, &mut super::NullSink);
+                    self.fill_new_node(partner, syms, &mut super::NullSink);
+                    cur = Cur::Holder(ncc);
+                    if let Some((nodes, _)) = record.as_mut() {
+                        nodes[i] = ncc;
+                    }
+                }
+            }
+        }
+        cur
+    }
+
+    fn share_or_build_join(&mut self, h: NodeId, key: AlphaKey, tests: Vec<JoinTest>) -> NodeId {
+        let amem = self.amem_for(key);
+        for &c in &self.nodes[h as usize].all_children {
+            if let Kind::Join {
+                amem: a, tests: t, ..
+            } = &self.nodes[c as usize].kind
+            {
+                if *a == amem && *t == tests {
+                    self.amems[amem as usize].refs -= 1;
+                    return c;
+                }
+            }
+        }
+        let depth = self.nodes[h as usize].depth;
+        let j = self.new_node(
+            Kind::Join {
+                amem,
+                tests,
+                left_unlinked: false,
+                right_unlinked: false,
+            },
+            h,
+            depth,
+        );
+        self.attach(h, j, true);
+        self.link_to_amem(j, amem);
+        // Rete/UL: a join with an empty alpha memory or an empty parent starts unlinked.
+        if self.amems[amem as usize].count == 0 {
+            self.unlink_left_pub(j);
+        } else if self.nodes[h as usize].token_count == 0 {
+            self.unlink_right(j);
+        }
+        j
+    }
+
+    fn share_or_build_negative(
+        &mut self,
+        parent: NodeId,
+        depth: u32,
+        key: AlphaKey,
+        tests: Vec<JoinTest>,
+        syms: &Symbols,
+    ) -> NodeId {
+        let amem = self.amem_for(key);
+        for &c in &self.nodes[parent as usize].all_children {
+            if let Kind::Negative {
+                amem: a, tests: t, ..
+            } = &self.nodes[c as usize].kind
+            {
+                if *a == amem && *t == tests {
+                    self.amems[amem as usize].refs -= 1;
+                    return c;
+                }
+            }
+        }
+        let n = self.new_node(
+            Kind::Negative {
+                amem,
+                tests,
+                right_unlinked: false,
+            },
+            parent,
+            depth,
+        );
+        self.attach(parent, n, true);
+        self.link_to_amem(n, amem);
+        self.fill_new_node(n, syms, &mut super::NullSink);
+        if self.nodes[n as usize].token_count == 0 {
+            self.unlink_right(n);
+        }
+        n
+    }
+
+    /// Fills a newly built token holder with the matches its parent already has
+    /// (Doorenbos `update-new-node-with-matches-from-above`).
+    fn fill_new_node(&mut self, n: NodeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        let parent = self.nodes[n as usize].parent;
+        let pkind = self.nodes[parent as usize].kind.clone();
+        match pkind {
+            Kind::Root | Kind::Memory => {
+                for t in self.node_tokens(parent).into_iter().rev() {
+                    self.left_activation(n, t, NIL_WME, syms, sink);
+                }
+            }
+            Kind::Negative { .. } | Kind::Ncc { .. } => {
+                for t in self.node_tokens(parent).into_iter().rev() {
+                    if self.tokens[t as usize].results == NIL {
+                        self.left_activation(n, t, NIL_WME, syms, sink);
+                    }
+                }
+            }
+            Kind::Join { amem, tests, .. } => {
+                let grand = self.nodes[parent as usize].parent;
+                let depth = self.nodes[grand as usize].depth + 1;
+                let items = self.amem_items(amem);
+                for t in self.live_tokens(grand).into_iter().rev() {
+                    for &w in items.iter().rev() {
+                        if self.tokens[t as usize].alive
+                            && self.tests_pass(&tests, t, w, depth, syms)
+                        {
+                            self.left_activation(n, t, w, syms, sink);
+                        }
+                    }
+                }
+            }
+            Kind::NccPartner { .. } | Kind::Production { .. } => {}
+        }
+    }
+
+    pub(crate) fn unlink_left_pub(&mut self, n: NodeId) {
+        let parent = self.nodes[n as usize].parent;
+        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
+            *left_unlinked = true;
+        }
+        self.nodes[parent as usize].children.retain(|c| *c != n);
+    }
+
+    /// Removes a production and every node no other production uses; its matches retract.
+    pub fn excise(&mut self, pid: ProdId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        let Some(info) = self.prods.get_mut(pid.0 as usize).and_then(|x| x.take()) else {
+            return;
+        };
+        self.delete_node_and_unused_ancestors(info.pnode, syms, sink);
+    }
+
+    fn delete_node_and_unused_ancestors(
+        &mut self,
+        n: NodeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let mut n = n;
+        loop {
+            if n == self.root
+                || !self.nodes[n as usize].alive
+                || !self.nodes[n as usize].all_children.is_empty()
+            {
+                return;
+            }
+            let kind = self.nodes[n as usize].kind.clone();
+            // Tokens first (an NCC node's tokens take their partner results with them).
+            loop {
+                let t = self.nodes[n as usize].first_token;
+                if t == NIL {
+                    break;
+                }
+                self.delete_token_and_descendants(t, syms, sink);
+            }
+            match kind {
+                Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
+                    self.amems[amem as usize].successors.retain(|c| *c != n);
+                    self.release_amem(amem);
+                }
+                _ => {}
+            }
+            let parent = self.nodes[n as usize].parent;
+            let p = &mut self.nodes[parent as usize];
+            p.children.retain(|c| *c != n);
+            p.all_children.retain(|c| *c != n);
+            self.free_node(n);
+            if let Kind::Ncc { partner } = kind {
+                // The partner's branch may now be unused too.
+                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
+                    buffer.clear();
+                }
+                self.delete_node_and_unused_ancestors(partner, syms, sink);
+            }
+            // The partner's branch may already have taken the parent with it.
+            if !self.nodes[parent as usize].alive {
+                return;
+            }
+            n = parent;
+        }
+    }
+}
+
+fn cur_node(cur: Cur) -> NodeId {
+    match cur {
+        Cur::Holder(h) | Cur::Join(h) => h,
+    }
+}
+
+/// The alpha-memory key and join tests of one condition whose WME will sit at `depth`.
+/// Variables first met here are bound at (`depth`, field).
+fn cond_tests(
+    c: &Cond,
+    depth: u32,
+    bindings: &mut Bindings,
+    syms: &mut Symbols,
+) -> (AlphaKey, Vec<JoinTest>) {
+    let mut key = AlphaKey {
+        attr: None,
+        value: None,
+        acceptable: c.acceptable,
+    };
+    let mut tests = Vec::new();
+    match c.goal {
+        Head::State => tests.push(JoinTest::IsGoal),
+        Head::Impasse => tests.push(JoinTest::IsImpasse),
+        Head::None => {}
+    }
+    for (field, test) in [
+        (Field::Id, &c.id),
+        (Field::Attr, &c.attr),
+        (Field::Value, &c.value),
+    ] {
+        let mut simple: Vec<&Test> = Vec::new();
+        flatten(test, &mut simple);
+        // Equality tests first, so that a variable bound here is usable by the others.
+        simple.sort_by_key(|t| !matches!(t, Test::Equal(_)));
+        for t in simple {
+            match t {
+                Test::Equal(Term::Const(k)) => {
+                    let s = syms.constant(k);
+                    match field {
+                        Field::Attr if key.attr.is_none() => key.attr = Some(s),
+                        Field::Value if key.value.is_none() => key.value = Some(s),
+                        _ => tests.push(JoinTest::Compare {
+                            field,
+                            op: Op::Eq,
+                            operand: Operand::Const(s),
+                        }),
+                    }
+                }
+                Test::Equal(Term::Var(v)) => match bindings.get(v) {
+                    Some(&(d, f)) => tests.push(JoinTest::Compare {
+                        field,
+                        op: Op::Eq,
+                        operand: Operand::Bound { depth: d, field: f },
+                    }),
+                    None => {
+                        bindings.insert(v.clone(), (depth, field));
+                    }
+                },
+                Test::Relational(r, Term::Var(v)) => {
+                    // A relational test on a variable bound nowhere is dropped (spec §1g).
+                    if let Some(&(d, f)) = bindings.get(v) {
+                        tests.push(JoinTest::Compare {
+                            field,
+                            op: Op::Rel(*r),
+                            operand: Operand::Bound { depth: d, field: f },
+                        });
+                    }
+                }
+                Test::Relational(r, Term::Const(k)) => {
+                    let s = syms.constant(k);
+                    tests.push(JoinTest::Compare {
+                        field,
+                        op: Op::Rel(*r),
+                        operand: Operand::Const(s),
+                    });
+                }
+                Test::Disjunction(items) => {
+                    let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
+                    tests.push(JoinTest::Disjunction { field, items });
+                }
+                Test::Conjunction(_) => {}
+            }
+        }
+    }
+    (key, tests)
+}
+
+fn flatten<'a>(t: &'a Test, out: &mut Vec<&'a Test>) {
+    match t {
+        Test::Conjunction(ts) => ts.iter().for_each(|t| flatten(t, out)),
+        other => out.push(other),
+    }
+}

@@ -1,0 +1,1065 @@
+//! The RETE matcher after Doorenbos, "Production Matching for Large Learning Systems"
+//! (CMU-CS-95-113), with left and right unlinking (Rete/UL, ch. 4) so that the cost of a
+//! working-memory change does not grow with rules that cannot match it.
+//!
+//! Alpha memories are keyed on the constant attribute and value of a condition (identifiers
+//! are never constants) and the acceptable-preference flag. The beta network has beta
+//! memories, join nodes, negative nodes, conjunctive-negation (NCC) nodes with partners, and
+//! production nodes; nodes are shared between productions with equal prefixes. New matches
+//! and retractions go to a [`MatchSink`] (the seam between matcher and decider, spec §3i).
+//!
+//! Lists are head-inserted as in Soar (children, alpha-memory successors and items), which
+//! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
+
+mod build;
+pub mod tests;
+mod tokens;
+
+pub use build::BuildError;
+use rustc_hash::FxHashMap;
+use tests::{relation_holds, Field, JoinTest, Op, Operand};
+
+use crate::symbols::{Sym, Symbols};
+use crate::wm::WmeId;
+
+pub(crate) const NIL: u32 = u32::MAX;
+
+pub type NodeId = u32;
+pub type TokId = u32;
+pub type AmemId = u32;
+
+/// A production in the network.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct ProdId(pub u32);
+
+/// Receives complete matches as they appear and disappear.
+pub trait MatchSink {
+    fn matched(&mut self, prod: ProdId, token: TokId);
+    fn unmatched(&mut self, prod: ProdId, token: TokId);
+}
+
+/// A sink that ignores everything (for building the network without a consumer).
+pub struct NullSink;
+impl MatchSink for NullSink {
+    fn matched(&mut self, _: ProdId, _: TokId) {}
+    fn unmatched(&mut self, _: ProdId, _: TokId) {}
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(crate) struct AlphaKey {
+    pub attr: Option<Sym>,
+    pub value: Option<Sym>,
+    pub acceptable: bool,
+}
+
+#[derive(Debug)]
+pub(crate) struct Amem {
+    pub key: AlphaKey,
+    /// Head of the intrusive list of right-memory entries (newest first).
+    pub first: u32,
+    pub count: u32,
+    /// Linked successors; the *last* element is the head (activated first).
+    pub successors: Vec<NodeId>,
+    pub refs: u32,
+}
+
+/// One WME's membership in one alpha memory.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RmEntry {
+    pub wme: WmeId,
+    pub amem: AmemId,
+    pub prev: u32,
+    pub next: u32,
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct RWme {
+    pub id: Sym,
+    pub attr: Sym,
+    pub value: Sym,
+    pub acceptable: bool,
+    pub rm: Vec<u32>,
+    /// Tokens whose `wme` is this one (intrusive list through `Token::next_of_wme`).
+    pub tokens: u32,
+    /// Negative join results naming this WME.
+    pub neg_results: u32,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Kind {
+    Root,
+    Memory,
+    Join {
+        amem: AmemId,
+        tests: Vec<JoinTest>,
+        left_unlinked: bool,
+        right_unlinked: bool,
+    },
+    Negative {
+        amem: AmemId,
+        tests: Vec<JoinTest>,
+        right_unlinked: bool,
+    },
+    Ncc {
+        partner: NodeId,
+    },
+    NccPartner {
+        ncc: NodeId,
+        owner_depth: u32,
+        buffer: Vec<TokId>,
+    },
+    Production {
+        prod: ProdId,
+    },
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct Node {
+    pub kind: Kind,
+    pub parent: NodeId,
+    /// Linked children; the last element is the head.
+    pub children: Vec<NodeId>,
+    /// Every child, linked or unlinked (for sharing and excising).
+    pub all_children: Vec<NodeId>,
+    /// Token holders: head of the intrusive list of tokens in this node.
+    pub first_token: u32,
+    pub token_count: u32,
+    /// Depth of the tokens this node holds (root token: 0).
+    pub depth: u32,
+    pub alive: bool,
+}
+
+impl Node {
+    fn holds_tokens(&self) -> bool {
+        matches!(
+            self.kind,
+            Kind::Root
+                | Kind::Memory
+                | Kind::Negative { .. }
+                | Kind::Ncc { .. }
+                | Kind::Production { .. }
+        )
+    }
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct Token {
+    pub node: NodeId,
+    pub parent: TokId,
+    pub wme: WmeId,
+    pub depth: u32,
+    pub first_child: TokId,
+    pub next_sib: TokId,
+    pub prev_sib: TokId,
+    pub next_in_node: TokId,
+    pub prev_in_node: TokId,
+    pub next_of_wme: TokId,
+    pub prev_of_wme: TokId,
+    /// Negative node tokens: head of their join results. NCC tokens: head of their results.
+    pub results: u32,
+    /// NCC partner result tokens: their owner, and their links in the owner's result list.
+    pub owner: TokId,
+    pub next_result: TokId,
+    pub prev_result: TokId,
+    pub alive: bool,
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct NegResult {
+    pub owner: TokId,
+    pub wme: WmeId,
+    pub next_tok: u32,
+    pub prev_tok: u32,
+    pub next_wme: u32,
+    pub prev_wme: u32,
+}
+
+/// What the network knows of a production.
+#[derive(Debug, Clone)]
+pub struct ProdInfo {
+    pub name: String,
+    pub(crate) pnode: NodeId,
+    /// Positive conditions in the order the network joins them, as indexes into the
+    /// production's top-level condition list.
+    pub positive_order: Vec<usize>,
+    /// Where each variable of the positive conditions is first bound: token depth and field.
+    pub bindings: FxHashMap<String, (u32, Field)>,
+    /// The beta node of each top-level condition (for `matches <rule>` counts).
+    pub(crate) cond_nodes: Vec<NodeId>,
+}
+
+pub struct Rete {
+    pub(crate) nodes: Vec<Node>,
+    free_nodes: Vec<NodeId>,
+    pub(crate) tokens: Vec<Token>,
+    free_tokens: Vec<TokId>,
+    pub(crate) amems: Vec<Amem>,
+    free_amems: Vec<AmemId>,
+    amem_index: FxHashMap<AlphaKey, AmemId>,
+    pub(crate) rm: Vec<RmEntry>,
+    free_rm: Vec<u32>,
+    pub(crate) wmes: Vec<Option<RWme>>,
+    pub(crate) neg: Vec<NegResult>,
+    free_neg: Vec<u32>,
+    pub(crate) prods: Vec<Option<ProdInfo>>,
+    pub(crate) root: NodeId,
+    root_token: TokId,
+    /// Counters for the benchmarks and `stats`.
+    pub right_activations: u64,
+    pub left_activations: u64,
+}
+
+impl Default for Rete {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl Rete {
+    pub fn new() -> Self {
+        let mut r = Rete {
+            nodes: Vec::new(),
+            free_nodes: Vec::new(),
+            tokens: Vec::new(),
+            free_tokens: Vec::new(),
+            amems: Vec::new(),
+            free_amems: Vec::new(),
+            amem_index: FxHashMap::default(),
+            rm: Vec::new(),
+            free_rm: Vec::new(),
+            wmes: Vec::new(),
+            neg: Vec::new(),
+            free_neg: Vec::new(),
+            prods: Vec::new(),
+            root: 0,
+            root_token: 0,
+            right_activations: 0,
+            left_activations: 0,
+        };
+        r.root = r.new_node(Kind::Root, NIL, 0);
+        r.root_token = r.new_token(r.root, NIL, NIL_WME);
+        r
+    }
+
+    pub(crate) fn new_node(&mut self, kind: Kind, parent: NodeId, depth: u32) -> NodeId {
+        let node = Node {
+            kind,
+            parent,
+            children: Vec::new(),
+            all_children: Vec::new(),
+            first_token: NIL,
+            token_count: 0,
+            depth,
+            alive: true,
+        };
+        match self.free_nodes.pop() {
+            Some(i) => {
+                self.nodes[i as usize] = node;
+                i
+            }
+            None => {
+                self.nodes.push(node);
+                (self.nodes.len() - 1) as NodeId
+            }
+        }
+    }
+
+    pub(crate) fn free_node(&mut self, n: NodeId) {
+        let node = &mut self.nodes[n as usize];
+        node.alive = false;
+        node.children = Vec::new();
+        node.all_children = Vec::new();
+        node.kind = Kind::Memory;
+        self.free_nodes.push(n);
+    }
+
+    // ------------------------------------------------------------------ alpha memories
+
+    pub(crate) fn amem_for(&mut self, key: AlphaKey) -> AmemId {
+        if let Some(&a) = self.amem_index.get(&key) {
+            self.amems[a as usize].refs += 1;
+            return a;
+        }
+        let amem = Amem {
+            key,
+            first: NIL,
+            count: 0,
+            successors: Vec::new(),
+            refs: 1,
+        };
+        let id = match self.free_amems.pop() {
+            Some(i) => {
+                self.amems[i as usize] = amem;
+                i
+            }
+            None => {
+                self.amems.push(amem);
+                (self.amems.len() - 1) as AmemId
+            }
+        };
+        self.amem_index.insert(key, id);
+        // A new alpha memory starts with every WME that passes its constant tests.
+        let matching: Vec<WmeId> = self
+            .wmes
+            .iter()
+            .enumerate()
+            .filter_map(|(i, w)| {
+                w.as_ref()
+                    .filter(|w| key_matches(&key, w))
+                    .map(|_| WmeId(i as u32))
+            })
+            .collect();
+        // Oldest first, so that head insertion leaves the newest at the head.
+        for w in matching {
+            self.amem_insert(id, w);
+        }
+        id
+    }
+
+    pub(crate) fn release_amem(&mut self, a: AmemId) {
+        let am = &mut self.amems[a as usize];
+        am.refs -= 1;
+        if am.refs > 0 {
+            return;
+        }
+        let key = am.key;
+        let mut e = am.first;
+        while e != NIL {
+            let next = self.rm[e as usize].next;
+            let w = self.rm[e as usize].wme;
+            if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
+                rw.rm.retain(|x| *x != e);
+            }
+            self.free_rm.push(e);
+            e = next;
+        }
+        self.amem_index.remove(&key);
+        let am = &mut self.amems[a as usize];
+        am.first = NIL;
+        am.count = 0;
+        am.successors.clear();
+        self.free_amems.push(a);
+    }
+
+    fn amem_insert(&mut self, a: AmemId, w: WmeId) {
+        let head = self.amems[a as usize].first;
+        let entry = RmEntry {
+            wme: w,
+            amem: a,
+            prev: NIL,
+            next: head,
+        };
+        let e = match self.free_rm.pop() {
+            Some(i) => {
+                self.rm[i as usize] = entry;
+                i
+            }
+            None => {
+                self.rm.push(entry);
+                (self.rm.len() - 1) as u32
+            }
+        };
+        if head != NIL {
+            self.rm[head as usize].prev = e;
+        }
+        let am = &mut self.amems[a as usize];
+        am.first = e;
+        am.count += 1;
+        if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
+            rw.rm.push(e);
+        }
+    }
+
+    fn amem_remove_entry(&mut self, e: u32) {
+        let RmEntry {
+            amem, prev, next, ..
+        } = self.rm[e as usize];
+        if prev != NIL {
+            self.rm[prev as usize].next = next;
+        } else {
+            self.amems[amem as usize].first = next;
+        }
+        if next != NIL {
+            self.rm[next as usize].prev = prev;
+        }
+        self.amems[amem as usize].count -= 1;
+        self.free_rm.push(e);
+    }
+
+    /// WMEs of an alpha memory, head (newest) first.
+    pub(crate) fn amem_items(&self, a: AmemId) -> Vec<WmeId> {
+        let mut out = Vec::with_capacity(self.amems[a as usize].count as usize);
+        let mut e = self.amems[a as usize].first;
+        while e != NIL {
+            out.push(self.rm[e as usize].wme);
+            e = self.rm[e as usize].next;
+        }
+        out
+    }
+
+    // ---------------------------------------------------------------- working memory
+
+    /// Adds a WME and propagates its matches (Doorenbos `add-wme`).
+    pub fn add_wme(
+        &mut self,
+        w: WmeId,
+        (id, attr, value): (Sym, Sym, Sym),
+        acceptable: bool,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let idx = w.0 as usize;
+        if self.wmes.len() <= idx {
+            self.wmes.resize(idx + 1, None);
+        }
+        self.wmes[idx] = Some(RWme {
+            id,
+            attr,
+            value,
+            acceptable,
+            rm: Vec::new(),
+            tokens: NIL,
+            neg_results: NIL,
+        });
+        // Up to four alpha memories can hold it: attribute and value constant or not.
+        let mut targets = Vec::with_capacity(4);
+        for (a, v) in [
+            (Some(attr), Some(value)),
+            (Some(attr), None),
+            (None, Some(value)),
+            (None, None),
+        ] {
+            let key = AlphaKey {
+                attr: a,
+                value: v,
+                acceptable,
+            };
+            if let Some(&am) = self.amem_index.get(&key) {
+                targets.push(am);
+            }
+        }
+        for am in targets {
+            self.alpha_activation(am, w, syms, sink);
+        }
+    }
+
+    fn alpha_activation(&mut self, a: AmemId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        let was_empty = self.amems[a as usize].count == 0;
+        self.amem_insert(a, w);
+        if was_empty {
+            // The memory stops being empty: left-unlinked joins come back (Rete/UL).
+            let succ = self.amems[a as usize].successors.clone();
+            for n in succ {
+                self.relink_left(n);
+            }
+        }
+        let succ = self.amems[a as usize].successors.clone();
+        for &n in succ.iter().rev() {
+            if !self.nodes[n as usize].alive {
+                continue;
+            }
+            self.right_activation(n, w, syms, sink);
+        }
+    }
+
+    /// Removes a WME: out of its alpha memories, its tokens and its negative join results.
+    pub fn remove_wme(&mut self, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        let Some(rw) = self.wmes.get(w.0 as usize).and_then(|x| x.clone()) else {
+            return;
+        };
+        for e in rw.rm.iter().copied() {
+            let amem = self.rm[e as usize].amem;
+            self.amem_remove_entry(e);
+            if self.amems[amem as usize].count == 0 {
+                // Empty alpha memory: its joins need no left activations (Rete/UL).
+                let succ = self.amems[amem as usize].successors.clone();
+                for n in succ {
+                    self.unlink_left(n);
+                }
+            }
+        }
+        if let Some(x) = self.wmes[w.0 as usize].as_mut() {
+            x.rm.clear();
+        }
+        // Tokens built on this WME go, with their descendants.
+        loop {
+            let t = self.wmes[w.0 as usize].as_ref().map_or(NIL, |x| x.tokens);
+            if t == NIL {
+                break;
+            }
+            self.delete_token_and_descendants(t, syms, sink);
+        }
+        // Negative tokens it was blocking may now pass.
+        loop {
+            let r = self.wmes[w.0 as usize]
+                .as_ref()
+                .map_or(NIL, |x| x.neg_results);
+            if r == NIL {
+                break;
+            }
+            let owner = self.neg[r as usize].owner;
+            self.remove_neg_result(r);
+            if self.tokens[owner as usize].alive && self.tokens[owner as usize].results == NIL {
+                let node = self.tokens[owner as usize].node;
+                self.activate_children(node, owner, NIL_WME, syms, sink);
+            }
+        }
+        self.wmes[w.0 as usize] = None;
+    }
+
+    pub(crate) fn wme(&self, w: WmeId) -> &RWme {
+        self.wmes[w.0 as usize].as_ref().expect("live wme")
+    }
+
+    pub(crate) fn field(&self, w: WmeId, f: Field) -> Sym {
+        let rw = self.wme(w);
+        match f {
+            Field::Id => rw.id,
+            Field::Attr => rw.attr,
+            Field::Value => rw.value,
+        }
+    }
+
+    // ------------------------------------------------------------------- activations
+
+    /// Runs every test of a join or negative node on token `t` (the parent's) and WME `w`.
+    /// `new_depth` is the depth of the token that would hold `w`.
+    pub(crate) fn tests_pass(
+        &self,
+        tests: &[JoinTest],
+        t: TokId,
+        w: WmeId,
+        new_depth: u32,
+        syms: &Symbols,
+    ) -> bool {
+        for test in tests {
+            let ok = match test {
+                JoinTest::Compare { field, op, operand } => {
+                    let a = self.field(w, *field);
+                    let b = match operand {
+                        Operand::Const(c) => *c,
+                        Operand::Bound { depth, field } => {
+                            if *depth == new_depth {
+                                self.field(w, *field)
+                            } else {
+                                let wm = self.wme_at_depth(t, *depth);
+                                if wm == NIL_WME {
+                                    return false;
+                                }
+                                self.field(wm, *field)
+                            }
+                        }
+                    };
+                    relation_holds(syms, *op, a, b)
+                }
+                JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
+                JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
+                JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
+            };
+            if !ok {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The WME of the ancestor token (of `t`, inclusive) at `depth`.
+    pub(crate) fn wme_at_depth(&self, mut t: TokId, depth: u32) -> WmeId {
+        while t != NIL {
+            let tok = &self.tokens[t as usize];
+            if tok.depth == depth {
+                return tok.wme;
+            }
+            if tok.depth < depth {
+                break;
+            }
+            t = tok.parent;
+        }
+        NIL_WME
+    }
+
+    fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        self.right_activations += 1;
+        match self.nodes[n as usize].kind.clone() {
+            Kind::Join {
+                tests,
+                left_unlinked,
+                ..
+            } => {
+                let parent = self.nodes[n as usize].parent;
+                if left_unlinked {
+                    self.relink_left(n);
+                }
+                if self.nodes[parent as usize].token_count == 0 {
+                    self.unlink_right(n);
+                    return;
+                }
+                let depth = self.nodes[parent as usize].depth + 1;
+                let toks = self.live_tokens(parent);
+                for t in toks {
+                    if self.tokens[t as usize].alive
+                        && self.wmes[w.0 as usize].is_some()
+                        && self.tests_pass(&tests, t, w, depth, syms)
+                    {
+                        self.activate_children(n, t, w, syms, sink);
+                    }
+                }
+            }
+            Kind::Negative { tests, .. } => {
+                let depth = self.nodes[n as usize].depth + 1;
+                let toks = self.node_tokens(n);
+                for t in toks {
+                    if !self.tokens[t as usize].alive || self.wmes[w.0 as usize].is_none() {
+                        continue;
+                    }
+                    if self.tests_pass(&tests, t, w, depth, syms) {
+                        if self.tokens[t as usize].results == NIL {
+                            self.delete_descendants(t, syms, sink);
+                        }
+                        self.add_neg_result(t, w);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Left-activates the linked children of `n` with (parent token `t`, WME `w`), head first.
+    pub(crate) fn activate_children(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let children = self.nodes[n as usize].children.clone();
+        for &c in children.iter().rev() {
+            if !self.nodes[c as usize].alive || !self.tokens[t as usize].alive {
+                continue;
+            }
+            if w != NIL_WME && self.wmes[w.0 as usize].is_none() {
+                return;
+            }
+            self.left_activation(c, t, w, syms, sink);
+        }
+    }
+
+    pub(crate) fn left_activation(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        self.left_activations += 1;
+        match self.nodes[n as usize].kind.clone() {
+            Kind::Root => {}
+            Kind::Memory => {
+                let nt = self.new_token(n, t, w);
+                self.activate_children(n, nt, NIL_WME, syms, sink);
+            }
+            Kind::Join {
+                amem,
+                tests,
+                right_unlinked,
+                ..
+            } => {
+                if right_unlinked {
+                    self.relink_right(n);
+                    if self.amems[amem as usize].count == 0 {
+                        self.unlink_left(n);
+                        return;
+                    }
+                }
+                let depth = self.tokens[t as usize].depth + 1;
+                for wm in self.amem_items(amem) {
+                    if self.wmes[wm.0 as usize].is_some()
+                        && self.tokens[t as usize].alive
+                        && self.tests_pass(&tests, t, wm, depth, syms)
+                    {
+                        self.activate_children(n, t, wm, syms, sink);
+                    }
+                }
+            }
+            Kind::Negative {
+                amem,
+                tests,
+                right_unlinked,
+            } => {
+                if right_unlinked {
+                    self.relink_right(n);
+                }
+                let nt = self.new_token(n, t, w);
+                let depth = self.tokens[nt as usize].depth + 1;
+                for wm in self.amem_items(amem) {
+                    if self.tests_pass(&tests, nt, wm, depth, syms) {
+                        self.add_neg_result(nt, wm);
+                    }
+                }
+                if self.tokens[nt as usize].results == NIL {
+                    self.activate_children(n, nt, NIL_WME, syms, sink);
+                }
+            }
+            Kind::Ncc { partner } => {
+                let nt = self.new_token(n, t, w);
+                // Results the subnetwork found before this token existed (Doorenbos §2.8):
+                // those whose ancestor above the subnetwork is this token's parent.
+                let (buffered, owner_depth) = match &mut self.nodes[partner as usize].kind {
+                    Kind::NccPartner {
+                        buffer,
+                        owner_depth,
+                        ..
+                    } => (std::mem::take(buffer), *owner_depth),
+                    _ => (Vec::new(), 0),
+                };
+                let mut keep = Vec::new();
+                for r in buffered {
+                    if !self.tokens[r as usize].alive {
+                        continue;
+                    }
+                    if self.result_owner_parent(r, owner_depth) == t {
+                        self.add_ncc_result(nt, r);
+                    } else {
+                        keep.push(r);
+                    }
+                }
+                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
+                    buffer.extend(keep);
+                }
+                if self.tokens[nt as usize].results == NIL {
+                    self.activate_children(n, nt, NIL_WME, syms, sink);
+                }
+            }
+            Kind::NccPartner {
+                ncc, owner_depth, ..
+            } => {
+                let r = self.new_token(n, t, w);
+                // The owner is the NCC token whose parent is the result's ancestor above the
+                // subnetwork.
+                let owner_parent = self.result_owner_parent(r, owner_depth);
+                let owner = self.find_ncc_owner(ncc, owner_parent);
+                match owner {
+                    Some(o) => {
+                        let had = self.tokens[o as usize].results != NIL;
+                        self.add_ncc_result(o, r);
+                        if !had {
+                            self.delete_descendants(o, syms, sink);
+                        }
+                    }
+                    None => {
+                        if let Kind::NccPartner { buffer, .. } = &mut self.nodes[n as usize].kind {
+                            buffer.push(r);
+                        }
+                    }
+                }
+            }
+            Kind::Production { prod } => {
+                let nt = self.new_token(n, t, w);
+                sink.matched(prod, nt);
+            }
+        }
+    }
+
+    /// The tokens of a holder that its children see: a negative or NCC node's tokens that
+    /// have results are blocked (Doorenbos §2.7).
+    pub(crate) fn live_tokens(&self, n: NodeId) -> Vec<TokId> {
+        let mut toks = self.node_tokens(n);
+        if matches!(
+            self.nodes[n as usize].kind,
+            Kind::Negative { .. } | Kind::Ncc { .. }
+        ) {
+            toks.retain(|t| self.tokens[*t as usize].results == NIL);
+        }
+        toks
+    }
+
+    fn result_owner_parent(&self, r: TokId, owner_depth: u32) -> TokId {
+        let mut x = r;
+        while x != NIL && self.tokens[x as usize].depth > owner_depth {
+            x = self.tokens[x as usize].parent;
+        }
+        if x != NIL {
+            self.tokens[x as usize].parent
+        } else {
+            NIL
+        }
+    }
+
+    fn find_ncc_owner(&self, ncc: NodeId, owner_parent: TokId) -> Option<TokId> {
+        let mut t = self.nodes[ncc as usize].first_token;
+        while t != NIL {
+            if self.tokens[t as usize].parent == owner_parent {
+                return Some(t);
+            }
+            t = self.tokens[t as usize].next_in_node;
+        }
+        None
+    }
+
+    // ------------------------------------------------------------------ unlinking
+
+    /// Takes a join out of its parent's children: its alpha memory is empty.
+    fn unlink_left(&mut self, n: NodeId) {
+        let parent = self.nodes[n as usize].parent;
+        if let Kind::Join {
+            left_unlinked,
+            right_unlinked,
+            ..
+        } = &mut self.nodes[n as usize].kind
+        {
+            if *left_unlinked || *right_unlinked {
+                return;
+            }
+            *left_unlinked = true;
+        } else {
+            return;
+        }
+        self.nodes[parent as usize].children.retain(|c| *c != n);
+    }
+
+    fn relink_left(&mut self, n: NodeId) {
+        let parent = self.nodes[n as usize].parent;
+        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
+            if !*left_unlinked {
+                return;
+            }
+            *left_unlinked = false;
+        } else {
+            return;
+        }
+        self.nodes[parent as usize].children.push(n);
+    }
+
+    /// Takes a join or negative node out of its alpha memory's successors: it has no tokens
+    /// to join with.
+    pub(crate) fn unlink_right(&mut self, n: NodeId) {
+        let amem = match &mut self.nodes[n as usize].kind {
+            Kind::Join {
+                amem,
+                right_unlinked,
+                left_unlinked,
+                ..
+            } => {
+                if *right_unlinked || *left_unlinked {
+                    return;
+                }
+                *right_unlinked = true;
+                *amem
+            }
+            Kind::Negative {
+                amem,
+                right_unlinked,
+                ..
+            } => {
+                if *right_unlinked {
+                    return;
+                }
+                *right_unlinked = true;
+                *amem
+            }
+            _ => return,
+        };
+        self.amems[amem as usize].successors.retain(|c| *c != n);
+    }
+
+    /// Puts a node back among its alpha memory's successors, ahead of (activated before) any
+    /// linked ancestor on the same memory, so descendants see a new WME first (Doorenbos §4.3).
+    pub(crate) fn relink_right(&mut self, n: NodeId) {
+        let amem = match &mut self.nodes[n as usize].kind {
+            Kind::Join {
+                amem,
+                right_unlinked,
+                ..
+            }
+            | Kind::Negative {
+                amem,
+                right_unlinked,
+                ..
+            } => {
+                if !*right_unlinked {
+                    return;
+                }
+                *right_unlinked = false;
+                *amem
+            }
+            _ => return,
+        };
+        self.link_to_amem(n, amem);
+    }
+
+    pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
+        let mut anc = self.nodes[n as usize].parent;
+        let mut pos = None;
+        while anc != NIL {
+            if self.uses_amem_linked(anc, amem) {
+                pos = self.amems[amem as usize]
+                    .successors
+                    .iter()
+                    .position(|c| *c == anc);
+                if pos.is_some() {
+                    break;
+                }
+            }
+            anc = self.nodes[anc as usize].parent;
+        }
+        let succ = &mut self.amems[amem as usize].successors;
+        match pos {
+            // Activation runs from the end of the vector: just after the ancestor is before it.
+            Some(p) => succ.insert(p + 1, n),
+            None => succ.push(n),
+        }
+    }
+
+    fn uses_amem_linked(&self, n: NodeId, amem: AmemId) -> bool {
+        match &self.nodes[n as usize].kind {
+            Kind::Join {
+                amem: a,
+                right_unlinked,
+                ..
+            }
+            | Kind::Negative {
+                amem: a,
+                right_unlinked,
+                ..
+            } => *a == amem && !right_unlinked,
+            _ => false,
+        }
+    }
+
+    // ------------------------------------------------------------------- queries
+
+    pub fn production(&self, p: ProdId) -> Option<&ProdInfo> {
+        self.prods.get(p.0 as usize).and_then(|x| x.as_ref())
+    }
+
+    /// The WMEs a complete match used, for its positive top-level conditions, in the order
+    /// the production lists them.
+    pub fn match_wmes(&self, p: ProdId, token: TokId) -> Vec<WmeId> {
+        let Some(info) = self.production(p) else {
+            return Vec::new();
+        };
+        let mut chain = Vec::new();
+        let mut t = token;
+        while t != NIL {
+            let tok = &self.tokens[t as usize];
+            if tok.wme != NIL_WME {
+                chain.push(tok.wme);
+            }
+            t = tok.parent;
+        }
+        chain.reverse();
+        let mut out = vec![NIL_WME; info.positive_order.len()];
+        for (k, &cond) in info.positive_order.iter().enumerate() {
+            if let Some(slot) = out.get_mut(cond_rank(&info.positive_order, cond)) {
+                *slot = chain.get(k).copied().unwrap_or(NIL_WME);
+            }
+        }
+        out
+    }
+
+    /// The value of a variable in a complete match.
+    pub fn binding(&self, p: ProdId, token: TokId, var: &str) -> Option<Sym> {
+        let info = self.production(p)?;
+        let &(depth, field) = info.bindings.get(var)?;
+        let w = self.wme_at_depth(token, depth);
+        if w == NIL_WME {
+            return None;
+        }
+        Some(self.field(w, field))
+    }
+
+    /// The complete matches of a production: its production node's tokens, newest first.
+    pub fn matches_of(&self, p: ProdId) -> Vec<TokId> {
+        match self.production(p) {
+            Some(info) => self.node_tokens(info.pnode),
+            None => Vec::new(),
+        }
+    }
+
+    /// For `matches <rule>`: the number of partial matches after each top-level condition.
+    pub fn partial_match_counts(&self, p: ProdId) -> Vec<usize> {
+        let Some(info) = self.production(p) else {
+            return Vec::new();
+        };
+        info.cond_nodes
+            .iter()
+            .map(|&n| self.count_matches_at(n))
+            .collect()
+    }
+
+    fn count_matches_at(&self, n: NodeId) -> usize {
+        let node = &self.nodes[n as usize];
+        if node.holds_tokens() {
+            return node.token_count as usize;
+        }
+        match &node.kind {
+            Kind::Join { amem, tests, .. } => {
+                // Joins hold nothing: count the pairs that pass.
+                let parent = node.parent;
+                let depth = self.nodes[parent as usize].depth + 1;
+                let mut c = 0;
+                let items = self.amem_items(*amem);
+                for t in self.live_tokens(parent) {
+                    for &w in &items {
+                        if self.tests_pass_nosyms(tests, t, w, depth) {
+                            c += 1;
+                        }
+                    }
+                }
+                c
+            }
+            _ => 0,
+        }
+    }
+
+    fn tests_pass_nosyms(&self, tests: &[JoinTest], t: TokId, w: WmeId, depth: u32) -> bool {
+        // Goal and relational tests need symbols; callers that need exact counts for those
+        // rules go through `tests_pass`. Equality and disjunction tests are exact here.
+        tests.iter().all(|test| match test {
+            JoinTest::Compare {
+                field,
+                op: Op::Eq,
+                operand,
+            } => {
+                let a = self.field(w, *field);
+                let b = match operand {
+                    Operand::Const(c) => *c,
+                    Operand::Bound { depth: d, field: f } => {
+                        if *d == depth {
+                            self.field(w, *f)
+                        } else {
+                            let wm = self.wme_at_depth(t, *d);
+                            if wm == NIL_WME {
+                                return false;
+                            }
+                            self.field(wm, *f)
+                        }
+                    }
+                };
+                a == b
+            }
+            JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
+            _ => true,
+        })
+    }
+
+    /// Number of live beta nodes and alpha memories (for benchmarks and tests).
+    pub fn node_count(&self) -> (usize, usize) {
+        let beta = self.nodes.iter().filter(|n| n.alive).count();
+        (beta, self.amem_index.len())
+    }
+}
+
+fn cond_rank(order: &[usize], cond: usize) -> usize {
+    order.iter().filter(|&&c| c < cond).count()
+}
+
+pub(crate) const NIL_WME: WmeId = WmeId(NIL);
+
+fn key_matches(key: &AlphaKey, w: &RWme) -> bool {
+    key.acceptable == w.acceptable
+        && key.attr.is_none_or(|a| a == w.attr)
+        && key.value.is_none_or(|v| v == w.value)
+}

@@ -1,0 +1,279 @@
+//! Tokens and their bookkeeping: creation, the tree-based removal of Doorenbos §2.5, and the
+//! result lists of negative and NCC nodes (§2.7, §2.8). Every list is intrusive (indexes into
+//! arenas), so removal is constant time and order is kept.
+
+use super::{Kind, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME};
+use crate::symbols::Symbols;
+use crate::wm::WmeId;
+
+impl Rete {
+    pub(crate) fn new_token(&mut self, node: NodeId, parent: TokId, wme: WmeId) -> TokId {
+        let depth = if parent == NIL {
+            0
+        } else {
+            self.tokens[parent as usize].depth + 1
+        };
+        let head = self.nodes[node as usize].first_token;
+        let tok = Token {
+            node,
+            parent,
+            wme,
+            depth,
+            first_child: NIL,
+            next_sib: NIL,
+            prev_sib: NIL,
+            next_in_node: head,
+            prev_in_node: NIL,
+            next_of_wme: NIL,
+            prev_of_wme: NIL,
+            results: NIL,
+            owner: NIL,
+            next_result: NIL,
+            prev_result: NIL,
+            alive: true,
+        };
+        let t = match self.free_tokens.pop() {
+            Some(i) => {
+                self.tokens[i as usize] = tok;
+                i
+            }
+            None => {
+                self.tokens.push(tok);
+                (self.tokens.len() - 1) as TokId
+            }
+        };
+        if head != NIL {
+            self.tokens[head as usize].prev_in_node = t;
+        }
+        let n = &mut self.nodes[node as usize];
+        n.first_token = t;
+        n.token_count += 1;
+        if parent != NIL {
+            let first = self.tokens[parent as usize].first_child;
+            self.tokens[t as usize].next_sib = first;
+            if first != NIL {
+                self.tokens[first as usize].prev_sib = t;
+            }
+            self.tokens[parent as usize].first_child = t;
+        }
+        if wme != NIL_WME {
+            if let Some(rw) = self.wmes[wme.0 as usize].as_mut() {
+                let first = rw.tokens;
+                rw.tokens = t;
+                self.tokens[t as usize].next_of_wme = first;
+                if first != NIL {
+                    self.tokens[first as usize].prev_of_wme = t;
+                }
+            }
+        }
+        t
+    }
+
+    /// Tokens held by a node, head (newest) first.
+    pub(crate) fn node_tokens(&self, n: NodeId) -> Vec<TokId> {
+        let mut out = Vec::with_capacity(self.nodes[n as usize].token_count as usize);
+        let mut t = self.nodes[n as usize].first_token;
+        while t != NIL {
+            out.push(t);
+            t = self.tokens[t as usize].next_in_node;
+        }
+        out
+    }
+
+    pub(crate) fn delete_descendants(
+        &mut self,
+        t: TokId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        loop {
+            let c = self.tokens[t as usize].first_child;
+            if c == NIL {
+                break;
+            }
+            self.delete_token_and_descendants(c, syms, sink);
+        }
+    }
+
+    /// Removes a token and everything built on it, reporting retracted matches.
+    pub(crate) fn delete_token_and_descendants(
+        &mut self,
+        t: TokId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        self.delete_descendants(t, syms, sink);
+        let tok = self.tokens[t as usize].clone();
+        let node = tok.node;
+        // Out of the node's memory.
+        if tok.prev_in_node != NIL {
+            self.tokens[tok.prev_in_node as usize].next_in_node = tok.next_in_node;
+        } else {
+            self.nodes[node as usize].first_token = tok.next_in_node;
+        }
+        if tok.next_in_node != NIL {
+            self.tokens[tok.next_in_node as usize].prev_in_node = tok.prev_in_node;
+        }
+        self.nodes[node as usize].token_count -= 1;
+        // Out of its WME's list.
+        if tok.wme != NIL_WME {
+            if tok.prev_of_wme != NIL {
+                self.tokens[tok.prev_of_wme as usize].next_of_wme = tok.next_of_wme;
+            } else if let Some(rw) = self.wmes[tok.wme.0 as usize].as_mut() {
+                rw.tokens = tok.next_of_wme;
+            }
+            if tok.next_of_wme != NIL {
+                self.tokens[tok.next_of_wme as usize].prev_of_wme = tok.prev_of_wme;
+            }
+        }
+        // Out of its parent's children.
+        if tok.parent != NIL {
+            if tok.prev_sib != NIL {
+                self.tokens[tok.prev_sib as usize].next_sib = tok.next_sib;
+            } else {
+                self.tokens[tok.parent as usize].first_child = tok.next_sib;
+            }
+            if tok.next_sib != NIL {
+                self.tokens[tok.next_sib as usize].prev_sib = tok.prev_sib;
+            }
+        }
+        let kind = self.nodes[node as usize].kind.clone();
+        match kind {
+            Kind::Negative { .. } => {
+                loop {
+                    let r = self.tokens[t as usize].results;
+                    if r == NIL {
+                        break;
+                    }
+                    self.remove_neg_result(r);
+                }
+                if self.nodes[node as usize].token_count == 0 {
+                    self.unlink_right(node);
+                }
+            }
+            Kind::Ncc { .. } => loop {
+                let r = self.tokens[t as usize].results;
+                if r == NIL {
+                    break;
+                }
+                self.unlink_ncc_result(t, r);
+                self.tokens[r as usize].owner = NIL;
+                self.delete_token_and_descendants(r, syms, sink);
+            },
+            Kind::Production { prod } => sink.unmatched(prod, t),
+            _ => {}
+        }
+        if self.nodes[node as usize].token_count == 0 {
+            // An empty memory: its joins need no right activations (Rete/UL).
+            let children = self.nodes[node as usize].children.clone();
+            for c in children {
+                if matches!(self.nodes[c as usize].kind, Kind::Join { .. }) {
+                    self.unlink_right(c);
+                }
+            }
+        }
+        if tok.owner != NIL && self.tokens[tok.owner as usize].alive {
+            let owner = tok.owner;
+            self.unlink_ncc_result(owner, t);
+            if self.tokens[owner as usize].results == NIL {
+                // The conjunction no longer matches: the owner's match goes on (§2.8).
+                let onode = self.tokens[owner as usize].node;
+                self.activate_children(onode, owner, NIL_WME, syms, sink);
+            }
+        }
+        self.tokens[t as usize].alive = false;
+        self.free_tokens.push(t);
+    }
+
+    pub(crate) fn add_neg_result(&mut self, owner: TokId, w: WmeId) {
+        let tok_head = self.tokens[owner as usize].results;
+        let wme_head = self.wmes[w.0 as usize]
+            .as_ref()
+            .map_or(NIL, |x| x.neg_results);
+        let r = NegResult {
+            owner,
+            wme: w,
+            next_tok: tok_head,
+            prev_tok: NIL,
+            next_wme: wme_head,
+            prev_wme: NIL,
+        };
+        let id = match self.free_neg.pop() {
+            Some(i) => {
+                self.neg[i as usize] = r;
+                i
+            }
+            None => {
+                self.neg.push(r);
+                (self.neg.len() - 1) as u32
+            }
+        };
+        if tok_head != NIL {
+            self.neg[tok_head as usize].prev_tok = id;
+        }
+        self.tokens[owner as usize].results = id;
+        if wme_head != NIL {
+            self.neg[wme_head as usize].prev_wme = id;
+        }
+        if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
+            rw.neg_results = id;
+        }
+    }
+
+    pub(crate) fn remove_neg_result(&mut self, r: u32) {
+        let NegResult {
+            owner,
+            wme,
+            next_tok,
+            prev_tok,
+            next_wme,
+            prev_wme,
+        } = self.neg[r as usize];
+        if prev_tok != NIL {
+            self.neg[prev_tok as usize].next_tok = next_tok;
+        } else {
+            self.tokens[owner as usize].results = next_tok;
+        }
+        if next_tok != NIL {
+            self.neg[next_tok as usize].prev_tok = prev_tok;
+        }
+        if prev_wme != NIL {
+            self.neg[prev_wme as usize].next_wme = next_wme;
+        } else if let Some(rw) = self.wmes[wme.0 as usize].as_mut() {
+            rw.neg_results = next_wme;
+        }
+        if next_wme != NIL {
+            self.neg[next_wme as usize].prev_wme = prev_wme;
+        }
+        self.free_neg.push(r);
+    }
+
+    pub(crate) fn add_ncc_result(&mut self, owner: TokId, r: TokId) {
+        let head = self.tokens[owner as usize].results;
+        let rt = &mut self.tokens[r as usize];
+        rt.owner = owner;
+        rt.next_result = head;
+        rt.prev_result = NIL;
+        if head != NIL {
+            self.tokens[head as usize].prev_result = r;
+        }
+        self.tokens[owner as usize].results = r;
+    }
+
+    fn unlink_ncc_result(&mut self, owner: TokId, r: TokId) {
+        let (prev, next) = (
+            self.tokens[r as usize].prev_result,
+            self.tokens[r as usize].next_result,
+        );
+        if prev != NIL {
+            self.tokens[prev as usize].next_result = next;
+        } else {
+            self.tokens[owner as usize].results = next;
+        }
+        if next != NIL {
+            self.tokens[next as usize].prev_result = prev;
+        }
+        self.tokens[r as usize].next_result = NIL;
+        self.tokens[r as usize].prev_result = NIL;
+    }
+}

@@ -1,0 +1,266 @@
+//! Symbols (spec §2): interned string constants, 64-bit integers and floats, and
+//! identifiers named by a letter and a number with one counter per letter. Equality of
+//! symbols is equality of [`Sym`] handles, so int 1 and float 1.0 differ (E:t15).
+
+use rustc_hash::FxHashMap;
+use std::cmp::Ordering;
+
+/// A handle to an interned symbol.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Sym(pub u32);
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum SymData {
+    Str(Box<str>),
+    Int(i64),
+    Float(f64),
+    Id(IdData),
+}
+
+/// An identifier: `letter` + `number`, plus what the architecture knows of it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IdData {
+    pub letter: u8,
+    pub number: u64,
+    /// Goal-stack level (1 = top state); 0 when not yet linked.
+    pub level: u32,
+    /// A state in the goal stack: `(state <s> ...)` conditions test this.
+    pub is_goal: bool,
+    /// `(impasse <i> ...)` conditions test this.
+    pub is_impasse: bool,
+}
+
+/// The symbol table of one agent. Counters live here and are reset by `init-soar`.
+#[derive(Debug, Default)]
+pub struct Symbols {
+    table: Vec<SymData>,
+    strs: FxHashMap<Box<str>, Sym>,
+    ints: FxHashMap<i64, Sym>,
+    floats: FxHashMap<u64, Sym>,
+    ids: FxHashMap<(u8, u64), Sym>,
+    counters: [u64; 26],
+}
+
+impl Symbols {
+    pub fn new() -> Self {
+        Symbols {
+            counters: [1; 26],
+            ..Default::default()
+        }
+    }
+
+    fn push(&mut self, d: SymData) -> Sym {
+        let s = Sym(self.table.len() as u32);
+        self.table.push(d);
+        s
+    }
+
+    pub fn str(&mut self, s: &str) -> Sym {
+        if let Some(&x) = self.strs.get(s) {
+            return x;
+        }
+        let x = self.push(SymData::Str(s.into()));
+        self.strs.insert(s.into(), x);
+        x
+    }
+
+    pub fn int(&mut self, i: i64) -> Sym {
+        if let Some(&x) = self.ints.get(&i) {
+            return x;
+        }
+        let x = self.push(SymData::Int(i));
+        self.ints.insert(i, x);
+        x
+    }
+
+    pub fn float(&mut self, f: f64) -> Sym {
+        let key = f.to_bits();
+        if let Some(&x) = self.floats.get(&key) {
+            return x;
+        }
+        let x = self.push(SymData::Float(f));
+        self.floats.insert(key, x);
+        x
+    }
+
+    /// Interns a parsed constant.
+    pub fn constant(&mut self, c: &crate::ast::Constant) -> Sym {
+        match c {
+            crate::ast::Constant::Str(s) => self.str(s),
+            crate::ast::Constant::Int(i) => self.int(*i),
+            crate::ast::Constant::Float(f) => self.float(*f),
+        }
+    }
+
+    /// Looks a parsed constant up without creating it.
+    pub fn find_constant(&self, c: &crate::ast::Constant) -> Option<Sym> {
+        match c {
+            crate::ast::Constant::Str(s) => self.strs.get(s.as_str()).copied(),
+            crate::ast::Constant::Int(i) => self.ints.get(i).copied(),
+            crate::ast::Constant::Float(f) => self.floats.get(&f.to_bits()).copied(),
+        }
+    }
+
+    /// Looks a string constant up without creating it.
+    pub fn find_str(&self, s: &str) -> Option<Sym> {
+        self.strs.get(s).copied()
+    }
+
+    /// A new identifier with the next number for `letter` (upper-cased; non-letters use `I`).
+    pub fn new_id(&mut self, letter: char, level: u32) -> Sym {
+        let l = letter.to_ascii_uppercase();
+        let l = if l.is_ascii_uppercase() {
+            l as u8
+        } else {
+            b'I'
+        };
+        let slot = (l - b'A') as usize;
+        let number = self.counters[slot];
+        self.counters[slot] += 1;
+        let x = self.push(SymData::Id(IdData {
+            letter: l,
+            number,
+            level,
+            is_goal: false,
+            is_impasse: false,
+        }));
+        self.ids.insert((l, number), x);
+        x
+    }
+
+    /// The identifier named `S1`, `i2`... if it exists.
+    pub fn find_id(&self, name: &str) -> Option<Sym> {
+        let b = name.as_bytes();
+        if b.len() < 2 || !b[0].is_ascii_alphabetic() {
+            return None;
+        }
+        let n: u64 = name[1..].parse().ok()?;
+        self.ids.get(&(b[0].to_ascii_uppercase(), n)).copied()
+    }
+
+    /// `init-soar`: identifier counters start again at 1 (spec §2, E:t8).
+    pub fn reset_id_counters(&mut self) {
+        self.counters = [1; 26];
+        self.ids.clear();
+    }
+
+    pub fn get(&self, s: Sym) -> &SymData {
+        &self.table[s.0 as usize]
+    }
+
+    pub fn id_data(&self, s: Sym) -> Option<&IdData> {
+        match self.get(s) {
+            SymData::Id(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    pub fn id_data_mut(&mut self, s: Sym) -> Option<&mut IdData> {
+        match &mut self.table[s.0 as usize] {
+            SymData::Id(d) => Some(d),
+            _ => None,
+        }
+    }
+
+    pub fn is_id(&self, s: Sym) -> bool {
+        matches!(self.get(s), SymData::Id(_))
+    }
+
+    pub fn is_goal(&self, s: Sym) -> bool {
+        self.id_data(s).is_some_and(|d| d.is_goal)
+    }
+
+    pub fn is_impasse(&self, s: Sym) -> bool {
+        self.id_data(s).is_some_and(|d| d.is_impasse)
+    }
+
+    /// Rereadable text, as `print` shows a symbol (spec §2: `|P1|`, floats with 6 decimals).
+    pub fn text(&self, s: Sym) -> String {
+        match self.get(s) {
+            SymData::Str(x) => crate::printer::rereadable(x),
+            SymData::Int(i) => i.to_string(),
+            SymData::Float(f) => crate::printer::float_text(*f),
+            SymData::Id(d) => format!("{}{}", d.letter as char, d.number),
+        }
+    }
+
+    /// Plain text with no bars, as `write` and `exec` see a symbol (spec §1f).
+    pub fn plain(&self, s: Sym) -> String {
+        match self.get(s) {
+            SymData::Str(x) => x.to_string(),
+            _ => self.text(s),
+        }
+    }
+
+    /// Soar's `compare_symbols` (spec §3g): numbers numerically, strings by strcmp,
+    /// identifiers by letter then number; any type mismatch is "less" (`Less`).
+    pub fn compare(&self, a: Sym, b: Sym) -> Ordering {
+        use SymData::*;
+        match (self.get(a), self.get(b)) {
+            (Int(x), Int(y)) => x.cmp(y),
+            (Int(x), Float(y)) => (*x as f64).partial_cmp(y).unwrap_or(Ordering::Less),
+            (Float(x), Int(y)) => x.partial_cmp(&(*y as f64)).unwrap_or(Ordering::Less),
+            (Float(x), Float(y)) => x.partial_cmp(y).unwrap_or(Ordering::Less),
+            (Str(x), Str(y)) => x.as_bytes().cmp(y.as_bytes()),
+            (Id(x), Id(y)) => (x.letter, x.number).cmp(&(y.letter, y.number)),
+            _ => Ordering::Less,
+        }
+    }
+
+    /// `<=>`: the same kind of symbol (int and float differ).
+    pub fn same_type(&self, a: Sym, b: Sym) -> bool {
+        std::mem::discriminant(self.get(a)) == std::mem::discriminant(self.get(b))
+    }
+
+    pub fn len(&self) -> usize {
+        self.table.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.table.is_empty()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interning_and_types() {
+        let mut s = Symbols::new();
+        assert_eq!(s.str("a"), s.str("a"));
+        assert_ne!(s.int(1), s.float(1.0));
+        let (one, two, two_f) = (s.int(1), s.int(2), s.float(2.0));
+        assert!(s.same_type(one, two));
+        assert!(!s.same_type(one, two_f));
+    }
+
+    #[test]
+    fn id_counters_per_letter() {
+        let mut s = Symbols::new();
+        let i1 = s.new_id('i', 1);
+        let s1 = s.new_id('s', 1);
+        let i2 = s.new_id('x', 1);
+        let q = s.new_id('<', 1);
+        assert_eq!(s.text(i1), "I1");
+        assert_eq!(s.text(s1), "S1");
+        assert_eq!(s.text(i2), "X1");
+        assert_eq!(s.text(q), "I2");
+        assert_eq!(s.find_id("s1"), Some(s1));
+        s.reset_id_counters();
+        let again = s.new_id('s', 1);
+        assert_eq!(s.text(again), "S1");
+    }
+
+    #[test]
+    fn mixed_type_comparison_is_less() {
+        let mut s = Symbols::new();
+        let abc = s.str("abc");
+        let five = s.int(5);
+        assert_eq!(s.compare(abc, five), Ordering::Less);
+        assert_eq!(s.compare(five, abc), Ordering::Less);
+        let f = s.float(2.5);
+        assert_eq!(s.compare(f, five), Ordering::Less);
+        assert_eq!(s.compare(five, f), Ordering::Greater);
+    }
+}

@@ -1,0 +1,211 @@
+//! The `rusoar` binary without a terminal (`--source`, `-c`, standard input), and the thesis
+//! rules loading through the library with no error.
+
+use rusoar::cli::{Event, Interpreter};
+use rusoar::source::Severity;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn rusoar(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rusoar"))
+        .args(args)
+        .current_dir(root())
+        .stdin(Stdio::null())
+        .output()
+        .expect("the rusoar binary runs")
+}
+
+fn text(b: &[u8]) -> String {
+    String::from_utf8_lossy(b).into_owned()
+}
+
+#[test]
+fn source_robotagent_loads_the_thesis_agent() {
+    let out = rusoar(&["--source", "rules/robotagent.soar"]);
+    let stdout = text(&out.stdout);
+    let stderr = text(&out.stderr);
+    assert!(out.status.success(), "stdout:\n{stdout}\nstderr:\n{stderr}");
+    // The per-file report.
+    assert!(
+        stdout.contains("Loaded 36 productions from 8 files:"),
+        "{stdout}"
+    );
+    for (file, n) in [
+        ("rules/robotagent.soar", 0),
+        ("rules/moving/moving.soar", 9),
+        ("rules/slam.soar", 0),
+        ("rules/Elaborate.soar", 3),
+        ("rules/CopyWall.soar", 2),
+        ("rules/CheckWallRelation.soar", 14),
+        ("rules/CheckRobotPosition.soar", 6),
+        ("rules/SubGoalElaborate.soar", 2),
+    ] {
+        let line = stdout
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(file))
+            .unwrap_or_else(|| panic!("no report line for {file}:\n{stdout}"));
+        assert!(line.trim_end().ends_with(&format!(" {n}")), "{line}");
+    }
+    assert!(
+        stdout.contains("Total: 36 productions sourced."),
+        "{stdout}"
+    );
+    // The Soar 8 `learn -off` warning, located, on standard error; and no error anywhere.
+    assert!(
+        stderr.contains("warning: Soar 8 spelling `learn -off`"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("robotagent.soar:13:7"), "{stderr}");
+    assert!(!stderr.contains("error"), "{stderr}");
+    assert!(!stdout.contains("error"), "{stdout}");
+}
+
+#[test]
+fn repeated_c_options_run_in_order_with_source() {
+    let out = rusoar(&[
+        "-c",
+        "echo first",
+        "--source",
+        "tests/data/parse/1a_sp_echo.soar",
+        "-c",
+        "sp {late*rule (state <s> ^superstate nil) --> (<s> ^a b)}",
+        "-c",
+        "print late*rule",
+        "-c",
+        "echo last",
+    ]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
+    let pos = |s: &str| {
+        stdout
+            .find(s)
+            .unwrap_or_else(|| panic!("{s:?} missing from:\n{stdout}"))
+    };
+    assert!(pos("first") < pos("after the stars"));
+    assert!(pos("after the stars") < pos("Loaded 3 productions from 1 file"));
+    assert!(pos("Loaded 3 productions") < pos("sp {late*rule"));
+    assert!(pos("sp {late*rule") < pos("last"));
+}
+
+#[test]
+fn commands_on_standard_input() {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rusoar"))
+        .current_dir(root())
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(
+            b"echo from stdin\nsp {piped\n   (state <s> ^superstate nil)\n-->\n   (write |hi|)}\nprint piped\n",
+        )
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
+    assert!(stdout.contains("from stdin"), "{stdout}");
+    assert!(stdout.contains("sp {piped\n"), "{stdout}");
+    assert!(stdout.contains("    (write hi)\n"), "{stdout}");
+}
+
+#[test]
+fn a_failing_c_exits_nonzero_with_a_located_diagnostic() {
+    let out = rusoar(&["-c", "echo ok", "-c", "learn -x", "-c", "echo never"]);
+    let stdout = text(&out.stdout);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stdout.contains("ok"), "{stdout}");
+    assert!(!stdout.contains("never"), "{stdout}");
+    assert!(stderr.contains("error: No such option: x"), "{stderr}");
+    assert!(stderr.contains("┌─ -c:1:1"), "{stderr}");
+
+    let out = rusoar(&["-c", "sp {p1 (state <s> ^superstate nil) --> (<s> ^a b)}"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("error: Expected symbol for production name"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("┌─ -c:1:5"), "{stderr}");
+}
+
+#[test]
+fn a_failing_source_exits_nonzero_and_points_into_the_file() {
+    let out = rusoar(&["--source", "tests/data/errors/6d_nested_source_error.soar"]);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success());
+    assert!(
+        stderr.contains("tests/data/errors/nested/inner.soar:3:47"),
+        "{stderr}"
+    );
+    assert!(
+        stderr.contains("while sourcing") && stderr.contains("6d_nested_source_error.soar:3"),
+        "{stderr}"
+    );
+}
+
+fn soar_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap().filter_map(Result::ok) {
+        let p = e.path();
+        if p.is_dir() {
+            soar_files(&p, out);
+        } else if p.extension().is_some_and(|x| x == "soar") {
+            out.push(p);
+        }
+    }
+}
+
+/// Sources `rel` (relative to the repository) and returns the error diagnostics it printed.
+fn source_errors(interp: &mut Interpreter, rel: &str) -> Vec<String> {
+    let result = interp.run_text("<test>", &format!("source {{{rel}}}"));
+    let mut errors: Vec<String> = interp
+        .take_events()
+        .into_iter()
+        .filter_map(|e| match e {
+            Event::Diag(d) if d.severity == Severity::Error => Some(d.message),
+            _ => None,
+        })
+        .collect();
+    if let Err(d) = result {
+        errors.push(d.message);
+    }
+    errors
+}
+
+#[test]
+fn all_of_rules_loads_with_zero_errors() {
+    // The whole agent, as the thesis loads it.
+    let mut interp = Interpreter::new();
+    interp.set_cwd(root());
+    let errors = source_errors(&mut interp, "rules/robotagent.soar");
+    assert!(errors.is_empty(), "{errors:#?}");
+    assert_eq!(interp.report.added, 36);
+    assert_eq!(interp.report.per_file.len(), 8);
+    assert_eq!(interp.agent.production_count(), 36);
+
+    // And every file on its own.
+    let mut files = Vec::new();
+    soar_files(&root().join("rules"), &mut files);
+    files.sort();
+    assert_eq!(files.len(), 8);
+    for f in files {
+        let rel = f
+            .strip_prefix(root())
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let mut interp = Interpreter::new();
+        interp.set_cwd(root());
+        let errors = source_errors(&mut interp, &rel);
+        assert!(errors.is_empty(), "{rel}: {errors:#?}");
+    }
+}
