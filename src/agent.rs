@@ -1,9 +1,12 @@
-//! One agent: its rules and settings. Working memory, the RETE and the decision cycle join
-//! here as their issues land; for now the agent keeps the production set that `sp`, `print`
-//! and `excise` work against.
+//! One agent: its symbols, working memory, RETE network, rules and settings. The decision
+//! cycle (issue 4) consumes the match set queued here.
 
 use crate::production::Production;
+use crate::rete::{MatchSink, ProdId, Rete, TokId};
+use crate::symbols::{Sym, Symbols};
+use crate::wm::{Wme, WmeId, WorkingMemory};
 use indexmap::IndexMap;
+use rustc_hash::FxHashMap;
 
 /// When Soar learns (spec §4; `chunk always|never|only|except`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -67,39 +70,101 @@ pub enum Added {
     },
 }
 
+/// Pending changes to the match set, as the decision cycle will consume them (spec §3i):
+/// new matches are head-inserted (the newest is last here) and fired from the head.
+#[derive(Debug, Default)]
+pub struct MatchSet {
+    pub assertions: Vec<(ProdId, TokId)>,
+    pub retractions: Vec<(ProdId, TokId)>,
+}
+
+impl MatchSink for MatchSet {
+    fn matched(&mut self, p: ProdId, t: TokId) {
+        self.assertions.push((p, t));
+    }
+    fn unmatched(&mut self, p: ProdId, t: TokId) {
+        // A match that goes before it fired simply leaves the queue.
+        if let Some(i) = self.assertions.iter().position(|x| *x == (p, t)) {
+            self.assertions.remove(i);
+        } else {
+            self.retractions.push((p, t));
+        }
+    }
+}
+
+/// A loaded rule: its compiled form and its place in the network.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    pub production: Production,
+    pub id: ProdId,
+}
+
+/// The identifiers of the top state and its io link (spec §2).
+#[derive(Debug, Clone, Copy)]
+pub struct TopState {
+    pub state: Sym,
+    pub io: Sym,
+    pub input_link: Sym,
+    pub output_link: Sym,
+}
+
 pub struct Agent {
     pub name: String,
-    productions: IndexMap<String, Production>,
+    pub symbols: Symbols,
+    pub wm: WorkingMemory,
+    pub rete: Rete,
+    pub matches: MatchSet,
+    productions: IndexMap<String, Loaded>,
     /// Canonical body text (name and variable names erased) to rule name.
-    bodies: IndexMap<String, String>,
+    bodies: FxHashMap<String, String>,
     pub settings: Settings,
     /// The exploration policy named by `indifferent-selection` (softmax by default, spec §3h).
     pub settings_policy: String,
     /// The seed given to `srand`, if any.
     pub seed: Option<u32>,
+    pub top: TopState,
 }
 
 impl Agent {
     pub fn new(name: impl Into<String>) -> Self {
+        let mut symbols = Symbols::new();
+        let mut wm = WorkingMemory::new();
+        let mut rete = Rete::new();
+        let mut matches = MatchSet::default();
+        let top = create_top_state(&mut symbols, &mut wm, &mut rete, &mut matches);
         Agent {
             name: name.into(),
+            symbols,
+            wm,
+            rete,
+            matches,
             productions: IndexMap::new(),
-            bodies: IndexMap::new(),
+            bodies: FxHashMap::default(),
             settings: Settings::default(),
             settings_policy: "softmax".to_string(),
             seed: None,
+            top,
         }
     }
 
-    /// Adds a rule: a same-named rule is excised first; an identical body is ignored.
+    /// Adds a rule: a same-named rule is excised first; an identical body is ignored. The
+    /// rule's matches against working memory are queued at once.
     pub fn add_production(&mut self, p: Production) -> Added {
         let replaced = self.excise(&p.name);
         let key = canonical_body(&p);
         if let Some(of) = self.bodies.get(&key) {
             return Added::Duplicate { of: of.clone() };
         }
+        let id = match self
+            .rete
+            .add_production(&p, &mut self.symbols, &mut self.matches)
+        {
+            Ok(id) => id,
+            Err(_) => return Added::Duplicate { of: String::new() },
+        };
         self.bodies.insert(key, p.name.clone());
-        self.productions.insert(p.name.clone(), p);
+        self.productions
+            .insert(p.name.clone(), Loaded { production: p, id });
         if replaced {
             Added::Replaced
         } else {
@@ -109,8 +174,9 @@ impl Agent {
 
     pub fn excise(&mut self, name: &str) -> bool {
         match self.productions.shift_remove(name) {
-            Some(p) => {
-                self.bodies.shift_remove(&canonical_body(&p));
+            Some(l) => {
+                self.bodies.remove(&canonical_body(&l.production));
+                self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true
             }
             None => false,
@@ -118,23 +184,106 @@ impl Agent {
     }
 
     pub fn excise_all(&mut self) -> usize {
-        let n = self.productions.len();
-        self.productions.clear();
-        self.bodies.clear();
-        n
+        let names: Vec<String> = self.productions.keys().cloned().collect();
+        for n in &names {
+            self.excise(n);
+        }
+        names.len()
     }
 
     pub fn production(&self, name: &str) -> Option<&Production> {
+        self.productions.get(name).map(|l| &l.production)
+    }
+
+    pub fn loaded(&self, name: &str) -> Option<&Loaded> {
         self.productions.get(name)
     }
 
     /// Rules in load order.
     pub fn productions(&self) -> impl DoubleEndedIterator<Item = &Production> {
-        self.productions.values()
+        self.productions.values().map(|l| &l.production)
     }
 
     pub fn production_count(&self) -> usize {
         self.productions.len()
+    }
+
+    /// The name of a production in the network.
+    pub fn production_name(&self, id: ProdId) -> &str {
+        self.rete
+            .production(id)
+            .map(|i| i.name.as_str())
+            .unwrap_or("?")
+    }
+
+    /// Adds a WME now (as `wm add` and the input phase do) and matches it.
+    pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
+        let w = self.wm.add(id, attr, value, acceptable);
+        self.rete.add_wme(
+            w,
+            (id, attr, value),
+            acceptable,
+            &self.symbols,
+            &mut self.matches,
+        );
+        w
+    }
+
+    pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
+        self.wm.get(w)?;
+        self.rete.remove_wme(w, &self.symbols, &mut self.matches);
+        self.wm.remove(w)
+    }
+}
+
+/// Creates the top state as Soar does (spec §2): `I1`–`I3` first, then `S1` and its WMEs
+/// with timetags 1–13 in Soar's order.
+fn create_top_state(
+    symbols: &mut Symbols,
+    wm: &mut WorkingMemory,
+    rete: &mut Rete,
+    sink: &mut MatchSet,
+) -> TopState {
+    let io = symbols.new_id('I', 1);
+    let input_link = symbols.new_id('I', 1);
+    let output_link = symbols.new_id('I', 1);
+    let state = symbols.new_id('S', 1);
+    if let Some(d) = symbols.id_data_mut(state) {
+        d.is_goal = true;
+    }
+    let reward = symbols.new_id('R', 1);
+    let epmem = symbols.new_id('E', 1);
+    let ep_cmd = symbols.new_id('C', 1);
+    let ep_res = symbols.new_id('R', 1);
+    let smem = symbols.new_id('L', 1);
+    let sm_cmd = symbols.new_id('C', 1);
+    let sm_res = symbols.new_id('R', 1);
+    let one = symbols.int(1);
+    let s = |symbols: &mut Symbols, x: &str| symbols.str(x);
+    let triples = [
+        (state, s(symbols, "type"), s(symbols, "state")),
+        (state, s(symbols, "superstate"), s(symbols, "nil")),
+        (state, s(symbols, "reward-link"), reward),
+        (state, s(symbols, "epmem"), epmem),
+        (epmem, s(symbols, "command"), ep_cmd),
+        (epmem, s(symbols, "result"), ep_res),
+        (epmem, s(symbols, "present-id"), one),
+        (state, s(symbols, "smem"), smem),
+        (smem, s(symbols, "command"), sm_cmd),
+        (smem, s(symbols, "result"), sm_res),
+        (state, s(symbols, "io"), io),
+        (io, s(symbols, "input-link"), input_link),
+        (io, s(symbols, "output-link"), output_link),
+    ];
+    for (i, a, v) in triples {
+        let w = wm.add(i, a, v, false);
+        rete.add_wme(w, (i, a, v), false, symbols, sink);
+    }
+    TopState {
+        state,
+        io,
+        input_link,
+        output_link,
     }
 }
 

@@ -10,6 +10,8 @@ pub mod rete;
 pub mod rhs_functions;
 pub mod robot;
 pub mod source;
+pub mod support;
 pub mod symbols;
 pub mod tokenizer;
+pub mod trace;
 pub mod wm;

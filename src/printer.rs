@@ -176,6 +176,33 @@ fn wrap_items(out: &mut String, head: &str, items: &[String], indent: usize, clo
     out.push_str(&line);
 }
 
+/// One condition on its own line, as `matches <rule>` lists them: `(state <s> ^a 1)`,
+/// `(<x> -^b 2)`, or a conjunctive negation's conditions inside `-{ ... }`.
+pub fn cond_text(c: &Condition) -> String {
+    cond_text_with(c, true)
+}
+
+/// As [`cond_text`]; `show_goal` false leaves out `state`/`impasse` (Soar shows it on the
+/// first condition of an identifier only).
+pub fn cond_text_with(c: &Condition, show_goal: bool) -> String {
+    let one = |c: &Cond, neg: bool| {
+        let head = match if show_goal { c.goal } else { Head::None } {
+            Head::State => "state ",
+            Head::Impasse => "impasse ",
+            Head::None => "",
+        };
+        format!("({head}{} {})", test_text(&c.id), cond_item(c, neg))
+    };
+    match c {
+        Condition::Positive(c) => one(c, false),
+        Condition::Negative(c) => one(c, true),
+        Condition::Ncc(inner) => {
+            let parts: Vec<String> = inner.iter().map(cond_text).collect();
+            format!("-{{ {} }}", parts.join(" "))
+        }
+    }
+}
+
 fn cond_item(c: &Cond, negated: bool) -> String {
     let mut s = String::new();
     if negated {

@@ -1,4 +1,128 @@
-//! Working memory (spec §2): WMEs with timetags.
-/// A working-memory element's handle.
+//! Working memory (spec §2): WMEs with timetags, indexed by identifier for printing and
+//! garbage collection. Acceptable-preference WMEs (`(S1 ^operator O1 +)`) carry a flag.
+
+use crate::symbols::Sym;
+use rustc_hash::FxHashMap;
+
+/// A working-memory element's handle (reused after removal).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct WmeId(pub u32);
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Wme {
+    pub id: Sym,
+    pub attr: Sym,
+    pub value: Sym,
+    pub acceptable: bool,
+    pub timetag: u64,
+}
+
+#[derive(Debug)]
+pub struct WorkingMemory {
+    wmes: Vec<Option<Wme>>,
+    free: Vec<u32>,
+    next_timetag: u64,
+    by_id: FxHashMap<Sym, Vec<WmeId>>,
+    by_timetag: FxHashMap<u64, WmeId>,
+    count: usize,
+}
+
+impl Default for WorkingMemory {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl WorkingMemory {
+    pub fn new() -> Self {
+        WorkingMemory {
+            wmes: Vec::new(),
+            free: Vec::new(),
+            next_timetag: 1,
+            by_id: FxHashMap::default(),
+            by_timetag: FxHashMap::default(),
+            count: 0,
+        }
+    }
+
+    /// Adds a WME with the next timetag (one global counter, spec §2).
+    pub fn add(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
+        let timetag = self.next_timetag;
+        self.next_timetag += 1;
+        let wme = Wme {
+            id,
+            attr,
+            value,
+            acceptable,
+            timetag,
+        };
+        let w = match self.free.pop() {
+            Some(i) => {
+                self.wmes[i as usize] = Some(wme);
+                WmeId(i)
+            }
+            None => {
+                self.wmes.push(Some(wme));
+                WmeId((self.wmes.len() - 1) as u32)
+            }
+        };
+        self.by_id.entry(id).or_default().push(w);
+        self.by_timetag.insert(timetag, w);
+        self.count += 1;
+        w
+    }
+
+    pub fn remove(&mut self, w: WmeId) -> Option<Wme> {
+        let wme = self.wmes.get_mut(w.0 as usize)?.take()?;
+        if let Some(list) = self.by_id.get_mut(&wme.id) {
+            list.retain(|x| *x != w);
+            if list.is_empty() {
+                self.by_id.remove(&wme.id);
+            }
+        }
+        self.by_timetag.remove(&wme.timetag);
+        self.free.push(w.0);
+        self.count -= 1;
+        Some(wme)
+    }
+
+    pub fn get(&self, w: WmeId) -> Option<&Wme> {
+        self.wmes.get(w.0 as usize).and_then(|x| x.as_ref())
+    }
+
+    pub fn by_timetag(&self, tt: u64) -> Option<WmeId> {
+        self.by_timetag.get(&tt).copied()
+    }
+
+    /// The WMEs whose id is `id`, oldest first.
+    pub fn of_id(&self, id: Sym) -> &[WmeId] {
+        self.by_id.get(&id).map(Vec::as_slice).unwrap_or(&[])
+    }
+
+    /// Every live WME, in timetag order.
+    pub fn all(&self) -> Vec<WmeId> {
+        let mut v: Vec<WmeId> = (0..self.wmes.len() as u32)
+            .map(WmeId)
+            .filter(|w| self.get(*w).is_some())
+            .collect();
+        v.sort_by_key(|w| self.get(*w).map(|x| x.timetag));
+        v
+    }
+
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+
+    /// `init-soar`: timetags start again at 1 (spec §2, E:t21).
+    pub fn reset_timetags(&mut self) {
+        self.next_timetag = 1;
+    }
+
+    pub fn next_timetag(&self) -> u64 {
+        self.next_timetag
+    }
+}

@@ -4,6 +4,7 @@
 
 pub mod aliases;
 mod files;
+mod memory;
 pub mod options;
 mod rules;
 mod settings;
@@ -280,6 +281,7 @@ impl Interpreter {
             "output" => self.cmd_output(&ctx, args),
             "print" => self.cmd_print(&ctx, args),
             "production" => self.cmd_production(&ctx, args),
+            "wm" => self.cmd_wm(&ctx, args),
             "help" => Ok(cmd_help(args)),
             "exit" => {
                 self.exit_requested = true;

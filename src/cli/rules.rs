@@ -163,7 +163,13 @@ impl Interpreter {
             return Ok(format!("{}\n", crate::printer::production_text(p)));
         }
         if looks_like_wm_target(target) {
-            return Err(super::not_yet(ctx, "print"));
+            let depth = match parsed.value("depth") {
+                Some(d) => d
+                    .parse::<usize>()
+                    .map_err(|_| ctx.error("Non-negative depth expected."))?,
+                None => 1,
+            };
+            return self.print_memory(ctx, target, depth, parsed.has("internal"));
         }
         Ok(format!("No production named {target}"))
     }
@@ -172,6 +178,7 @@ impl Interpreter {
     pub(super) fn cmd_production(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         match args.first().map(String::as_str) {
             Some("excise") => self.cmd_excise(ctx, &args[1..]),
+            Some("matches") => self.cmd_matches(ctx, &args[1..]),
             Some(_) | None => Err(super::not_yet(ctx, "production")),
         }
     }

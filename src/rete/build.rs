@@ -66,6 +66,9 @@ fn cond_vars(c: &Condition, out: &mut Vec<String>) {
 /// soon as every variable it shares with positive conditions is bound. Source order breaks
 /// ties, so well-connected rules keep their written order.
 fn order_conditions(conds: &[Condition], bound: &FxHashSet<String>) -> Vec<usize> {
+    if let Some(order) = source_order_if_joinable(conds, bound) {
+        return order;
+    }
     let mut positive_vars: FxHashSet<String> = bound.clone();
     for c in conds {
         if let Condition::Positive(p) = c {
@@ -154,6 +157,54 @@ fn order_conditions(conds: &[Condition], bound: &FxHashSet<String>) -> Vec<usize
     order
 }
 
+/// The written order, when it already joins well: each positive condition's id is bound (or
+/// it tests a state) and its relational tests name bound variables, and each negation's
+/// outside variables are bound where it stands. Linear, for the common case.
+fn source_order_if_joinable(conds: &[Condition], bound: &FxHashSet<String>) -> Option<Vec<usize>> {
+    let mut positive_vars: FxHashSet<&str> = bound.iter().map(String::as_str).collect();
+    let mut eq = Vec::new();
+    for c in conds {
+        if let Condition::Positive(p) = c {
+            for t in [&p.id, &p.attr, &p.value] {
+                equality_vars(t, &mut eq);
+            }
+        }
+    }
+    positive_vars.extend(eq.iter().map(String::as_str));
+    let mut bound: FxHashSet<String> = bound.clone();
+    for c in conds {
+        match c {
+            Condition::Positive(p) => {
+                let mut own = Vec::new();
+                for t in [&p.id, &p.attr, &p.value] {
+                    equality_vars(t, &mut own);
+                }
+                let mut id = Vec::new();
+                equality_vars(&p.id, &mut id);
+                if p.goal == Head::None && !id.iter().any(|x| bound.contains(x)) {
+                    return None;
+                }
+                let mut rel = Vec::new();
+                for t in [&p.id, &p.attr, &p.value] {
+                    relational_vars(t, &mut rel);
+                }
+                if !rel.iter().all(|x| bound.contains(x) || own.contains(x) || !positive_vars.contains(x.as_str())) {
+                    return None;
+                }
+                bound.extend(own);
+            }
+            other => {
+                let mut v = Vec::new();
+                cond_vars(other, &mut v);
+                if !v.iter().filter(|x| positive_vars.contains(x.as_str())).all(|x| bound.contains(x)) {
+                    return None;
+                }
+            }
+        }
+    }
+    Some((0..conds.len()).collect())
+}
+
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
     pub fn add_production(
@@ -169,12 +220,13 @@ impl Rete {
         let mut bindings = Bindings::default();
         let mut cond_nodes = vec![NIL; p.conditions.len()];
         let mut positive_order = Vec::new();
+        let mut build_order = Vec::new();
         let cur = self.build_conditions(
             &p.conditions,
             Cur::Holder(self.root),
             &mut bindings,
             syms,
-            Some((&mut cond_nodes, &mut positive_order)),
+            Some((&mut cond_nodes, &mut positive_order, &mut build_order)),
         );
         let parent = cur_node(cur);
         let depth = self.next_depth(cur);
@@ -186,6 +238,7 @@ impl Rete {
             positive_order,
             bindings,
             cond_nodes,
+            build_order,
         }));
         self.fill_new_node(pnode, syms, sink);
         Ok(pid)
@@ -237,7 +290,7 @@ impl Rete {
         mut cur: Cur,
         bindings: &mut Bindings,
         syms: &mut Symbols,
-        mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>)>,
+        mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>, &mut Vec<usize>)>,
     ) -> Cur {
         let bound: FxHashSet<String> = bindings.keys().cloned().collect();
         for i in order_conditions(conds, &bound) {
@@ -248,9 +301,10 @@ impl Rete {
                     let (key, tests) = cond_tests(c, depth, bindings, syms);
                     let j = self.share_or_build_join(h, key, tests);
                     cur = Cur::Join(j);
-                    if let Some((nodes, order)) = record.as_mut() {
+                    if let Some((nodes, order, all)) = record.as_mut() {
                         nodes[i] = j;
                         order.push(i);
+                        all.push(i);
                     }
                 }
                 Condition::Negative(c) => {
@@ -260,8 +314,9 @@ impl Rete {
                     let (key, tests) = cond_tests(c, depth + 1, &mut local, syms);
                     let n = self.share_or_build_negative(parent, depth, key, tests, syms);
                     cur = Cur::Holder(n);
-                    if let Some((nodes, _)) = record.as_mut() {
+                    if let Some((nodes, _, all)) = record.as_mut() {
                         nodes[i] = n;
+                        all.push(i);
                     }
                 }
                 Condition::Ncc(inner) => {
@@ -292,8 +347,9 @@ impl Rete {
                     self.fill_new_node(ncc, syms, &mut super::NullSink);
                     self.fill_new_node(partner, syms, &mut super::NullSink);
                     cur = Cur::Holder(ncc);
-                    if let Some((nodes, _)) = record.as_mut() {
+                    if let Some((nodes, _, all)) = record.as_mut() {
                         nodes[i] = ncc;
+                        all.push(i);
                     }
                 }
             }

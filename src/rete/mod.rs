@@ -17,7 +17,7 @@ mod tokens;
 
 pub use build::BuildError;
 use rustc_hash::FxHashMap;
-use tests::{relation_holds, Field, JoinTest, Op, Operand};
+use tests::{relation_holds, Field, JoinTest, Operand};
 
 use crate::symbols::{Sym, Symbols};
 use crate::wm::WmeId;
@@ -186,6 +186,8 @@ pub struct ProdInfo {
     pub bindings: FxHashMap<String, (u32, Field)>,
     /// The beta node of each top-level condition (for `matches <rule>` counts).
     pub(crate) cond_nodes: Vec<NodeId>,
+    /// Top-level conditions in the order the network joins them.
+    pub build_order: Vec<usize>,
 }
 
 pub struct Rete {
@@ -890,6 +892,10 @@ impl Rete {
     }
 
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
+        if self.amems[amem as usize].successors.is_empty() {
+            self.amems[amem as usize].successors.push(n);
+            return;
+        }
         let mut anc = self.nodes[n as usize].parent;
         let mut pos = None;
         while anc != NIL {
@@ -978,71 +984,40 @@ impl Rete {
         }
     }
 
-    /// For `matches <rule>`: the number of partial matches after each top-level condition.
-    pub fn partial_match_counts(&self, p: ProdId) -> Vec<usize> {
+    /// For `matches <rule>`: each top-level condition (index into the rule's conditions), in
+    /// the order the network joins them, with the number of partial matches through it.
+    pub fn partial_match_counts(&self, p: ProdId, syms: &Symbols) -> Vec<(usize, usize)> {
         let Some(info) = self.production(p) else {
             return Vec::new();
         };
-        info.cond_nodes
+        info.build_order
             .iter()
-            .map(|&n| self.count_matches_at(n))
+            .map(|&i| (i, self.count_matches_at(info.cond_nodes[i], syms)))
             .collect()
     }
 
-    fn count_matches_at(&self, n: NodeId) -> usize {
+    fn count_matches_at(&self, n: NodeId, syms: &Symbols) -> usize {
         let node = &self.nodes[n as usize];
         if node.holds_tokens() {
-            return node.token_count as usize;
+            return self.live_tokens(n).len();
         }
         match &node.kind {
             Kind::Join { amem, tests, .. } => {
                 // Joins hold nothing: count the pairs that pass.
                 let parent = node.parent;
                 let depth = self.nodes[parent as usize].depth + 1;
-                let mut c = 0;
                 let items = self.amem_items(*amem);
+                let mut c = 0;
                 for t in self.live_tokens(parent) {
-                    for &w in &items {
-                        if self.tests_pass_nosyms(tests, t, w, depth) {
-                            c += 1;
-                        }
-                    }
+                    c += items
+                        .iter()
+                        .filter(|&&w| self.tests_pass(tests, t, w, depth, syms))
+                        .count();
                 }
                 c
             }
             _ => 0,
         }
-    }
-
-    fn tests_pass_nosyms(&self, tests: &[JoinTest], t: TokId, w: WmeId, depth: u32) -> bool {
-        // Goal and relational tests need symbols; callers that need exact counts for those
-        // rules go through `tests_pass`. Equality and disjunction tests are exact here.
-        tests.iter().all(|test| match test {
-            JoinTest::Compare {
-                field,
-                op: Op::Eq,
-                operand,
-            } => {
-                let a = self.field(w, *field);
-                let b = match operand {
-                    Operand::Const(c) => *c,
-                    Operand::Bound { depth: d, field: f } => {
-                        if *d == depth {
-                            self.field(w, *f)
-                        } else {
-                            let wm = self.wme_at_depth(t, *d);
-                            if wm == NIL_WME {
-                                return false;
-                            }
-                            self.field(wm, *f)
-                        }
-                    }
-                };
-                a == b
-            }
-            JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
-            _ => true,
-        })
     }
 
     /// Number of live beta nodes and alpha memories (for benchmarks and tests).

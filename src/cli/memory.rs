@@ -1,0 +1,152 @@
+//! `wm add`, `wm remove`, `production matches` and `print` of identifiers and timetags
+//! (spec §2, §6a).
+
+use super::options::{self, opt};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::lexer::{is_identifier_shaped, is_int_lexeme};
+use crate::source::Diagnostic;
+use crate::symbols::Sym;
+
+impl Interpreter {
+    pub(super) fn cmd_wm(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        match args.first().map(String::as_str) {
+            Some("add") => self.cmd_wm_add(ctx, &args[1..]),
+            Some("remove") => self.cmd_wm_remove(ctx, &args[1..]),
+            _ => Err(super::not_yet(ctx, "wm")),
+        }
+    }
+
+    /// `wm add id [^]attr value [+]`: the id must exist; `*` as value makes a new identifier.
+    fn cmd_wm_add(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        if args.len() < 3 || args.len() > 4 || (args.len() == 4 && args[3] != "+") {
+            return Err(ctx.error("Syntax: wm add id [^]attribute value [+]"));
+        }
+        let agent = &mut self.agent;
+        let invalid = || {
+            Diagnostic::error("Invalid identifier")
+                .at(ctx.arg_span(1))
+                .with_label("no such identifier")
+        };
+        let id = agent.symbols.find_id(&args[0]).ok_or_else(invalid)?;
+        let attr_word = args[1].strip_prefix('^').unwrap_or(&args[1]);
+        let attr = symbol_for_word(agent, attr_word, false).ok_or_else(|| {
+            Diagnostic::error("Invalid identifier")
+                .at(ctx.arg_span(2))
+                .with_label("no such identifier")
+        })?;
+        let value = if args[2] == "*" {
+            let level = agent.symbols.id_data(id).map_or(1, |d| d.level);
+            agent.symbols.new_id('I', level)
+        } else {
+            symbol_for_word(agent, &args[2], true).ok_or_else(|| {
+                Diagnostic::error("Invalid identifier")
+                    .at(ctx.arg_span(3))
+                    .with_label("no such identifier")
+            })?
+        };
+        let w = agent.add_wme(id, attr, value, args.len() == 4);
+        let tt = agent.wm.get(w).map_or(0, |x| x.timetag);
+        Ok(format!("Timetag: {tt}"))
+    }
+
+    /// `wm remove <timetag>`: an unknown timetag does nothing, as in 9.6.
+    fn cmd_wm_remove(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let Some(tt) = args.first().and_then(|a| a.parse::<u64>().ok()) else {
+            return Err(ctx.error("Syntax: wm remove timetag"));
+        };
+        if let Some(w) = self.agent.wm.by_timetag(tt) {
+            self.agent.remove_wme(w);
+        }
+        Ok(String::new())
+    }
+
+    /// `production matches [rule]`.
+    pub(super) fn cmd_matches(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let specs = [
+            opt('a', "assertions"),
+            opt('r', "retractions"),
+            opt('n', "names"),
+            opt('c', "count"),
+            opt('t', "timetags"),
+            opt('w', "wmes"),
+        ];
+        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        match parsed.args.first() {
+            None => Ok(crate::trace::pending_matches(&self.agent)),
+            Some(name) => {
+                let mut text =
+                    crate::trace::matches_listing(&self.agent, name).ok_or_else(|| {
+                        Diagnostic::error(format!("Production not found: {name}"))
+                            .at(ctx.arg_span(0))
+                            .with_label("no such rule")
+                    })?;
+                if parsed.has("wmes") || parsed.has("timetags") {
+                    text.push_str("*** Complete Matches ***\n");
+                    let loaded = self.agent.loaded(name).map(|l| l.id);
+                    if let Some(id) = loaded {
+                        for t in self.agent.rete.matches_of(id) {
+                            let ws = self.agent.rete.match_wmes(id, t);
+                            text.push_str(&crate::trace::match_wme_lines(&self.agent, &ws));
+                            text.push_str("\n \n");
+                        }
+                    }
+                }
+                Ok(text)
+            }
+        }
+    }
+
+    /// `print <id>` and `print <timetag>` with `--depth` and `--internal`.
+    pub(super) fn print_memory(
+        &mut self,
+        ctx: &Ctx,
+        target: &str,
+        depth: usize,
+        internal: bool,
+    ) -> CmdResult {
+        if let Some(id) = self.agent.symbols.find_id(target) {
+            return Ok(crate::trace::print_object(&self.agent, id, depth, internal));
+        }
+        if let Ok(tt) = target.parse::<u64>() {
+            if let Some(w) = self.agent.wm.by_timetag(tt) {
+                if let Some(wme) = self.agent.wm.get(w) {
+                    return Ok(format!(
+                        "{}\n",
+                        crate::trace::wme_internal(&self.agent, wme)
+                    ));
+                }
+            }
+            return Err(ctx.error(format!("No WME with timetag {tt}.")));
+        }
+        if is_identifier_shaped(target) {
+            return Ok(format!(
+                "There is no identifier {}.",
+                target.to_ascii_uppercase()
+            ));
+        }
+        Err(super::not_yet(ctx, "print"))
+    }
+}
+
+/// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
+/// (values only), else a number or a string constant (`|...|` quoting removed).
+fn symbol_for_word(agent: &mut crate::agent::Agent, word: &str, allow_id: bool) -> Option<Sym> {
+    if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
+        return Some(agent.symbols.str(inner));
+    }
+    if is_identifier_shaped(word) {
+        if allow_id {
+            return agent.symbols.find_id(word);
+        }
+        return Some(agent.symbols.str(&word.to_ascii_uppercase()));
+    }
+    if is_int_lexeme(word) {
+        return word.parse::<i64>().ok().map(|i| agent.symbols.int(i));
+    }
+    if word.contains('.') {
+        if let Ok(f) = word.parse::<f64>() {
+            return Some(agent.symbols.float(f));
+        }
+    }
+    Some(agent.symbols.str(word))
+}
