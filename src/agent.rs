@@ -6,7 +6,6 @@ use crate::rete::{MatchSink, ProdId, Rete, TokId};
 use crate::symbols::{Sym, Symbols};
 use crate::wm::{Wme, WmeId, WorkingMemory};
 use indexmap::IndexMap;
-use rustc_hash::FxHashMap;
 
 /// When Soar learns (spec §4; `chunk always|never|only|except`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -115,8 +114,6 @@ pub struct Agent {
     pub rete: Rete,
     pub matches: MatchSet,
     productions: IndexMap<String, Loaded>,
-    /// Canonical body text (name and variable names erased) to rule name.
-    bodies: FxHashMap<String, String>,
     pub settings: Settings,
     /// The exploration policy named by `indifferent-selection` (softmax by default, spec §3h).
     pub settings_policy: String,
@@ -139,7 +136,6 @@ impl Agent {
             rete,
             matches,
             productions: IndexMap::new(),
-            bodies: FxHashMap::default(),
             settings: Settings::default(),
             settings_policy: "softmax".to_string(),
             seed: None,
@@ -151,18 +147,20 @@ impl Agent {
     /// rule's matches against working memory are queued at once.
     pub fn add_production(&mut self, p: Production) -> Added {
         let replaced = self.excise(&p.name);
-        let key = canonical_body(&p);
-        if let Some(of) = self.bodies.get(&key) {
-            return Added::Duplicate { of: of.clone() };
-        }
         let id = match self
             .rete
             .add_production(&p, &mut self.symbols, &mut self.matches)
         {
             Ok(id) => id,
-            Err(_) => return Added::Duplicate { of: String::new() },
+            Err(crate::rete::BuildError::Duplicate(of)) => {
+                return Added::Duplicate {
+                    of: self.production_name(of).to_string(),
+                };
+            }
+            Err(crate::rete::BuildError::NoConditions(_)) => {
+                return Added::Duplicate { of: String::new() };
+            }
         };
-        self.bodies.insert(key, p.name.clone());
         self.productions
             .insert(p.name.clone(), Loaded { production: p, id });
         if replaced {
@@ -175,7 +173,6 @@ impl Agent {
     pub fn excise(&mut self, name: &str) -> bool {
         match self.productions.shift_remove(name) {
             Some(l) => {
-                self.bodies.remove(&canonical_body(&l.production));
                 self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true
             }

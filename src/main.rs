@@ -6,6 +6,9 @@ use rusoar::cli::{Event, Interpreter};
 use std::io::{BufRead, IsTerminal, Read, Write};
 use std::process::ExitCode;
 
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn cli() -> ClapCommand {
     ClapCommand::new("rusoar")
         .about("The Soar cognitive architecture in Rust")
@@ -163,16 +166,24 @@ fn brace_depth(text: &str) -> i64 {
 }
 
 fn main() -> ExitCode {
+    let mut interp = Interpreter::new();
+    let code = run(&mut interp);
+    // The process ends here: freeing a large agent piece by piece only costs time.
+    std::mem::forget(interp);
+    code
+}
+
+fn run(interp: &mut Interpreter) -> ExitCode {
+    let interp = &mut *interp;
     let matches = cli().get_matches();
     let steps = ordered_steps(&matches);
-    let mut interp = Interpreter::new();
     if steps.is_empty() {
         if std::io::stdin().is_terminal() {
             println!(
                 "rusoar {} — Soar 9.6 commands; Ctrl-D to quit.",
                 env!("CARGO_PKG_VERSION")
             );
-            return interactive(&mut interp);
+            return interactive(interp);
         }
         let mut text = String::new();
         if std::io::stdin().read_to_string(&mut text).is_err() {
@@ -180,15 +191,15 @@ fn main() -> ExitCode {
             return ExitCode::FAILURE;
         }
         let result = interp.run_text("<stdin>", &text);
-        return finish(&mut interp, result);
+        return finish(interp, result);
     }
     for (_, is_source, value) in steps {
         let result = if is_source {
             let cmd = format!("source {{{value}}}");
             let r = interp.run_text("--source", &cmd);
-            flush(&mut interp);
+            flush(interp);
             if r.is_ok() {
-                print!("{}", load_report(&interp));
+                print!("{}", load_report(interp));
             }
             r
         } else {
@@ -196,12 +207,12 @@ fn main() -> ExitCode {
         };
         if let Err(d) = result {
             if is_source {
-                eprint!("{}", load_report(&interp));
+                eprint!("{}", load_report(interp));
             }
-            report_failure(&mut interp, d);
+            report_failure(interp, d);
             return ExitCode::FAILURE;
         }
-        flush(&mut interp);
+        flush(interp);
         if interp.exit_requested {
             break;
         }

@@ -466,10 +466,12 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
             }
             Step::AddProd(g) => {
                 let p = build(&format!("p{n}"), g);
-                let id = rete
-                    .add_production(&p, &mut syms, &mut sink)
-                    .map_err(|e| TestCaseError::fail(e.to_string()))?;
-                prods.push((id, p));
+                match rete.add_production(&p, &mut syms, &mut sink) {
+                    Ok(id) => prods.push((id, p)),
+                    // Identical to a rule already there: not added (spec §1c).
+                    Err(rusoar::rete::BuildError::Duplicate(_)) => {}
+                    Err(e) => return Err(TestCaseError::fail(e.to_string())),
+                }
             }
             Step::Excise(k) => {
                 if !prods.is_empty() {

@@ -14,6 +14,61 @@ use rustc_hash::{FxHashMap, FxHashSet};
 pub enum BuildError {
     #[error("production {0} has no conditions")]
     NoConditions(String),
+    /// Identical to a production already in the network.
+    #[error("duplicate of production {0:?}")]
+    Duplicate(ProdId),
+}
+
+/// The actions and flags of a rule with each variable replaced by where the conditions bind
+/// it (or by its order of appearance, for variables the actions create).
+fn action_key(p: &Production, bindings: &Bindings) -> String {
+    use crate::production::{Action, RhsTerm};
+    use std::fmt::Write;
+    fn term(t: &RhsTerm, b: &Bindings, fresh: &mut Vec<String>, out: &mut String) {
+        match t {
+            RhsTerm::Var(v) => match b.get(v) {
+                Some((d, f)) => {
+                    let _ = write!(out, "@{d}.{f:?}");
+                }
+                None => {
+                    let k = fresh.iter().position(|x| x == v).unwrap_or_else(|| {
+                        fresh.push(v.clone());
+                        fresh.len() - 1
+                    });
+                    let _ = write!(out, "#{k}");
+                }
+            },
+            RhsTerm::Const(c) => out.push_str(&crate::printer::constant_text(c)),
+            RhsTerm::Call(f) => {
+                out.push('(');
+                out.push_str(&f.name);
+                for a in &f.args {
+                    out.push(' ');
+                    term(a, b, fresh, out);
+                }
+                out.push(')');
+            }
+        }
+    }
+    let mut out = format!("{:?}", p.flags);
+    let mut fresh = Vec::new();
+    for a in &p.actions {
+        out.push('|');
+        match a {
+            Action::Make(m) => {
+                for t in [&m.id, &m.attr, &m.value] {
+                    term(t, bindings, &mut fresh, &mut out);
+                    out.push(' ');
+                }
+                out.push_str(m.pref.symbol());
+                if let Some(r) = &m.referent {
+                    term(r, bindings, &mut fresh, &mut out);
+                }
+            }
+            Action::Call(f) => term(&RhsTerm::Call(f.clone()), bindings, &mut fresh, &mut out),
+        }
+    }
+    out
 }
 
 /// Where the next node attaches: under a token holder, or under a join (whose matches the
@@ -188,7 +243,9 @@ fn source_order_if_joinable(conds: &[Condition], bound: &FxHashSet<String>) -> O
                 for t in [&p.id, &p.attr, &p.value] {
                     relational_vars(t, &mut rel);
                 }
-                if !rel.iter().all(|x| bound.contains(x) || own.contains(x) || !positive_vars.contains(x.as_str())) {
+                if !rel.iter().all(|x| {
+                    bound.contains(x) || own.contains(x) || !positive_vars.contains(x.as_str())
+                }) {
                     return None;
                 }
                 bound.extend(own);
@@ -196,7 +253,11 @@ fn source_order_if_joinable(conds: &[Condition], bound: &FxHashSet<String>) -> O
             other => {
                 let mut v = Vec::new();
                 cond_vars(other, &mut v);
-                if !v.iter().filter(|x| positive_vars.contains(x.as_str())).all(|x| bound.contains(x)) {
+                if !v
+                    .iter()
+                    .filter(|x| positive_vars.contains(x.as_str()))
+                    .all(|x| bound.contains(x))
+                {
                     return None;
                 }
             }
@@ -229,6 +290,23 @@ impl Rete {
             Some((&mut cond_nodes, &mut positive_order, &mut build_order)),
         );
         let parent = cur_node(cur);
+        // A rule whose conditions share every node with another rule, and whose actions are
+        // the same up to variable names, is a duplicate (spec §1c).
+        let action_key = action_key(p, &bindings);
+        let twin = self.nodes[parent as usize]
+            .all_children
+            .iter()
+            .find_map(|&c| match self.nodes[c as usize].kind {
+                Kind::Production { prod } => self
+                    .production(prod)
+                    .filter(|i| i.action_key == action_key)
+                    .map(|_| prod),
+                _ => None,
+            });
+        if let Some(twin) = twin {
+            self.delete_node_and_unused_ancestors(parent, syms, sink);
+            return Err(BuildError::Duplicate(twin));
+        }
         let depth = self.next_depth(cur);
         let pnode = self.new_node(Kind::Production { prod: pid }, parent, depth);
         self.attach(parent, pnode, true);
@@ -239,6 +317,7 @@ impl Rete {
             bindings,
             cond_nodes,
             build_order,
+            action_key,
         }));
         self.fill_new_node(pnode, syms, sink);
         Ok(pid)
@@ -359,17 +438,12 @@ impl Rete {
 
     fn share_or_build_join(&mut self, h: NodeId, key: AlphaKey, tests: Vec<JoinTest>) -> NodeId {
         let amem = self.amem_for(key);
-        for &c in &self.nodes[h as usize].all_children {
-            if let Kind::Join {
-                amem: a, tests: t, ..
-            } = &self.nodes[c as usize].kind
-            {
-                if *a == amem && *t == tests {
-                    self.amems[amem as usize].refs -= 1;
-                    return c;
-                }
-            }
+        let skey = (h, 0u8, amem, tests);
+        if let Some(&c) = self.share.get(&skey) {
+            self.amems[amem as usize].refs -= 1;
+            return c;
         }
+        let tests = skey.3.clone();
         let depth = self.nodes[h as usize].depth;
         let j = self.new_node(
             Kind::Join {
@@ -382,6 +456,7 @@ impl Rete {
             depth,
         );
         self.attach(h, j, true);
+        self.share.insert(skey, j);
         self.link_to_amem(j, amem);
         // Rete/UL: a join with an empty alpha memory or an empty parent starts unlinked.
         if self.amems[amem as usize].count == 0 {
@@ -401,17 +476,12 @@ impl Rete {
         syms: &Symbols,
     ) -> NodeId {
         let amem = self.amem_for(key);
-        for &c in &self.nodes[parent as usize].all_children {
-            if let Kind::Negative {
-                amem: a, tests: t, ..
-            } = &self.nodes[c as usize].kind
-            {
-                if *a == amem && *t == tests {
-                    self.amems[amem as usize].refs -= 1;
-                    return c;
-                }
-            }
+        let skey = (parent, 1u8, amem, tests);
+        if let Some(&c) = self.share.get(&skey) {
+            self.amems[amem as usize].refs -= 1;
+            return c;
         }
+        let tests = skey.3.clone();
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -422,6 +492,7 @@ impl Rete {
             depth,
         );
         self.attach(parent, n, true);
+        self.share.insert(skey, n);
         self.link_to_amem(n, amem);
         self.fill_new_node(n, syms, &mut super::NullSink);
         if self.nodes[n as usize].token_count == 0 {
@@ -482,7 +553,7 @@ impl Rete {
         self.delete_node_and_unused_ancestors(info.pnode, syms, sink);
     }
 
-    fn delete_node_and_unused_ancestors(
+    pub(crate) fn delete_node_and_unused_ancestors(
         &mut self,
         n: NodeId,
         syms: &Symbols,
@@ -504,6 +575,16 @@ impl Rete {
                     break;
                 }
                 self.delete_token_and_descendants(t, syms, sink);
+            }
+            let parent_of = self.nodes[n as usize].parent;
+            match &kind {
+                Kind::Join { amem, tests, .. } => {
+                    self.share.remove(&(parent_of, 0u8, *amem, tests.clone()));
+                }
+                Kind::Negative { amem, tests, .. } => {
+                    self.share.remove(&(parent_of, 1u8, *amem, tests.clone()));
+                }
+                _ => {}
             }
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {

@@ -188,6 +188,9 @@ pub struct ProdInfo {
     pub(crate) cond_nodes: Vec<NodeId>,
     /// Top-level conditions in the order the network joins them.
     pub build_order: Vec<usize>,
+    /// The actions with variables as binding places: equal keys under one parent node mean
+    /// duplicate rules.
+    pub(crate) action_key: String,
 }
 
 pub struct Rete {
@@ -204,6 +207,8 @@ pub struct Rete {
     pub(crate) neg: Vec<NegResult>,
     free_neg: Vec<u32>,
     pub(crate) prods: Vec<Option<ProdInfo>>,
+    /// Join and negative nodes by (parent, kind, alpha memory, tests), for sharing.
+    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, Vec<JoinTest>), NodeId>,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Counters for the benchmarks and `stats`.
@@ -233,6 +238,7 @@ impl Rete {
             neg: Vec::new(),
             free_neg: Vec::new(),
             prods: Vec::new(),
+            share: FxHashMap::default(),
             root: 0,
             root_token: 0,
             right_activations: 0,
