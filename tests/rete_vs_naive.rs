@@ -592,3 +592,30 @@ proptest! {
         run(&steps)?;
     }
 }
+
+#[test]
+fn regression_same_alpha_memory_twice_in_one_rule() {
+    let c = |id, attr, value| CondGen {
+        id,
+        attr,
+        var_attr: false,
+        value,
+        acceptable: false,
+    };
+    let steps = vec![
+        Step::AddProd(vec![
+            CondKind::Pos(c(0, 0, ValGen::Str(1))),
+            CondKind::Pos(c(1, 1, ValGen::ConjNe(1, 0))),
+        ]),
+        Step::AddWme(0, 1, 0, false),
+        Step::RemoveWme(0),
+        Step::AddProd(vec![
+            CondKind::Pos(c(0, 0, ValGen::Str(1))),
+            CondKind::Pos(c(1, 1, ValGen::Var(1))),
+            CondKind::Pos(c(1, 1, ValGen::Var(1))),
+        ]),
+        Step::AddWme(0, 0, 8, false),
+        Step::AddWme(0, 1, 0, false),
+    ];
+    run(&steps).unwrap();
+}

@@ -214,6 +214,13 @@ impl Interpreter {
         if self.after_star && !this_is_star {
             self.events.push(Event::Text("\n".into()));
         }
+        if self.after_star && this_is_star {
+            // One event per line of marks, not one per rule.
+            if let Some(Event::Text(t)) = self.events.last_mut() {
+                t.push_str(&result);
+                return;
+            }
+        }
         self.after_star = this_is_star;
         let mut r = result;
         if !this_is_star && !r.ends_with('\n') {

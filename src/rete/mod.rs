@@ -452,15 +452,10 @@ impl Rete {
     }
 
     fn alpha_activation(&mut self, a: AmemId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
-        let was_empty = self.amems[a as usize].count == 0;
+        // Left-unlinked joins relink themselves when their right activation comes (lazily, as
+        // Doorenbos does): relinking them all first would let a descendant on the same alpha
+        // memory see this WME twice.
         self.amem_insert(a, w);
-        if was_empty {
-            // The memory stops being empty: left-unlinked joins come back (Rete/UL).
-            let succ = self.amems[a as usize].successors.clone();
-            for n in succ {
-                self.relink_left(n);
-            }
-        }
         let succ = self.amems[a as usize].successors.clone();
         for &n in succ.iter().rev() {
             if !self.nodes[n as usize].alive {
@@ -872,8 +867,7 @@ impl Rete {
         self.amems[amem as usize].successors.retain(|c| *c != n);
     }
 
-    /// Puts a node back among its alpha memory's successors, ahead of (activated before) any
-    /// linked ancestor on the same memory, so descendants see a new WME first (Doorenbos §4.3).
+    /// Puts a node back among its alpha memory's successors.
     pub(crate) fn relink_right(&mut self, n: NodeId) {
         let amem = match &mut self.nodes[n as usize].kind {
             Kind::Join {
@@ -897,47 +891,28 @@ impl Rete {
         self.link_to_amem(n, amem);
     }
 
-    pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
-        if self.amems[amem as usize].successors.is_empty() {
-            self.amems[amem as usize].successors.push(n);
-            return;
-        }
-        let mut anc = self.nodes[n as usize].parent;
-        let mut pos = None;
-        while anc != NIL {
-            if self.uses_amem_linked(anc, amem) {
-                pos = self.amems[amem as usize]
-                    .successors
-                    .iter()
-                    .position(|c| *c == anc);
-                if pos.is_some() {
-                    break;
-                }
-            }
-            anc = self.nodes[anc as usize].parent;
-        }
-        let succ = &mut self.amems[amem as usize].successors;
-        match pos {
-            // Activation runs from the end of the vector: just after the ancestor is before it.
-            Some(p) => succ.insert(p + 1, n),
-            None => succ.push(n),
+    /// The depth of the token a WME completes at this node: descendants always rank deeper
+    /// than their ancestors.
+    fn rank(&self, n: NodeId) -> u32 {
+        let node = &self.nodes[n as usize];
+        match node.kind {
+            Kind::Join { .. } => self.nodes[node.parent as usize].depth + 1,
+            _ => node.depth + 1,
         }
     }
 
-    fn uses_amem_linked(&self, n: NodeId, amem: AmemId) -> bool {
-        match &self.nodes[n as usize].kind {
-            Kind::Join {
-                amem: a,
-                right_unlinked,
-                ..
-            }
-            | Kind::Negative {
-                amem: a,
-                right_unlinked,
-                ..
-            } => *a == amem && !right_unlinked,
-            _ => false,
-        }
+    /// Links a node into its alpha memory's successors so that deeper nodes are activated
+    /// first: a new WME must reach a descendant before an ancestor on the same memory, or the
+    /// descendant would see it twice (Doorenbos §4.3.2). Among equal ranks the newest link is
+    /// activated first, as Soar's head insertion does.
+    pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
+        let rank = self.rank(n);
+        let succ = std::mem::take(&mut self.amems[amem as usize].successors);
+        // The vector is in reverse activation order: ascending rank, newest last per rank.
+        let pos = succ.partition_point(|&x| self.rank(x) <= rank);
+        let mut succ = succ;
+        succ.insert(pos, n);
+        self.amems[amem as usize].successors = succ;
     }
 
     // ------------------------------------------------------------------- queries
