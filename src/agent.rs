@@ -107,6 +107,9 @@ pub struct TopState {
     pub output_link: Sym,
 }
 
+/// A program's hook at the input or output phase (spec §2 I/O link).
+pub type PhaseCallback = Box<dyn FnMut(&mut Agent)>;
+
 pub struct Agent {
     pub name: String,
     pub symbols: Symbols,
@@ -120,6 +123,16 @@ pub struct Agent {
     /// The seed given to `srand`, if any.
     pub seed: Option<u32>,
     pub top: TopState,
+    /// The decision cycle's memory: instantiations, preferences, slots, goals, counters.
+    pub decider: crate::decide::state::DecideState,
+    /// Soar's random numbers (`srand`, exploration, `rand-int`).
+    pub rng: crate::rng::Mt19937,
+    /// Trace and `write` output not yet taken by the front end.
+    pub output: String,
+    /// Called at the input phase of every decision (the environment's hook).
+    pub input_callback: Option<PhaseCallback>,
+    /// Called at the output phase of every decision.
+    pub output_callback: Option<PhaseCallback>,
 }
 
 impl Agent {
@@ -140,6 +153,11 @@ impl Agent {
             settings_policy: "softmax".to_string(),
             seed: None,
             top,
+            decider: crate::decide::state::DecideState::new(),
+            rng: crate::rng::Mt19937::default(),
+            output: String::new(),
+            input_callback: None,
+            output_callback: None,
         }
     }
 
@@ -235,7 +253,7 @@ impl Agent {
 
 /// Creates the top state as Soar does (spec §2): `I1`–`I3` first, then `S1` and its WMEs
 /// with timetags 1–13 in Soar's order.
-fn create_top_state(
+pub(crate) fn create_top_state(
     symbols: &mut Symbols,
     wm: &mut WorkingMemory,
     rete: &mut Rete,

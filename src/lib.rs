@@ -2,12 +2,14 @@
 pub mod agent;
 pub mod ast;
 pub mod cli;
+pub mod decide;
 pub mod lexer;
 pub mod parser;
 pub mod printer;
 pub mod production;
 pub mod rete;
 pub mod rhs_functions;
+pub mod rng;
 pub mod robot;
 pub mod source;
 pub mod support;

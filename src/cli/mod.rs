@@ -7,6 +7,7 @@ mod files;
 mod memory;
 pub mod options;
 mod rules;
+mod running;
 mod settings;
 
 use crate::agent::Agent;
@@ -184,7 +185,9 @@ impl Interpreter {
                     return Err((self.failing(d), at));
                 }
             };
-            let result = match self.execute(&cmd) {
+            let result = self.execute(&cmd);
+            self.flush_agent_output();
+            let result = match result {
                 Ok(r) => r,
                 Err(d) => return Err((self.failing(d), cmd.span)),
             };
@@ -289,6 +292,8 @@ impl Interpreter {
             "print" => self.cmd_print(&ctx, args),
             "production" => self.cmd_production(&ctx, args),
             "wm" => self.cmd_wm(&ctx, args),
+            "run" => self.cmd_run(&ctx, args),
+            "stats" => self.cmd_stats(),
             "help" => Ok(cmd_help(args)),
             "exit" => {
                 self.exit_requested = true;
@@ -349,7 +354,7 @@ fn not_yet(ctx: &Ctx, name: &str) -> Diagnostic {
         .at(ctx.cmd.span)
         .with_label("this command parses but does not run yet")
         .with_note(format!(
-            "`{name}` needs working memory and the decision cycle, which later issues add; see README.md \"What works\""
+            "`{name}` is not implemented in rusoar yet; see README.md \"What works\""
         ))
 }
 

@@ -179,6 +179,7 @@ impl Interpreter {
         match args.first().map(String::as_str) {
             Some("excise") => self.cmd_excise(ctx, &args[1..]),
             Some("matches") => self.cmd_matches(ctx, &args[1..]),
+            Some("firing-counts") => self.cmd_firing_counts(ctx, &args[1..]),
             Some(_) | None => Err(super::not_yet(ctx, "production")),
         }
     }

@@ -171,6 +171,11 @@ impl Interpreter {
                     .with_label("expected on or off")),
                 }
             }
+            Some("init") => self.cmd_init(),
+            Some("stop") => {
+                self.agent.decider.stop_requested = true;
+                Ok(String::new())
+            }
             Some("version") => Ok(format!(
                 "rusoar {} (Soar 9.6 semantics)\n",
                 env!("CARGO_PKG_VERSION")
@@ -267,6 +272,7 @@ impl Interpreter {
                     None => 0,
                 };
                 self.agent.seed = Some(seed);
+                self.agent.rng.seed(seed);
                 Ok(format!("Random number generator seed set to {seed}\n"))
             }
             _ => Err(super::not_yet(ctx, "decide")),

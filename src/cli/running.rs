@@ -1,0 +1,110 @@
+//! `run`, `soar init`, `firing-counts` and `stats` over the decision cycle (spec §3a, §6a).
+
+use super::options::{self, opt};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::decide::cycle::RunUnit;
+use crate::source::Diagnostic;
+
+impl Interpreter {
+    /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
+    /// decisions; a unit alone is one of it (spec §6a).
+    pub(super) fn cmd_run(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let specs = [
+            opt('d', "decision"),
+            opt('e', "elaboration"),
+            opt('p', "phase"),
+            opt('f', "forever"),
+            opt('o', "output"),
+            opt('s', "self"),
+            opt('u', "update"),
+            opt('n', "noupdate"),
+            opt('g', "goal"),
+        ];
+        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        let count = match parsed.args.first() {
+            Some(c) => Some(c.parse::<u64>().map_err(|_| {
+                Diagnostic::error(format!("Integer expected: {c}"))
+                    .at(ctx.arg_span(0))
+                    .with_label("not a count")
+            })?),
+            None => None,
+        };
+        let unit = if parsed.has("elaboration") {
+            RunUnit::Elaborations
+        } else if parsed.has("phase") {
+            RunUnit::Phases
+        } else if parsed.has("decision") || count.is_some() {
+            RunUnit::Decisions
+        } else {
+            RunUnit::Forever
+        };
+        let n = count.unwrap_or(1);
+        let (decisions, fired) = self.agent.run(n, unit);
+        self.flush_agent_output();
+        let dc = match decisions {
+            1 => "1 decision cycle executed.".to_string(),
+            d => format!("{d} decision cycles executed."),
+        };
+        let rules = match fired {
+            0 => "No rules fired.".to_string(),
+            1 => "1 rule fired.".to_string(),
+            f => format!("{f} rules fired."),
+        };
+        Ok(format!("\n\n--> {dc} {rules} "))
+    }
+
+    /// Moves the agent's trace output into the event stream.
+    pub(super) fn flush_agent_output(&mut self) {
+        if !self.agent.output.is_empty() {
+            let text = std::mem::take(&mut self.agent.output);
+            self.events.push(super::Event::Text(text));
+        }
+    }
+
+    pub(super) fn cmd_init(&mut self) -> CmdResult {
+        self.agent.init_soar();
+        self.agent.print_initial_state();
+        self.flush_agent_output();
+        Ok("\nAgent reinitialized.\n".into())
+    }
+
+    /// `production firing-counts [rule]`: `%6d:  name`, most fired first.
+    pub(super) fn cmd_firing_counts(&mut self, _ctx: &Ctx, args: &[String]) -> CmdResult {
+        let mut rows: Vec<(u64, String)> = self
+            .agent
+            .productions()
+            .filter(|p| args.is_empty() || args.contains(&p.name))
+            .map(|p| {
+                let id = self.agent.loaded(&p.name).map(|l| l.id);
+                (id.map_or(0, |i| self.agent.firing_count(i)), p.name.clone())
+            })
+            .collect();
+        if rows.is_empty() {
+            return Err(
+                Diagnostic::error("No productions in memory of those type(s).")
+                    .at(_ctx.cmd.span)
+                    .with_label("nothing to count"),
+            );
+        }
+        rows.sort_by_key(|r| std::cmp::Reverse(r.0));
+        Ok(rows
+            .iter()
+            .map(|(n, name)| format!("{n:>6}:  {name}\n"))
+            .collect())
+    }
+
+    /// `stats`: the counts of spec §6a (timings are not compared).
+    pub(super) fn cmd_stats(&mut self) -> CmdResult {
+        let d = &self.agent.decider;
+        Ok(format!(
+            "Soar 9.6 (rusoar) on agent {}\n{} productions\n{} decisions\n{} elaboration cycles\n{} production firings\n{} wme changes\nWM size: {} current\n",
+            self.agent.name,
+            self.agent.production_count(),
+            d.decisions,
+            d.e_cycles,
+            d.firings,
+            d.wme_changes,
+            self.agent.wm.len()
+        ))
+    }
+}

@@ -1,0 +1,921 @@
+//! The run loop (spec §3a–§3e): phases, elaboration cycles, firing and retracting
+//! instantiations, slots and working-memory changes, operator selection, impasses and
+//! substates. A first, functional version: the order of firings, identifiers and timetags
+//! follows the spec where noted; goal dependency sets, results' justifications and the
+//! per-goal "waterfall" are not modelled yet (see README).
+
+use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
+use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference};
+use crate::agent::Agent;
+use crate::ast::Constant;
+use crate::production::{Action, PrefKind, RhsTerm};
+use crate::rete::{ProdId, TokId};
+use crate::symbols::{Sym, SymData};
+use crate::wm::WmeId;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+/// How far `run` goes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RunUnit {
+    Decisions,
+    Phases,
+    Elaborations,
+    Forever,
+}
+
+fn pref_type(k: PrefKind) -> PrefType {
+    match k {
+        PrefKind::Acceptable => PrefType::Acceptable,
+        PrefKind::Reject => PrefType::Reject,
+        PrefKind::Require => PrefType::Require,
+        PrefKind::Prohibit => PrefType::Prohibit,
+        PrefKind::Best => PrefType::Best,
+        PrefKind::Worst => PrefType::Worst,
+        PrefKind::Indifferent => PrefType::UnaryIndifferent,
+        PrefKind::Better => PrefType::Better,
+        PrefKind::Worse => PrefType::Worse,
+        PrefKind::BinaryIndifferent => PrefType::BinaryIndifferent,
+        PrefKind::NumericIndifferent => PrefType::NumericIndifferent,
+    }
+}
+
+impl Agent {
+    fn out(&mut self, s: &str) {
+        self.output.push_str(s);
+    }
+
+    fn operator_sym(&mut self) -> Sym {
+        self.symbols.str("operator")
+    }
+
+    /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
+    /// top (spec §6c).
+    fn decision_prefix(&self, level: u32) -> String {
+        format!(
+            "\n{:>6}: {}",
+            self.decider.d_cycle_count,
+            "   ".repeat(level.saturating_sub(1) as usize)
+        )
+    }
+
+    /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
+    pub fn print_initial_state(&mut self) {
+        if self.settings.trace_level >= 1 {
+            let s = format!("\n{:>6}: ==>S: {} ", 0, self.symbols.text(self.top.state));
+            self.out(&s);
+        }
+    }
+
+    /// Runs `n` units (spec §3a, `run`): decisions stop before the apply phase, as 9.6's
+    /// default stop phase does. Returns (decisions executed, rules fired).
+    pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
+        self.decider.stop_requested = false;
+        if self.decider.goals.is_empty() {
+            self.decider.goals.push(Goal {
+                state: self.top.state,
+                level: 1,
+                operator: None,
+                impasse: None,
+                items: Vec::new(),
+                wmes: Vec::new(),
+                slot_changed: true,
+            });
+        }
+        let start_dc = self.decider.decisions;
+        let start_firings = self.decider.firings;
+        let mut done = 0u64;
+        while !self.decider.halted
+            && !self.decider.stop_requested
+            && (unit == RunUnit::Forever || done < n)
+        {
+            let phase = self.decider.phase.unwrap_or(Phase::Input);
+            let e_before = self.decider.e_cycles;
+            self.do_phase(phase);
+            match unit {
+                RunUnit::Decisions | RunUnit::Forever => {
+                    if phase == Phase::Decide {
+                        done += 1;
+                    }
+                }
+                RunUnit::Phases => done += 1,
+                RunUnit::Elaborations => done += (self.decider.e_cycles - e_before).max(1),
+            }
+            // Endless state no-changes stop at max-goal-depth (spec §3a).
+            if unit == RunUnit::Forever && done > 1_000_000_000 {
+                break;
+            }
+        }
+        if self.decider.halted && self.decider.phase.is_some() {
+            self.out("\nSystem halted.");
+        }
+        (
+            self.decider.decisions - start_dc,
+            self.decider.firings - start_firings,
+        )
+    }
+
+    fn do_phase(&mut self, phase: Phase) {
+        match phase {
+            Phase::Input => {
+                self.run_input_callbacks();
+                self.decider.phase = Some(Phase::Propose);
+            }
+            Phase::Propose => {
+                self.decider.e_cycles_this_phase = 0;
+                while self.has_pending(false) {
+                    if !self.elaboration_cycle(false) {
+                        break;
+                    }
+                    if self.max_elaborations_reached("decide") {
+                        break;
+                    }
+                }
+                self.decider.phase = Some(Phase::Decide);
+            }
+            Phase::Decide => {
+                self.decide_context_slots();
+                self.decider.decisions += 1;
+                self.decider.e_cycles_this_phase = 0;
+                self.decider.phase = Some(Phase::Apply);
+            }
+            Phase::Apply => {
+                while self.has_pending(true) {
+                    // IE before PE: i-supported firings reach quiescence first (spec §3a).
+                    let pe = !self.has_pending(false);
+                    if !self.elaboration_cycle(pe) {
+                        break;
+                    }
+                    if self.max_elaborations_reached("output") {
+                        break;
+                    }
+                }
+                self.decider.phase = Some(Phase::Output);
+            }
+            Phase::Output => {
+                self.run_output_callbacks();
+                self.decider.d_cycle_count += 1;
+                self.decider.phase = Some(Phase::Input);
+            }
+        }
+    }
+
+    fn max_elaborations_reached(&mut self, next: &str) -> bool {
+        if self.decider.e_cycles_this_phase >= self.settings.max_elaborations.max(1) as u64 {
+            if self.settings.warnings {
+                let s = format!("\nWarning: reached max-elaborations; proceeding to {next} phase.");
+                self.out(&s);
+            }
+            return true;
+        }
+        false
+    }
+
+    /// Is there an assertion (of i-support only, unless `any`) or a retraction to process?
+    fn has_pending(&self, any: bool) -> bool {
+        if !self.matches.retractions.is_empty() {
+            return true;
+        }
+        self.matches
+            .assertions
+            .iter()
+            .any(|&(p, t)| any || !crate::support::tests_selected_operator(self, p, t))
+    }
+
+    /// One elaboration cycle: retractions, then the new matches of one support type fire in
+    /// parallel, then all preference and working-memory changes happen together (spec §3a).
+    fn elaboration_cycle(&mut self, o_support: bool) -> bool {
+        self.decider.e_cycles += 1;
+        self.decider.e_cycles_this_phase += 1;
+        let retractions = std::mem::take(&mut self.matches.retractions);
+        // Fire from the head: the newest match first (spec §3i).
+        let pending = std::mem::take(&mut self.matches.assertions);
+        let mut keep = Vec::new();
+        let mut to_fire = Vec::new();
+        for (p, t) in pending.into_iter().rev() {
+            let o = crate::support::tests_selected_operator(self, p, t);
+            if o == o_support {
+                to_fire.push((p, t));
+            } else {
+                keep.push((p, t));
+            }
+        }
+        keep.reverse();
+        self.matches.assertions = keep;
+        let mut new_prefs = Vec::new();
+        for (p, t) in to_fire {
+            self.fire(p, t, o_support, &mut new_prefs);
+        }
+        for (p, t) in retractions {
+            self.retract(p, t);
+        }
+        self.assert_preferences(new_prefs);
+        self.update_slots();
+        true
+    }
+
+    fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
+        let name = self.production_name(p).to_string();
+        let Some(prod) = self.production(&name).cloned() else {
+            return;
+        };
+        self.decider.firings += 1;
+        *self.decider.firing_counts.entry(p).or_default() += 1;
+        if self.settings.trace_level >= 3 {
+            self.out(&format!("\nFiring {name}"));
+        }
+        let goal = crate::support::match_goal(self, p, t);
+        let level = goal
+            .and_then(|g| self.symbols.id_data(g))
+            .map_or(1, |d| d.level);
+        let inst_id = self.decider.insts.len() as InstId;
+        let mut inst = Instantiation {
+            prod: p,
+            token: t,
+            goal,
+            o_support: o_support || prod.flags.o_support,
+            prefs: Vec::new(),
+            alive: true,
+        };
+        if prod.flags.i_support {
+            inst.o_support = false;
+        }
+        let mut new_ids: FxHashMap<String, Sym> = FxHashMap::default();
+        for action in &prod.actions {
+            match action {
+                Action::Call(f) => {
+                    let args: Option<Vec<Sym>> = f
+                        .args
+                        .iter()
+                        .map(|a| self.rhs_value(p, t, a, level, &mut new_ids))
+                        .collect();
+                    if let Some(args) = args {
+                        let _ = self.call_rhs(&f.name, &args);
+                    }
+                }
+                Action::Make(m) => {
+                    let id = self.rhs_value(p, t, &m.id, level, &mut new_ids);
+                    let attr = self.rhs_value(p, t, &m.attr, level, &mut new_ids);
+                    let value = self.rhs_value(p, t, &m.value, level, &mut new_ids);
+                    let referent = match &m.referent {
+                        Some(r) => match self.rhs_value(p, t, r, level, &mut new_ids) {
+                            Some(x) => Some(x),
+                            None => continue,
+                        },
+                        None => None,
+                    };
+                    let (Some(id), Some(attr), Some(value)) = (id, attr, value) else {
+                        continue;
+                    };
+                    if !self.symbols.is_id(id) {
+                        continue;
+                    }
+                    let kind = pref_type(m.pref);
+                    let number = match (kind, referent.map(|r| self.symbols.get(r).clone())) {
+                        (PrefType::NumericIndifferent, Some(SymData::Int(i))) => Some(i as f64),
+                        (PrefType::NumericIndifferent, Some(SymData::Float(f))) => Some(f),
+                        _ => None,
+                    };
+                    let pid = self.decider.prefs.len() as PrefId;
+                    self.decider.prefs.push(Preference {
+                        kind,
+                        id,
+                        attr,
+                        value,
+                        referent,
+                        number,
+                        o_support: inst.o_support,
+                        inst: Some(inst_id),
+                        alive: true,
+                    });
+                    inst.prefs.push(pid);
+                    new_prefs.push(pid);
+                }
+            }
+        }
+        self.decider.inst_by_token.insert((p, t), inst_id);
+        self.decider.insts.push(inst);
+    }
+
+    /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
+    /// identifier, shared by all its uses (spec §1e: its letter, `S` read as `I`).
+    fn rhs_value(
+        &mut self,
+        p: ProdId,
+        t: TokId,
+        term: &RhsTerm,
+        level: u32,
+        new_ids: &mut FxHashMap<String, Sym>,
+    ) -> Option<Sym> {
+        match term {
+            RhsTerm::Const(c) => Some(self.symbols.constant(c)),
+            RhsTerm::Var(v) => {
+                if let Some(s) = self.rete.binding(p, t, v) {
+                    return Some(s);
+                }
+                if let Some(s) = new_ids.get(v) {
+                    return Some(*s);
+                }
+                let letter = v
+                    .chars()
+                    .nth(1)
+                    .filter(|c| c.is_ascii_alphabetic())
+                    .map(|c| c.to_ascii_uppercase())
+                    .unwrap_or('I');
+                let letter = if letter == 'S' { 'I' } else { letter };
+                let s = self.symbols.new_id(letter, level);
+                new_ids.insert(v.clone(), s);
+                Some(s)
+            }
+            RhsTerm::Call(f) => {
+                let mut args = Vec::with_capacity(f.args.len());
+                for a in &f.args {
+                    args.push(self.rhs_value(p, t, a, level, new_ids)?);
+                }
+                match self.call_rhs(&f.name, &args) {
+                    Ok(Some(s)) => Some(s),
+                    _ => None,
+                }
+            }
+        }
+    }
+
+    fn retract(&mut self, p: ProdId, t: TokId) {
+        let Some(inst_id) = self.decider.inst_by_token.remove(&(p, t)) else {
+            return;
+        };
+        let name = self.production_name(p).to_string();
+        if self.settings.trace_level >= 3 {
+            self.out(&format!("\nRetracting {name}"));
+        }
+        let inst = &mut self.decider.insts[inst_id as usize];
+        inst.alive = false;
+        let prefs = std::mem::take(&mut inst.prefs);
+        for pid in prefs {
+            let pref = &mut self.decider.prefs[pid as usize];
+            pref.inst = None;
+            // O-supported preferences outlive their instantiation (spec §3a).
+            if pref.o_support || !pref.alive {
+                continue;
+            }
+            pref.alive = false;
+            let key = (pref.id, pref.attr);
+            if let Some(slot) = self.decider.slots.get_mut(&key) {
+                slot.prefs.retain(|x| *x != pid);
+            }
+            self.mark_changed(key);
+        }
+    }
+
+    fn mark_changed(&mut self, key: (Sym, Sym)) {
+        if !self.decider.changed.contains(&key) {
+            self.decider.changed.push(key);
+        }
+        let op = self.operator_sym();
+        if key.1 == op {
+            if let Some(g) = self.decider.goals.iter_mut().find(|g| g.state == key.0) {
+                g.slot_changed = true;
+            }
+        }
+    }
+
+    /// O-supported rejects remove every preference for their value first; the other new
+    /// preferences join their slots, newest at the head (spec §3a).
+    fn assert_preferences(&mut self, new_prefs: Vec<PrefId>) {
+        for &pid in &new_prefs {
+            let p = self.decider.prefs[pid as usize].clone();
+            if p.kind == PrefType::Reject && p.o_support {
+                let key = (p.id, p.attr);
+                let mut removed = Vec::new();
+                if let Some(slot) = self.decider.slots.get_mut(&key) {
+                    slot.prefs.retain(|x| {
+                        let keep = self.decider.prefs[*x as usize].value != p.value;
+                        if !keep {
+                            removed.push(*x);
+                        }
+                        keep
+                    });
+                }
+                for r in removed {
+                    self.decider.prefs[r as usize].alive = false;
+                }
+                self.decider.prefs[pid as usize].alive = false;
+                self.mark_changed(key);
+            }
+        }
+        for pid in new_prefs.into_iter().rev() {
+            let p = &self.decider.prefs[pid as usize];
+            if !p.alive {
+                continue;
+            }
+            let key = (p.id, p.attr);
+            self.decider
+                .slots
+                .entry(key)
+                .or_default()
+                .prefs
+                .insert(0, pid);
+            self.mark_changed(key);
+        }
+    }
+
+    fn is_context_slot(&mut self, key: (Sym, Sym)) -> bool {
+        let op = self.operator_sym();
+        key.1 == op && self.symbols.is_goal(key.0)
+    }
+
+    /// Brings working memory in line with the changed slots (spec §2, §3d): a non-context
+    /// slot shows each value with an acceptable and no reject preference; an operator slot
+    /// shows its acceptable preferences as `+` WMEs. Then unlinked structure goes.
+    fn update_slots(&mut self) {
+        let changed = std::mem::take(&mut self.decider.changed);
+        let mut adds: Vec<(Sym, Sym, Sym, bool)> = Vec::new();
+        let mut removes: Vec<WmeId> = Vec::new();
+        let mut context = Vec::new();
+        for key in changed {
+            if self.is_context_slot(key) {
+                context.push(key);
+                continue;
+            }
+            let slot = self.decider.slots.get(&key).cloned().unwrap_or_default();
+            let mut want: Vec<Sym> = Vec::new();
+            for &pid in slot.prefs.iter().rev() {
+                let p = &self.decider.prefs[pid as usize];
+                if p.kind == PrefType::Acceptable
+                    && !want.contains(&p.value)
+                    && !slot.prefs.iter().any(|&q| {
+                        let q = &self.decider.prefs[q as usize];
+                        q.kind == PrefType::Reject && q.value == p.value
+                    })
+                {
+                    want.push(p.value);
+                }
+            }
+            for (&(v, acc), &w) in &slot.wmes {
+                if !acc && !want.contains(&v) {
+                    removes.push(w);
+                }
+            }
+            for v in want {
+                if !slot.wmes.contains_key(&(v, false)) {
+                    adds.push((key.0, key.1, v, false));
+                }
+            }
+        }
+        for key in context {
+            let slot = self.decider.slots.get(&key).cloned().unwrap_or_default();
+            let mut want: Vec<Sym> = Vec::new();
+            for &pid in slot.prefs.iter().rev() {
+                let p = &self.decider.prefs[pid as usize];
+                if p.kind == PrefType::Acceptable && !want.contains(&p.value) {
+                    want.push(p.value);
+                }
+            }
+            for (&(v, acc), &w) in &slot.wmes {
+                if acc && !want.contains(&v) {
+                    removes.push(w);
+                }
+            }
+            for v in want {
+                if !slot.wmes.contains_key(&(v, true)) {
+                    adds.push((key.0, key.1, v, true));
+                }
+            }
+            self.check_operator_consistency(key);
+        }
+        for w in removes {
+            self.remove_slot_wme(w);
+        }
+        for (id, attr, value, acc) in adds {
+            self.add_slot_wme(id, attr, value, acc);
+        }
+        self.collect_garbage();
+    }
+
+    fn add_slot_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
+        let w = self.add_wme(id, attr, value, acceptable);
+        self.decider.wme_changes += 1;
+        self.decider
+            .slots
+            .entry((id, attr))
+            .or_default()
+            .wmes
+            .insert((value, acceptable), w);
+        if self.settings.trace_level >= 4 {
+            let wme = *self.wm.get(w).expect("just added");
+            self.out(&format!(
+                "\n=>WM: {}",
+                crate::trace::wme_internal(self, &wme)
+            ));
+        }
+        w
+    }
+
+    fn remove_slot_wme(&mut self, w: WmeId) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        if self.settings.trace_level >= 4 {
+            self.out(&format!(
+                "\n<=WM: {}",
+                crate::trace::wme_internal(self, &wme)
+            ));
+        }
+        if let Some(slot) = self.decider.slots.get_mut(&(wme.id, wme.attr)) {
+            slot.wmes.remove(&(wme.value, wme.acceptable));
+        }
+        self.decider.wme_changes += 1;
+        self.remove_wme(w);
+    }
+
+    /// The operator installed in a goal stays while it is still a candidate; otherwise it
+    /// goes at once, with every substate below (spec §3b).
+    fn check_operator_consistency(&mut self, key: (Sym, Sym)) {
+        let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
+            return;
+        };
+        let Some((op, w)) = self.decider.goals[gi].operator else {
+            return;
+        };
+        let prefs = self.slot_prefs(key);
+        let still = prefs
+            .iter()
+            .any(|p| p.kind == PrefType::Acceptable && p.value == op)
+            && !prefs
+                .iter()
+                .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
+        if still {
+            return;
+        }
+        self.remove_goals_below(gi);
+        self.decider.goals[gi].operator = None;
+        if let Some(wme) = self.wm.get(w).copied() {
+            if self.settings.trace_level >= 4 {
+                self.out(&format!(
+                    "\n<=WM: {}",
+                    crate::trace::wme_internal(self, &wme)
+                ));
+            }
+            self.remove_wme(w);
+        }
+    }
+
+    fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
+        let Some(slot) = self.decider.slots.get(&key) else {
+            return Vec::new();
+        };
+        // Candidates come out in the reverse of the slot's list (spec §3d).
+        slot.prefs
+            .iter()
+            .rev()
+            .map(|&pid| {
+                let p = &self.decider.prefs[pid as usize];
+                Pref {
+                    kind: p.kind,
+                    value: p.value,
+                    referent: p.referent,
+                    number: p.number,
+                }
+            })
+            .collect()
+    }
+
+    /// Decides the first operator slot without an installed operator, from the top; if every
+    /// goal has one, the bottom goal has an operator no-change (spec §3e).
+    fn decide_context_slots(&mut self) {
+        let op = self.operator_sym();
+        let policy = match self.settings_policy.as_str() {
+            "first" => Policy::First,
+            "last" => Policy::Last,
+            "epsilon-greedy" => Policy::EpsilonGreedy { epsilon: 0.1 },
+            "boltzmann" => Policy::Boltzmann { temperature: 25.0 },
+            _ => Policy::Softmax,
+        };
+        let n = self.decider.goals.len();
+        for gi in 0..n {
+            let goal = self.decider.goals[gi].clone();
+            // Decidable: no installed operator and the preferences changed (spec §3e).
+            if goal.operator.is_some() || !goal.slot_changed {
+                continue;
+            }
+            self.decider.goals[gi].slot_changed = false;
+            let prefs = self.slot_prefs((goal.state, op));
+            let outcome = procedure::decide(&prefs, policy, NumericMode::Sum, &mut self.rng);
+            let (kind, on_operator, items) = match outcome {
+                Outcome::Winner(o) => {
+                    self.remove_goals_below(gi);
+                    let w = self.add_wme(goal.state, op, o, false);
+                    self.decider.wme_changes += 1;
+                    self.decider.goals[gi].operator = Some((o, w));
+                    if self.settings.trace_level >= 1 {
+                        let name = self.operator_name(o);
+                        let mut line = format!(
+                            "{}   O: {} {}",
+                            self.decision_prefix(goal.level),
+                            self.symbols.text(o),
+                            name
+                        );
+                        if !name.is_empty() {
+                            line = line.trim_end().to_string();
+                        }
+                        self.out(&line);
+                    }
+                    return;
+                }
+                Outcome::NoCandidates => (ImpasseKind::NoChange, false, Vec::new()),
+                Outcome::Tie(items) => (ImpasseKind::Tie, true, items),
+                Outcome::Conflict(items) => (ImpasseKind::Conflict, true, items),
+                Outcome::ConstraintFailure(items) => (ImpasseKind::ConstraintFailure, true, items),
+            };
+            // The same impasse again changes nothing here: look further down.
+            let same = self
+                .decider
+                .goals
+                .get(gi + 1)
+                .is_some_and(|g| g.impasse == Some((kind, on_operator)) && g.items == items);
+            if same {
+                continue;
+            }
+            if gi + 1 < n || kind != ImpasseKind::NoChange || on_operator {
+                self.impasse(gi, kind, on_operator, items);
+                return;
+            }
+            self.impasse(gi, kind, on_operator, items);
+            return;
+        }
+        // Nothing decidable: the bottom goal made no progress (spec §3e).
+        if let Some(last) = n.checked_sub(1) {
+            let on_operator = self.decider.goals[last].operator.is_some();
+            self.impasse(last, ImpasseKind::NoChange, on_operator, Vec::new());
+        }
+    }
+
+    fn operator_name(&mut self, o: Sym) -> String {
+        let name = self.symbols.str("name");
+        let vals: Vec<String> = self
+            .wm
+            .of_id(o)
+            .iter()
+            .filter_map(|w| self.wm.get(*w))
+            .filter(|w| w.attr == name && !w.acceptable)
+            .map(|w| self.symbols.text(w.value))
+            .collect();
+        if vals.is_empty() {
+            String::new()
+        } else {
+            format!("({})", vals.join(" "))
+        }
+    }
+
+    /// Creates (or keeps) the substate for an impasse at goal `gi` (spec §2, §3e).
+    fn impasse(&mut self, gi: usize, kind: ImpasseKind, on_operator: bool, items: Vec<Sym>) {
+        if let Some(sub) = self.decider.goals.get(gi + 1) {
+            if sub.impasse == Some((kind, on_operator)) && sub.items == items {
+                return;
+            }
+        }
+        self.remove_goals_below(gi);
+        let parent = self.decider.goals[gi].state;
+        let level = self.decider.goals[gi].level + 1;
+        if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
+            if self.settings.trace_level >= 1 {
+                let s = format!(
+                    "{}==>S: {} ",
+                    self.decision_prefix(level - 1),
+                    self.symbols.text(parent)
+                );
+                self.out(&s);
+            }
+            return;
+        }
+        let s = self.symbols.new_id('S', level);
+        if let Some(d) = self.symbols.id_data_mut(s) {
+            d.is_goal = true;
+            d.is_impasse = true;
+        }
+        let mut wmes = Vec::new();
+        let mut add = |agent: &mut Agent, id: Sym, attr: &str, value: Sym| {
+            let a = agent.symbols.str(attr);
+            wmes.push(agent.add_wme(id, a, value, false));
+        };
+        let state = self.symbols.str("state");
+        add(self, s, "type", state);
+        add(self, s, "superstate", parent);
+        let r = self.symbols.new_id('R', level);
+        add(self, s, "reward-link", r);
+        let e = self.symbols.new_id('E', level);
+        add(self, s, "epmem", e);
+        let c = self.symbols.new_id('C', level);
+        add(self, e, "command", c);
+        let r2 = self.symbols.new_id('R', level);
+        add(self, e, "result", r2);
+        let one = self.symbols.int(1);
+        add(self, e, "present-id", one);
+        let l = self.symbols.new_id('L', level);
+        add(self, s, "smem", l);
+        let c2 = self.symbols.new_id('C', level);
+        add(self, l, "command", c2);
+        let r3 = self.symbols.new_id('R', level);
+        add(self, l, "result", r3);
+        let attr = self
+            .symbols
+            .str(if on_operator { "operator" } else { "state" });
+        add(self, s, "attribute", attr);
+        let imp = self.symbols.str(kind.word());
+        add(self, s, "impasse", imp);
+        let choices = self.symbols.str(
+            if matches!(kind, ImpasseKind::Tie | ImpasseKind::Conflict) {
+                "multiple"
+            } else {
+                "none"
+            },
+        );
+        add(self, s, "choices", choices);
+        let t = self.symbols.str("t");
+        add(self, s, "quiescence", t);
+        if !items.is_empty() {
+            for &it in &items {
+                add(self, s, "item", it);
+            }
+            let n = self.symbols.int(items.len() as i64);
+            add(self, s, "item-count", n);
+            for &it in &items {
+                add(self, s, "non-numeric", it);
+            }
+            add(self, s, "non-numeric-count", n);
+        }
+        self.decider.wme_changes += wmes.len() as u64;
+        if self.settings.trace_level >= 1 {
+            let what = format!(
+                "({} {})",
+                if on_operator { "operator" } else { "state" },
+                kind.word()
+            );
+            let line = format!(
+                "{}==>S: {} {}",
+                self.decision_prefix(level),
+                self.symbols.text(s),
+                what
+            );
+            self.out(&line);
+        }
+        self.decider.goals.push(Goal {
+            state: s,
+            level,
+            operator: None,
+            impasse: Some((kind, on_operator)),
+            items,
+            wmes,
+            slot_changed: true,
+        });
+        if level as i64 > self.settings.max_goal_depth {
+            let msg = format!(
+                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
+                self.settings.max_goal_depth
+            );
+            self.out(&msg);
+            self.decider.halted = true;
+        }
+    }
+
+    /// Removes every goal below `gi`, deepest first, with its architecture WMEs; what they
+    /// held up goes with the garbage collection.
+    fn remove_goals_below(&mut self, gi: usize) {
+        while self.decider.goals.len() > gi + 1 {
+            let Some(g) = self.decider.goals.pop() else {
+                break;
+            };
+            if let Some((_, w)) = g.operator {
+                self.remove_wme(w);
+            }
+            for w in g.wmes {
+                self.remove_wme(w);
+            }
+            if let Some(d) = self.symbols.id_data_mut(g.state) {
+                d.is_goal = false;
+            }
+            // Preferences made for the substate's own objects go with it.
+            let gone: Vec<(Sym, Sym)> = self
+                .decider
+                .slots
+                .keys()
+                .filter(|k| k.0 == g.state)
+                .copied()
+                .collect();
+            for k in gone {
+                if let Some(slot) = self.decider.slots.remove(&k) {
+                    for w in slot.wmes.values() {
+                        self.remove_wme(*w);
+                    }
+                }
+            }
+        }
+        self.collect_garbage();
+    }
+
+    /// Removes WMEs no longer linked to a goal or the io link (spec §2).
+    fn collect_garbage(&mut self) {
+        let mut reachable: FxHashSet<Sym> = FxHashSet::default();
+        let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
+        stack.push(self.top.state);
+        while let Some(x) = stack.pop() {
+            if !reachable.insert(x) {
+                continue;
+            }
+            for &w in self.wm.of_id(x) {
+                if let Some(wme) = self.wm.get(w) {
+                    for v in [wme.value, wme.attr] {
+                        if self.symbols.is_id(v) && !reachable.contains(&v) {
+                            stack.push(v);
+                        }
+                    }
+                }
+            }
+        }
+        let garbage: Vec<WmeId> = self
+            .wm
+            .all()
+            .into_iter()
+            .filter(|w| self.wm.get(*w).is_some_and(|x| !reachable.contains(&x.id)))
+            .collect();
+        if garbage.is_empty() {
+            return;
+        }
+        for w in garbage {
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
+                for pid in slot.prefs {
+                    self.decider.prefs[pid as usize].alive = false;
+                }
+                for sw in slot.wmes.values() {
+                    if *sw != w {
+                        self.remove_wme(*sw);
+                    }
+                }
+            }
+            if self.wm.get(w).is_some() {
+                if self.settings.trace_level >= 4 {
+                    self.out(&format!(
+                        "\n<=WM: {}",
+                        crate::trace::wme_internal(self, &wme)
+                    ));
+                }
+                self.remove_wme(w);
+            }
+        }
+    }
+
+    fn run_input_callbacks(&mut self) {
+        if let Some(mut cb) = self.input_callback.take() {
+            cb(self);
+            if self.input_callback.is_none() {
+                self.input_callback = Some(cb);
+            }
+        }
+    }
+
+    fn run_output_callbacks(&mut self) {
+        if let Some(mut cb) = self.output_callback.take() {
+            cb(self);
+            if self.output_callback.is_none() {
+                self.output_callback = Some(cb);
+            }
+        }
+    }
+
+    /// A built-in or registered RHS function (spec §1f).
+    fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
+        crate::decide::functions::call(self, name, args)
+    }
+
+    /// `init-soar` (spec §2, §3a): working memory, preferences, the goal stack, identifier
+    /// counters and timetags start again; rules (and chunks) stay.
+    pub fn init_soar(&mut self) {
+        let all = self.wm.all();
+        for w in all.into_iter().rev() {
+            self.remove_wme(w);
+        }
+        self.matches.assertions.clear();
+        self.matches.retractions.clear();
+        self.decider = crate::decide::state::DecideState::new();
+        self.symbols.reset_id_counters();
+        self.wm.reset_timetags();
+        self.top = crate::agent::create_top_state(
+            &mut self.symbols,
+            &mut self.wm,
+            &mut self.rete,
+            &mut self.matches,
+        );
+    }
+
+    /// How many times each rule has fired (`firing-counts`).
+    pub fn firing_count(&self, p: ProdId) -> u64 {
+        self.decider.firing_counts.get(&p).copied().unwrap_or(0)
+    }
+}
+
+/// A constant as a symbol (for callers building input).
+pub fn constant_sym(agent: &mut Agent, c: &Constant) -> Sym {
+    agent.symbols.constant(c)
+}

@@ -1,0 +1,120 @@
+//! The decider's memory (spec §3): instantiations, preferences, slots and the goal stack.
+
+use super::procedure::PrefType;
+use crate::rete::{ProdId, TokId};
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+use rustc_hash::FxHashMap;
+
+pub type InstId = u32;
+pub type PrefId = u32;
+
+/// A fired rule: the match it fired on and the preferences it made.
+#[derive(Debug, Clone)]
+pub struct Instantiation {
+    pub prod: ProdId,
+    pub token: TokId,
+    pub goal: Option<Sym>,
+    pub o_support: bool,
+    pub prefs: Vec<PrefId>,
+    pub alive: bool,
+}
+
+#[derive(Debug, Clone)]
+pub struct Preference {
+    pub kind: PrefType,
+    pub id: Sym,
+    pub attr: Sym,
+    pub value: Sym,
+    pub referent: Option<Sym>,
+    pub number: Option<f64>,
+    pub o_support: bool,
+    pub inst: Option<InstId>,
+    pub alive: bool,
+}
+
+/// All preferences for one (id, attr), newest first, and the WMEs they support.
+#[derive(Debug, Clone, Default)]
+pub struct Slot {
+    pub prefs: Vec<PrefId>,
+    /// Value (and acceptable flag) to the WME that shows it.
+    pub wmes: FxHashMap<(Sym, bool), WmeId>,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImpasseKind {
+    Tie,
+    Conflict,
+    ConstraintFailure,
+    NoChange,
+}
+
+impl ImpasseKind {
+    pub fn word(self) -> &'static str {
+        match self {
+            ImpasseKind::Tie => "tie",
+            ImpasseKind::Conflict => "conflict",
+            ImpasseKind::ConstraintFailure => "constraint-failure",
+            ImpasseKind::NoChange => "no-change",
+        }
+    }
+}
+
+/// One state in the goal stack.
+#[derive(Debug, Clone)]
+pub struct Goal {
+    pub state: Sym,
+    pub level: u32,
+    /// The selected operator and the WME `(state ^operator O)` that shows it.
+    pub operator: Option<(Sym, WmeId)>,
+    /// For substates: the impasse that made them (`^attribute` is operator when true).
+    pub impasse: Option<(ImpasseKind, bool)>,
+    pub items: Vec<Sym>,
+    /// The architecture's WMEs on this state (removed with it).
+    pub wmes: Vec<WmeId>,
+    /// The operator slot's preferences changed since it was last decided (spec §3e).
+    pub slot_changed: bool,
+}
+
+/// The phases of a decision cycle (spec §3a).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    Input,
+    Propose,
+    Decide,
+    Apply,
+    Output,
+}
+
+#[derive(Debug, Default)]
+pub struct DecideState {
+    pub insts: Vec<Instantiation>,
+    pub inst_by_token: FxHashMap<(ProdId, TokId), InstId>,
+    pub prefs: Vec<Preference>,
+    pub slots: FxHashMap<(Sym, Sym), Slot>,
+    /// Slots whose preferences changed in this elaboration cycle, in order of change.
+    pub changed: Vec<(Sym, Sym)>,
+    pub goals: Vec<Goal>,
+    pub phase: Option<Phase>,
+    pub d_cycle_count: u64,
+    pub decisions: u64,
+    pub e_cycles: u64,
+    pub e_cycles_this_phase: u64,
+    pub firings: u64,
+    pub firing_counts: FxHashMap<ProdId, u64>,
+    pub halted: bool,
+    pub stop_requested: bool,
+    /// The top goal's operator slot changed since the last decision, per goal.
+    pub context_changed: bool,
+    pub wme_changes: u64,
+}
+
+impl DecideState {
+    /// A fresh decider: the first decision cycle is number 1 (spec §3a).
+    pub fn new() -> Self {
+        DecideState {
+            d_cycle_count: 1,
+            ..Default::default()
+        }
+    }
+}
