@@ -129,6 +129,8 @@ pub struct Agent {
     pub rng: crate::rng::Mt19937,
     /// Trace and `write` output not yet taken by the front end.
     pub output: String,
+    /// Rust functions the embedding program registered for `exec` (spec §1f).
+    pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
     pub input_callback: Option<PhaseCallback>,
     /// Called at the output phase of every decision.
@@ -156,6 +158,7 @@ impl Agent {
             decider: crate::decide::state::DecideState::new(),
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
+            rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,
         }
@@ -229,6 +232,17 @@ impl Agent {
             .production(id)
             .map(|i| i.name.as_str())
             .unwrap_or("?")
+    }
+
+    /// Registers a Rust function callable from rules as `(exec name args...)` or `(name
+    /// args...)`: it receives the agent's name and the arguments joined with no separator,
+    /// and returns the string the rule gets (spec §1f).
+    pub fn register_rhs_function(
+        &mut self,
+        name: &str,
+        f: impl FnMut(&str, &str) -> String + 'static,
+    ) {
+        self.rhs_registry.register(name, Box::new(f));
     }
 
     /// Adds a WME now (as `wm add` and the input phase do) and matches it.

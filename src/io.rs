@@ -1,0 +1,178 @@
+//! Input and output for programs that embed the kernel (issue 4, item 5; spec §2 I/O link):
+//! add, change and remove input-link WMEs between decisions, read the commands the rules put
+//! on the output-link, and mark them done. The Soar-SLAM loop uses only this API.
+
+use crate::agent::Agent;
+use crate::symbols::{Sym, SymData};
+use crate::wm::WmeId;
+
+/// A value to put on the input-link.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Value {
+    Int(i64),
+    Float(f64),
+    Str(String),
+    /// An existing identifier.
+    Id(Sym),
+}
+
+impl From<i64> for Value {
+    fn from(v: i64) -> Self {
+        Value::Int(v)
+    }
+}
+impl From<f64> for Value {
+    fn from(v: f64) -> Self {
+        Value::Float(v)
+    }
+}
+impl From<&str> for Value {
+    fn from(v: &str) -> Self {
+        Value::Str(v.to_string())
+    }
+}
+impl From<Sym> for Value {
+    fn from(v: Sym) -> Self {
+        Value::Id(v)
+    }
+}
+
+/// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputCommand {
+    pub id: Sym,
+    pub name: String,
+    /// (attribute, value) pairs of the command object, as plain text.
+    pub params: Vec<(String, Sym)>,
+}
+
+impl Agent {
+    pub fn input_link(&self) -> Sym {
+        self.top.input_link
+    }
+
+    pub fn output_link(&self) -> Sym {
+        self.top.output_link
+    }
+
+    fn value_sym(&mut self, v: &Value) -> Sym {
+        match v {
+            Value::Int(i) => self.symbols.int(*i),
+            Value::Float(f) => self.symbols.float(*f),
+            Value::Str(s) => self.symbols.str(s),
+            Value::Id(s) => *s,
+        }
+    }
+
+    /// A new identifier for input structure (letter as Soar would choose for `^attr`).
+    pub fn new_input_id(&mut self, letter: char) -> Sym {
+        self.symbols.new_id(letter, 1)
+    }
+
+    /// Adds `(id ^attr value)` now; it is matched at once, as input-phase WMEs are.
+    pub fn add_input(&mut self, id: Sym, attr: &str, value: impl Into<Value>) -> WmeId {
+        let a = self.symbols.str(attr);
+        let v = self.value_sym(&value.into());
+        self.add_wme(id, a, v, false)
+    }
+
+    /// Adds `(id ^attr <new id>)` and returns the new identifier.
+    pub fn add_input_object(&mut self, id: Sym, attr: &str) -> (WmeId, Sym) {
+        let letter = attr
+            .chars()
+            .next()
+            .filter(|c| c.is_ascii_alphabetic())
+            .unwrap_or('I');
+        let child = self.new_input_id(letter);
+        (self.add_input(id, attr, child), child)
+    }
+
+    /// Replaces the value of an input WME if it differs (a remove and an add, as SML does);
+    /// returns the WME that now holds the value.
+    pub fn update_input(&mut self, w: WmeId, value: impl Into<Value>) -> WmeId {
+        let v = value.into();
+        let Some(old) = self.wm.get(w).copied() else {
+            return w;
+        };
+        let new = self.value_sym(&v);
+        if new == old.value {
+            return w;
+        }
+        self.remove_wme(w);
+        self.add_wme(old.id, old.attr, new, false)
+    }
+
+    /// Removes an input WME and, with the next garbage collection, what hangs below it.
+    pub fn remove_input(&mut self, w: WmeId) {
+        self.remove_wme(w);
+    }
+
+    /// Commands on the output-link: each `(I3 ^name <obj>)` object with its parameters.
+    pub fn output_commands(&self) -> Vec<OutputCommand> {
+        let mut out = Vec::new();
+        for &w in self.wm.of_id(self.top.output_link) {
+            let Some(wme) = self.wm.get(w) else { continue };
+            if !self.symbols.is_id(wme.value) {
+                continue;
+            }
+            let name = self.symbols.plain(wme.attr);
+            let params = self
+                .wm
+                .of_id(wme.value)
+                .iter()
+                .filter_map(|x| self.wm.get(*x))
+                .map(|x| (self.symbols.plain(x.attr), x.value))
+                .collect();
+            out.push(OutputCommand {
+                id: wme.value,
+                name,
+                params,
+            });
+        }
+        out
+    }
+
+    /// Marks a command done with `^status complete`, as SML environments do.
+    pub fn mark_done(&mut self, cmd: Sym) -> WmeId {
+        self.add_input(cmd, "status", "complete")
+    }
+
+    /// A number from a symbol (ints and floats), for reading command parameters.
+    pub fn number(&self, s: Sym) -> Option<f64> {
+        match self.symbols.get(s) {
+            SymData::Int(i) => Some(*i as f64),
+            SymData::Float(f) => Some(*f),
+            SymData::Str(x) => x.parse().ok(),
+            SymData::Id(_) => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn input_is_matched_and_output_is_read() {
+        let mut a = Agent::new("t");
+        let il = a.input_link();
+        let (_, data) = a.add_input_object(il, "currentrobotdata");
+        let x = a.add_input(data, "X", 100i64);
+        assert_eq!(a.symbols.text(a.wm.get(x).map(|w| w.value).unwrap()), "100");
+        let tt = a.wm.get(x).map(|w| w.timetag);
+        let x2 = a.update_input(x, 120i64);
+        // A changed value is a new WME (a new timetag), as SML makes it.
+        assert_ne!(tt, a.wm.get(x2).map(|w| w.timetag));
+        assert_eq!(
+            a.wm.get(x2).map(|w| a.symbols.text(w.value)),
+            Some("120".into())
+        );
+        let ol = a.output_link();
+        let (_, cmd) = a.add_input_object(ol, "move");
+        a.add_input(cmd, "param1", 300i64);
+        let cmds = a.output_commands();
+        assert_eq!(cmds.len(), 1);
+        assert_eq!(cmds[0].name, "move");
+        assert_eq!(a.number(cmds[0].params[0].1), Some(300.0));
+    }
+}
