@@ -117,9 +117,8 @@ fn print_rec(
             if line.len() + item.len() >= 80 && line.len() > head.len() {
                 out.push_str(&line);
                 out.push('\n');
-                line = format!("{indent}      {}", &item[1..]);
-                line.insert(indent.len() + 6, ' ');
-                line.remove(indent.len() + 6);
+                // Continuation lines start 7 columns in, under the first attribute (E:t5).
+                line = format!("{indent}       {}", &item[1..]);
             } else {
                 line.push_str(&item);
             }
