@@ -166,6 +166,11 @@ fn brace_depth(text: &str) -> i64 {
 }
 
 fn main() -> ExitCode {
+    // `rusoar slam ...`: the Soar-SLAM experiment (issue 6); its options live in experiment.rs.
+    let args: Vec<String> = std::env::args().collect();
+    if args.get(1).map(String::as_str) == Some("slam") {
+        return rusoar::robot::experiment::main(&args[2..]);
+    }
     let mut interp = Interpreter::new();
     let code = run(&mut interp);
     // The process ends here: freeing a large agent piece by piece only costs time.

@@ -122,7 +122,7 @@ impl Agent {
             }
             Phase::Propose => {
                 self.decider.e_cycles_this_phase = 0;
-                while self.has_pending(false) {
+                while self.has_pending(false) && !self.decider.halted {
                     if !self.elaboration_cycle(false) {
                         break;
                     }
@@ -139,7 +139,7 @@ impl Agent {
                 self.decider.phase = Some(Phase::Apply);
             }
             Phase::Apply => {
-                while self.has_pending(true) {
+                while self.has_pending(true) && !self.decider.halted {
                     // IE before PE: i-supported firings reach quiescence first (spec §3a).
                     let pe = !self.has_pending(false);
                     if !self.elaboration_cycle(pe) {
@@ -178,7 +178,20 @@ impl Agent {
         self.matches
             .assertions
             .iter()
-            .any(|&(p, t)| any || !crate::support::tests_selected_operator(self, p, t))
+            .any(|&(p, t)| any || !self.is_o_supported(p, t))
+    }
+
+    /// Declared support wins; otherwise the operator test of spec §3c decides.
+    fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
+        if let Some(prod) = self.production(self.production_name(p)) {
+            if prod.flags.o_support {
+                return true;
+            }
+            if prod.flags.i_support {
+                return false;
+            }
+        }
+        crate::support::tests_selected_operator(self, p, t)
     }
 
     /// One elaboration cycle: retractions, then the new matches of one support type fire in
@@ -192,7 +205,7 @@ impl Agent {
         let mut keep = Vec::new();
         let mut to_fire = Vec::new();
         for (p, t) in pending.into_iter().rev() {
-            let o = crate::support::tests_selected_operator(self, p, t);
+            let o = self.is_o_supported(p, t);
             if o == o_support {
                 to_fire.push((p, t));
             } else {
@@ -201,12 +214,19 @@ impl Agent {
         }
         keep.reverse();
         self.matches.assertions = keep;
+        // Token ids are reused: resolve retractions to their instantiations before new
+        // matches (possibly on a reused id) fire.
+        let retracted: Vec<InstId> = retractions
+            .iter()
+            .filter_map(|k| self.decider.inst_by_token.remove(k))
+            .collect();
         let mut new_prefs = Vec::new();
         for (p, t) in to_fire {
+            // A halt ends the run after this elaboration cycle: the rest of it still fires.
             self.fire(p, t, o_support, &mut new_prefs);
         }
-        for (p, t) in retractions {
-            self.retract(p, t);
+        for inst in retracted {
+            self.retract(inst);
         }
         self.assert_preferences(new_prefs);
         self.update_slots();
@@ -339,10 +359,8 @@ impl Agent {
         }
     }
 
-    fn retract(&mut self, p: ProdId, t: TokId) {
-        let Some(inst_id) = self.decider.inst_by_token.remove(&(p, t)) else {
-            return;
-        };
+    fn retract(&mut self, inst_id: InstId) {
+        let p = self.decider.insts[inst_id as usize].prod;
         let name = self.production_name(p).to_string();
         if self.settings.trace_level >= 3 {
             self.out(&format!("\nRetracting {name}"));
@@ -466,7 +484,10 @@ impl Agent {
             let mut want: Vec<Sym> = Vec::new();
             for &pid in slot.prefs.iter().rev() {
                 let p = &self.decider.prefs[pid as usize];
-                if p.kind == PrefType::Acceptable && !want.contains(&p.value) {
+                // Require preferences show as `+` WMEs too (checked on 9.6).
+                if matches!(p.kind, PrefType::Acceptable | PrefType::Require)
+                    && !want.contains(&p.value)
+                {
                     want.push(p.value);
                 }
             }
@@ -485,14 +506,35 @@ impl Agent {
         for w in removes {
             self.remove_slot_wme(w);
         }
+        // Timetags in action order, but the matcher gets the batch newest first, and the
+        // `=>WM:` lines come newest first too (spec §3i, E:t6).
+        let mut added = Vec::with_capacity(adds.len());
         for (id, attr, value, acc) in adds {
-            self.add_slot_wme(id, attr, value, acc);
+            added.push(self.add_slot_wme(id, attr, value, acc));
+        }
+        for &w in added.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                if self.settings.trace_level >= 4 {
+                    self.out(&format!(
+                        "\n=>WM: {}",
+                        crate::trace::wme_internal(self, &wme)
+                    ));
+                }
+                self.rete.add_wme(
+                    w,
+                    (wme.id, wme.attr, wme.value),
+                    wme.acceptable,
+                    &self.symbols,
+                    &mut self.matches,
+                );
+            }
         }
         self.collect_garbage();
     }
 
+    /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
     fn add_slot_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        let w = self.add_wme(id, attr, value, acceptable);
+        let w = self.wm.add(id, attr, value, acceptable);
         self.decider.wme_changes += 1;
         self.decider
             .slots
@@ -500,13 +542,6 @@ impl Agent {
             .or_default()
             .wmes
             .insert((value, acceptable), w);
-        if self.settings.trace_level >= 4 {
-            let wme = *self.wm.get(w).expect("just added");
-            self.out(&format!(
-                "\n=>WM: {}",
-                crate::trace::wme_internal(self, &wme)
-            ));
-        }
         w
     }
 
@@ -695,7 +730,8 @@ impl Agent {
         let mut wmes = Vec::new();
         let mut add = |agent: &mut Agent, id: Sym, attr: &str, value: Sym| {
             let a = agent.symbols.str(attr);
-            wmes.push(agent.add_wme(id, a, value, false));
+            // Into working memory now; the matcher gets them below, newest first.
+            wmes.push(agent.wm.add(id, a, value, false));
         };
         let state = self.symbols.str("state");
         add(self, s, "type", state);
@@ -744,6 +780,17 @@ impl Agent {
             add(self, s, "non-numeric-count", n);
         }
         self.decider.wme_changes += wmes.len() as u64;
+        for &w in wmes.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.rete.add_wme(
+                    w,
+                    (wme.id, wme.attr, wme.value),
+                    false,
+                    &self.symbols,
+                    &mut self.matches,
+                );
+            }
+        }
         if self.settings.trace_level >= 1 {
             let what = format!(
                 "({} {})",

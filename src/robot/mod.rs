@@ -12,12 +12,15 @@
 //! Sources: the thesis's "Hough-Transform Java" section (`soar-slam-thesis.txt`) and
 //! `robotics-anchors.md` (Pioneer geometry, Stage's sonar and odometry models).
 
+pub mod experiment;
+pub mod functions;
 pub mod geom;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;
 pub mod rng;
 pub mod sim;
+pub mod soar_loop;
 pub mod sonar;
 pub mod world;
 

@@ -1,0 +1,221 @@
+#!/usr/bin/env python3
+"""Writes the conformance goldens: what the official Soar 9.6 kernel (pip package soar-sml)
+prints for each agent in tests/agents/. tests/conformance.rs runs the same agents in rusoar
+and compares, line for line. Goldens are never edited by hand: change an agent, then run
+this script.
+
+Conventions (tests/conformance.rs follows the same ones):
+
+  Agents    tests/agents/NAME.soar, plain Soar source written for this project, starting
+            with a comment that says what it checks. An agent may set kernel options
+            itself (`soar max-goal-depth 6`, `soar wait-snc on`) but never runs itself: the
+            harness does. It must load without any warning in the official kernel (this
+            script stops otherwise), should halt by itself within 1000 decisions where
+            it can, and for now uses only the RHS functions write, crlf, halt, +, - and *.
+  Commands  for each agent, in a fresh agent of the official kernel, through
+            ExecuteCommandLine, one at a time:
+                srand 1
+                watch 1
+                source /abs/path/tests/agents/NAME.soar
+                run 1000
+                stats
+            The print callback's text during `run 1000` is the trace; `run`'s result text
+            gives the run summary; `stats`'s result text gives the statistics.
+  Decisions The trace's lines that match `^\\s+\\d+: ` (spec §6c: every decision line starts
+            with a newline, then the cycle number right-aligned in 6 columns, then ": "),
+            kept whole: a `write` without a leading `(crlf)` lands on the decision line
+            before it, so such writes are compared too. Other trace text (`System halted.`,
+            the max-goal-depth message, writes on their own lines) is not compared.
+  Counts    after the line `--- counts ---`, one `key: value` per line:
+              run decisions     N of `--> N decision cycle(s) executed.` (run's result)
+              run firings       M of `M rule(s) fired.`, 0 for `No rules fired.`
+              halted            yes if the trace contains the line `System halted.`
+              decisions         `N decisions` of `stats`
+              elaboration cycles`N elaboration cycles` of `stats`
+              production firings`N production firings` of `stats`
+              wm size           `WM size: N current` of `stats`
+            All of these are exact integers in 9.6 (stats' timings, means and ratios are
+            not used; `wme changes` is not used either).
+  Golden    tests/golden/NAME.txt: the decision lines, then `--- counts ---` and the counts.
+  rusoar    tests/conformance.rs gives rusoar::cli::Interpreter (cwd: the repository)
+            "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
+            (trace and run summary together), then runs `stats`, and builds the same text.
+
+usage: python3 scripts/goldens.py [--out DIR]   write goldens to DIR (default tests/golden)
+       python3 scripts/goldens.py --check       regenerate into a temporary folder and exit
+                                                1 if any file differs from tests/golden
+       python3 scripts/goldens.py --trace NAME  print everything the official kernel printed
+                                                for one agent (for writing agents)
+"""
+import argparse
+import difflib
+import os
+import re
+import sys
+import tempfile
+
+import soar_sml as sml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+AGENTS = os.path.join(ROOT, "tests", "agents")
+GOLDEN = os.path.join(ROOT, "tests", "golden")
+RUN = "run 1000"
+
+DECISION = re.compile(r"^\s+\d+: ")
+RUN_RESULT = re.compile(
+    r"--> (\d+) decision cycles? executed\. (?:No rules fired|(\d+) rules? fired)\."
+)
+STATS = [
+    ("decisions", re.compile(r"^(\d+) decisions\b", re.M)),
+    ("elaboration cycles", re.compile(r"^(\d+) elaboration cycles\b", re.M)),
+    ("production firings", re.compile(r"^(\d+) production firings\b", re.M)),
+    ("wm size", re.compile(r"^WM size: (\d+) current\b", re.M)),
+]
+
+
+class AgentError(Exception):
+    pass
+
+
+def golden_text(trace, run_result, stats):
+    """The golden file for one run: decision lines, then the counts (see the module doc)."""
+    lines = [l for l in trace.split("\n") if DECISION.match(l)]
+    m = RUN_RESULT.search(run_result)
+    if not m:
+        raise AgentError("no run summary in %r" % run_result)
+    counts = [
+        ("run decisions", m.group(1)),
+        ("run firings", m.group(2) or "0"),
+        ("halted", "yes" if "System halted." in trace.split("\n") else "no"),
+    ]
+    for key, rx in STATS:
+        s = rx.search(stats)
+        if not s:
+            raise AgentError("no %r in stats output %r" % (key, stats))
+        counts.append((key, s.group(1)))
+    out = lines + ["--- counts ---"] + ["%s: %s" % kv for kv in counts]
+    return "\n".join(out) + "\n"
+
+
+def run_agent(kernel, path, raw=False):
+    """Runs one agent in a fresh agent of the official kernel; returns its golden text (with
+    raw, the whole printed trace and the run and stats results instead)."""
+    agent = kernel.CreateAgent("conformance")
+    printed = []
+    cb = agent.RegisterForPrintEvent(
+        sml.smlEVENT_PRINT, lambda _id, _ud, _agent, msg: printed.append(msg), None
+    )
+    try:
+
+        def cmd(c):
+            printed.clear()
+            r = agent.ExecuteCommandLine(c)
+            if not agent.GetLastCommandLineResult():
+                raise AgentError("%s: `%s` failed:\n%s" % (path, c, r))
+            return r
+
+        cmd("srand 1")
+        cmd("watch 1")
+        loaded = cmd("source %s" % path)
+        if "warning" in loaded.lower():
+            raise AgentError("%s: warnings while loading:\n%s" % (path, loaded))
+        run_result = cmd(RUN)
+        trace = "".join(printed)
+        stats = cmd("stats")
+        if raw:
+            return trace + "\n" + run_result + "\n" + stats
+        return golden_text(trace, run_result, stats)
+    finally:
+        agent.UnregisterForPrintEvent(cb)
+        kernel.DestroyAgent(agent)
+
+
+def agent_names():
+    return sorted(f[: -len(".soar")] for f in os.listdir(AGENTS) if f.endswith(".soar"))
+
+
+def generate(out_dir):
+    """Writes NAME.txt for every agent into out_dir, and removes goldens of agents that are
+    gone."""
+    os.makedirs(out_dir, exist_ok=True)
+    names = agent_names()
+    for f in os.listdir(out_dir):
+        if f.endswith(".txt") and f[: -len(".txt")] not in names:
+            os.remove(os.path.join(out_dir, f))
+    kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
+    try:
+        for name in names:
+            text = run_agent(kernel, os.path.join(AGENTS, name + ".soar"))
+            with open(os.path.join(out_dir, name + ".txt"), "w", newline="\n") as f:
+                f.write(text)
+    finally:
+        kernel.Shutdown()
+
+
+def check():
+    """Regenerates into a temporary folder; 1 if anything differs from tests/golden."""
+    with tempfile.TemporaryDirectory() as tmp:
+        generate(tmp)
+        fresh = set(f for f in os.listdir(tmp) if f.endswith(".txt"))
+        committed = (
+            set(f for f in os.listdir(GOLDEN) if f.endswith(".txt"))
+            if os.path.isdir(GOLDEN)
+            else set()
+        )
+        bad = 0
+        for f in sorted(fresh | committed):
+            if f not in committed:
+                print("missing golden: tests/golden/%s" % f)
+                bad += 1
+                continue
+            if f not in fresh:
+                print("golden without an agent: tests/golden/%s" % f)
+                bad += 1
+                continue
+            a = open(os.path.join(GOLDEN, f)).read().splitlines(True)
+            b = open(os.path.join(tmp, f)).read().splitlines(True)
+            if a != b:
+                bad += 1
+                sys.stdout.writelines(
+                    difflib.unified_diff(
+                        a, b, "tests/golden/" + f, "official kernel: " + f, n=2
+                    )
+                )
+        if bad:
+            print(
+                "%d golden file(s) differ from the official kernel; "
+                "run `python3 scripts/goldens.py` to regenerate" % bad
+            )
+            return 1
+        print("goldens: %d files match the official kernel" % len(fresh))
+        return 0
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--out", default=GOLDEN, help="output folder (default tests/golden)")
+    p.add_argument(
+        "--check",
+        action="store_true",
+        help="regenerate into a temporary folder and fail if tests/golden differs",
+    )
+    p.add_argument("--trace", metavar="NAME", help="print one agent's whole trace")
+    args = p.parse_args()
+    try:
+        if args.trace:
+            kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
+            path = os.path.join(AGENTS, args.trace + ".soar")
+            sys.stdout.write(run_agent(kernel, path, raw=True))
+            kernel.Shutdown()
+            return 0
+        if args.check:
+            return check()
+        generate(args.out)
+    except AgentError as e:
+        print("error: %s" % e, file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

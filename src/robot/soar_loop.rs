@@ -1,0 +1,1126 @@
+//! The SoarRobot loop (issue 6, item 6; thesis §SoarRobot): the simulated Pioneer, the
+//! sonar-to-walls pipeline and the thesis rules, joined through the kernel's embedding API
+//! (input-link WMEs, output-link commands, registered `exec` functions) and nothing else.
+//!
+//! One loop step is one decision cycle of the agent and one simulator step (0.1 s):
+//!
+//! 1. **input phase** (the agent's input callback): step the simulator with the velocities in
+//!    force; push the sonar scan, with the believed pose, into the scan window; every
+//!    `extract_every` steps run the pipeline over the window and add the new walls under
+//!    `^io.input-link.wallData` (all of one extraction with `^Time` = the step number); write
+//!    the believed pose and the 16 ranges into `^currentrobotdata`;
+//! 2. propose, decide (one `agent.run(1, RunUnit::Decisions)`, which stops before the apply
+//!    phase, as 9.6 does);
+//! 3. apply, then the **output phase** (the output callback) of the same decision cycle, at the
+//!    start of the next `run(1)`: carry out every command the rules added to the output-link
+//!    once, as it appears, and mark it `^status complete` (`rules/README.md` §1.4).
+//!
+//! So a command takes effect on the simulator step right after the decision that created it,
+//! and a `setOdometry` shows up in `^currentrobotdata` at the very next input phase, as the
+//! contract asks.
+//!
+//! Input-link layout and churn (README §1.2–1.3): `^currentrobotdata` holds `^X ^Y` (mm) and
+//! `^Th` (0..359), integers, and 16 `^sonar` objects with `^index` and `^range` (mm, integers);
+//! their values are updated in place (`update_input` leaves an equal value alone). Each wall is
+//! added once. An input wall that carries `^Copied true` (CopyWall has copied it into the top
+//! state's `^wallData`) is removed at the next input phase, as the contract allows. A wall that
+//! nobody copied within [`LoopConfig::expire_after`] extractions is removed too, so that the
+//! input-link stays bounded with the SLAM rules off (no rule reads `wallData` then); both
+//! counts are reported.
+//!
+//! `setOdometry` and the scan window: the window's scans carry the believed pose of their time.
+//! When the rules reset the odometry, the loop re-expresses every stored scan pose in the new
+//! frame (the rigid motion that took the old believed pose to the new one), so the next
+//! extraction does not pool two frames.
+//!
+//! Determinism: the simulator is seeded by the run seed, the agent's random numbers by
+//! `srand <seed>`, and nothing else is random, so one seed gives the same CSV rows every time.
+//!
+//! Halts and failures end the run with an [`Outcome`] that says what happened; the loop never
+//! panics on them, and [`run`] turns a panic inside the kernel into [`Outcome::Failed`].
+
+use std::cell::RefCell;
+use std::collections::{BTreeMap, VecDeque};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::{Duration, Instant};
+
+use crate::agent::Agent;
+use crate::cli::Interpreter;
+use crate::decide::cycle::RunUnit;
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+
+use super::geom::{deg_0_360, Pose};
+use super::pipeline::{self, Scan, Settings as PipelineSettings, Wall};
+use super::sim::Simulator;
+use super::sonar::{NUM_SONARS, P2DX_SONARS};
+use super::world::World;
+
+/// The line of `robotagent.soar` that loads the SLAM rules; leaving it out turns SLAM off.
+pub const SLAM_LINE: &str = "source slam.soar";
+
+/// Everything one run needs.
+#[derive(Debug, Clone)]
+pub struct LoopConfig {
+    /// The world (walls, start pose, time step, noise preset, pipeline settings).
+    pub world: World,
+    /// Run seed: simulator streams and the agent's `srand`.
+    pub seed: u64,
+    /// Load the SLAM rules (`source slam.soar`) or only the moving rules.
+    pub slam: bool,
+    /// Simulated seconds.
+    pub duration_s: f64,
+    /// The folder holding `robotagent.soar`.
+    pub rules_dir: PathBuf,
+    /// Remove an input wall nobody copied after this many further extractions.
+    pub expire_after: u64,
+}
+
+impl LoopConfig {
+    /// A run of `duration_s` seconds in `world`, with the rules in [`default_rules_dir`].
+    pub fn new(world: World, seed: u64, slam: bool, duration_s: f64) -> Self {
+        LoopConfig {
+            world,
+            seed,
+            slam,
+            duration_s,
+            rules_dir: default_rules_dir(),
+            expire_after: 8,
+        }
+    }
+
+    /// Number of loop steps the duration gives.
+    pub fn steps(&self) -> u64 {
+        let dt = self.world.run.dt;
+        if !(dt > 0.0) || !self.duration_s.is_finite() || self.duration_s <= 0.0 {
+            return 0;
+        }
+        (self.duration_s / dt).round() as u64
+    }
+}
+
+/// `rules/` of this source tree, or `./rules` when the tree is gone.
+pub fn default_rules_dir() -> PathBuf {
+    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("rules");
+    if built.join("robotagent.soar").is_file() {
+        built
+    } else {
+        PathBuf::from("rules")
+    }
+}
+
+/// One loop step's record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// Step number, from 1.
+    pub step: u64,
+    /// Simulated time after the step, s.
+    pub time_s: f64,
+    /// True pose.
+    pub true_pose: Pose,
+    /// Believed (odometry) pose, after any `setOdometry` of this step.
+    pub believed: Pose,
+    /// Distance between true and believed position, mm.
+    pub pos_err_mm: f64,
+    /// Heading error, degrees in [0, 180].
+    pub heading_err_deg: f64,
+    /// `^Wall` objects under the top state's `^wallData` (the map in memory).
+    pub walls_memory: usize,
+    /// `^Wall` objects on the input-link.
+    pub walls_input: usize,
+    /// Walls the pipeline produced so far.
+    pub walls_extracted: u64,
+    /// `setOdometry` commands carried out so far.
+    pub corrections: u64,
+    /// Working-memory size.
+    pub wm_size: usize,
+    /// Operators selected in this decision (any goal level), space-separated.
+    pub operators: String,
+}
+
+/// The CSV header matching [`StepRecord::csv_row`].
+pub const CSV_HEADER: &str = "step,time_s,true_x_mm,true_y_mm,true_th_deg,believed_x_mm,\
+believed_y_mm,believed_th_deg,pos_err_mm,heading_err_deg,walls_memory,walls_input,\
+walls_extracted,corrections,wm_size,operators";
+
+impl StepRecord {
+    /// One CSV line (no newline), fixed decimals so that runs compare byte for byte.
+    pub fn csv_row(&self) -> String {
+        format!(
+            "{},{:.1},{:.1},{:.1},{:.2},{:.1},{:.1},{:.2},{:.1},{:.3},{},{},{},{},{},{}",
+            self.step,
+            self.time_s,
+            self.true_pose.x_mm(),
+            self.true_pose.y_mm(),
+            self.true_pose.th_deg(),
+            self.believed.x_mm(),
+            self.believed.y_mm(),
+            self.believed.th_deg(),
+            self.pos_err_mm,
+            self.heading_err_deg,
+            self.walls_memory,
+            self.walls_input,
+            self.walls_extracted,
+            self.corrections,
+            self.wm_size,
+            self.operators
+        )
+    }
+}
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    /// All steps ran.
+    Completed,
+    /// The agent halted (`halt`, goal-stack overflow, ...) before the end.
+    Halted {
+        step: u64,
+        time_s: f64,
+        message: String,
+    },
+    /// The run could not start (rules missing, load error) or the kernel failed.
+    Failed(String),
+}
+
+impl Outcome {
+    /// Whether all steps ran.
+    pub fn completed(&self) -> bool {
+        matches!(self, Outcome::Completed)
+    }
+}
+
+impl fmt::Display for Outcome {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Outcome::Completed => f.write_str("completed"),
+            Outcome::Halted {
+                step,
+                time_s,
+                message,
+            } => write!(
+                f,
+                "the agent halted at step {step} (t = {time_s:.1} s): {message}"
+            ),
+            Outcome::Failed(m) => write!(f, "failed: {m}"),
+        }
+    }
+}
+
+/// A wall of the map in memory (the top state's `^wallData.Wall`), as numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemoryWall {
+    pub r: f64,
+    pub th: f64,
+    pub start: (f64, f64),
+    pub end: (f64, f64),
+    pub length: f64,
+    pub time: f64,
+}
+
+/// Counters of one run beyond the per-step records.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RunStats {
+    /// Decision cycles run.
+    pub decisions: u64,
+    /// Rule firings.
+    pub firings: u64,
+    /// Selections per operator name (all goal levels).
+    pub operators: BTreeMap<String, u64>,
+    /// Impasses opened (`==>S:` trace lines).
+    pub impasses: u64,
+    /// Pipeline runs.
+    pub extractions: u64,
+    /// Walls put on the input-link.
+    pub walls_extracted: u64,
+    /// Input walls removed after CopyWall copied them.
+    pub walls_copied: u64,
+    /// Input walls removed uncopied after [`LoopConfig::expire_after`] extractions.
+    pub walls_expired: u64,
+    /// Output commands carried out, by name.
+    pub commands: BTreeMap<String, u64>,
+    /// Output commands that could not be carried out (unknown name, bad parameter).
+    pub bad_commands: Vec<String>,
+    /// Trace lines that are not decisions (warnings, errors, `write` output), the first 50.
+    pub messages: Vec<String>,
+    /// How many such lines there were.
+    pub message_count: u64,
+}
+
+/// A finished run.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    pub seed: u64,
+    pub slam: bool,
+    pub outcome: Outcome,
+    pub steps: Vec<StepRecord>,
+    pub stats: RunStats,
+    /// The map in memory at the end.
+    pub memory_walls: Vec<MemoryWall>,
+    /// Productions loaded.
+    pub productions: usize,
+    /// What loading the rules printed.
+    pub load_log: String,
+    /// Wall-clock time of the loop (loading excluded).
+    pub wall_time: Duration,
+}
+
+impl RunResult {
+    /// All step rows as CSV, header first.
+    pub fn csv(&self) -> String {
+        let mut s = String::with_capacity(self.steps.len() * 110 + 200);
+        s.push_str(CSV_HEADER);
+        s.push('\n');
+        for r in &self.steps {
+            s.push_str(&r.csv_row());
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// Ids of the `^currentrobotdata` WMEs that change every step.
+struct RobotIo {
+    x: WmeId,
+    y: WmeId,
+    th: WmeId,
+    ranges: [WmeId; NUM_SONARS],
+}
+
+/// A wall on the input-link.
+struct InputWall {
+    /// `(wallData ^Wall <id>)`.
+    wme: WmeId,
+    id: Sym,
+    /// The extraction that made it.
+    extraction: u64,
+}
+
+/// The environment side, shared by the loop and the agent's input and output callbacks.
+struct Env {
+    sim: Simulator,
+    settings: PipelineSettings,
+    expire_after: u64,
+    window: VecDeque<Scan>,
+    steps: u64,
+    robot: Option<RobotIo>,
+    wall_data: Option<Sym>,
+    input_walls: Vec<InputWall>,
+    corrections: u64,
+    stats: RunStats,
+}
+
+fn heading_0_359(p: &Pose) -> i64 {
+    (deg_0_360(p.th.to_degrees()).round() as i64).rem_euclid(360)
+}
+
+fn range_int(r: f64) -> i64 {
+    if r.is_finite() {
+        r.round() as i64
+    } else {
+        5000
+    }
+}
+
+impl Env {
+    /// The input phase: step the simulator, run the pipeline when due, write the input-link.
+    fn input(&mut self, agent: &mut Agent) {
+        let s = self.sim.tick();
+        self.steps += 1;
+        let believed = s.believed;
+        let (x, y, th) = (
+            believed.x_mm().round() as i64,
+            believed.y_mm().round() as i64,
+            heading_0_359(&believed),
+        );
+        match &mut self.robot {
+            None => {
+                let il = agent.input_link();
+                let (_, data) = agent.add_input_object(il, "currentrobotdata");
+                let xw = agent.add_input(data, "X", x);
+                let yw = agent.add_input(data, "Y", y);
+                let thw = agent.add_input(data, "Th", th);
+                let mut ranges = [WmeId(0); NUM_SONARS];
+                for (i, slot) in ranges.iter_mut().enumerate() {
+                    let (_, so) = agent.add_input_object(data, "sonar");
+                    agent.add_input(so, "index", i as i64);
+                    *slot = agent.add_input(so, "range", range_int(s.ranges_mm[i]));
+                }
+                let (_, wd) = agent.add_input_object(il, "wallData");
+                self.wall_data = Some(wd);
+                self.robot = Some(RobotIo {
+                    x: xw,
+                    y: yw,
+                    th: thw,
+                    ranges,
+                });
+            }
+            Some(io) => {
+                io.x = agent.update_input(io.x, x);
+                io.y = agent.update_input(io.y, y);
+                io.th = agent.update_input(io.th, th);
+                for (i, w) in io.ranges.iter_mut().enumerate() {
+                    *w = agent.update_input(*w, range_int(s.ranges_mm[i]));
+                }
+            }
+        }
+        self.tidy_input_walls(agent);
+        if self.window.len() == self.settings.scan_window.max(1) {
+            self.window.pop_front();
+        }
+        self.window.push_back(Scan {
+            ranges_mm: s.ranges_mm,
+            pose: believed,
+        });
+        let every = self.settings.extract_every.max(1) as u64;
+        if self.steps % every == 0 {
+            let time = self.steps as i64;
+            let out = pipeline::run(&self.window, &P2DX_SONARS, &self.settings, time);
+            self.stats.extractions += 1;
+            for wall in &out.walls {
+                self.add_wall(agent, wall);
+            }
+        }
+    }
+
+    /// Removes input walls CopyWall has copied, and those nobody copied in time.
+    fn tidy_input_walls(&mut self, agent: &mut Agent) {
+        if self.input_walls.is_empty() {
+            return;
+        }
+        let copied_attr = agent.symbols.find_str("Copied");
+        let now = self.stats.extractions;
+        let mut keep = Vec::with_capacity(self.input_walls.len());
+        for w in std::mem::take(&mut self.input_walls) {
+            let copied = copied_attr.is_some_and(|a| {
+                agent
+                    .wm
+                    .of_id(w.id)
+                    .iter()
+                    .any(|x| agent.wm.get(*x).is_some_and(|m| m.attr == a))
+            });
+            if copied {
+                agent.remove_input(w.wme);
+                self.stats.walls_copied += 1;
+            } else if now.saturating_sub(w.extraction) >= self.expire_after {
+                agent.remove_input(w.wme);
+                self.stats.walls_expired += 1;
+            } else {
+                keep.push(w);
+            }
+        }
+        self.input_walls = keep;
+    }
+
+    /// Puts one extracted wall on the input-link (README §1.3).
+    fn add_wall(&mut self, agent: &mut Agent, wall: &Wall) {
+        let Some(wd) = self.wall_data else { return };
+        let (wme, id) = agent.add_input_object(wd, "Wall");
+        let (_, start) = agent.add_input_object(id, "Start");
+        agent.add_input(start, "X", wall.start.x);
+        agent.add_input(start, "Y", wall.start.y);
+        let (_, end) = agent.add_input_object(id, "End");
+        agent.add_input(end, "X", wall.end.x);
+        agent.add_input(end, "Y", wall.end.y);
+        let (_, reference) = agent.add_input_object(id, "Ref");
+        agent.add_input(reference, "X", wall.reference.x);
+        agent.add_input(reference, "Y", wall.reference.y);
+        agent.add_input(reference, "Th", wall.reference.th);
+        agent.add_input(id, "Length", wall.length);
+        agent.add_input(id, "R", wall.r);
+        agent.add_input(id, "Th", wall.th);
+        agent.add_input(id, "Time", wall.time);
+        self.input_walls.push(InputWall {
+            wme,
+            id,
+            extraction: self.stats.extractions,
+        });
+        self.stats.walls_extracted += 1;
+    }
+
+    /// The output phase: carry out each new command once and mark it done.
+    fn output(&mut self, agent: &mut Agent) {
+        for cmd in agent.output_commands() {
+            if cmd.params.iter().any(|(a, _)| a == "status") {
+                continue;
+            }
+            let param = |name: &str| -> Option<f64> {
+                cmd.params
+                    .iter()
+                    .find(|(a, _)| a == name)
+                    .and_then(|(_, v)| agent.number(*v))
+                    .filter(|v| v.is_finite())
+            };
+            let done = match cmd.name.as_str() {
+                "move" => param("param1").map(|v| {
+                    self.sim.set_vel_mm_s(v);
+                    self.sim.set_rot_vel_deg_s(0.0);
+                }),
+                "turn" => param("param1").map(|w| {
+                    self.sim.set_vel_mm_s(0.0);
+                    self.sim.set_rot_vel_deg_s(w);
+                }),
+                "stop" => {
+                    self.sim.stop();
+                    Some(())
+                }
+                "setOdometry" => match (param("param1"), param("param2"), param("param3")) {
+                    (Some(x), Some(y), Some(th)) => {
+                        self.set_odometry(x, y, th.rem_euclid(360.0));
+                        Some(())
+                    }
+                    _ => None,
+                },
+                _ => None,
+            };
+            match done {
+                Some(()) => *self.stats.commands.entry(cmd.name.clone()).or_default() += 1,
+                None => {
+                    if self.stats.bad_commands.len() < 20 {
+                        let params: Vec<String> = cmd
+                            .params
+                            .iter()
+                            .map(|(a, v)| format!("^{a} {}", agent.symbols.text(*v)))
+                            .collect();
+                        self.stats.bad_commands.push(format!(
+                            "step {}: ({} {})",
+                            self.steps,
+                            cmd.name,
+                            params.join(" ")
+                        ));
+                    }
+                }
+            }
+            agent.mark_done(cmd.id);
+        }
+    }
+
+    /// `setOdometry`: overwrite the believed pose and carry the scan window into the new frame.
+    fn set_odometry(&mut self, x_mm: f64, y_mm: f64, th_deg: f64) {
+        let old = self.sim.believed();
+        self.sim.set_odometry_mm_deg(x_mm, y_mm, th_deg);
+        let new = self.sim.believed();
+        for scan in &mut self.window {
+            scan.pose = reframe(&old, &new, &scan.pose);
+        }
+        self.corrections += 1;
+    }
+}
+
+/// `p` (in the frame where the robot was at `old`) in the frame where it is at `new`.
+fn reframe(old: &Pose, new: &Pose, p: &Pose) -> Pose {
+    let (s, c) = old.th.sin_cos();
+    let (dx, dy) = (p.x - old.x, p.y - old.y);
+    let local = super::geom::Point::new(c * dx + s * dy, -s * dx + c * dy);
+    let q = new.transform(local);
+    Pose::new(q.x, q.y, new.th + (p.th - old.th))
+}
+
+/// What one decision's trace said.
+#[derive(Debug, Default, PartialEq)]
+struct Trace {
+    operators: Vec<String>,
+    impasses: u64,
+    messages: Vec<String>,
+}
+
+/// Reads a trace-level-1 text: `     7:    O: O12 (move)` selections, `==>S:` impasses, and
+/// everything else as messages.
+fn parse_trace(text: &str) -> Trace {
+    let mut t = Trace::default();
+    for line in text.lines() {
+        let l = line.trim();
+        if l.is_empty() {
+            continue;
+        }
+        let decision = l
+            .split_once(':')
+            .filter(|(n, _)| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+            .map(|(_, rest)| rest.trim_start());
+        match decision {
+            Some(rest) if rest.starts_with("O:") => {
+                let name = rest
+                    .rfind('(')
+                    .and_then(|i| rest[i + 1..].strip_suffix(')'))
+                    .unwrap_or("?");
+                t.operators.push(name.to_string());
+            }
+            Some(rest) if rest.starts_with("==>S:") => t.impasses += 1,
+            _ => t.messages.push(l.to_string()),
+        }
+    }
+    t
+}
+
+/// Symbols looked up once they exist.
+#[derive(Default)]
+struct Names {
+    wall_data: Option<Sym>,
+    wall: Option<Sym>,
+}
+
+/// The agent with the thesis rules, the simulator and the pipeline, stepped one decision at a
+/// time.
+pub struct SoarRobot {
+    interp: Interpreter,
+    env: Rc<RefCell<Env>>,
+    names: Names,
+    productions: usize,
+    load_log: String,
+    #[cfg(test)]
+    last_text: String,
+}
+
+/// Loads `robotagent.soar` from `rules_dir` into `interp`, without its `source slam.soar` line
+/// when `slam` is off (the file itself is never changed). Returns the productions loaded.
+pub fn load_rules(interp: &mut Interpreter, rules_dir: &Path, slam: bool) -> Result<usize, String> {
+    let path = rules_dir.join("robotagent.soar");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut found = false;
+    let mut kept = String::with_capacity(text.len());
+    for line in text.lines() {
+        if line.trim() == SLAM_LINE {
+            found = true;
+            if !slam {
+                continue;
+            }
+        }
+        kept.push_str(line);
+        kept.push('\n');
+    }
+    if !found {
+        return Err(format!(
+            "{} has no line `{SLAM_LINE}`, so SLAM cannot be switched",
+            path.display()
+        ));
+    }
+    interp.set_cwd(rules_dir.to_path_buf());
+    let before = interp.agent.production_count();
+    let name = path.display().to_string();
+    interp
+        .run_text(&name, &kept)
+        .map_err(|d| format!("loading the rules failed:\n{}", interp.sources.render(&d)))?;
+    Ok(interp.agent.production_count() - before)
+}
+
+impl SoarRobot {
+    /// Loads the rules, registers the `exec` functions, seeds the agent and hooks the
+    /// simulator to the agent's input and output phases.
+    pub fn new(cfg: &LoopConfig) -> Result<Self, String> {
+        let mut interp = Interpreter::new();
+        let productions = load_rules(&mut interp, &cfg.rules_dir, cfg.slam)?;
+        interp
+            .run_text("srand", &format!("srand {}", cfg.seed % (1 << 32)))
+            .map_err(|d| interp.sources.render(&d))?;
+        let load_log = interp.take_output();
+        let agent = &mut interp.agent;
+        agent.output.clear();
+        agent.settings.trace_level = 1;
+        super::functions::register(agent);
+        let env = Rc::new(RefCell::new(Env {
+            sim: Simulator::new(cfg.world.clone(), cfg.seed),
+            settings: cfg.world.pipeline.clone(),
+            expire_after: cfg.expire_after.max(1),
+            window: VecDeque::new(),
+            steps: 0,
+            robot: None,
+            wall_data: None,
+            input_walls: Vec::new(),
+            corrections: 0,
+            stats: RunStats::default(),
+        }));
+        let e = Rc::clone(&env);
+        agent.input_callback = Some(Box::new(move |a: &mut Agent| e.borrow_mut().input(a)));
+        let e = Rc::clone(&env);
+        agent.output_callback = Some(Box::new(move |a: &mut Agent| e.borrow_mut().output(a)));
+        Ok(SoarRobot {
+            interp,
+            env,
+            names: Names::default(),
+            productions,
+            load_log,
+            #[cfg(test)]
+            last_text: String::new(),
+        })
+    }
+
+    /// The agent.
+    pub fn agent(&self) -> &Agent {
+        &self.interp.agent
+    }
+
+    /// The agent, to inspect or change it between steps.
+    pub fn agent_mut(&mut self) -> &mut Agent {
+        &mut self.interp.agent
+    }
+
+    /// Productions loaded.
+    pub fn productions(&self) -> usize {
+        self.productions
+    }
+
+    /// What loading the rules printed.
+    pub fn load_log(&self) -> &str {
+        &self.load_log
+    }
+
+    /// The true pose.
+    pub fn true_pose(&self) -> Pose {
+        self.env.borrow().sim.true_pose()
+    }
+
+    /// The believed pose.
+    pub fn believed(&self) -> Pose {
+        self.env.borrow().sim.believed()
+    }
+
+    /// Counters so far (decisions and firings filled in).
+    pub fn stats(&self) -> RunStats {
+        let mut s = self.env.borrow().stats.clone();
+        s.decisions = self.interp.agent.decider.decisions;
+        s.firings = self.interp.agent.decider.firings;
+        s
+    }
+
+    /// One decision cycle and one simulator step; the step's record, or how the run ended.
+    pub fn step(&mut self) -> Result<StepRecord, Outcome> {
+        let agent = &mut self.interp.agent;
+        if agent.decider.halted {
+            return Err(self.halted("the agent was already halted"));
+        }
+        let steps_before = self.env.borrow().steps;
+        agent.run(1, RunUnit::Decisions);
+        let text = std::mem::take(&mut agent.output);
+        let trace = parse_trace(&text);
+        #[cfg(test)]
+        {
+            self.last_text = text.clone();
+        }
+        let halted = agent.decider.halted;
+        {
+            let mut env = self.env.borrow_mut();
+            let stats = &mut env.stats;
+            for op in &trace.operators {
+                *stats.operators.entry(op.clone()).or_default() += 1;
+            }
+            stats.impasses += trace.impasses;
+            stats.message_count += trace.messages.len() as u64;
+            for m in &trace.messages {
+                if stats.messages.len() < 50 {
+                    stats.messages.push(m.clone());
+                }
+            }
+        }
+        if halted {
+            let detail = if trace.messages.is_empty() {
+                "no message".to_string()
+            } else {
+                trace.messages.join(" / ")
+            };
+            return Err(self.halted(&detail));
+        }
+        if self.env.borrow().steps == steps_before {
+            return Err(self.halted("the decision cycle did not reach the input phase"));
+        }
+        let walls_memory = self.walls_in_memory();
+        let env = self.env.borrow();
+        let true_pose = env.sim.true_pose();
+        let believed = env.sim.believed();
+        Ok(StepRecord {
+            step: env.steps,
+            time_s: env.sim.time_s(),
+            true_pose,
+            believed,
+            pos_err_mm: true_pose.distance(&believed) * 1000.0,
+            heading_err_deg: true_pose.heading_error(&believed).to_degrees(),
+            walls_memory,
+            walls_input: env.input_walls.len(),
+            walls_extracted: env.stats.walls_extracted,
+            corrections: env.corrections,
+            wm_size: self.interp.agent.wm.len(),
+            operators: trace.operators.join(" "),
+        })
+    }
+
+    fn halted(&self, detail: &str) -> Outcome {
+        let env = self.env.borrow();
+        Outcome::Halted {
+            step: env.steps,
+            time_s: env.sim.time_s(),
+            message: detail.to_string(),
+        }
+    }
+
+    /// The top state's `^wallData` identifier, once the rules made it.
+    fn wall_data(&mut self) -> Option<Sym> {
+        let a = &self.interp.agent;
+        if self.names.wall_data.is_none() {
+            self.names.wall_data = a.symbols.find_str("wallData");
+        }
+        if self.names.wall.is_none() {
+            self.names.wall = a.symbols.find_str("Wall");
+        }
+        let attr = self.names.wall_data?;
+        child(a, a.top.state, attr)
+    }
+
+    /// `^Wall` objects under the top state's `^wallData`.
+    pub fn walls_in_memory(&mut self) -> usize {
+        let Some(wd) = self.wall_data() else { return 0 };
+        let Some(wall) = self.names.wall else {
+            return 0;
+        };
+        let a = &self.interp.agent;
+        a.wm.of_id(wd)
+            .iter()
+            .filter_map(|w| a.wm.get(*w))
+            .filter(|w| w.attr == wall && !w.acceptable)
+            .count()
+    }
+
+    /// The map in memory: every `^wallData.Wall` with its numbers (missing ones are NaN).
+    pub fn memory_walls(&mut self) -> Vec<MemoryWall> {
+        let Some(wd) = self.wall_data() else {
+            return Vec::new();
+        };
+        let a = &self.interp.agent;
+        let num = |id: Sym, attr: &str| -> f64 {
+            a.symbols
+                .find_str(attr)
+                .and_then(|s| child(a, id, s))
+                .and_then(|v| a.number(v))
+                .unwrap_or(f64::NAN)
+        };
+        let point = |id: Sym, attr: &str| -> (f64, f64) {
+            match a.symbols.find_str(attr).and_then(|s| child(a, id, s)) {
+                Some(p) => (num(p, "X"), num(p, "Y")),
+                None => (f64::NAN, f64::NAN),
+            }
+        };
+        let Some(wall) = self.names.wall else {
+            return Vec::new();
+        };
+        a.wm.of_id(wd)
+            .iter()
+            .filter_map(|w| a.wm.get(*w))
+            .filter(|w| w.attr == wall && !w.acceptable && a.symbols.is_id(w.value))
+            .map(|w| MemoryWall {
+                r: num(w.value, "R"),
+                th: num(w.value, "Th"),
+                start: point(w.value, "Start"),
+                end: point(w.value, "End"),
+                length: num(w.value, "Length"),
+                time: num(w.value, "Time"),
+            })
+            .collect()
+    }
+}
+
+/// The first non-acceptable value of `(id ^attr ...)`.
+fn child(a: &Agent, id: Sym, attr: Sym) -> Option<Sym> {
+    a.wm.of_id(id)
+        .iter()
+        .filter_map(|w| a.wm.get(*w))
+        .find(|w| w.attr == attr && !w.acceptable)
+        .map(|w| w.value)
+}
+
+/// Runs one whole run: loads the rules, steps until the duration is over or the agent halts,
+/// and gathers the records. Never panics: a load error or a kernel panic becomes
+/// [`Outcome::Failed`] (with the steps recorded so far).
+pub fn run(cfg: &LoopConfig) -> RunResult {
+    let mut result = RunResult {
+        seed: cfg.seed,
+        slam: cfg.slam,
+        outcome: Outcome::Completed,
+        steps: Vec::new(),
+        stats: RunStats::default(),
+        memory_walls: Vec::new(),
+        productions: 0,
+        load_log: String::new(),
+        wall_time: Duration::ZERO,
+    };
+    let mut robot = match SoarRobot::new(cfg) {
+        Ok(r) => r,
+        Err(e) => {
+            result.outcome = Outcome::Failed(e);
+            return result;
+        }
+    };
+    result.productions = robot.productions;
+    result.load_log = robot.load_log.clone();
+    let n = cfg.steps();
+    result.steps.reserve(n as usize);
+    let start = Instant::now();
+    let steps = &mut result.steps;
+    let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        for _ in 0..n {
+            match robot.step() {
+                Ok(r) => steps.push(r),
+                Err(o) => return (o, robot),
+            }
+        }
+        (Outcome::Completed, robot)
+    }));
+    result.wall_time = start.elapsed();
+    match caught {
+        Ok((outcome, mut robot)) => {
+            result.outcome = outcome;
+            result.stats = robot.stats();
+            result.memory_walls = robot.memory_walls();
+        }
+        Err(panic) => {
+            let msg = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_else(|| "unknown panic".into());
+            result.outcome = Outcome::Failed(format!(
+                "the kernel panicked after step {}: {msg}",
+                result.steps.len()
+            ));
+        }
+    }
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn config(slam: bool, seed: u64, duration_s: f64) -> LoopConfig {
+        LoopConfig::new(World::empty_room(), seed, slam, duration_s)
+    }
+
+    #[test]
+    fn trace_lines_are_parsed() {
+        let t = parse_trace(
+            "\n     1:    O: O2 (move)\n     2:    O: O7 (CheckWallRelation)\n     3:    \
+             ==>S: S2 (operator no-change)\n     4:       O: O9 (UpdateWallInfo)\nWarning: x\n",
+        );
+        assert_eq!(t.operators, ["move", "CheckWallRelation", "UpdateWallInfo"]);
+        assert_eq!(t.impasses, 1);
+        assert_eq!(t.messages, ["Warning: x"]);
+    }
+
+    #[test]
+    fn reframe_is_the_rigid_motion_between_beliefs() {
+        let old = Pose::from_mm_deg(1000.0, 0.0, 90.0);
+        let new = Pose::from_mm_deg(0.0, 500.0, 0.0);
+        // 100 mm ahead of the old belief, turned 10° more.
+        let p = Pose::from_mm_deg(1000.0, 100.0, 100.0);
+        let q = reframe(&old, &new, &p);
+        assert!((q.x_mm() - 100.0).abs() < 1e-9 && (q.y_mm() - 500.0).abs() < 1e-9);
+        assert!((q.th_deg() - 10.0).abs() < 1e-9);
+        assert_eq!(reframe(&old, &old, &p), p);
+    }
+
+    #[test]
+    fn slam_off_loads_only_the_moving_rules() {
+        let mut interp = Interpreter::new();
+        let n = load_rules(&mut interp, &default_rules_dir(), false).unwrap();
+        assert_eq!(n, 9);
+        let mut interp = Interpreter::new();
+        let n = load_rules(&mut interp, &default_rules_dir(), true).unwrap();
+        assert_eq!(n, 36);
+        let err = load_rules(&mut Interpreter::new(), Path::new("/nonexistent"), true);
+        assert!(err.unwrap_err().contains("cannot read"));
+    }
+
+    #[test]
+    fn a_missing_rules_folder_fails_cleanly() {
+        let mut cfg = config(true, 1, 1.0);
+        cfg.rules_dir = PathBuf::from("/nonexistent");
+        let r = run(&cfg);
+        assert!(matches!(r.outcome, Outcome::Failed(ref m) if m.contains("robotagent.soar")));
+        assert!(r.steps.is_empty());
+    }
+
+    /// Thirty simulated seconds with the SLAM rules: the robot drives, the agent selects the
+    /// moving and the SLAM operators, walls reach the top state's `^wallData`, and the same
+    /// seed gives the same rows.
+    #[test]
+    fn thirty_seconds_with_slam() {
+        let cfg = config(true, 7, 30.0);
+        let a = run(&cfg);
+        assert_eq!(a.outcome, Outcome::Completed, "{:?}", a.stats.messages);
+        assert_eq!(a.steps.len(), 300);
+        assert_eq!(a.productions, 36);
+        let first = a.steps[0].true_pose;
+        let travelled = a
+            .steps
+            .iter()
+            .map(|r| r.true_pose.distance(&first))
+            .fold(0.0, f64::max);
+        assert!(travelled > 1.0, "the robot moved only {travelled} m");
+        let ops = &a.stats.operators;
+        assert!(ops.get("move").copied().unwrap_or(0) >= 1, "{ops:?}");
+        assert!(ops.get("CopyWall").copied().unwrap_or(0) >= 1, "{ops:?}");
+        assert!(a.stats.walls_extracted > 0);
+        assert!(
+            a.steps.iter().any(|r| r.walls_memory > 0),
+            "no wall reached ^wallData"
+        );
+        assert!(a.stats.walls_copied > 0);
+        assert!(
+            a.stats.bad_commands.is_empty(),
+            "{:?}",
+            a.stats.bad_commands
+        );
+        assert!(a.stats.commands.get("move").copied().unwrap_or(0) >= 1);
+        eprintln!(
+            "30 s SLAM on: {:?}, walls in memory at the end {}, corrections {}, stats {:?}",
+            a.wall_time,
+            a.steps.last().map_or(0, |r| r.walls_memory),
+            a.steps.last().map_or(0, |r| r.corrections),
+            a.stats
+        );
+        let b = run(&cfg);
+        assert_eq!(a.csv(), b.csv());
+        let c = run(&config(true, 8, 30.0));
+        assert_ne!(a.csv(), c.csv());
+    }
+
+    /// With the SLAM rules off only the moving rules load, no wall reaches memory and no
+    /// correction happens. The true path of a seed is the SLAM-on path until the first decision
+    /// in which the SLAM-on agent still holds a SLAM operator where the SLAM-off agent selects
+    /// a motion operator: 9.6 keeps a selected operator until its proposal retracts, so a
+    /// `CheckWallRelation` in progress delays a `move` or `turn-right` by a decision or two.
+    #[test]
+    fn slam_off_drives_the_same_true_path_until_a_slam_operator_delays_a_motion() {
+        let on = run(&config(true, 3, 20.0));
+        let off = run(&config(false, 3, 20.0));
+        assert!(on.outcome.completed() && off.outcome.completed());
+        assert_eq!(off.productions, 9);
+        assert!(off
+            .steps
+            .iter()
+            .all(|r| r.walls_memory == 0 && r.corrections == 0));
+        assert!(off.stats.operators.get("CopyWall").is_none());
+        let split = on
+            .steps
+            .iter()
+            .zip(&off.steps)
+            .position(|(a, b)| a.true_pose != b.true_pose)
+            .unwrap_or(on.steps.len());
+        let motion = |ops: &str| ops.contains("move") || ops.contains("turn-right");
+        let first_delay = on
+            .steps
+            .iter()
+            .zip(&off.steps)
+            .position(|(a, b)| motion(&b.operators) && !motion(&a.operators))
+            .unwrap_or(on.steps.len());
+        // The paths can only part one step after the delayed command.
+        assert!(
+            split > first_delay,
+            "paths split at {split}, first delay at {first_delay}"
+        );
+    }
+}
+
+#[cfg(test)]
+mod debug_tmp {
+    use super::*;
+    #[test]
+    #[ignore]
+    fn dump_halt() {
+        let seed: u64 = std::env::var("SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(7);
+        let slam = std::env::var("SLAM").map(|s| s == "1").unwrap_or(true);
+        let cfg = LoopConfig::new(World::empty_room(), seed, slam, 60.0);
+        let mut r = SoarRobot::new(&cfg).unwrap();
+        let mut traces: VecDeque<String> = VecDeque::new();
+        for _ in 0..600 {
+            r.agent_mut().settings.trace_level = 1;
+            let before = r.env.borrow().steps;
+            let res = r.step();
+            let _ = before;
+            let raw = r.last_text.clone();
+            match res {
+                Ok(rec) => {
+                    traces.push_back(format!(
+                        "{} {} |{}|",
+                        rec.step,
+                        rec.operators,
+                        raw.replace('\n', " / ")
+                    ));
+                    if traces.len() > 40 {
+                        traces.pop_front();
+                    }
+                }
+                Err(o) => {
+                    for t in &traces {
+                        eprintln!("{t}");
+                    }
+                    eprintln!("{o}");
+                    return;
+                }
+            }
+        }
+        for t in traces.iter().rev().take(5) {
+            eprintln!("{t}");
+        }
+        eprintln!("completed {:?}", r.stats());
+    }
+}
+#[cfg(test)]
+mod debug_tmp2 {
+    use super::*;
+    #[test]
+    #[ignore]
+    fn diverge() {
+        let seed: u64 = std::env::var("SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(3);
+        let on = run(&LoopConfig::new(World::empty_room(), seed, true, 20.0));
+        let off = run(&LoopConfig::new(World::empty_room(), seed, false, 20.0));
+        let i = on
+            .steps
+            .iter()
+            .zip(&off.steps)
+            .position(|(a, b)| a.true_pose != b.true_pose)
+            .unwrap();
+        for k in i.saturating_sub(12)..(i + 3).min(on.steps.len()) {
+            eprintln!("ON  {}", on.steps[k].csv_row());
+            eprintln!("OFF {}", off.steps[k].csv_row());
+        }
+    }
+}
+#[cfg(test)]
+mod debug_tmp3 {
+    use super::*;
+    fn attr(a: &Agent, id: Sym, name: &str) -> Option<Sym> {
+        let s = a.symbols.find_str(name)?;
+        child(a, id, s)
+    }
+    #[test]
+    #[ignore]
+    fn pairs() {
+        let cfg = LoopConfig::new(World::empty_room(), 1, true, 100.0);
+        let mut r = SoarRobot::new(&cfg).unwrap();
+        let mut seen: BTreeMap<(String, String), Vec<(u64, String)>> = BTreeMap::new();
+        let mut last_op = None;
+        for _ in 0..1000 {
+            let rec = r.step().unwrap();
+            let a = r.agent();
+            let Some(op) = attr(a, a.top.state, "operator") else { continue };
+            if Some(op) == last_op { continue; }
+            last_op = Some(op);
+            let name = attr(a, op, "name").map(|s| a.symbols.plain(s)).unwrap_or_default();
+            if name != "CheckWallRelation" { continue; }
+            let w1 = attr(a, op, "Wall1").map(|s| a.symbols.text(s)).unwrap_or_default();
+            let w2 = attr(a, op, "Wall2").map(|s| a.symbols.text(s)).unwrap_or_default();
+            seen.entry((w1, w2)).or_default().push((rec.step, a.symbols.text(op)));
+        }
+        for (k, v) in &seen {
+            if v.len() > 2 { eprintln!("{k:?}: {} times: {:?}", v.len(), &v[..v.len().min(8)]); }
+        }
+        eprintln!("{} pairs", seen.len());
+    }
+}
