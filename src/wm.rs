@@ -25,6 +25,7 @@ pub struct WorkingMemory {
     by_id: FxHashMap<Sym, Vec<WmeId>>,
     by_timetag: FxHashMap<u64, WmeId>,
     count: usize,
+    removals: u64,
 }
 
 impl Default for WorkingMemory {
@@ -42,6 +43,7 @@ impl WorkingMemory {
             by_id: FxHashMap::default(),
             by_timetag: FxHashMap::default(),
             count: 0,
+            removals: 0,
         }
     }
 
@@ -83,6 +85,7 @@ impl WorkingMemory {
         self.by_timetag.remove(&wme.timetag);
         self.free.push(w.0);
         self.count -= 1;
+        self.removals += 1;
         Some(wme)
     }
 
@@ -107,6 +110,16 @@ impl WorkingMemory {
             .collect();
         v.sort_by_key(|w| self.get(*w).map(|x| x.timetag));
         v
+    }
+
+    /// How many WMEs have been removed so far (a cheap change counter).
+    pub fn removals(&self) -> u64 {
+        self.removals
+    }
+
+    /// The identifiers that have WMEs.
+    pub fn ids(&self) -> impl Iterator<Item = Sym> + '_ {
+        self.by_id.keys().copied()
     }
 
     pub fn len(&self) -> usize {

@@ -861,6 +861,10 @@ impl Agent {
 
     /// Removes WMEs no longer linked to a goal or the io link (spec §2).
     fn collect_garbage(&mut self) {
+        // Only a removal can unlink structure (new WMEs hang off linked identifiers).
+        if self.wm.removals() == self.decider.gc_seen_removals {
+            return;
+        }
         let mut reachable: FxHashSet<Sym> = FxHashSet::default();
         let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
         stack.push(self.top.state);
@@ -880,13 +884,16 @@ impl Agent {
         }
         let garbage: Vec<WmeId> = self
             .wm
-            .all()
-            .into_iter()
-            .filter(|w| self.wm.get(*w).is_some_and(|x| !reachable.contains(&x.id)))
+            .ids()
+            .filter(|id| !reachable.contains(id))
+            .flat_map(|id| self.wm.of_id(id).to_vec())
             .collect();
         if garbage.is_empty() {
+            self.decider.gc_seen_removals = self.wm.removals();
             return;
         }
+        let mut garbage = garbage;
+        garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;

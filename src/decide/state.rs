@@ -107,6 +107,8 @@ pub struct DecideState {
     /// The top goal's operator slot changed since the last decision, per goal.
     pub context_changed: bool,
     pub wme_changes: u64,
+    /// Working memory's removal count at the last garbage collection.
+    pub gc_seen_removals: u64,
 }
 
 impl DecideState {
