@@ -1,7 +1,8 @@
 //! Matcher benchmarks (issue 3, item 7), on the rules of `scripts/gen_rules.py nomatch N`
 //! (generated here, byte for byte the same text): N rules in 100 groups that share the prefix
 //! `(state <s> ^superstate nil ^task <t>) (<t> ^name task-G ^step <st>)` and then test
-//! `(<st> ^kind kI ^value <v>)`, a constant no WME carries.
+//! `(<st> ^kind kI ^value <v>)` (`kI` reads as the string `K<I>`): no WME carries `^kind` and
+//! `^value` together, so no rule can match.
 //!
 //! Working memory, the same for every size and for the official kernel
 //! (`scripts/bench_official.py` sends the same commands):
@@ -10,6 +11,7 @@
 //! wm add S1 task *        # (S1 ^task I4)
 //! wm add I4 name task-0   # I4 passes group 0's ^name test
 //! wm add S1 other *       # (S1 ^other I5): an object that is not the task
+//! wm add I4 step *        # (I4 ^step I6): group 0's partial matches reach ^kind
 //! ```
 //!
 //! Changes timed, one WME added then removed, with 1,000 / 10,000 / 100,000 rules loaded:
@@ -20,17 +22,26 @@
 //!   the task); the 99 other groups' joins have empty parents (right-unlinked).
 //! - `step-partial`, `(I4 ^step x)`: passes group 0's `^step` join, so a partial match
 //!   reaches group 0's beta memory, whose N/100 children test `^kind kI` against empty alpha
-//!   memories (left-unlinked). No rule can match: no WME has `^kind`.
+//!   memories (left-unlinked).
+//! - `value-fail`, `(I5 ^value x)`: enters `(* ^value *)`, the alpha memory of every
+//!   rule's last condition: N joins, all with empty parents (right-unlinked in Rete/UL).
+//! - `kind-partial`, `(I6 ^kind |K0|)`: passes rule 0's `^kind` join, so one token enters
+//!   rule 0's last beta memory (its `^value` join, on that N-join alpha memory, comes back
+//!   from right-unlinking) and leaves again on removal.
 //!
 //! Each change is timed two ways: through the API (`Agent::add_wme` / `remove_wme`, the
 //! matcher's own cost) and through the command layer (`Interpreter::run_text("wm add ...")`
 //! then `wm remove <timetag>`, the output taken each time), which is what
-//! `bench_official.py` measures in the official kernel with `ExecuteCommandLine`.
+//! `bench_official.py` measures in the official kernel with `ExecuteCommandLine`. The three
+//! sizes are timed in interleaved rounds (one batch each in turn, median per size), so that
+//! load from elsewhere on a shared machine falls on all sizes alike.
 //!
 //! Also: the time to load the rules through the `sp` path (`run_text` of the whole text),
-//! and memory per production and per WME from `VmRSS` deltas in `/proc/self/status` (the
-//! package forbids `unsafe`, so a counting global allocator is not possible here; the
-//! allocator is mimalloc, as in the `rusoar` binary).
+//! and memory per production and per WME from `VmRSS` growth in `/proc/self/status`, each
+//! measured in a fresh child process (this program again) with mimalloc's purge delay at 0,
+//! so that freed memory leaves the resident set at once. The package forbids `unsafe`, so a
+//! counting global allocator is not possible here; the allocator is mimalloc, as in the
+//! `rusoar` binary.
 //!
 //! Run with `cargo bench --bench rete`. `main` prints the figures first, then divan's
 //! statistics follow. `RETE_BENCH_JSON=FILE` also writes the figures as JSON (read by
@@ -48,12 +59,18 @@ use std::time::Instant;
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 const SIZES: [usize; 3] = [1_000, 10_000, 100_000];
+/// Loads timed (median) for the 1,000 and 10,000 sizes.
+const LOADS_SMALL: usize = 5;
+/// Interleaved rounds for the per-change tables (see `interleaved_ns`).
+const API_ROUNDS: usize = 25;
+const CMD_ROUNDS: usize = 25;
 
 thread_local! {
     /// Sizes are divided by this (100 under `cargo test --benches`, 1 under `cargo bench`).
     static SCALE: Cell<usize> = const { Cell::new(100) };
     /// One loaded agent per size, built once and shared by `main`'s table and divan.
-    static LOADED: RefCell<BTreeMap<usize, Rc<RefCell<Setup>>>> = RefCell::new(BTreeMap::new());
+    static LOADED: RefCell<BTreeMap<usize, Rc<RefCell<Setup>>>> =
+        const { RefCell::new(BTreeMap::new()) };
 }
 
 fn scaled(n: usize) -> usize {
@@ -77,16 +94,25 @@ fn nomatch(n: usize) -> String {
 }
 
 /// The working-memory setup, as commands (the official kernel gets the same text).
-const SETUP: &str = "wm add S1 task *\nwm add I4 name task-0\nwm add S1 other *\n";
+const SETUP: &str =
+    "wm add S1 task *\nwm add I4 name task-0\nwm add S1 other *\nwm add I4 step *\n";
 
 #[derive(Clone, Copy)]
 enum Change {
     Noise,
     StepFail,
     StepPartial,
+    ValueFail,
+    KindPartial,
 }
 
-const CHANGES: [Change; 3] = [Change::Noise, Change::StepFail, Change::StepPartial];
+const CHANGES: [Change; 5] = [
+    Change::Noise,
+    Change::StepFail,
+    Change::StepPartial,
+    Change::ValueFail,
+    Change::KindPartial,
+];
 
 impl Change {
     fn name(self) -> &'static str {
@@ -94,6 +120,8 @@ impl Change {
             Change::Noise => "noise",
             Change::StepFail => "step-fail",
             Change::StepPartial => "step-partial",
+            Change::ValueFail => "value-fail",
+            Change::KindPartial => "kind-partial",
         }
     }
     fn wme(self) -> &'static str {
@@ -101,6 +129,8 @@ impl Change {
             Change::Noise => "(S1 ^noise x)",
             Change::StepFail => "(I5 ^step x)",
             Change::StepPartial => "(I4 ^step x)",
+            Change::ValueFail => "(I5 ^value x)",
+            Change::KindPartial => "(I6 ^kind |K0|)",
         }
     }
     fn command(self) -> &'static str {
@@ -108,6 +138,8 @@ impl Change {
             Change::Noise => "wm add S1 noise x",
             Change::StepFail => "wm add I5 step x",
             Change::StepPartial => "wm add I4 step x",
+            Change::ValueFail => "wm add I5 value x",
+            Change::KindPartial => "wm add I6 kind |K0|",
         }
     }
 }
@@ -119,24 +151,33 @@ struct Setup {
     /// VmRSS growth over the load, and the text's size (which the source map keeps).
     load_rss: u64,
     text_bytes: usize,
-    triples: [(Sym, Sym, Sym); 3],
+    triples: [(Sym, Sym, Sym); 5],
 }
 
 impl Setup {
     fn build(n: usize) -> Setup {
         let rules = scaled(n);
         let text = nomatch(rules);
-        let mut it = Interpreter::new();
-        let rss0 = rss_bytes();
-        let t = Instant::now();
-        if let Err(d) = it.run_text(&format!("nomatch-{rules}.soar"), &text) {
-            panic!(
-                "the generated rules failed to load: {}",
-                it.sources.render(&d)
-            );
+        // Small loads are timed as the median of LOADS_SMALL fresh loads (the last one is
+        // kept); 100,000 rules once (divan's `load_100k` times it again).
+        let loads = if n <= 10_000 { LOADS_SMALL } else { 1 };
+        let mut times = Vec::with_capacity(loads);
+        let (mut it, mut load_rss) = (Interpreter::new(), 0);
+        for _ in 0..loads {
+            it = Interpreter::new();
+            let rss0 = rss_bytes();
+            let t = Instant::now();
+            if let Err(d) = it.run_text(&format!("nomatch-{rules}.soar"), &text) {
+                panic!(
+                    "the generated rules failed to load: {}",
+                    it.sources.render(&d)
+                );
+            }
+            times.push(t.elapsed().as_secs_f64());
+            load_rss = rss_bytes().saturating_sub(rss0);
         }
-        let load_secs = t.elapsed().as_secs_f64();
-        let load_rss = rss_bytes().saturating_sub(rss0);
+        times.sort_by(f64::total_cmp);
+        let load_secs = times[times.len() / 2];
         assert_eq!(it.agent.production_count(), rules, "every rule loads");
         if let Err(d) = it.run_text("setup", SETUP) {
             panic!("setup failed: {}", it.sources.render(&d));
@@ -149,17 +190,22 @@ impl Setup {
                 .find_id(name)
                 .unwrap_or_else(|| panic!("`wm add ... *` made no {name}"))
         };
-        let (s1, i4, i5) = (id("S1"), id("I4"), id("I5"));
-        let noise = agent.symbols.str("noise");
-        let step = agent.symbols.str("step");
-        let x = agent.symbols.str("x");
+        let (s1, i4, i5, i6) = (id("S1"), id("I4"), id("I5"), id("I6"));
+        let [noise, step, value, kind, x, k0] =
+            ["noise", "step", "value", "kind", "x", "K0"].map(|w| agent.symbols.str(w));
         Setup {
             it,
             rules,
             load_secs,
             load_rss,
             text_bytes: text.len(),
-            triples: [(s1, noise, x), (i5, step, x), (i4, step, x)],
+            triples: [
+                (s1, noise, x),
+                (i5, step, x),
+                (i4, step, x),
+                (i5, value, x),
+                (i6, kind, k0),
+            ],
         }
     }
 
@@ -204,6 +250,17 @@ fn rss_bytes() -> u64 {
     status_kb("VmRSS:") * 1024
 }
 
+/// Minor page faults of this process so far (field 10 of `/proc/self/stat`).
+fn minor_faults() -> u64 {
+    std::fs::read_to_string("/proc/self/stat")
+        .ok()
+        .and_then(|s| {
+            let after = s.rsplit_once(')')?.1;
+            after.split_whitespace().nth(7)?.parse().ok()
+        })
+        .unwrap_or(0)
+}
+
 fn status_kb(field: &str) -> u64 {
     std::fs::read_to_string("/proc/self/status")
         .ok()
@@ -234,6 +291,37 @@ fn median_ns(batches: usize, per_batch: usize, mut f: impl FnMut()) -> f64 {
     v[v.len() / 2]
 }
 
+/// Median time per call at each of `SIZES`: `rounds` rounds, each timing one batch of
+/// `per_batch` calls on every size in turn, so that a burst of load elsewhere on the machine
+/// hits all sizes alike. A warm-up of a tenth of a batch per size comes first.
+fn interleaved_ns(rounds: usize, per_batch: usize, mut f: impl FnMut(&mut Setup)) -> Vec<f64> {
+    let setups: Vec<_> = SIZES.iter().map(|&n| setup(n)).collect();
+    for s in &setups {
+        let mut s = s.borrow_mut();
+        for _ in 0..per_batch / 10 {
+            f(&mut s);
+        }
+    }
+    let mut times = vec![Vec::with_capacity(rounds); setups.len()];
+    for _ in 0..rounds {
+        for (i, s) in setups.iter().enumerate() {
+            let mut s = s.borrow_mut();
+            let t = Instant::now();
+            for _ in 0..per_batch {
+                f(&mut s);
+            }
+            times[i].push(t.elapsed().as_nanos() as f64 / per_batch as f64);
+        }
+    }
+    times
+        .into_iter()
+        .map(|mut v| {
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        })
+        .collect()
+}
+
 // ------------------------------------------------------------------------- divan
 
 #[divan::bench(args = SIZES)]
@@ -255,6 +343,20 @@ fn api_step_partial(bencher: divan::Bencher, n: usize) {
     let s = setup(n);
     let mut s = s.borrow_mut();
     bencher.bench_local(|| s.api_pair(Change::StepPartial));
+}
+
+#[divan::bench(args = SIZES)]
+fn api_value_fail(bencher: divan::Bencher, n: usize) {
+    let s = setup(n);
+    let mut s = s.borrow_mut();
+    bencher.bench_local(|| s.api_pair(Change::ValueFail));
+}
+
+#[divan::bench(args = SIZES)]
+fn api_kind_partial(bencher: divan::Bencher, n: usize) {
+    let s = setup(n);
+    let mut s = s.borrow_mut();
+    bencher.bench_local(|| s.api_pair(Change::KindPartial));
 }
 
 #[divan::bench(args = SIZES, sample_count = 30)]
@@ -281,15 +383,74 @@ fn load_100k(bencher: divan::Bencher) {
 
 // ------------------------------------------------------------------------- the table
 
+/// Set in a child process (this program again) that measures memory in a fresh process:
+/// `rules`, `noise` or `step` (see `memory_child`).
+const CHILD: &str = "RETE_BENCH_MEMORY";
+
 fn main() {
     // `cargo bench` passes `--bench`; under `cargo test --benches` the sizes shrink and
     // divan runs each benchmark once.
     let full = std::env::args().any(|a| a == "--bench");
     if full {
         SCALE.with(|s| s.set(1));
+    }
+    if let Ok(key) = std::env::var(CHILD) {
+        println!("{}", memory_child(&key));
+        return;
+    }
+    if full {
         table();
     }
     divan::main();
+}
+
+/// In a fresh process: VmRSS growth per production over loading 100,000 rules (`rules`), or
+/// per WME over 1,000,000 WMEs `(S1 ^noise <int>)` (`noise`) or `(I5 ^step <int>)` (`step`)
+/// added to an agent with 1,000 rules, the values interned first.
+fn memory_child(key: &str) -> f64 {
+    if key == "rules" {
+        let n = scaled(100_000);
+        let text = nomatch(n);
+        let mut it = Interpreter::new();
+        let rss0 = rss_bytes();
+        it.run_text("nomatch.soar", &text).expect("rules load");
+        return rss_bytes().saturating_sub(rss0) as f64 / n as f64;
+    }
+    let mut it = Interpreter::new();
+    it.run_text("nomatch-1000.soar", &nomatch(scaled(1_000)))
+        .expect("rules load");
+    it.run_text("setup", SETUP).expect("setup runs");
+    let a = &mut it.agent;
+    let count = scaled(1_000_000);
+    let id = a
+        .symbols
+        .find_id(if key == "noise" { "S1" } else { "I5" })
+        .expect("S1 and I5 exist");
+    let attr = a.symbols.str(key);
+    // The values are interned first: the figures are for WMEs, not symbols.
+    let values: Vec<Sym> = (0..count as i64).map(|i| a.symbols.int(i)).collect();
+    let rss0 = rss_bytes();
+    for &v in &values {
+        a.add_wme(id, attr, v, false);
+    }
+    rss_bytes().saturating_sub(rss0) as f64 / count as f64
+}
+
+/// Runs `memory_child(key)` in a child process with mimalloc's purge delay at 0, so that
+/// freed memory (old buffers of grown vectors and tables, parser temporaries) leaves the
+/// resident set at once and the growth counts live bytes only.
+fn memory_in_child(key: &str) -> f64 {
+    let exe = std::env::current_exe().expect("the bench's own path");
+    let out = std::process::Command::new(exe)
+        .args(std::env::args().skip(1))
+        .env(CHILD, key)
+        .env("MIMALLOC_PURGE_DELAY", "0")
+        .output()
+        .expect("the child process runs");
+    String::from_utf8_lossy(&out.stdout)
+        .trim()
+        .parse()
+        .unwrap_or(f64::NAN)
 }
 
 fn table() {
@@ -302,6 +463,9 @@ fn table() {
     }
     println!("rete bench: {} cores, one run", cores());
     println!("\n== loading `nomatch` rules through the sp path (run_text of the whole text) ==");
+    println!(
+        "(1k and 10k: median of {LOADS_SMALL} loads; 100k: one load, the first of this process)"
+    );
     println!(
         "{:>8} {:>9} {:>12} {:>11} {:>8} {:>10} {:>13}",
         "rules", "load s", "rules/s", "beta nodes", "amems", "RSS MB", "RSS B/rule*"
@@ -329,42 +493,45 @@ fn table() {
         let s = s.borrow();
         let per = s.load_rss as f64 / s.rules as f64;
         let text = s.text_bytes as f64 / s.rules as f64;
+        let live = memory_in_child("rules");
         println!(
-            "* at 100,000 rules: {per:.0} B per production, of which {text:.0} B is the rule's \
-             source text (kept by the source map); {:.0} B without it",
-            per - text
+            "* VmRSS growth over the (last) load; below 100,000 rules it is within the \
+             allocator's noise.\n  At 100,000 rules: {per:.0} B per production here; \
+             {live:.0} B in a fresh process with freed memory purged at once (live bytes), \
+             of which\n  {text:.0} B is the rule's source text (kept by the source map)",
         );
+        json.push(("mem_live_bytes_per_production".into(), live));
         json.push(("mem_bytes_per_production".into(), per));
         json.push(("mem_text_bytes_per_production".into(), text));
     }
 
     println!("\n== one WME added then removed: API (Agent::add_wme + remove_wme) ==");
     println!(
-        "{:<13} {:<14} {:>10} {:>10} {:>10} {:>9} {:>12}",
+        "{:<13} {:<16} {:>10} {:>10} {:>10} {:>9} {:>12}",
         "change", "WME", "1k ns", "10k ns", "100k ns", "100k/1k", "R/L acts"
     );
     for c in CHANGES {
-        let mut row = Vec::new();
-        let mut acts = (0, 0);
+        let row = interleaved_ns(API_ROUNDS, 20_000, |s| s.api_pair(c));
+        let s = setup(100_000);
+        let mut s = s.borrow_mut();
+        let r = &s.it.agent.rete;
+        let (r0, l0) = (r.right_activations, r.left_activations);
+        s.api_pair(c);
+        let r = &s.it.agent.rete;
+        let acts = (r.right_activations - r0, r.left_activations - l0);
+        drop(s);
         for n in SIZES {
-            let s = setup(n);
-            let mut s = s.borrow_mut();
-            let ns = median_ns(9, 100_000, || s.api_pair(c));
-            let r = &s.it.agent.rete;
-            let (r0, l0) = (r.right_activations, r.left_activations);
-            s.api_pair(c);
-            let r = &s.it.agent.rete;
-            acts = (r.right_activations - r0, r.left_activations - l0);
             assert!(
-                s.it.agent.matches.assertions.is_empty(),
+                setup(n).borrow().it.agent.matches.assertions.is_empty(),
                 "no rule may match {}",
                 c.wme()
             );
-            json.push((format!("api_ns.{}.{n}", c.name()), ns));
-            row.push(ns);
+        }
+        for (n, ns) in SIZES.iter().zip(&row) {
+            json.push((format!("api_ns.{}.{n}", c.name()), *ns));
         }
         println!(
-            "{:<13} {:<14} {:>10.0} {:>10.0} {:>10.0} {:>8.2}x {:>12}",
+            "{:<13} {:<16} {:>10.0} {:>10.0} {:>10.0} {:>8.2}x {:>12}",
             c.name(),
             c.wme(),
             row[0],
@@ -381,28 +548,36 @@ fn table() {
         "\n== the same through the command layer: run_text(\"wm add ...\") + \"wm remove <tt>\" =="
     );
     println!(
-        "{:<13} {:<18} {:>10} {:>10} {:>10} {:>9}",
-        "change", "command", "1k us", "10k us", "100k us", "100k/1k"
+        "{:<13} {:<20} {:>8} {:>8} {:>8} {:>8} {:>17}",
+        "change", "command", "1k us", "10k us", "100k us", "100k/1k", "kept B/pair"
     );
     for c in CHANGES {
-        let mut row = Vec::new();
-        for n in SIZES {
-            let s = setup(n);
-            let mut s = s.borrow_mut();
-            let us = median_ns(7, 10_000, || s.cmd_pair(c)) / 1e3;
-            json.push((format!("cmd_us.{}.{n}", c.name()), us));
-            row.push(us);
+        let (rss0, flt0) = (rss_bytes(), minor_faults());
+        let row: Vec<f64> = interleaved_ns(CMD_ROUNDS, 2_000, |s| s.cmd_pair(c))
+            .into_iter()
+            .map(|ns| ns / 1e3)
+            .collect();
+        let calls = (SIZES.len() * (CMD_ROUNDS * 2_000 + 2_000 / 10)) as f64;
+        let kept = rss_bytes().saturating_sub(rss0) as f64 / calls;
+        let faults = (minor_faults() - flt0) as f64 / calls;
+        for (n, us) in SIZES.iter().zip(&row) {
+            json.push((format!("cmd_us.{}.{n}", c.name()), *us));
         }
         println!(
-            "{:<13} {:<18} {:>10.2} {:>10.2} {:>10.2} {:>8.2}x",
+            "{:<13} {:<20} {:>8.2} {:>8.2} {:>8.2} {:>7.2}x {:>17}",
             c.name(),
             c.command(),
             row[0],
             row[1],
             row[2],
-            row[2] / row[0]
+            row[2] / row[0],
+            format!("{kept:.0} ({faults:.3} flt)"),
         );
     }
+    println!(
+        "(kept B/pair: VmRSS growth per pair and minor page faults per pair, all sizes \
+         together;\n run_text registers each text in the source map for good)"
+    );
     let echo = {
         let s = setup(1_000);
         let mut s = s.borrow_mut();
@@ -411,33 +586,17 @@ fn table() {
     json.push(("cmd_us.echo".into(), echo));
     println!("(baseline: run_text(\"echo x\") + take_output: {echo:.2} us per call)");
 
-    println!("\n== memory per WME (VmRSS delta over 1,000,000 WMEs, 1,000 rules loaded) ==");
-    {
-        let mut it = Interpreter::new();
-        it.run_text("nomatch-1000.soar", &nomatch(scaled(1_000)))
-            .expect("rules load");
-        it.run_text("setup", SETUP).expect("setup runs");
-        let a = &mut it.agent;
-        let count = scaled(1_000_000);
-        let s1 = a.symbols.find_id("S1").expect("S1");
-        let i5 = a.symbols.find_id("I5").expect("I5");
-        let noise = a.symbols.str("noise");
-        let step = a.symbols.str("step");
-        // The values are interned first: the figures are for WMEs, not symbols.
-        let values: Vec<Sym> = (0..count as i64).map(|i| a.symbols.int(i)).collect();
-        for (label, id, attr) in [
-            ("(S1 ^noise <int>), no alpha memory", s1, noise),
-            ("(I5 ^step <int>), in (* ^step *)", i5, step),
-        ] {
-            let rss0 = rss_bytes();
-            for &v in &values {
-                a.add_wme(id, attr, v, false);
-            }
-            let per = rss_bytes().saturating_sub(rss0) as f64 / count as f64;
-            println!("{label:<40} {per:>6.0} B per WME");
-            let key = if attr == noise { "noise" } else { "step" };
-            json.push((format!("mem_bytes_per_wme.{key}"), per));
-        }
+    println!(
+        "\n== memory per WME (VmRSS growth over 1,000,000 WMEs, 1,000 rules loaded, in a fresh \
+         process, freed memory purged at once) =="
+    );
+    for (key, label) in [
+        ("noise", "(S1 ^noise <int>): no alpha memory"),
+        ("step", "(I5 ^step <int>): in (* ^step *)"),
+    ] {
+        let per = memory_in_child(key);
+        println!("{label:<40} {per:>6.0} B per WME");
+        json.push((format!("mem_bytes_per_wme.{key}"), per));
     }
     println!(
         "peak RSS of this process so far: {} MB",

@@ -307,6 +307,8 @@ pub struct RunSummary {
     pub walls_extracted: u64,
     pub walls_copied: u64,
     pub walls_expired: u64,
+    /// Walls still on the input-link, uncopied, at the end.
+    pub final_input_walls: usize,
     pub messages: Vec<String>,
     pub message_count: u64,
     pub bad_commands: Vec<String>,
@@ -349,6 +351,7 @@ impl RunSummary {
             walls_extracted: r.stats.walls_extracted,
             walls_copied: r.stats.walls_copied,
             walls_expired: r.stats.walls_expired,
+            final_input_walls: last.map_or(0, |s| s.walls_input),
             messages: r.stats.messages.clone(),
             message_count: r.stats.message_count,
             bad_commands: r.stats.bad_commands.clone(),
@@ -359,7 +362,7 @@ impl RunSummary {
 
     /// The position error at simulated time `t` (the step ending nearest `t`), if reached.
     pub fn err_at(&self, t: f64) -> Option<f64> {
-        if !(self.dt > 0.0) || t <= 0.0 {
+        if self.dt.is_nan() || self.dt <= 0.0 || t <= 0.0 {
             return None;
         }
         let k = (t / self.dt).round() as usize;
@@ -369,6 +372,9 @@ impl RunSummary {
         Some(self.pos_err_mm[k - 1])
     }
 }
+
+/// A seed's value of a measure without and with the SLAM rules: (seed, off, on).
+type Pair = (u64, f64, f64);
 
 /// Everything the experiment produced.
 #[derive(Debug, Clone)]
@@ -631,7 +637,7 @@ impl Experiment {
     }
 
     /// Seeds completed in both conditions, with (off, on) values.
-    fn paired(&self, f: impl Fn(&RunSummary) -> f64) -> Vec<(u64, f64, f64)> {
+    fn paired(&self, f: impl Fn(&RunSummary) -> f64) -> Vec<Pair> {
         let off: BTreeMap<u64, f64> = self
             .completed(false)
             .into_iter()
@@ -718,12 +724,12 @@ impl Experiment {
         let mut s = String::from(
             "slam,seed,outcome,sim_time_s,wall_time_s,rmse_mm,max_mm,final_mm,final_heading_deg,\
              rmse_heading_deg,final_walls,max_walls,corrections,decisions,firings,\
-             walls_extracted,walls_copied,walls_expired,messages\n",
+             walls_extracted,walls_copied,walls_expired,final_input_walls,messages\n",
         );
         for r in &self.runs {
             let _ = writeln!(
                 s,
-                "{},{},{},{:.1},{:.3},{:.1},{:.1},{:.1},{:.3},{:.3},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{:.1},{:.3},{:.1},{:.1},{:.1},{:.3},{:.3},{},{},{},{},{},{},{},{},{},{}",
                 condition_name(r.slam),
                 r.seed,
                 match r.outcome {
@@ -746,6 +752,7 @@ impl Experiment {
                 r.walls_extracted,
                 r.walls_copied,
                 r.walls_expired,
+                r.final_input_walls,
                 r.message_count
             );
         }
@@ -761,7 +768,10 @@ impl Experiment {
             "World `{}` ({} sonar), {} seed(s) from {}, {} simulated seconds per run, time step \
              {} s. SLAM `on` loads `rules/robotagent.soar` as it is; `off` leaves out its line \
              `source slam.soar`. Paired by seed: the same seed gives the same odometry biases, \
-             sonar noise and start in both conditions.\n",
+             sonar noise and start in both conditions. The true paths agree until the first \
+             decision in which a SLAM operator still holds the top state when the moving rules \
+             want to turn or move on (Soar keeps a selected operator until its proposal \
+             retracts), so they part after a few seconds.\n",
             self.world_label,
             self.noise,
             opts.seeds,
@@ -806,14 +816,14 @@ impl Experiment {
         let _ = writeln!(s, "\n## Map and agent\n");
         let _ = writeln!(
             s,
-            "| SLAM | walls in memory at the end | max walls | corrections (setOdometry) | walls extracted | copied | expired uncopied | decisions | firings | wall time per run, s |"
+            "| SLAM | walls in memory at the end | max walls | corrections (setOdometry) | walls extracted | copied | expired uncopied | left on the input-link | decisions | firings | wall time per run, s |"
         );
-        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|");
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|---|---|---|---|");
         for slam in self.conditions() {
             let c = |f: &dyn Fn(&RunSummary) -> f64| fmt_band(&self.column(slam, f));
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} [{:.2}–{:.2}] |",
+                "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} [{:.2}–{:.2}] |",
                 condition_name(slam),
                 c(&|r| r.final_walls as f64),
                 c(&|r| r.max_walls as f64),
@@ -821,6 +831,7 @@ impl Experiment {
                 c(&|r| r.walls_extracted as f64),
                 c(&|r| r.walls_copied as f64),
                 c(&|r| r.walls_expired as f64),
+                c(&|r| r.final_input_walls as f64),
                 c(&|r| r.decisions as f64),
                 c(&|r| r.firings as f64),
                 quantile(&self.column(slam, |r| r.wall_time_s), 0.5),
@@ -858,7 +869,7 @@ impl Experiment {
                 "| measure | seeds improved | median difference | Wilcoxon signed-rank p (two-sided) |"
             );
             let _ = writeln!(s, "|---|---|---|---|");
-            let mut measures: Vec<(String, Vec<(u64, f64, f64)>)> = Vec::new();
+            let mut measures: Vec<(String, Vec<Pair>)> = Vec::new();
             for &t in &self.checkpoints {
                 measures.push((
                     format!("error at {t:.0} s"),

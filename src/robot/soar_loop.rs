@@ -23,10 +23,10 @@
 //! `^Th` (0..359), integers, and 16 `^sonar` objects with `^index` and `^range` (mm, integers);
 //! their values are updated in place (`update_input` leaves an equal value alone). Each wall is
 //! added once. An input wall that carries `^Copied true` (CopyWall has copied it into the top
-//! state's `^wallData`) is removed at the next input phase, as the contract allows. A wall that
-//! nobody copied within [`LoopConfig::expire_after`] extractions is removed too, so that the
-//! input-link stays bounded with the SLAM rules off (no rule reads `wallData` then); both
-//! counts are reported.
+//! state's `^wallData`) is removed at the next input phase, as the contract allows. With the
+//! SLAM rules off nobody copies walls (no rule reads `wallData`), so there a wall is removed
+//! after [`LoopConfig::expire_after`] further extractions to keep the input-link bounded; with
+//! them on, a wall stays until it is copied. Both counts are reported.
 //!
 //! `setOdometry` and the scan window: the window's scans carry the believed pose of their time.
 //! When the rules reset the odometry, the loop re-expresses every stored scan pose in the new
@@ -74,8 +74,10 @@ pub struct LoopConfig {
     pub duration_s: f64,
     /// The folder holding `robotagent.soar`.
     pub rules_dir: PathBuf,
-    /// Remove an input wall nobody copied after this many further extractions.
-    pub expire_after: u64,
+    /// Remove an input wall nobody copied after this many further extractions; `None` keeps
+    /// it until CopyWall copies it (the contract). [`LoopConfig::new`] gives `None` with the
+    /// SLAM rules and 8 without them (no rule reads `^wallData` then).
+    pub expire_after: Option<u64>,
 }
 
 impl LoopConfig {
@@ -87,14 +89,14 @@ impl LoopConfig {
             slam,
             duration_s,
             rules_dir: default_rules_dir(),
-            expire_after: 8,
+            expire_after: if slam { None } else { Some(8) },
         }
     }
 
     /// Number of loop steps the duration gives.
     pub fn steps(&self) -> u64 {
         let dt = self.world.run.dt;
-        if !(dt > 0.0) || !self.duration_s.is_finite() || self.duration_s <= 0.0 {
+        if dt.is_nan() || dt <= 0.0 || !self.duration_s.is_finite() || self.duration_s <= 0.0 {
             return 0;
         }
         (self.duration_s / dt).round() as u64
@@ -237,7 +239,7 @@ pub struct RunStats {
     pub walls_extracted: u64,
     /// Input walls removed after CopyWall copied them.
     pub walls_copied: u64,
-    /// Input walls removed uncopied after [`LoopConfig::expire_after`] extractions.
+    /// Input walls removed uncopied after [`LoopConfig::expire_after`] extractions (SLAM off).
     pub walls_expired: u64,
     /// Output commands carried out, by name.
     pub commands: BTreeMap<String, u64>,
@@ -302,7 +304,7 @@ struct InputWall {
 struct Env {
     sim: Simulator,
     settings: PipelineSettings,
-    expire_after: u64,
+    expire_after: Option<u64>,
     window: VecDeque<Scan>,
     steps: u64,
     robot: Option<RobotIo>,
@@ -375,7 +377,7 @@ impl Env {
             pose: believed,
         });
         let every = self.settings.extract_every.max(1) as u64;
-        if self.steps % every == 0 {
+        if self.steps.is_multiple_of(every) {
             let time = self.steps as i64;
             let out = pipeline::run(&self.window, &P2DX_SONARS, &self.settings, time);
             self.stats.extractions += 1;
@@ -404,7 +406,10 @@ impl Env {
             if copied {
                 agent.remove_input(w.wme);
                 self.stats.walls_copied += 1;
-            } else if now.saturating_sub(w.extraction) >= self.expire_after {
+            } else if self
+                .expire_after
+                .is_some_and(|n| now.saturating_sub(w.extraction) >= n.max(1))
+            {
                 agent.remove_input(w.wme);
                 self.stats.walls_expired += 1;
             } else {
@@ -569,8 +574,6 @@ pub struct SoarRobot {
     names: Names,
     productions: usize,
     load_log: String,
-    #[cfg(test)]
-    last_text: String,
 }
 
 /// Loads `robotagent.soar` from `rules_dir` into `interp`, without its `source slam.soar` line
@@ -623,7 +626,7 @@ impl SoarRobot {
         let env = Rc::new(RefCell::new(Env {
             sim: Simulator::new(cfg.world.clone(), cfg.seed),
             settings: cfg.world.pipeline.clone(),
-            expire_after: cfg.expire_after.max(1),
+            expire_after: cfg.expire_after,
             window: VecDeque::new(),
             steps: 0,
             robot: None,
@@ -642,8 +645,6 @@ impl SoarRobot {
             names: Names::default(),
             productions,
             load_log,
-            #[cfg(test)]
-            last_text: String::new(),
         })
     }
 
@@ -695,10 +696,6 @@ impl SoarRobot {
         agent.run(1, RunUnit::Decisions);
         let text = std::mem::take(&mut agent.output);
         let trace = parse_trace(&text);
-        #[cfg(test)]
-        {
-            self.last_text = text.clone();
-        }
         let halted = agent.decider.halted;
         {
             let mut env = self.env.borrow_mut();
@@ -999,7 +996,7 @@ mod tests {
             .steps
             .iter()
             .all(|r| r.walls_memory == 0 && r.corrections == 0));
-        assert!(off.stats.operators.get("CopyWall").is_none());
+        assert!(!off.stats.operators.contains_key("CopyWall"));
         let split = on
             .steps
             .iter()
@@ -1019,108 +1016,43 @@ mod tests {
             "paths split at {split}, first delay at {first_delay}"
         );
     }
-}
 
-#[cfg(test)]
-mod debug_tmp {
-    use super::*;
+    /// Kernel issue found by the SLAM runs (Soar 9.6.5 gives `check` once, then only `wait`):
+    /// an o-supported reject made in a substate for the top state's selected operator must
+    /// remove that operator's acceptable preference for good, as `relation*not*found` relies
+    /// on (`rules/README.md` §4). rusoar selects the same operator again after every reject.
     #[test]
-    #[ignore]
-    fn dump_halt() {
-        let seed: u64 = std::env::var("SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(7);
-        let slam = std::env::var("SLAM").map(|s| s == "1").unwrap_or(true);
-        let cfg = LoopConfig::new(World::empty_room(), seed, slam, 60.0);
-        let mut r = SoarRobot::new(&cfg).unwrap();
-        let mut traces: VecDeque<String> = VecDeque::new();
-        for _ in 0..600 {
-            r.agent_mut().settings.trace_level = 1;
-            let before = r.env.borrow().steps;
-            let res = r.step();
-            let _ = before;
-            let raw = r.last_text.clone();
-            match res {
-                Ok(rec) => {
-                    traces.push_back(format!(
-                        "{} {} |{}|",
-                        rec.step,
-                        rec.operators,
-                        raw.replace('\n', " / ")
-                    ));
-                    if traces.len() > 40 {
-                        traces.pop_front();
-                    }
-                }
-                Err(o) => {
-                    for t in &traces {
-                        eprintln!("{t}");
-                    }
-                    eprintln!("{o}");
-                    return;
-                }
-            }
-        }
-        for t in traces.iter().rev().take(5) {
-            eprintln!("{t}");
-        }
-        eprintln!("completed {:?}", r.stats());
-    }
-}
-#[cfg(test)]
-mod debug_tmp2 {
-    use super::*;
-    #[test]
-    #[ignore]
-    fn diverge() {
-        let seed: u64 = std::env::var("SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(3);
-        let on = run(&LoopConfig::new(World::empty_room(), seed, true, 20.0));
-        let off = run(&LoopConfig::new(World::empty_room(), seed, false, 20.0));
-        let i = on
-            .steps
-            .iter()
-            .zip(&off.steps)
-            .position(|(a, b)| a.true_pose != b.true_pose)
+    #[ignore = "kernel: an o-reject from a substate does not remove the operator for good"]
+    fn o_reject_from_a_substate_retires_the_operator() {
+        let mut interp = Interpreter::new();
+        interp
+            .run_text(
+                "repro",
+                "sp {top*propose*check (state <s> ^superstate nil)
+                  --> (<s> ^operator <o> + =) (<o> ^name check)}
+                 sp {top*propose*wait (state <s> ^superstate nil -^operator.name wait)
+                  --> (<s> ^operator <o> + <) (<o> ^name wait)}
+                 sp {sub*name (state <s> ^superstate.operator.name check)
+                  --> (<s> ^name checking)}
+                 sp {sub*reject (state <s> ^impasse no-change ^attribute state ^superstate <ss>)
+                    (<ss> ^name checking)
+                    (state <top> ^superstate nil ^operator <o>) (<o> ^name check)
+                  --> (<top> ^operator <o> -)}",
+            )
             .unwrap();
-        for k in i.saturating_sub(12)..(i + 3).min(on.steps.len()) {
-            eprintln!("ON  {}", on.steps[k].csv_row());
-            eprintln!("OFF {}", off.steps[k].csv_row());
-        }
-    }
-}
-#[cfg(test)]
-mod debug_tmp3 {
-    use super::*;
-    fn attr(a: &Agent, id: Sym, name: &str) -> Option<Sym> {
-        let s = a.symbols.find_str(name)?;
-        child(a, id, s)
-    }
-    #[test]
-    #[ignore]
-    fn pairs() {
-        let cfg = LoopConfig::new(World::empty_room(), 1, true, 100.0);
-        let mut r = SoarRobot::new(&cfg).unwrap();
-        let mut seen: BTreeMap<(String, String), Vec<(u64, String)>> = BTreeMap::new();
-        let mut last_op = None;
-        for _ in 0..1000 {
-            let rec = r.step().unwrap();
-            let a = r.agent();
-            let Some(op) = attr(a, a.top.state, "operator") else { continue };
-            if Some(op) == last_op { continue; }
-            last_op = Some(op);
-            let name = attr(a, op, "name").map(|s| a.symbols.plain(s)).unwrap_or_default();
-            if name != "CheckWallRelation" { continue; }
-            let w1 = attr(a, op, "Wall1").map(|s| a.symbols.text(s)).unwrap_or_default();
-            let w2 = attr(a, op, "Wall2").map(|s| a.symbols.text(s)).unwrap_or_default();
-            seen.entry((w1, w2)).or_default().push((rec.step, a.symbols.text(op)));
-        }
-        for (k, v) in &seen {
-            if v.len() > 2 { eprintln!("{k:?}: {} times: {:?}", v.len(), &v[..v.len().min(8)]); }
-        }
-        eprintln!("{} pairs", seen.len());
+        let agent = &mut interp.agent;
+        agent.output.clear();
+        agent.run(10, RunUnit::Decisions);
+        let t = parse_trace(&agent.output);
+        assert_eq!(
+            t.operators.iter().filter(|o| *o == "check").count(),
+            1,
+            "{t:?}"
+        );
+        assert_eq!(
+            t.operators.iter().filter(|o| *o == "wait").count(),
+            7,
+            "{t:?}"
+        );
     }
 }
