@@ -34,7 +34,9 @@
 //! then `wm remove <timetag>`, the output taken each time), which is what
 //! `bench_official.py` measures in the official kernel with `ExecuteCommandLine`. The three
 //! sizes are timed in interleaved rounds (one batch each in turn, median per size), so that
-//! load from elsewhere on a shared machine falls on all sizes alike.
+//! load from elsewhere on a shared machine falls on all sizes alike. The first add+remove of
+//! each change right after the load is also timed on its own: one-time work, such as joins
+//! unlinking themselves lazily on their first right activation, shows there.
 //!
 //! Also: the time to load the rules through the `sp` path (`run_text` of the whole text),
 //! and memory per production and per WME from `VmRSS` growth in `/proc/self/status`, each
@@ -151,6 +153,9 @@ struct Setup {
     /// VmRSS growth over the load, and the text's size (which the source map keeps).
     load_rss: u64,
     text_bytes: usize,
+    /// The first add+remove of each change after the load, through the command layer, in
+    /// `CHANGES` order: one-time work (lazy unlinking) shows here.
+    first_secs: Vec<f64>,
     triples: [(Sym, Sym, Sym); 5],
 }
 
@@ -193,12 +198,13 @@ impl Setup {
         let (s1, i4, i5, i6) = (id("S1"), id("I4"), id("I5"), id("I6"));
         let [noise, step, value, kind, x, k0] =
             ["noise", "step", "value", "kind", "x", "K0"].map(|w| agent.symbols.str(w));
-        Setup {
+        let mut s = Setup {
             it,
             rules,
             load_secs,
             load_rss,
             text_bytes: text.len(),
+            first_secs: Vec::new(),
             triples: [
                 (s1, noise, x),
                 (i5, step, x),
@@ -206,7 +212,13 @@ impl Setup {
                 (i5, value, x),
                 (i6, kind, k0),
             ],
+        };
+        for c in CHANGES {
+            let t = Instant::now();
+            s.cmd_pair(c);
+            s.first_secs.push(t.elapsed().as_secs_f64());
         }
+        s
     }
 
     /// One change through the API: add the WME, then remove it.
@@ -503,6 +515,32 @@ fn table() {
         json.push(("mem_live_bytes_per_production".into(), live));
         json.push(("mem_bytes_per_production".into(), per));
         json.push(("mem_text_bytes_per_production".into(), text));
+    }
+
+    println!(
+        "\n== the first add+remove of each change after the load (command layer, once, in \
+         this order) =="
+    );
+    println!(
+        "{:<13} {:<20} {:>10} {:>10} {:>10}",
+        "change", "command", "1k us", "10k us", "100k us"
+    );
+    for (i, c) in CHANGES.iter().enumerate() {
+        let row: Vec<f64> = SIZES
+            .iter()
+            .map(|&n| setup(n).borrow().first_secs[i] * 1e6)
+            .collect();
+        for (n, us) in SIZES.iter().zip(&row) {
+            json.push((format!("first_us.{}.{n}", c.name()), *us));
+        }
+        println!(
+            "{:<13} {:<20} {:>10.1} {:>10.1} {:>10.1}",
+            c.name(),
+            c.command(),
+            row[0],
+            row[1],
+            row[2]
+        );
     }
 
     println!("\n== one WME added then removed: API (Agent::add_wme + remove_wme) ==");

@@ -15,7 +15,8 @@ to a temporary directory in files of at most 10,000 rules so that progress can b
                wm add I4 step *        -> I6
            then, for each change, `wm add ...` and `wm remove <timetag>` through
            ExecuteCommandLine, in rounds that time one batch on each size in turn (the
-           agents of all sizes stay loaded), the median per size:
+           agents of all sizes stay loaded), the median per size; and the first
+           add+remove of each change after the load, timed once (one-time work):
                noise         wm add S1 noise x   no rule tests ^noise
                step-fail     wm add I5 step x    enters (* ^step *); group 0's join fails
                step-partial  wm add I4 step x    a partial match that stops at group 0's
@@ -153,10 +154,13 @@ def load_size(kernel, tmp, n, limit, figures):
     print(f"  loaded in {load_s:.3f} s", flush=True)
     for cmd in SETUP:
         run(agent, cmd)
+    # The first add+remove of each change, timed once: one-time work shows here.
     for name, cmd in CHANGES:
+        t = time.perf_counter()
         out = run(agent, cmd)
-        assert out.startswith("Timetag: "), out
         run(agent, "wm remove " + out.split()[-1])
+        figures[f"first_us.{name}.{key}"] = (time.perf_counter() - t) * 1e6
+        assert out.startswith("Timetag: "), out
     return agent
 
 
@@ -212,16 +216,20 @@ def print_official(sizes, f):
         print(f"{name:<13} {cmd:<20}" + "".join(f" {fmt(v, '9.2f'):>9}" for v in row)
               + f"  {fmt(ratio, '.2f')}x")
     print(f"(baseline: echo x through ExecuteCommandLine: {fmt(f.get('cmd_us.echo'), '.2f')} us)")
+    print("\nthe first add+remove of each change after the load (us, once, in this order)")
+    for name, cmd in CHANGES:
+        row = [f.get(f"first_us.{name}.{n}") for n in sizes]
+        print(f"{name:<13} {cmd:<20}" + "".join(f" {fmt(v, '9.1f'):>9}" for v in row))
 
 
 def print_side_by_side(sizes, off, ours):
     print("\n== side by side: rusoar vs the official kernel, same machine, same run ==")
     print("ratio = official time / rusoar time (above 1: rusoar is faster by that factor)\n")
-    print(f"{'figure':<50} {'rusoar':>12} {'official':>12} {'ratio':>8}")
+    print(f"{'figure':<56} {'rusoar':>12} {'official':>12} {'ratio':>8}")
 
     def row(label, a, b, unit):
         r = b / a if a and b else None
-        print(f"{label:<50} {withunit(a, unit):>12} {withunit(b, unit):>12} "
+        print(f"{label:<56} {withunit(a, unit):>12} {withunit(b, unit):>12} "
               f"{fmt(r, '.1f'):>8}")
 
     for n in sizes:
@@ -230,7 +238,7 @@ def print_side_by_side(sizes, off, ours):
         if b is None and ("load_s_lower_bound." + k) in off:
             a = ours.get("load_s." + k)
             lb = off["load_s_lower_bound." + k]
-            print(f"{'load ' + format(n, ',') + ' rules (s)':<50} {withunit(a, ' s'):>12} "
+            print(f"{'load ' + format(n, ',') + ' rules (s)':<56} {withunit(a, ' s'):>12} "
                   f"{'>' + format(lb, '.1f') + ' s':>12} {'>' + fmt(lb / a if a else None, '.0f'):>8}")
             continue
         row(f"load {n:,} rules (s)", ours.get("load_s." + k), b, " s")
@@ -239,11 +247,15 @@ def print_side_by_side(sizes, off, ours):
             row(f"{cmd} +remove, {n:,} rules (us)", ours.get(f"cmd_us.{name}.{n}"),
                 off.get(f"cmd_us.{name}.{n}"), " us")
     row("echo x (us)", ours.get("cmd_us.echo"), off.get("cmd_us.echo"), " us")
+    for name, cmd in CHANGES:
+        for n in sizes:
+            row(f"first {cmd} +remove, {n:,} rules (us)", ours.get(f"first_us.{name}.{n}"),
+                off.get(f"first_us.{name}.{n}"), " us")
     n = sizes[-1]
     a = ours.get(f"load_rss_bytes.{n}")
     b = off.get(f"load_rss_bytes.{n}")
     if a and b:
-        print(f"{'RSS growth per rule at ' + format(n, ',') + ' (bytes)':<50} {a / n:>12.0f} "
+        print(f"{'RSS growth per rule at ' + format(n, ',') + ' (bytes)':<56} {a / n:>12.0f} "
               f"{b / n:>12.0f} {b / a:>8.1f}")
     print("\nflatness, cost at the largest size / cost at the smallest (target: at most 1.5)")
     for name, cmd in CHANGES:

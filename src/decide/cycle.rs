@@ -256,6 +256,10 @@ impl Agent {
             prefs: Vec::new(),
             alive: true,
         };
+        // Results (preferences for a higher goal's objects) take their support from what a
+        // justification would test there: a superstate's selected operator gives O
+        // (spec §3c, E:t13, E:t22). Justifications themselves come with issue 5.
+        let result_o = level > 1 && self.tests_superstate_operator(p, t, level);
         if prod.flags.i_support {
             inst.o_support = false;
         }
@@ -303,7 +307,15 @@ impl Agent {
                         value,
                         referent,
                         number,
-                        o_support: inst.o_support,
+                        o_support: if self
+                            .symbols
+                            .id_data(id)
+                            .is_some_and(|d| d.level > 0 && d.level < level)
+                        {
+                            result_o || inst.o_support
+                        } else {
+                            inst.o_support
+                        },
                         inst: Some(inst_id),
                         alive: true,
                     });
@@ -314,6 +326,22 @@ impl Agent {
         }
         self.decider.inst_by_token.insert((p, t), inst_id);
         self.decider.insts.push(inst);
+    }
+
+    /// Did the match test the selected operator of a goal above `level`?
+    fn tests_superstate_operator(&mut self, p: ProdId, t: TokId, level: u32) -> bool {
+        let op = self.operator_sym();
+        self.rete.match_wmes(p, t).into_iter().any(|w| {
+            self.wm.get(w).is_some_and(|wme| {
+                wme.attr == op
+                    && !wme.acceptable
+                    && self.symbols.is_goal(wme.id)
+                    && self
+                        .symbols
+                        .id_data(wme.id)
+                        .is_some_and(|d| d.level < level)
+            })
+        })
     }
 
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new

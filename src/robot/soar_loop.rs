@@ -1020,9 +1020,8 @@ mod tests {
     /// Kernel issue found by the SLAM runs (Soar 9.6.5 gives `check` once, then only `wait`):
     /// an o-supported reject made in a substate for the top state's selected operator must
     /// remove that operator's acceptable preference for good, as `relation*not*found` relies
-    /// on (`rules/README.md` §4). rusoar selects the same operator again after every reject.
+    /// on (`rules/README.md` §4): the reject is a result with o-support (spec §3c).
     #[test]
-    #[ignore = "kernel: an o-reject from a substate does not remove the operator for good"]
     fn o_reject_from_a_substate_retires_the_operator() {
         let mut interp = Interpreter::new();
         interp
