@@ -458,11 +458,13 @@ impl Rete {
         self.attach(h, j, true);
         self.share.insert(skey, j);
         self.link_to_amem(j, amem);
-        // Rete/UL: a join with an empty alpha memory or an empty parent starts unlinked.
-        if self.amems[amem as usize].count == 0 {
-            self.unlink_left_pub(j);
-        } else if self.nodes[h as usize].token_count == 0 {
+        // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
+        // empty parent wins, so thousands of new joins on one alpha memory are not all its
+        // successors (the first WME there would unlink each of them in turn).
+        if self.nodes[h as usize].token_count == 0 {
             self.unlink_right(j);
+        } else if self.amems[amem as usize].count == 0 {
+            self.unlink_left_pub(j);
         }
         j
     }
