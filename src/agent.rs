@@ -315,35 +315,3 @@ pub(crate) fn create_top_state(
         output_link,
     }
 }
-
-/// The rule's printed body with its name removed and variables renamed in order of first
-/// appearance, so that two rules that differ only in those compare equal.
-pub fn canonical_body(p: &Production) -> String {
-    let mut copy = p.clone();
-    copy.name = String::new();
-    copy.doc = None;
-    let text = crate::printer::production_text(&copy);
-    let mut names: IndexMap<String, usize> = IndexMap::new();
-    let mut out = String::with_capacity(text.len());
-    let mut word = String::new();
-    let flush = |word: &mut String, out: &mut String, names: &mut IndexMap<String, usize>| {
-        if crate::lexer::is_variable(word) && !word.contains(' ') {
-            let n = names.len();
-            let id = *names.entry(word.clone()).or_insert(n);
-            out.push_str(&format!("<{id}>"));
-        } else {
-            out.push_str(word);
-        }
-        word.clear();
-    };
-    for c in text.chars() {
-        if c.is_whitespace() || c == '(' || c == ')' || c == '{' || c == '}' {
-            flush(&mut word, &mut out, &mut names);
-            out.push(c);
-        } else {
-            word.push(c);
-        }
-    }
-    flush(&mut word, &mut out, &mut names);
-    out
-}

@@ -10,8 +10,12 @@ use crate::symbols::Sym;
 
 /// The lowest goal among the identifiers of a match's WMEs.
 pub fn match_goal(agent: &Agent, p: ProdId, t: TokId) -> Option<Sym> {
+    goal_of(agent, &agent.rete.match_wmes(p, t))
+}
+
+fn goal_of(agent: &Agent, wmes: &[crate::wm::WmeId]) -> Option<Sym> {
     let mut best: Option<(u32, Sym)> = None;
-    for w in agent.rete.match_wmes(p, t) {
+    for &w in wmes {
         let Some(wme) = agent.wm.get(w) else { continue };
         if agent.symbols.is_goal(wme.id) {
             let level = agent.symbols.id_data(wme.id).map_or(0, |d| d.level);
@@ -39,11 +43,12 @@ pub fn tests_selected_operator(agent: &Agent, p: ProdId, t: TokId) -> bool {
     if proposes {
         return false;
     }
-    let Some(goal) = match_goal(agent, p, t) else {
+    let wmes = agent.rete.match_wmes(p, t);
+    let Some(goal) = goal_of(agent, &wmes) else {
         return false;
     };
     let operator = agent.symbols.find_str("operator");
-    for w in agent.rete.match_wmes(p, t) {
+    for &w in &wmes {
         let Some(wme) = agent.wm.get(w) else { continue };
         if wme.id == goal && Some(wme.attr) == operator && !wme.acceptable {
             return true;

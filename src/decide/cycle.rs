@@ -7,7 +7,6 @@
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
 use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference};
 use crate::agent::Agent;
-use crate::ast::Constant;
 use crate::production::{Action, PrefKind, RhsTerm};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
@@ -995,9 +994,4 @@ impl Agent {
     pub fn firing_count(&self, p: ProdId) -> u64 {
         self.decider.firing_counts.get(&p).copied().unwrap_or(0)
     }
-}
-
-/// A constant as a symbol (for callers building input).
-pub fn constant_sym(agent: &mut Agent, c: &Constant) -> Sym {
-    agent.symbols.constant(c)
 }

@@ -260,16 +260,7 @@ impl Rete {
             depth,
             alive: true,
         };
-        match self.free_nodes.pop() {
-            Some(i) => {
-                self.nodes[i as usize] = node;
-                i
-            }
-            None => {
-                self.nodes.push(node);
-                (self.nodes.len() - 1) as NodeId
-            }
-        }
+        alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
@@ -295,16 +286,7 @@ impl Rete {
             successors: Vec::new(),
             refs: 1,
         };
-        let id = match self.free_amems.pop() {
-            Some(i) => {
-                self.amems[i as usize] = amem;
-                i
-            }
-            None => {
-                self.amems.push(amem);
-                (self.amems.len() - 1) as AmemId
-            }
-        };
+        let id = alloc(&mut self.amems, &mut self.free_amems, amem);
         self.amem_index.insert(key, id);
         // A new alpha memory starts with every WME that passes its constant tests.
         let matching: Vec<WmeId> = self
@@ -357,16 +339,7 @@ impl Rete {
             prev: NIL,
             next: head,
         };
-        let e = match self.free_rm.pop() {
-            Some(i) => {
-                self.rm[i as usize] = entry;
-                i
-            }
-            None => {
-                self.rm.push(entry);
-                (self.rm.len() - 1) as u32
-            }
-        };
+        let e = alloc(&mut self.rm, &mut self.free_rm, entry);
         if head != NIL {
             self.rm[head as usize].prev = e;
         }
@@ -1013,6 +986,21 @@ fn cond_rank(order: &[usize], cond: usize) -> usize {
 }
 
 pub(crate) const NIL_WME: WmeId = WmeId(NIL);
+
+/// Puts `value` in a free slot of `items` (or a new one) and returns its index: the arenas
+/// of nodes, tokens, alpha memories and list entries all allocate this way.
+pub(crate) fn alloc<T>(items: &mut Vec<T>, free: &mut Vec<u32>, value: T) -> u32 {
+    match free.pop() {
+        Some(i) => {
+            items[i as usize] = value;
+            i
+        }
+        None => {
+            items.push(value);
+            (items.len() - 1) as u32
+        }
+    }
+}
 
 fn key_matches(key: &AlphaKey, w: &RWme) -> bool {
     key.acceptable == w.acceptable

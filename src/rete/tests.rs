@@ -55,13 +55,9 @@ pub fn relation_holds(symbols: &Symbols, op: Op, a: Sym, b: Sym) -> bool {
                 Relation::Le => ord != Ordering::Greater,
                 Relation::Gt => ord == Ordering::Greater,
                 Relation::Ge => ord != Ordering::Less,
-                Relation::Ne | Relation::SameType => unreachable_rel(),
+                // Handled above.
+                Relation::Ne | Relation::SameType => false,
             }
         }
     }
-}
-
-#[inline]
-fn unreachable_rel() -> bool {
-    false
 }

@@ -2,7 +2,7 @@
 //! result lists of negative and NCC nodes (§2.7, §2.8). Every list is intrusive (indexes into
 //! arenas), so removal is constant time and order is kept.
 
-use super::{Kind, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME};
+use super::{alloc, Kind, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME};
 use crate::symbols::Symbols;
 use crate::wm::WmeId;
 
@@ -32,16 +32,7 @@ impl Rete {
             prev_result: NIL,
             alive: true,
         };
-        let t = match self.free_tokens.pop() {
-            Some(i) => {
-                self.tokens[i as usize] = tok;
-                i
-            }
-            None => {
-                self.tokens.push(tok);
-                (self.tokens.len() - 1) as TokId
-            }
-        };
+        let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
         if head != NIL {
             self.tokens[head as usize].prev_in_node = t;
         }
@@ -198,16 +189,7 @@ impl Rete {
             next_wme: wme_head,
             prev_wme: NIL,
         };
-        let id = match self.free_neg.pop() {
-            Some(i) => {
-                self.neg[i as usize] = r;
-                i
-            }
-            None => {
-                self.neg.push(r);
-                (self.neg.len() - 1) as u32
-            }
-        };
+        let id = alloc(&mut self.neg, &mut self.free_neg, r);
         if tok_head != NIL {
             self.neg[tok_head as usize].prev_tok = id;
         }
