@@ -94,7 +94,8 @@ impl MatchSink for MatchSet {
 /// A loaded rule: its compiled form and its place in the network.
 #[derive(Debug, Clone)]
 pub struct Loaded {
-    pub production: Production,
+    /// Shared so that a firing holds its rule without copying it.
+    pub production: std::sync::Arc<Production>,
     pub id: ProdId,
 }
 
@@ -182,8 +183,13 @@ impl Agent {
                 return Added::Duplicate { of: String::new() };
             }
         };
-        self.productions
-            .insert(p.name.clone(), Loaded { production: p, id });
+        self.productions.insert(
+            p.name.clone(),
+            Loaded {
+                production: std::sync::Arc::new(p),
+                id,
+            },
+        );
         if replaced {
             Added::Replaced
         } else {
@@ -210,7 +216,12 @@ impl Agent {
     }
 
     pub fn production(&self, name: &str) -> Option<&Production> {
-        self.productions.get(name).map(|l| &l.production)
+        self.productions.get(name).map(|l| &*l.production)
+    }
+
+    /// A rule, shared (for firing it while the agent changes).
+    pub fn production_arc(&self, name: &str) -> Option<std::sync::Arc<Production>> {
+        self.productions.get(name).map(|l| l.production.clone())
     }
 
     pub fn loaded(&self, name: &str) -> Option<&Loaded> {
@@ -219,7 +230,7 @@ impl Agent {
 
     /// Rules in load order.
     pub fn productions(&self) -> impl DoubleEndedIterator<Item = &Production> {
-        self.productions.values().map(|l| &l.production)
+        self.productions.values().map(|l| &*l.production)
     }
 
     pub fn production_count(&self) -> usize {

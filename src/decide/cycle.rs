@@ -5,7 +5,7 @@
 //! per-goal "waterfall" are not modelled yet (see README).
 
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
-use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference};
+use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference, Slot};
 use crate::agent::Agent;
 use crate::production::{Action, PrefKind, RhsTerm};
 use crate::rete::{ProdId, TokId};
@@ -234,7 +234,7 @@ impl Agent {
 
     fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
         let name = self.production_name(p).to_string();
-        let Some(prod) = self.production(&name).cloned() else {
+        let Some(prod) = self.production_arc(&name) else {
             return;
         };
         self.decider.firings += 1;
@@ -246,7 +246,6 @@ impl Agent {
         let level = goal
             .and_then(|g| self.symbols.id_data(g))
             .map_or(1, |d| d.level);
-        let inst_id = self.decider.insts.len() as InstId;
         let mut inst = Instantiation {
             prod: p,
             token: t,
@@ -262,6 +261,8 @@ impl Agent {
         if prod.flags.i_support {
             inst.o_support = false;
         }
+        // The slot is taken now: the preferences name it.
+        let inst_id = self.decider.alloc_inst(inst.clone());
         let mut new_ids: FxHashMap<String, Sym> = FxHashMap::default();
         for action in &prod.actions {
             match action {
@@ -298,8 +299,7 @@ impl Agent {
                         (PrefType::NumericIndifferent, Some(SymData::Float(f))) => Some(f),
                         _ => None,
                     };
-                    let pid = self.decider.prefs.len() as PrefId;
-                    self.decider.prefs.push(Preference {
+                    let pref = Preference {
                         kind,
                         id,
                         attr,
@@ -317,14 +317,16 @@ impl Agent {
                         },
                         inst: Some(inst_id),
                         alive: true,
-                    });
+                        freed: false,
+                    };
+                    let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);
                     new_prefs.push(pid);
                 }
             }
         }
         self.decider.inst_by_token.insert((p, t), inst_id);
-        self.decider.insts.push(inst);
+        self.decider.insts[inst_id as usize] = inst;
     }
 
     /// Did the match test the selected operator of a goal above `level`?
@@ -402,13 +404,15 @@ impl Agent {
             if pref.o_support || !pref.alive {
                 continue;
             }
-            pref.alive = false;
             let key = (pref.id, pref.attr);
             if let Some(slot) = self.decider.slots.get_mut(&key) {
                 slot.prefs.retain(|x| *x != pid);
+                self.decider.drop_slot_if_empty(key);
             }
+            self.decider.free_pref(pid);
             self.mark_changed(key);
         }
+        self.decider.free_inst(inst_id);
     }
 
     fn mark_changed(&mut self, key: (Sym, Sym)) {
@@ -441,9 +445,9 @@ impl Agent {
                     });
                 }
                 for r in removed {
-                    self.decider.prefs[r as usize].alive = false;
+                    self.decider.free_pref(r);
                 }
-                self.decider.prefs[pid as usize].alive = false;
+                self.decider.free_pref(pid);
                 self.mark_changed(key);
             }
         }
@@ -481,7 +485,9 @@ impl Agent {
                 context.push(key);
                 continue;
             }
-            let slot = self.decider.slots.get(&key).cloned().unwrap_or_default();
+            let Some(slot) = self.decider.slots.get(&key) else {
+                continue;
+            };
             let mut want: Vec<Sym> = Vec::new();
             for &pid in slot.prefs.iter().rev() {
                 let p = &self.decider.prefs[pid as usize];
@@ -507,7 +513,8 @@ impl Agent {
             }
         }
         for key in context {
-            let slot = self.decider.slots.get(&key).cloned().unwrap_or_default();
+            let empty = Slot::default();
+            let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             let mut want: Vec<Sym> = Vec::new();
             for &pid in slot.prefs.iter().rev() {
                 let p = &self.decider.prefs[pid as usize];
@@ -582,8 +589,10 @@ impl Agent {
                 crate::trace::wme_internal(self, &wme)
             ));
         }
-        if let Some(slot) = self.decider.slots.get_mut(&(wme.id, wme.attr)) {
+        let key = (wme.id, wme.attr);
+        if let Some(slot) = self.decider.slots.get_mut(&key) {
             slot.wmes.remove(&(wme.value, wme.acceptable));
+            self.decider.drop_slot_if_empty(key);
         }
         self.decider.wme_changes += 1;
         self.remove_wme(w);
@@ -927,7 +936,7 @@ impl Agent {
             };
             if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
                 for pid in slot.prefs {
-                    self.decider.prefs[pid as usize].alive = false;
+                    self.decider.free_pref(pid);
                 }
                 for sw in slot.wmes.values() {
                     if *sw != w {

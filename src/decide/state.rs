@@ -31,6 +31,8 @@ pub struct Preference {
     pub o_support: bool,
     pub inst: Option<InstId>,
     pub alive: bool,
+    /// On the free list (guards against freeing twice).
+    pub freed: bool,
 }
 
 /// All preferences for one (id, attr), newest first, and the WMEs they support.
@@ -109,6 +111,9 @@ pub struct DecideState {
     pub wme_changes: u64,
     /// Working memory's removal count at the last garbage collection.
     pub gc_seen_removals: u64,
+    /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
+    pub free_insts: Vec<InstId>,
+    pub free_prefs: Vec<PrefId>,
 }
 
 impl DecideState {
@@ -118,5 +123,68 @@ impl DecideState {
             d_cycle_count: 1,
             ..Default::default()
         }
+    }
+
+    pub fn alloc_inst(&mut self, inst: Instantiation) -> InstId {
+        match self.free_insts.pop() {
+            Some(i) => {
+                self.insts[i as usize] = inst;
+                i
+            }
+            None => {
+                self.insts.push(inst);
+                (self.insts.len() - 1) as InstId
+            }
+        }
+    }
+
+    pub fn alloc_pref(&mut self, pref: Preference) -> PrefId {
+        match self.free_prefs.pop() {
+            Some(i) => {
+                self.prefs[i as usize] = pref;
+                i
+            }
+            None => {
+                self.prefs.push(pref);
+                (self.prefs.len() - 1) as PrefId
+            }
+        }
+    }
+
+    /// A slot with no preferences and no WMEs is forgotten (new identifiers keep coming;
+    /// their slots must not pile up).
+    pub fn drop_slot_if_empty(&mut self, key: (Sym, Sym)) {
+        if self
+            .slots
+            .get(&key)
+            .is_some_and(|s| s.prefs.is_empty() && s.wmes.is_empty())
+        {
+            self.slots.remove(&key);
+        }
+    }
+
+    /// Frees a retracted instantiation (nothing refers to it any more).
+    pub fn free_inst(&mut self, i: InstId) {
+        let inst = &mut self.insts[i as usize];
+        inst.alive = false;
+        inst.prefs = Vec::new();
+        self.free_insts.push(i);
+    }
+
+    /// Frees a preference already out of its slot: it leaves its instantiation's list too.
+    pub fn free_pref(&mut self, pid: PrefId) {
+        let pref = &mut self.prefs[pid as usize];
+        if pref.freed {
+            return;
+        }
+        pref.freed = true;
+        pref.alive = false;
+        if let Some(i) = pref.inst.take() {
+            let inst = &mut self.insts[i as usize];
+            if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {
+                inst.prefs.remove(pos);
+            }
+        }
+        self.free_prefs.push(pid);
     }
 }

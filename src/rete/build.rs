@@ -457,6 +457,10 @@ impl Rete {
         );
         self.attach(h, j, true);
         self.share.insert(skey, j);
+        if let Some((d, f)) = hash_key(&self.nodes[j as usize].kind, depth + 1) {
+            self.nodes[j as usize].hash = Some((d, f));
+            self.add_left_key(h, d, f);
+        }
         self.link_to_amem(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
@@ -495,6 +499,10 @@ impl Rete {
         );
         self.attach(parent, n, true);
         self.share.insert(skey, n);
+        if let Some((d, f)) = hash_key(&self.nodes[n as usize].kind, depth + 1) {
+            self.nodes[n as usize].hash = Some((d, f));
+            self.add_left_key(n, d, f);
+        }
         self.link_to_amem(n, amem);
         self.fill_new_node(n, syms, &mut super::NullSink);
         if self.nodes[n as usize].token_count == 0 {
@@ -579,6 +587,9 @@ impl Rete {
                 self.delete_token_and_descendants(t, syms, sink);
             }
             let parent_of = self.nodes[n as usize].parent;
+            if let (Kind::Join { .. }, Some((d, f))) = (&kind, self.nodes[n as usize].hash) {
+                self.release_left_key(parent_of, d, f);
+            }
             match &kind {
                 Kind::Join { amem, tests, .. } => {
                     self.share.remove(&(parent_of, 0u8, *amem, tests.clone()));
@@ -614,6 +625,24 @@ impl Rete {
             n = parent;
         }
     }
+}
+
+/// The test a join or negative node hashes on: its new WME's identifier equal to a variable
+/// bound above it (Soar hashes both memories on it, so a WME meets only the tokens it can
+/// join). `new_depth` is the depth of the new WME.
+fn hash_key(kind: &Kind, new_depth: u32) -> Option<(u32, Field)> {
+    let tests = match kind {
+        Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests,
+        _ => return None,
+    };
+    tests.iter().find_map(|t| match t {
+        JoinTest::Compare {
+            field: Field::Id,
+            op: Op::Eq,
+            operand: Operand::Bound { depth, field },
+        } if *depth < new_depth => Some((*depth, *field)),
+        _ => None,
+    })
 }
 
 fn cur_node(cur: Cur) -> NodeId {

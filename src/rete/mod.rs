@@ -127,6 +127,12 @@ pub(crate) struct Node {
     /// Depth of the tokens this node holds (root token: 0).
     pub depth: u32,
     pub alive: bool,
+    /// Join and negative nodes: the equality test of the new WME's identifier against a
+    /// bound variable, `(depth, field)`, that both sides of the join are hashed on.
+    pub hash: Option<(u32, Field)>,
+    /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
+    /// of hashed nodes using each.
+    pub left_keys: Vec<(u32, Field, u32)>,
 }
 
 impl Node {
@@ -211,6 +217,11 @@ pub struct Rete {
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, Vec<JoinTest>), NodeId>,
     pub(crate) root: NodeId,
     root_token: TokId,
+    /// Alpha-memory WMEs by identifier, oldest first (Soar's right hash table).
+    pub(crate) amem_by_id: FxHashMap<(AmemId, Sym), Vec<WmeId>>,
+    /// Holders' tokens by the value at one `(depth, field)` key, oldest first (Soar's left
+    /// hash table): a WME meets only the tokens its identifier can join.
+    pub(crate) tok_by_key: FxHashMap<(NodeId, u32, Field, Sym), Vec<TokId>>,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -239,6 +250,8 @@ impl Rete {
             free_neg: Vec::new(),
             prods: Vec::new(),
             share: FxHashMap::default(),
+            amem_by_id: FxHashMap::default(),
+            tok_by_key: FxHashMap::default(),
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -259,6 +272,8 @@ impl Rete {
             token_count: 0,
             depth,
             alive: true,
+            hash: None,
+            left_keys: Vec::new(),
         };
         alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
@@ -269,6 +284,8 @@ impl Rete {
         node.children = Vec::new();
         node.all_children = Vec::new();
         node.kind = Kind::Memory;
+        node.hash = None;
+        node.left_keys = Vec::new();
         self.free_nodes.push(n);
     }
 
@@ -319,6 +336,8 @@ impl Rete {
             let w = self.rm[e as usize].wme;
             if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
                 rw.rm.retain(|x| *x != e);
+                let id = rw.id;
+                self.amem_by_id.remove(&(a, id));
             }
             self.free_rm.push(e);
             e = next;
@@ -348,13 +367,28 @@ impl Rete {
         am.count += 1;
         if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
             rw.rm.push(e);
+            let id = rw.id;
+            self.amem_by_id.entry((a, id)).or_default().push(w);
         }
     }
 
     fn amem_remove_entry(&mut self, e: u32) {
         let RmEntry {
-            amem, prev, next, ..
+            amem,
+            prev,
+            next,
+            wme,
         } = self.rm[e as usize];
+        if let Some(id) = self.wmes[wme.0 as usize].as_ref().map(|rw| rw.id) {
+            if let Some(bucket) = self.amem_by_id.get_mut(&(amem, id)) {
+                if let Some(pos) = bucket.iter().rposition(|x| *x == wme) {
+                    bucket.remove(pos);
+                }
+                if bucket.is_empty() {
+                    self.amem_by_id.remove(&(amem, id));
+                }
+            }
+        }
         if prev != NIL {
             self.rm[prev as usize].next = next;
         } else {
@@ -376,6 +410,115 @@ impl Rete {
             e = self.rm[e as usize].next;
         }
         out
+    }
+
+    /// The WMEs of an alpha memory a token can join with, newest first: only those whose
+    /// identifier is the token's value at the node's hash key, when it has one.
+    pub(crate) fn amem_candidates(&self, a: AmemId, n: NodeId, t: TokId) -> Vec<WmeId> {
+        match self.nodes[n as usize].hash {
+            Some((d, f)) => {
+                let wm = self.wme_at_depth(t, d);
+                if wm == NIL_WME {
+                    return Vec::new();
+                }
+                let id = self.field(wm, f);
+                self.amem_by_id
+                    .get(&(a, id))
+                    .map(|b| b.iter().rev().copied().collect())
+                    .unwrap_or_default()
+            }
+            None => self.amem_items(a),
+        }
+    }
+
+    /// The tokens of `holder` that node `n` must try with WME `w`, newest first: only those
+    /// whose value at `n`'s hash key is `w`'s identifier, when it has one.
+    pub(crate) fn token_candidates(&self, holder: NodeId, n: NodeId, w: WmeId) -> Vec<TokId> {
+        match self.nodes[n as usize].hash {
+            Some((d, f)) => {
+                let id = self.wme(w).id;
+                self.tok_by_key
+                    .get(&(holder, d, f, id))
+                    .map(|b| b.iter().rev().copied().collect())
+                    .unwrap_or_default()
+            }
+            None => self.node_tokens(holder),
+        }
+    }
+
+    /// A token's value at an index key, if it has a WME at that depth.
+    fn key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
+        let wm = self.wme_at_depth(t, d);
+        (wm != NIL_WME).then(|| self.field(wm, f))
+    }
+
+    /// Indexes a new token under every key of its holder.
+    pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
+        for i in 0..self.nodes[holder as usize].left_keys.len() {
+            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            if let Some(v) = self.key_value(t, d, f) {
+                self.tok_by_key
+                    .entry((holder, d, f, v))
+                    .or_default()
+                    .push(t);
+            }
+        }
+    }
+
+    /// Takes a token out of its holder's indexes (its WMEs are still live).
+    pub(crate) fn unindex_token(&mut self, holder: NodeId, t: TokId) {
+        for i in 0..self.nodes[holder as usize].left_keys.len() {
+            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            if let Some(v) = self.key_value(t, d, f) {
+                let k = (holder, d, f, v);
+                if let Some(bucket) = self.tok_by_key.get_mut(&k) {
+                    if let Some(pos) = bucket.iter().rposition(|x| *x == t) {
+                        bucket.remove(pos);
+                    }
+                    if bucket.is_empty() {
+                        self.tok_by_key.remove(&k);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Gives a hashed node its key and indexes its holder's tokens by it (the holder is the
+    /// parent of a join, the negative node itself).
+    pub(crate) fn add_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
+        let keys = &mut self.nodes[holder as usize].left_keys;
+        if let Some(k) = keys.iter_mut().find(|k| k.0 == d && k.1 == f) {
+            k.2 += 1;
+            return;
+        }
+        keys.push((d, f, 1));
+        // Oldest first, as new tokens are pushed.
+        for t in self.node_tokens(holder).into_iter().rev() {
+            if let Some(v) = self.key_value(t, d, f) {
+                self.tok_by_key
+                    .entry((holder, d, f, v))
+                    .or_default()
+                    .push(t);
+            }
+        }
+    }
+
+    /// Drops one use of a holder's key; the last use drops its index.
+    pub(crate) fn release_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
+        let keys = &mut self.nodes[holder as usize].left_keys;
+        let Some(pos) = keys.iter().position(|k| k.0 == d && k.1 == f) else {
+            return;
+        };
+        keys[pos].2 -= 1;
+        if keys[pos].2 > 0 {
+            return;
+        }
+        keys.remove(pos);
+        for t in self.node_tokens(holder) {
+            if let Some(v) = self.key_value(t, d, f) {
+                self.tok_by_key.remove(&(holder, d, f, v));
+            }
+        }
     }
 
     // ---------------------------------------------------------------- working memory
@@ -571,8 +714,15 @@ impl Rete {
                     return;
                 }
                 let depth = self.nodes[parent as usize].depth + 1;
-                let toks = self.live_tokens(parent);
+                let blockable = matches!(
+                    self.nodes[parent as usize].kind,
+                    Kind::Negative { .. } | Kind::Ncc { .. }
+                );
+                let toks = self.token_candidates(parent, n, w);
                 for t in toks {
+                    if blockable && self.tokens[t as usize].results != NIL {
+                        continue;
+                    }
                     if self.tokens[t as usize].alive
                         && self.wmes[w.0 as usize].is_some()
                         && self.tests_pass(&tests, t, w, depth, syms)
@@ -583,7 +733,7 @@ impl Rete {
             }
             Kind::Negative { tests, .. } => {
                 let depth = self.nodes[n as usize].depth + 1;
-                let toks = self.node_tokens(n);
+                let toks = self.token_candidates(n, n, w);
                 for t in toks {
                     if !self.tokens[t as usize].alive || self.wmes[w.0 as usize].is_none() {
                         continue;
@@ -650,7 +800,7 @@ impl Rete {
                     }
                 }
                 let depth = self.tokens[t as usize].depth + 1;
-                for wm in self.amem_items(amem) {
+                for wm in self.amem_candidates(amem, n, t) {
                     if self.wmes[wm.0 as usize].is_some()
                         && self.tokens[t as usize].alive
                         && self.tests_pass(&tests, t, wm, depth, syms)
@@ -669,7 +819,7 @@ impl Rete {
                 }
                 let nt = self.new_token(n, t, w);
                 let depth = self.tokens[nt as usize].depth + 1;
-                for wm in self.amem_items(amem) {
+                for wm in self.amem_candidates(amem, n, nt) {
                     if self.tests_pass(&tests, nt, wm, depth, syms) {
                         self.add_neg_result(nt, wm);
                     }

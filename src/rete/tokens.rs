@@ -57,6 +57,9 @@ impl Rete {
                 }
             }
         }
+        if !self.nodes[node as usize].left_keys.is_empty() {
+            self.index_token(node, t);
+        }
         t
     }
 
@@ -96,6 +99,9 @@ impl Rete {
         self.delete_descendants(t, syms, sink);
         let tok = self.tokens[t as usize].clone();
         let node = tok.node;
+        if !self.nodes[node as usize].left_keys.is_empty() {
+            self.unindex_token(node, t);
+        }
         // Out of the node's memory.
         if tok.prev_in_node != NIL {
             self.tokens[tok.prev_in_node as usize].next_in_node = tok.next_in_node;
