@@ -272,7 +272,14 @@ impl Agent {
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
         self.wm.get(w)?;
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
-        self.wm.remove(w)
+        let wme = self.wm.remove(w)?;
+        // What it pointed at may now be unlinked: garbage collection looks there (spec §2).
+        for x in [wme.value, wme.attr] {
+            if self.symbols.is_id(x) {
+                self.decider.gc_candidates.push(x);
+            }
+        }
+        Some(wme)
     }
 }
 

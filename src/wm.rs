@@ -26,6 +26,10 @@ pub struct WorkingMemory {
     by_timetag: FxHashMap<u64, WmeId>,
     count: usize,
     removals: u64,
+    /// The WMEs that point at a symbol (as value, then as attribute), for garbage
+    /// collection's upward search; `link_pos` is each WME's place in those lists.
+    parents: FxHashMap<Sym, Vec<(WmeId, bool)>>,
+    link_pos: Vec<[u32; 2]>,
 }
 
 impl Default for WorkingMemory {
@@ -44,6 +48,8 @@ impl WorkingMemory {
             by_timetag: FxHashMap::default(),
             count: 0,
             removals: 0,
+            parents: FxHashMap::default(),
+            link_pos: Vec::new(),
         }
     }
 
@@ -71,17 +77,51 @@ impl WorkingMemory {
         self.by_id.entry(id).or_default().push(w);
         self.by_timetag.insert(timetag, w);
         self.count += 1;
+        if self.link_pos.len() <= w.0 as usize {
+            self.link_pos.resize(w.0 as usize + 1, [u32::MAX; 2]);
+        }
+        for (slot, target) in [(0, value), (1, attr)] {
+            let list = self.parents.entry(target).or_default();
+            self.link_pos[w.0 as usize][slot] = list.len() as u32;
+            list.push((w, slot == 1));
+        }
         w
+    }
+
+    fn unlink(&mut self, w: WmeId, slot: usize, target: Sym) {
+        let pos = self.link_pos[w.0 as usize][slot] as usize;
+        let Some(list) = self.parents.get_mut(&target) else {
+            return;
+        };
+        list.swap_remove(pos);
+        if let Some(&(moved, as_attr)) = list.get(pos) {
+            self.link_pos[moved.0 as usize][usize::from(as_attr)] = pos as u32;
+        }
+        if list.is_empty() {
+            self.parents.remove(&target);
+        }
+    }
+
+    /// The WMEs whose value or attribute is `x` (any order).
+    pub fn parents_of(&self, x: Sym) -> impl Iterator<Item = WmeId> + '_ {
+        self.parents
+            .get(&x)
+            .into_iter()
+            .flat_map(|l| l.iter().map(|(w, _)| *w))
     }
 
     pub fn remove(&mut self, w: WmeId) -> Option<Wme> {
         let wme = self.wmes.get_mut(w.0 as usize)?.take()?;
         if let Some(list) = self.by_id.get_mut(&wme.id) {
-            list.retain(|x| *x != w);
+            if let Some(pos) = list.iter().rposition(|x| *x == w) {
+                list.remove(pos);
+            }
             if list.is_empty() {
                 self.by_id.remove(&wme.id);
             }
         }
+        self.unlink(w, 0, wme.value);
+        self.unlink(w, 1, wme.attr);
         self.by_timetag.remove(&wme.timetag);
         self.free.push(w.0);
         self.count -= 1;

@@ -406,7 +406,9 @@ impl Agent {
             }
             let key = (pref.id, pref.attr);
             if let Some(slot) = self.decider.slots.get_mut(&key) {
-                slot.prefs.retain(|x| *x != pid);
+                if let Some(pos) = slot.prefs.iter().rposition(|x| *x == pid) {
+                    slot.prefs.remove(pos);
+                }
                 self.decider.drop_slot_if_empty(key);
             }
             self.decider.free_pref(pid);
@@ -457,12 +459,7 @@ impl Agent {
                 continue;
             }
             let key = (p.id, p.attr);
-            self.decider
-                .slots
-                .entry(key)
-                .or_default()
-                .prefs
-                .insert(0, pid);
+            self.decider.slots.entry(key).or_default().prefs.push(pid);
             self.mark_changed(key);
         }
     }
@@ -488,21 +485,28 @@ impl Agent {
             let Some(slot) = self.decider.slots.get(&key) else {
                 continue;
             };
+            // Linear in the slot: one slot can hold thousands of values.
+            let prefs = &self.decider.prefs;
+            let rejected: FxHashSet<Sym> = slot
+                .prefs
+                .iter()
+                .map(|&q| &prefs[q as usize])
+                .filter(|q| q.kind == PrefType::Reject)
+                .map(|q| q.value)
+                .collect();
             let mut want: Vec<Sym> = Vec::new();
-            for &pid in slot.prefs.iter().rev() {
-                let p = &self.decider.prefs[pid as usize];
+            let mut wanted: FxHashSet<Sym> = FxHashSet::default();
+            for &pid in slot.prefs.iter() {
+                let p = &prefs[pid as usize];
                 if p.kind == PrefType::Acceptable
-                    && !want.contains(&p.value)
-                    && !slot.prefs.iter().any(|&q| {
-                        let q = &self.decider.prefs[q as usize];
-                        q.kind == PrefType::Reject && q.value == p.value
-                    })
+                    && !rejected.contains(&p.value)
+                    && wanted.insert(p.value)
                 {
                     want.push(p.value);
                 }
             }
             for (&(v, acc), &w) in &slot.wmes {
-                if !acc && !want.contains(&v) {
+                if !acc && !wanted.contains(&v) {
                     removes.push(w);
                 }
             }
@@ -516,7 +520,7 @@ impl Agent {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             let mut want: Vec<Sym> = Vec::new();
-            for &pid in slot.prefs.iter().rev() {
+            for &pid in slot.prefs.iter() {
                 let p = &self.decider.prefs[pid as usize];
                 // Require preferences show as `+` WMEs too (checked on 9.6).
                 if matches!(p.kind, PrefType::Acceptable | PrefType::Require)
@@ -634,10 +638,9 @@ impl Agent {
         let Some(slot) = self.decider.slots.get(&key) else {
             return Vec::new();
         };
-        // Candidates come out in the reverse of the slot's list (spec §3d).
+        // Candidates come out oldest first: the reverse of Soar's head-inserted list (§3d).
         slot.prefs
             .iter()
-            .rev()
             .map(|&pid| {
                 let p = &self.decider.prefs[pid as usize];
                 Pref {
@@ -886,46 +889,59 @@ impl Agent {
                 .collect();
             for k in gone {
                 if let Some(slot) = self.decider.slots.remove(&k) {
+                    for pid in slot.prefs {
+                        self.decider.free_pref(pid);
+                    }
                     for w in slot.wmes.values() {
                         self.remove_wme(*w);
                     }
                 }
             }
+            self.decider.gc_candidates.push(g.state);
         }
         self.collect_garbage();
     }
 
-    /// Removes WMEs no longer linked to a goal or the io link (spec §2).
+    /// Removes WMEs no longer linked to a goal or the io link (spec §2). Only identifiers
+    /// that lost a link can have become unlinked: each is searched upward for a goal, and
+    /// the structure below one that has none goes (cycles included).
     fn collect_garbage(&mut self) {
-        // Only a removal can unlink structure (new WMEs hang off linked identifiers).
-        if self.wm.removals() == self.decider.gc_seen_removals {
+        if self.decider.gc_candidates.is_empty() {
             return;
         }
-        let mut reachable: FxHashSet<Sym> = FxHashSet::default();
-        let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
-        stack.push(self.top.state);
-        while let Some(x) = stack.pop() {
-            if !reachable.insert(x) {
+        let candidates = std::mem::take(&mut self.decider.gc_candidates);
+        let mut roots: FxHashSet<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
+        roots.insert(self.top.state);
+        let mut memo: FxHashMap<Sym, bool> = FxHashMap::default();
+        let mut dead: FxHashSet<Sym> = FxHashSet::default();
+        let mut garbage: Vec<WmeId> = Vec::new();
+        for c in candidates {
+            if dead.contains(&c) || self.wm.of_id(c).is_empty() || self.linked(c, &roots, &mut memo)
+            {
                 continue;
             }
-            for &w in self.wm.of_id(x) {
-                if let Some(wme) = self.wm.get(w) {
+            let mut stack = vec![c];
+            while let Some(x) = stack.pop() {
+                if !dead.insert(x) {
+                    continue;
+                }
+                for &w in self.wm.of_id(x) {
+                    garbage.push(w);
+                    let Some(wme) = self.wm.get(w).copied() else {
+                        continue;
+                    };
                     for v in [wme.value, wme.attr] {
-                        if self.symbols.is_id(v) && !reachable.contains(&v) {
+                        if self.symbols.is_id(v)
+                            && !dead.contains(&v)
+                            && !self.linked(v, &roots, &mut memo)
+                        {
                             stack.push(v);
                         }
                     }
                 }
             }
         }
-        let garbage: Vec<WmeId> = self
-            .wm
-            .ids()
-            .filter(|id| !reachable.contains(id))
-            .flat_map(|id| self.wm.of_id(id).to_vec())
-            .collect();
         if garbage.is_empty() {
-            self.decider.gc_seen_removals = self.wm.removals();
             return;
         }
         let mut garbage = garbage;
@@ -954,6 +970,41 @@ impl Agent {
                 self.remove_wme(w);
             }
         }
+        // What these removals point at was all collected above.
+        self.decider.gc_candidates.clear();
+    }
+
+    /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a
+    /// search that finds no goal proves everything it visited unlinked.
+    fn linked(&self, x: Sym, roots: &FxHashSet<Sym>, memo: &mut FxHashMap<Sym, bool>) -> bool {
+        if let Some(&b) = memo.get(&x) {
+            return b;
+        }
+        let mut visited: FxHashSet<Sym> = FxHashSet::default();
+        visited.insert(x);
+        let mut queue = vec![x];
+        let mut found = false;
+        while let Some(y) = queue.pop() {
+            if roots.contains(&y) || memo.get(&y) == Some(&true) {
+                found = true;
+                break;
+            }
+            for w in self.wm.parents_of(y) {
+                if let Some(p) = self.wm.get(w).map(|wme| wme.id) {
+                    if visited.insert(p) {
+                        queue.push(p);
+                    }
+                }
+            }
+        }
+        if found {
+            memo.insert(x, true);
+        } else {
+            for v in visited {
+                memo.insert(v, false);
+            }
+        }
+        found
     }
 
     fn run_input_callbacks(&mut self) {

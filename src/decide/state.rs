@@ -35,7 +35,8 @@ pub struct Preference {
     pub freed: bool,
 }
 
-/// All preferences for one (id, attr), newest first, and the WMEs they support.
+/// All preferences for one (id, attr), oldest first (Soar's list read from its tail), and the
+/// WMEs they support.
 #[derive(Debug, Clone, Default)]
 pub struct Slot {
     pub prefs: Vec<PrefId>,
@@ -109,8 +110,8 @@ pub struct DecideState {
     /// The top goal's operator slot changed since the last decision, per goal.
     pub context_changed: bool,
     pub wme_changes: u64,
-    /// Working memory's removal count at the last garbage collection.
-    pub gc_seen_removals: u64,
+    /// Identifiers that lost a link (or a goal) since the last garbage collection.
+    pub gc_candidates: Vec<Sym>,
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,

@@ -12,6 +12,7 @@
 //! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
 
 mod build;
+mod hash;
 pub mod tests;
 mod tokens;
 
@@ -70,6 +71,9 @@ pub(crate) struct RmEntry {
     pub amem: AmemId,
     pub prev: u32,
     pub next: u32,
+    /// Links among the entries of this alpha memory with the same identifier (newest first).
+    pub id_prev: u32,
+    pub id_next: u32,
 }
 
 #[derive(Debug, Clone)]
@@ -163,6 +167,8 @@ pub(crate) struct Token {
     pub prev_of_wme: TokId,
     /// Negative node tokens: head of their join results. NCC tokens: head of their results.
     pub results: u32,
+    /// The first of this token's entries in its holder's hash indexes.
+    pub hfirst: u32,
     /// NCC partner result tokens: their owner, and their links in the owner's result list.
     pub owner: TokId,
     pub next_result: TokId,
@@ -217,11 +223,13 @@ pub struct Rete {
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, Vec<JoinTest>), NodeId>,
     pub(crate) root: NodeId,
     root_token: TokId,
-    /// Alpha-memory WMEs by identifier, oldest first (Soar's right hash table).
-    pub(crate) amem_by_id: FxHashMap<(AmemId, Sym), Vec<WmeId>>,
-    /// Holders' tokens by the value at one `(depth, field)` key, oldest first (Soar's left
-    /// hash table): a WME meets only the tokens its identifier can join.
-    pub(crate) tok_by_key: FxHashMap<(NodeId, u32, Field, Sym), Vec<TokId>>,
+    /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
+    pub(crate) amem_by_id: FxHashMap<(AmemId, Sym), u32>,
+    /// Holders' tokens by their value at one `(depth, field)` key: the head of each list
+    /// of index entries (Soar's left hash table).
+    pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
+    pub(crate) hentries: Vec<hash::HEntry>,
+    free_hentries: Vec<u32>,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -252,6 +260,8 @@ impl Rete {
             share: FxHashMap::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
+            hentries: Vec::new(),
+            free_hentries: Vec::new(),
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -357,6 +367,8 @@ impl Rete {
             amem: a,
             prev: NIL,
             next: head,
+            id_prev: NIL,
+            id_next: NIL,
         };
         let e = alloc(&mut self.rm, &mut self.free_rm, entry);
         if head != NIL {
@@ -368,7 +380,7 @@ impl Rete {
         if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
             rw.rm.push(e);
             let id = rw.id;
-            self.amem_by_id.entry((a, id)).or_default().push(w);
+            self.id_index_insert(a, id, e);
         }
     }
 
@@ -378,16 +390,10 @@ impl Rete {
             prev,
             next,
             wme,
+            ..
         } = self.rm[e as usize];
         if let Some(id) = self.wmes[wme.0 as usize].as_ref().map(|rw| rw.id) {
-            if let Some(bucket) = self.amem_by_id.get_mut(&(amem, id)) {
-                if let Some(pos) = bucket.iter().rposition(|x| *x == wme) {
-                    bucket.remove(pos);
-                }
-                if bucket.is_empty() {
-                    self.amem_by_id.remove(&(amem, id));
-                }
-            }
+            self.id_index_remove(amem, id, e);
         }
         if prev != NIL {
             self.rm[prev as usize].next = next;
@@ -410,115 +416,6 @@ impl Rete {
             e = self.rm[e as usize].next;
         }
         out
-    }
-
-    /// The WMEs of an alpha memory a token can join with, newest first: only those whose
-    /// identifier is the token's value at the node's hash key, when it has one.
-    pub(crate) fn amem_candidates(&self, a: AmemId, n: NodeId, t: TokId) -> Vec<WmeId> {
-        match self.nodes[n as usize].hash {
-            Some((d, f)) => {
-                let wm = self.wme_at_depth(t, d);
-                if wm == NIL_WME {
-                    return Vec::new();
-                }
-                let id = self.field(wm, f);
-                self.amem_by_id
-                    .get(&(a, id))
-                    .map(|b| b.iter().rev().copied().collect())
-                    .unwrap_or_default()
-            }
-            None => self.amem_items(a),
-        }
-    }
-
-    /// The tokens of `holder` that node `n` must try with WME `w`, newest first: only those
-    /// whose value at `n`'s hash key is `w`'s identifier, when it has one.
-    pub(crate) fn token_candidates(&self, holder: NodeId, n: NodeId, w: WmeId) -> Vec<TokId> {
-        match self.nodes[n as usize].hash {
-            Some((d, f)) => {
-                let id = self.wme(w).id;
-                self.tok_by_key
-                    .get(&(holder, d, f, id))
-                    .map(|b| b.iter().rev().copied().collect())
-                    .unwrap_or_default()
-            }
-            None => self.node_tokens(holder),
-        }
-    }
-
-    /// A token's value at an index key, if it has a WME at that depth.
-    fn key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
-        let wm = self.wme_at_depth(t, d);
-        (wm != NIL_WME).then(|| self.field(wm, f))
-    }
-
-    /// Indexes a new token under every key of its holder.
-    pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
-        for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
-            if let Some(v) = self.key_value(t, d, f) {
-                self.tok_by_key
-                    .entry((holder, d, f, v))
-                    .or_default()
-                    .push(t);
-            }
-        }
-    }
-
-    /// Takes a token out of its holder's indexes (its WMEs are still live).
-    pub(crate) fn unindex_token(&mut self, holder: NodeId, t: TokId) {
-        for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
-            if let Some(v) = self.key_value(t, d, f) {
-                let k = (holder, d, f, v);
-                if let Some(bucket) = self.tok_by_key.get_mut(&k) {
-                    if let Some(pos) = bucket.iter().rposition(|x| *x == t) {
-                        bucket.remove(pos);
-                    }
-                    if bucket.is_empty() {
-                        self.tok_by_key.remove(&k);
-                    }
-                }
-            }
-        }
-    }
-
-    /// Gives a hashed node its key and indexes its holder's tokens by it (the holder is the
-    /// parent of a join, the negative node itself).
-    pub(crate) fn add_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
-        let keys = &mut self.nodes[holder as usize].left_keys;
-        if let Some(k) = keys.iter_mut().find(|k| k.0 == d && k.1 == f) {
-            k.2 += 1;
-            return;
-        }
-        keys.push((d, f, 1));
-        // Oldest first, as new tokens are pushed.
-        for t in self.node_tokens(holder).into_iter().rev() {
-            if let Some(v) = self.key_value(t, d, f) {
-                self.tok_by_key
-                    .entry((holder, d, f, v))
-                    .or_default()
-                    .push(t);
-            }
-        }
-    }
-
-    /// Drops one use of a holder's key; the last use drops its index.
-    pub(crate) fn release_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
-        let keys = &mut self.nodes[holder as usize].left_keys;
-        let Some(pos) = keys.iter().position(|k| k.0 == d && k.1 == f) else {
-            return;
-        };
-        keys[pos].2 -= 1;
-        if keys[pos].2 > 0 {
-            return;
-        }
-        keys.remove(pos);
-        for t in self.node_tokens(holder) {
-            if let Some(v) = self.key_value(t, d, f) {
-                self.tok_by_key.remove(&(holder, d, f, v));
-            }
-        }
     }
 
     // ---------------------------------------------------------------- working memory

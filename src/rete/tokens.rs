@@ -27,6 +27,7 @@ impl Rete {
             next_of_wme: NIL,
             prev_of_wme: NIL,
             results: NIL,
+            hfirst: NIL,
             owner: NIL,
             next_result: NIL,
             prev_result: NIL,
@@ -99,8 +100,8 @@ impl Rete {
         self.delete_descendants(t, syms, sink);
         let tok = self.tokens[t as usize].clone();
         let node = tok.node;
-        if !self.nodes[node as usize].left_keys.is_empty() {
-            self.unindex_token(node, t);
+        if tok.hfirst != NIL {
+            self.unindex_token(t);
         }
         // Out of the node's memory.
         if tok.prev_in_node != NIL {

@@ -1,0 +1,200 @@
+//! Hashed joins (Doorenbos §2.3, as Soar does): a join or negative node whose new WME's
+//! identifier must equal a variable bound above it looks up only the WMEs with that
+//! identifier (the right index, per alpha memory) and only the tokens with that value (the
+//! left index, per token holder). Both indexes are intrusive lists, newest first, so a
+//! lookup visits the same WMEs and tokens in the same order as a full scan would, and a
+//! removal is constant time however many entries share a value.
+
+use super::tests::Field;
+use super::{alloc, AmemId, NodeId, Rete, TokId, NIL, NIL_WME};
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+
+/// A left-index bucket: holder, key depth, key field, value.
+pub(crate) type TokKey = (NodeId, u32, Field, Sym);
+
+/// One token's membership in one left-index bucket.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct HEntry {
+    pub key: TokKey,
+    pub tok: TokId,
+    pub prev: u32,
+    pub next: u32,
+    /// The token's next entry (a holder may be indexed on several keys).
+    pub next_of_tok: u32,
+}
+
+impl Rete {
+    // ------------------------------------------------------------------ right index
+
+    /// Puts alpha-memory entry `e` at the head of its identifier's list.
+    pub(crate) fn id_index_insert(&mut self, a: AmemId, id: Sym, e: u32) {
+        let head = self.amem_by_id.insert((a, id), e).unwrap_or(NIL);
+        self.rm[e as usize].id_next = head;
+        self.rm[e as usize].id_prev = NIL;
+        if head != NIL {
+            self.rm[head as usize].id_prev = e;
+        }
+    }
+
+    pub(crate) fn id_index_remove(&mut self, a: AmemId, id: Sym, e: u32) {
+        let (prev, next) = (self.rm[e as usize].id_prev, self.rm[e as usize].id_next);
+        if prev != NIL {
+            self.rm[prev as usize].id_next = next;
+        } else if next != NIL {
+            self.amem_by_id.insert((a, id), next);
+        } else {
+            self.amem_by_id.remove(&(a, id));
+        }
+        if next != NIL {
+            self.rm[next as usize].id_prev = prev;
+        }
+    }
+
+    /// The WMEs of an alpha memory that node `n` must try with token `t`, newest first: only
+    /// those whose identifier is the token's value at `n`'s key, when it has one.
+    pub(crate) fn amem_candidates(&self, a: AmemId, n: NodeId, t: TokId) -> Vec<WmeId> {
+        let Some((d, f)) = self.nodes[n as usize].hash else {
+            return self.amem_items(a);
+        };
+        let Some(id) = self.key_value(t, d, f) else {
+            return Vec::new();
+        };
+        let mut out = Vec::new();
+        let mut e = self.amem_by_id.get(&(a, id)).copied().unwrap_or(NIL);
+        while e != NIL {
+            out.push(self.rm[e as usize].wme);
+            e = self.rm[e as usize].id_next;
+        }
+        out
+    }
+
+    // ------------------------------------------------------------------- left index
+
+    /// The tokens of `holder` that node `n` must try with WME `w`, newest first: only those
+    /// whose value at `n`'s key is `w`'s identifier, when it has one.
+    pub(crate) fn token_candidates(&self, holder: NodeId, n: NodeId, w: WmeId) -> Vec<TokId> {
+        let Some((d, f)) = self.nodes[n as usize].hash else {
+            return self.node_tokens(holder);
+        };
+        let key = (holder, d, f, self.wme(w).id);
+        let mut out = Vec::new();
+        let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
+        while e != NIL {
+            out.push(self.hentries[e as usize].tok);
+            e = self.hentries[e as usize].next;
+        }
+        out
+    }
+
+    /// A token's value at an index key, if it has a WME at that depth.
+    pub(crate) fn key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
+        let wm = self.wme_at_depth(t, d);
+        (wm != NIL_WME).then(|| self.field(wm, f))
+    }
+
+    fn hentry_insert(&mut self, key: TokKey, t: TokId) {
+        let entry = HEntry {
+            key,
+            tok: t,
+            prev: NIL,
+            next: NIL,
+            next_of_tok: self.tokens[t as usize].hfirst,
+        };
+        let e = alloc(&mut self.hentries, &mut self.free_hentries, entry);
+        let head = self.tok_by_key.insert(key, e).unwrap_or(NIL);
+        self.hentries[e as usize].next = head;
+        if head != NIL {
+            self.hentries[head as usize].prev = e;
+        }
+        self.tokens[t as usize].hfirst = e;
+    }
+
+    fn hentry_unlink(&mut self, e: u32) {
+        let HEntry {
+            key, prev, next, ..
+        } = self.hentries[e as usize];
+        if prev != NIL {
+            self.hentries[prev as usize].next = next;
+        } else if next != NIL {
+            self.tok_by_key.insert(key, next);
+        } else {
+            self.tok_by_key.remove(&key);
+        }
+        if next != NIL {
+            self.hentries[next as usize].prev = prev;
+        }
+        self.free_hentries.push(e);
+    }
+
+    /// Indexes a new token under every key of its holder.
+    pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
+        for i in 0..self.nodes[holder as usize].left_keys.len() {
+            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            if let Some(v) = self.key_value(t, d, f) {
+                self.hentry_insert((holder, d, f, v), t);
+            }
+        }
+    }
+
+    /// Takes a token out of every index it is in.
+    pub(crate) fn unindex_token(&mut self, t: TokId) {
+        let mut e = self.tokens[t as usize].hfirst;
+        while e != NIL {
+            let next = self.hentries[e as usize].next_of_tok;
+            self.hentry_unlink(e);
+            e = next;
+        }
+        self.tokens[t as usize].hfirst = NIL;
+    }
+
+    /// Gives a holder an index key for a hashed node and indexes its tokens by it (the
+    /// holder is a join's parent, or a negative node itself).
+    pub(crate) fn add_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
+        let keys = &mut self.nodes[holder as usize].left_keys;
+        if let Some(k) = keys.iter_mut().find(|k| k.0 == d && k.1 == f) {
+            k.2 += 1;
+            return;
+        }
+        keys.push((d, f, 1));
+        // Oldest first, so that head insertion leaves the newest at the head.
+        for t in self.node_tokens(holder).into_iter().rev() {
+            if let Some(v) = self.key_value(t, d, f) {
+                self.hentry_insert((holder, d, f, v), t);
+            }
+        }
+    }
+
+    /// Drops one use of a holder's key; the last use drops its index entries.
+    pub(crate) fn release_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
+        let keys = &mut self.nodes[holder as usize].left_keys;
+        let Some(pos) = keys.iter().position(|k| k.0 == d && k.1 == f) else {
+            return;
+        };
+        keys[pos].2 -= 1;
+        if keys[pos].2 > 0 {
+            return;
+        }
+        keys.remove(pos);
+        for t in self.node_tokens(holder) {
+            // Rebuild the token's entry chain without this key's entries.
+            let mut e = self.tokens[t as usize].hfirst;
+            let mut kept = Vec::new();
+            while e != NIL {
+                let entry = self.hentries[e as usize];
+                if entry.key.1 == d && entry.key.2 == f && entry.key.0 == holder {
+                    self.hentry_unlink(e);
+                } else {
+                    kept.push(e);
+                }
+                e = entry.next_of_tok;
+            }
+            let mut next = NIL;
+            for &k in kept.iter().rev() {
+                self.hentries[k as usize].next_of_tok = next;
+                next = k;
+            }
+            self.tokens[t as usize].hfirst = next;
+        }
+    }
+}
