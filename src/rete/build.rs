@@ -443,7 +443,7 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests = skey.3.clone();
+        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
         let depth = self.nodes[h as usize].depth;
         let j = self.new_node(
             Kind::Join {
@@ -487,7 +487,7 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests = skey.3.clone();
+        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -592,10 +592,10 @@ impl Rete {
             }
             match &kind {
                 Kind::Join { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 0u8, *amem, tests.clone()));
+                    self.share.remove(&(parent_of, 0u8, *amem, tests.to_vec()));
                 }
                 Kind::Negative { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 1u8, *amem, tests.clone()));
+                    self.share.remove(&(parent_of, 1u8, *amem, tests.to_vec()));
                 }
                 _ => {}
             }

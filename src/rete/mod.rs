@@ -95,13 +95,13 @@ pub(crate) enum Kind {
     Memory,
     Join {
         amem: AmemId,
-        tests: Vec<JoinTest>,
+        tests: std::sync::Arc<[JoinTest]>,
         left_unlinked: bool,
         right_unlinked: bool,
     },
     Negative {
         amem: AmemId,
-        tests: Vec<JoinTest>,
+        tests: std::sync::Arc<[JoinTest]>,
         right_unlinked: bool,
     },
     Ncc {
