@@ -944,7 +944,6 @@ impl Agent {
         if garbage.is_empty() {
             return;
         }
-        let mut garbage = garbage;
         garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
