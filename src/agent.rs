@@ -75,6 +75,8 @@ pub enum Added {
 pub struct MatchSet {
     pub assertions: Vec<(ProdId, TokId)>,
     pub retractions: Vec<(ProdId, TokId)>,
+    /// Each pending assertion's support, decided once at match time (spec §3c).
+    pub support: rustc_hash::FxHashMap<(ProdId, TokId), bool>,
 }
 
 impl MatchSink for MatchSet {
@@ -83,8 +85,9 @@ impl MatchSink for MatchSet {
     }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         // A match that goes before it fired simply leaves the queue.
-        if let Some(i) = self.assertions.iter().position(|x| *x == (p, t)) {
+        if let Some(i) = self.assertions.iter().rposition(|x| *x == (p, t)) {
             self.assertions.remove(i);
+            self.support.remove(&(p, t));
         } else {
             self.retractions.push((p, t));
         }
@@ -217,6 +220,14 @@ impl Agent {
 
     pub fn production(&self, name: &str) -> Option<&Production> {
         self.productions.get(name).map(|l| &*l.production)
+    }
+
+    /// The support of a pending match: decided when it was queued, or now (spec §3c).
+    pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
+        match self.matches.support.get(&(p, t)) {
+            Some(&o) => o,
+            None => crate::support::match_support(self, p, t).o_support,
+        }
     }
 
     /// A rule, shared (for firing it while the agent changes).

@@ -27,32 +27,75 @@ fn goal_of(agent: &Agent, wmes: &[crate::wm::WmeId]) -> Option<Sym> {
     best.map(|(_, s)| s)
 }
 
-/// Spec §3c at match time: the rule tests its goal's selected operator and does not
-/// propose an operator.
-pub fn tests_selected_operator(agent: &Agent, p: ProdId, t: TokId) -> bool {
-    let name = agent.production_name(p).to_string();
-    let Some(prod) = agent.production(&name) else {
-        return false;
+/// The support a match gets (spec §3c, decided at match time as 9.6's rete does).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MatchSupport {
+    pub o_support: bool,
+    /// The rule both elaborates the selected operator and applies it: I-support, with
+    /// 9.6's warning (E:t24).
+    pub mixed: bool,
+}
+
+/// Spec §3c: declared support wins; a rule that proposes an operator is I; otherwise a rule
+/// that tests its goal's selected operator is O if one of its make actions is on something
+/// other than that operator (an application), I if all are on the operator (operator
+/// elaborations); both is I with a warning (when warnings are on).
+pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
+    let i_support = MatchSupport {
+        o_support: false,
+        mixed: false,
     };
+    let name = agent.production_name(p);
+    let Some(prod) = agent.production(name) else {
+        return i_support;
+    };
+    if prod.flags.o_support {
+        return MatchSupport {
+            o_support: true,
+            mixed: false,
+        };
+    }
+    if prod.flags.i_support {
+        return i_support;
+    }
     let proposes = prod.actions.iter().any(|a| match a {
         Action::Make(m) => {
-            matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if s == "operator")
+            m.pref == crate::production::PrefKind::Acceptable
+                && matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if s == "operator")
         }
         Action::Call(_) => false,
     });
     if proposes {
-        return false;
+        return i_support;
     }
     let wmes = agent.rete.match_wmes(p, t);
     let Some(goal) = goal_of(agent, &wmes) else {
-        return false;
+        return i_support;
     };
     let operator = agent.symbols.find_str("operator");
-    for &w in &wmes {
-        let Some(wme) = agent.wm.get(w) else { continue };
-        if wme.id == goal && Some(wme.attr) == operator && !wme.acceptable {
-            return true;
+    let selected = wmes.iter().find_map(|&w| {
+        let wme = agent.wm.get(w)?;
+        (wme.id == goal && Some(wme.attr) == operator && !wme.acceptable).then_some(wme.value)
+    });
+    let Some(op) = selected else {
+        return i_support;
+    };
+    let (mut elaborates, mut applies) = (false, false);
+    for a in &prod.actions {
+        let Action::Make(m) = a else { continue };
+        let on_operator = match &m.id {
+            RhsTerm::Var(v) => agent.rete.binding(p, t, v) == Some(op),
+            _ => false,
+        };
+        if on_operator {
+            elaborates = true;
+        } else {
+            applies = true;
         }
     }
-    false
+    let mixed = elaborates && applies;
+    MatchSupport {
+        o_support: applies && !(mixed && agent.settings.warnings),
+        mixed,
+    }
 }

@@ -203,7 +203,7 @@ pub fn pending_matches(agent: &Agent) -> String {
             agent.production_name(p),
             goal_text(agent, p, t)
         );
-        if crate::support::tests_selected_operator(agent, p, t) {
+        if agent.is_o_supported(p, t) {
             o.push_str(&line);
         } else {
             i.push_str(&line);

@@ -32,18 +32,9 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "match order (decision 2: D>B vs D>C), then operator kept",
     ),
     (
-        "eight-puzzle",
-        "match order (decision 2: O4 vs O2 for the same move)",
-    ),
-    (
         "gds",
         "no GDS: the substate is not removed when (S1 ^flag on) goes, so the new operator \
          no-change is made one level deeper",
-    ),
-    (
-        "halt",
-        "the run goes on after the elaboration cycle in which (halt) fired; \
-         apply*count fires last instead of first",
     ),
     (
         "missionaries-cannibals",

@@ -117,6 +117,7 @@ impl Agent {
         match phase {
             Phase::Input => {
                 self.run_input_callbacks();
+                self.classify_new_matches();
                 self.decider.phase = Some(Phase::Propose);
             }
             Phase::Propose => {
@@ -133,6 +134,7 @@ impl Agent {
             }
             Phase::Decide => {
                 self.decide_context_slots();
+                self.classify_new_matches();
                 self.decider.decisions += 1;
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
@@ -180,17 +182,25 @@ impl Agent {
             .any(|&(p, t)| any || !self.is_o_supported(p, t))
     }
 
-    /// Declared support wins; otherwise the operator test of spec §3c decides.
-    fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
-        if let Some(prod) = self.production(self.production_name(p)) {
-            if prod.flags.o_support {
-                return true;
+    /// Decides the support of the matches made since the last call, as 9.6's matcher does
+    /// when it queues them, with its warning for rules that both elaborate and apply the
+    /// operator (spec §3c, E:t24).
+    pub(crate) fn classify_new_matches(&mut self) {
+        let n = self.matches.assertions.len();
+        for i in 0..n {
+            let key = self.matches.assertions[i];
+            if self.matches.support.contains_key(&key) {
+                continue;
             }
-            if prod.flags.i_support {
-                return false;
+            let s = crate::support::match_support(self, key.0, key.1);
+            if s.mixed && self.settings.warnings {
+                let name = self.production_name(key.0).to_string();
+                self.out(&format!(
+                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {name}\n"
+                ));
             }
+            self.matches.support.insert(key, s.o_support);
         }
-        crate::support::tests_selected_operator(self, p, t)
     }
 
     /// One elaboration cycle: retractions, then the new matches of one support type fire in
@@ -206,6 +216,7 @@ impl Agent {
         for (p, t) in pending.into_iter().rev() {
             let o = self.is_o_supported(p, t);
             if o == o_support {
+                self.matches.support.remove(&(p, t));
                 to_fire.push((p, t));
             } else {
                 keep.push((p, t));
@@ -391,7 +402,8 @@ impl Agent {
     fn retract(&mut self, inst_id: InstId) {
         let p = self.decider.insts[inst_id as usize].prod;
         let name = self.production_name(p).to_string();
-        if self.settings.trace_level >= 3 {
+        // An o-supported instantiation has nothing to retract: 9.6 prints nothing for it.
+        if self.settings.trace_level >= 3 && !self.decider.insts[inst_id as usize].o_support {
             self.out(&format!("\nRetracting {name}"));
         }
         let inst = &mut self.decider.insts[inst_id as usize];
@@ -473,7 +485,11 @@ impl Agent {
     /// slot shows each value with an acceptable and no reject preference; an operator slot
     /// shows its acceptable preferences as `+` WMEs. Then unlinked structure goes.
     fn update_slots(&mut self) {
-        let changed = std::mem::take(&mut self.decider.changed);
+        // Soar head-inserts changed slots as they are first marked, so they are decided in
+        // the reverse of marking order: the first action of the first firing gets the lowest
+        // timetag (spec §3i, E:t6).
+        let mut changed = std::mem::take(&mut self.decider.changed);
+        changed.reverse();
         let mut adds: Vec<(Sym, Sym, Sym, bool)> = Vec::new();
         let mut removes: Vec<WmeId> = Vec::new();
         let mut context = Vec::new();
@@ -516,6 +532,13 @@ impl Agent {
                 }
             }
         }
+        // Operators whose proposal went are removed before the `+` WMEs change (9.6's
+        // REMOVING lines come first, and its removals are buffered in that order).
+        for &key in &context {
+            if let Some(w) = self.check_operator_consistency(key) {
+                removes.push(w);
+            }
+        }
         for key in context {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
@@ -539,13 +562,11 @@ impl Agent {
                     adds.push((key.0, key.1, v, true));
                 }
             }
-            self.check_operator_consistency(key);
-        }
-        for w in removes {
-            self.remove_slot_wme(w);
         }
         // Timetags in action order, but the matcher gets the batch newest first, and the
-        // `=>WM:` lines come newest first too (spec §3i, E:t6).
+        // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher
+        // before removals, which go in the reverse of the order they were found (9.6
+        // head-inserts both buffers).
         let mut added = Vec::with_capacity(adds.len());
         for (id, attr, value, acc) in adds {
             added.push(self.add_slot_wme(id, attr, value, acc));
@@ -567,7 +588,11 @@ impl Agent {
                 );
             }
         }
+        for w in removes.into_iter().rev() {
+            self.remove_slot_wme(w);
+        }
         self.collect_garbage();
+        self.classify_new_matches();
     }
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
@@ -604,13 +629,10 @@ impl Agent {
 
     /// The operator installed in a goal stays while it is still a candidate; otherwise it
     /// goes at once, with every substate below (spec §3b).
-    fn check_operator_consistency(&mut self, key: (Sym, Sym)) {
-        let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
-            return;
-        };
-        let Some((op, w)) = self.decider.goals[gi].operator else {
-            return;
-        };
+    /// Returns the operator WME to remove (buffered with the other removals).
+    fn check_operator_consistency(&mut self, key: (Sym, Sym)) -> Option<WmeId> {
+        let gi = self.decider.goals.iter().position(|g| g.state == key.0)?;
+        let (op, w) = self.decider.goals[gi].operator?;
         let prefs = self.slot_prefs(key);
         let still = prefs
             .iter()
@@ -619,19 +641,11 @@ impl Agent {
                 .iter()
                 .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
         if still {
-            return;
+            return None;
         }
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
-        if let Some(wme) = self.wm.get(w).copied() {
-            if self.settings.trace_level >= 4 {
-                self.out(&format!(
-                    "\n<=WM: {}",
-                    crate::trace::wme_internal(self, &wme)
-                ));
-            }
-            self.remove_wme(w);
-        }
+        Some(w)
     }
 
     fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
@@ -678,6 +692,7 @@ impl Agent {
                 Outcome::Winner(o) => {
                     self.remove_goals_below(gi);
                     let w = self.add_wme(goal.state, op, o, false);
+                    self.classify_new_matches();
                     self.decider.wme_changes += 1;
                     self.decider.goals[gi].operator = Some((o, w));
                     if self.settings.trace_level >= 1 {
@@ -1038,6 +1053,7 @@ impl Agent {
         }
         self.matches.assertions.clear();
         self.matches.retractions.clear();
+        self.matches.support.clear();
         self.decider = crate::decide::state::DecideState::new();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
