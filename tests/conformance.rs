@@ -54,7 +54,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "decision lines match; elaboration cycles 13 vs 14: 9.6 counts an empty cycle in the \
          propose phase after a substate is removed",
     ),
-    ("support-retraction", "operator kept at decision 3"),
     (
         "towers-of-hanoi",
         "match order (decision 2: O3 vs O14), then a state no-change",

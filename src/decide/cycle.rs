@@ -235,10 +235,12 @@ impl Agent {
             // A halt ends the run after this elaboration cycle: the rest of it still fires.
             self.fire(p, t, o_support, &mut new_prefs);
         }
+        // New preferences go in before the retractions are processed (9.6 prints the `+`
+        // lines before `Retracting`), which sets the order slots change in (spec §3i).
+        self.assert_preferences(new_prefs);
         for inst in retracted {
             self.retract(inst);
         }
-        self.assert_preferences(new_prefs);
         self.update_slots();
         true
     }
@@ -402,8 +404,13 @@ impl Agent {
     fn retract(&mut self, inst_id: InstId) {
         let p = self.decider.insts[inst_id as usize].prod;
         let name = self.production_name(p).to_string();
-        // An o-supported instantiation has nothing to retract: 9.6 prints nothing for it.
-        if self.settings.trace_level >= 3 && !self.decider.insts[inst_id as usize].o_support {
+        // An o-supported instantiation, or one that made no preferences, has nothing to
+        // retract: 9.6 prints nothing for it.
+        let quiet = {
+            let inst = &self.decider.insts[inst_id as usize];
+            inst.o_support || inst.prefs.is_empty()
+        };
+        if self.settings.trace_level >= 3 && !quiet {
             self.out(&format!("\nRetracting {name}"));
         }
         let inst = &mut self.decider.insts[inst_id as usize];

@@ -137,6 +137,8 @@ pub(crate) struct Node {
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: Vec<(u32, Field, u32)>,
+    /// Creation order (node ids are reused, this is not).
+    pub seq: u64,
 }
 
 impl Node {
@@ -230,6 +232,7 @@ pub struct Rete {
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
     pub(crate) hentries: Vec<hash::HEntry>,
     free_hentries: Vec<u32>,
+    next_seq: u64,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -262,6 +265,7 @@ impl Rete {
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
             free_hentries: Vec::new(),
+            next_seq: 0,
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -284,7 +288,9 @@ impl Rete {
             alive: true,
             hash: None,
             left_keys: Vec::new(),
+            seq: self.next_seq,
         };
+        self.next_seq += 1;
         alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
 
@@ -911,25 +917,17 @@ impl Rete {
         self.link_to_amem(n, amem);
     }
 
-    /// The depth of the token a WME completes at this node: descendants always rank deeper
-    /// than their ancestors.
-    fn rank(&self, n: NodeId) -> u32 {
-        let node = &self.nodes[n as usize];
-        match node.kind {
-            Kind::Join { .. } => self.nodes[node.parent as usize].depth + 1,
-            _ => node.depth + 1,
-        }
-    }
-
-    /// Links a node into its alpha memory's successors so that deeper nodes are activated
-    /// first: a new WME must reach a descendant before an ancestor on the same memory, or the
-    /// descendant would see it twice (Doorenbos §4.3.2). Among equal ranks the newest link is
-    /// activated first, as Soar's head insertion does.
+    /// Links a node into its alpha memory's successors at the place creation gave it: Soar
+    /// head-inserts a node there when it is built, so the newest node is activated first,
+    /// and a relinked node (Rete/UL) goes back to that place, not to the head, or unlinking
+    /// history would change the firing order (spec §3i). Newest first also puts every node
+    /// before its ancestors on the same memory, so no descendant sees a new WME twice
+    /// (Doorenbos §4.3.2): descendants are always built after their ancestors.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
-        let rank = self.rank(n);
+        let seq = self.nodes[n as usize].seq;
         let succ = std::mem::take(&mut self.amems[amem as usize].successors);
-        // The vector is in reverse activation order: ascending rank, newest last per rank.
-        let pos = succ.partition_point(|&x| self.rank(x) <= rank);
+        // The vector is in reverse activation order: oldest first.
+        let pos = succ.partition_point(|&x| self.nodes[x as usize].seq < seq);
         let mut succ = succ;
         succ.insert(pos, n);
         self.amems[amem as usize].successors = succ;
