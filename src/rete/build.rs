@@ -330,7 +330,10 @@ impl Rete {
         }
     }
 
-    fn holder_under(&mut self, cur: Cur, syms: &Symbols) -> NodeId {
+    /// The token holder a positive condition joins from. Under a join that is a beta
+    /// memory, one per hash key as in Soar (a memory is hashed on the variable its joins
+    /// test the identifier against, `key`), so that sibling memories keep Soar's order.
+    fn holder_under(&mut self, cur: Cur, key: Option<(u32, Field)>, syms: &Symbols) -> NodeId {
         match cur {
             Cur::Holder(h) => h,
             Cur::Join(j) => {
@@ -338,17 +341,45 @@ impl Rete {
                     .all_children
                     .iter()
                     .copied()
-                    .find(|&c| self.nodes[c as usize].kind == Kind::Memory);
+                    .find(|&c| {
+                        self.nodes[c as usize].kind == Kind::Memory
+                            && self.nodes[c as usize].hash == key
+                    });
                 if let Some(m) = existing {
                     return m;
                 }
                 let depth = self.next_depth(cur);
                 let m = self.new_node(Kind::Memory, j, depth);
+                self.nodes[m as usize].hash = key;
                 self.attach(j, m, true);
                 self.fill_new_node(m, syms, &mut super::NullSink);
                 m
             }
         }
+    }
+
+    /// Soar builds a memory with one join as a single merged node, and splits it into a
+    /// memory at the head of its parent's children when a second join is added (merging it
+    /// back, again at the head, when one is left). The memory's place among its siblings
+    /// (negative nodes, other memories, production nodes) follows those moves.
+    fn move_memory_to_head(&mut self, m: NodeId) {
+        if self.nodes[m as usize].kind != Kind::Memory {
+            return;
+        }
+        let parent = self.nodes[m as usize].parent;
+        let children = &mut self.nodes[parent as usize].children;
+        if let Some(pos) = children.iter().position(|&c| c == m) {
+            children.remove(pos);
+            children.push(m);
+        }
+    }
+
+    fn join_children(&self, m: NodeId) -> usize {
+        self.nodes[m as usize]
+            .all_children
+            .iter()
+            .filter(|&&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
+            .count()
     }
 
     /// Links `child` under `parent`: at the head of the children (activated first), or at
@@ -375,9 +406,14 @@ impl Rete {
         for i in order_conditions(conds, &bound) {
             match &conds[i] {
                 Condition::Positive(c) => {
-                    let h = self.holder_under(cur, syms);
-                    let depth = self.nodes[h as usize].depth + 1;
+                    // The depth its WME will have: one below the holder it joins from.
+                    let depth = match cur {
+                        Cur::Holder(h) => self.nodes[h as usize].depth + 1,
+                        Cur::Join(_) => self.next_depth(cur) + 1,
+                    };
                     let (key, tests) = cond_tests(c, depth, bindings, syms);
+                    let hk = hash_key_of(&tests, depth);
+                    let h = self.holder_under(cur, hk, syms);
                     let j = self.share_or_build_join(h, key, tests);
                     cur = Cur::Join(j);
                     if let Some((nodes, order, all)) = record.as_mut() {
@@ -399,7 +435,7 @@ impl Rete {
                     }
                 }
                 Condition::Ncc(inner) => {
-                    let h = self.holder_under(cur, syms);
+                    let h = self.holder_under(cur, None, syms);
                     let owner_depth = self.nodes[h as usize].depth + 1;
                     let mut local = bindings.clone();
                     let sub = self.build_conditions(inner, Cur::Holder(h), &mut local, syms, None);
@@ -445,6 +481,9 @@ impl Rete {
         }
         let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
         let depth = self.nodes[h as usize].depth;
+        if self.join_children(h) == 1 {
+            self.move_memory_to_head(h);
+        }
         let j = self.new_node(
             Kind::Join {
                 amem,
@@ -611,6 +650,9 @@ impl Rete {
             p.children.retain(|c| *c != n);
             p.all_children.retain(|c| *c != n);
             self.free_node(n);
+            if matches!(kind, Kind::Join { .. }) && self.join_children(parent) == 1 {
+                self.move_memory_to_head(parent);
+            }
             if let Kind::Ncc { partner } = kind {
                 // The partner's branch may now be unused too.
                 if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
@@ -631,10 +673,13 @@ impl Rete {
 /// bound above it (Soar hashes both memories on it, so a WME meets only the tokens it can
 /// join). `new_depth` is the depth of the new WME.
 fn hash_key(kind: &Kind, new_depth: u32) -> Option<(u32, Field)> {
-    let tests = match kind {
-        Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests,
-        _ => return None,
-    };
+    match kind {
+        Kind::Join { tests, .. } | Kind::Negative { tests, .. } => hash_key_of(tests, new_depth),
+        _ => None,
+    }
+}
+
+fn hash_key_of(tests: &[JoinTest], new_depth: u32) -> Option<(u32, Field)> {
     tests.iter().find_map(|t| match t {
         JoinTest::Compare {
             field: Field::Id,
