@@ -284,6 +284,9 @@ impl Agent {
         self.wm.get(w)?;
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
+        if let Some(goal) = self.decider.gds.remove(&w) {
+            self.decider.gds_invalid.push(goal);
+        }
         // What it pointed at may now be unlinked: garbage collection looks there (spec §2).
         for x in [wme.value, wme.attr] {
             if self.symbols.is_id(x) {

@@ -32,11 +32,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "match order (decision 2: D>B vs D>C), then operator kept",
     ),
     (
-        "gds",
-        "no GDS: the substate is not removed when (S1 ^flag on) goes, so the new operator \
-         no-change is made one level deeper",
-    ),
-    (
         "missionaries-cannibals",
         "match order (decision 2: O5 vs O3), then operator kept",
     ),

@@ -595,9 +595,13 @@ impl Agent {
                 );
             }
         }
+        for &w in &added {
+            self.gds_for_new_wme(w);
+        }
         for w in removes.into_iter().rev() {
             self.remove_slot_wme(w);
         }
+        self.remove_invalid_gds_goals();
         self.collect_garbage();
         self.classify_new_matches();
     }
@@ -887,7 +891,7 @@ impl Agent {
 
     /// Removes every goal below `gi`, deepest first, with its architecture WMEs; what they
     /// held up goes with the garbage collection.
-    fn remove_goals_below(&mut self, gi: usize) {
+    pub(crate) fn remove_goals_below(&mut self, gi: usize) {
         while self.decider.goals.len() > gi + 1 {
             let Some(g) = self.decider.goals.pop() else {
                 break;
@@ -920,6 +924,7 @@ impl Agent {
                 }
             }
             self.decider.gc_candidates.push(g.state);
+            self.decider.gds.retain(|_, goal| *goal != g.state);
         }
         self.collect_garbage();
     }

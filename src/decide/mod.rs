@@ -3,5 +3,6 @@
 
 pub mod cycle;
 pub mod functions;
+mod gds;
 pub mod procedure;
 pub mod state;

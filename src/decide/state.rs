@@ -112,6 +112,10 @@ pub struct DecideState {
     pub wme_changes: u64,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
+    /// Each WME in a goal dependency set, with the highest goal that depends on it (§3f).
+    pub gds: FxHashMap<WmeId, Sym>,
+    /// Goals whose GDS lost a WME, to be removed after the current WM changes.
+    pub gds_invalid: Vec<Sym>,
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,

@@ -1,0 +1,122 @@
+//! The goal dependency set (spec §3f): when a substate makes an o-supported WME, the
+//! superstate WMEs its reasoning tested join that substate's GDS, following local
+//! i-supported WMEs back through the instantiations that made them (local o-supported
+//! WMEs stop the search). When a WME in a goal's GDS leaves working memory, that goal and
+//! every goal below it go, and the next decision can make the impasse again.
+
+use super::procedure::PrefType;
+use super::state::InstId;
+use crate::agent::Agent;
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+use rustc_hash::FxHashSet;
+
+impl Agent {
+    fn sym_level(&self, s: Sym) -> u32 {
+        self.symbols.id_data(s).map_or(0, |d| d.level)
+    }
+
+    /// The live instantiation behind a WME, if an i-supported preference makes it: `None`
+    /// for o-supported and architecture WMEs (the search stops there).
+    fn i_support_of(&self, w: WmeId) -> Option<InstId> {
+        let wme = self.wm.get(w)?;
+        // A selected operator stands on its acceptable preference (its proposal), like any
+        // other WME on its slot's acceptable preferences.
+        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        let mut found = None;
+        for &pid in &slot.prefs {
+            let p = &self.decider.prefs[pid as usize];
+            if !p.alive || p.kind != PrefType::Acceptable || p.value != wme.value {
+                continue;
+            }
+            if p.o_support {
+                return None;
+            }
+            if found.is_none() {
+                found = p.inst;
+            }
+        }
+        found
+    }
+
+    /// A WME just added: if an o-supported preference of an instantiation that matched in a
+    /// substate made it, that substate's GDS grows.
+    pub(crate) fn gds_for_new_wme(&mut self, w: WmeId) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+            return;
+        };
+        let inst = slot.prefs.iter().find_map(|&pid| {
+            let p = &self.decider.prefs[pid as usize];
+            (p.alive && p.o_support && p.kind == PrefType::Acceptable && p.value == wme.value)
+                .then_some(p.inst)
+                .flatten()
+        });
+        if let Some(i) = inst {
+            self.elaborate_gds(i);
+        }
+    }
+
+    fn elaborate_gds(&mut self, inst: InstId) {
+        let Some(goal) = self.decider.insts[inst as usize].goal else {
+            return;
+        };
+        let level = self.sym_level(goal);
+        if level <= 1 {
+            return;
+        }
+        let mut seen: FxHashSet<InstId> = FxHashSet::default();
+        let mut stack = vec![inst];
+        let mut found: Vec<WmeId> = Vec::new();
+        while let Some(i) = stack.pop() {
+            if !seen.insert(i) || !self.decider.insts[i as usize].alive {
+                continue;
+            }
+            let (prod, token) = {
+                let x = &self.decider.insts[i as usize];
+                (x.prod, x.token)
+            };
+            for w in self.rete.match_wmes(prod, token) {
+                let Some(wme) = self.wm.get(w) else { continue };
+                let l = self.sym_level(wme.id);
+                if l < level {
+                    found.push(w);
+                } else if let Some(j) = self.i_support_of(w) {
+                    stack.push(j);
+                }
+            }
+        }
+        for w in found {
+            // A WME is charged to the highest goal that depends on it: removing that goal
+            // removes the lower ones too.
+            let keep = self
+                .decider
+                .gds
+                .get(&w)
+                .is_some_and(|&g| self.sym_level(g) <= level);
+            if !keep {
+                self.decider.gds.insert(w, goal);
+            }
+        }
+    }
+
+    /// Removes the goals whose GDS lost a WME (the highest first, with all below).
+    pub(crate) fn remove_invalid_gds_goals(&mut self) {
+        let invalid = std::mem::take(&mut self.decider.gds_invalid);
+        let Some(top_index) = invalid
+            .iter()
+            .filter_map(|g| self.decider.goals.iter().position(|x| x.state == *g))
+            .min()
+        else {
+            return;
+        };
+        if top_index == 0 {
+            return;
+        }
+        self.remove_goals_below(top_index - 1);
+        // The goal above may impasse again at the next decision.
+        self.decider.goals[top_index - 1].slot_changed = true;
+    }
+}
