@@ -54,10 +54,6 @@ const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
         "match order (decision 2: O3 vs O14), then a state no-change",
     ),
     (
-        "wait-snc",
-        "waiting in a substate prints `==>S: S2 ` instead of `==>S: S2 (operator no-change)`",
-    ),
-    (
         "water-jug",
         "match order: another candidate order, so other random choices",
     ),

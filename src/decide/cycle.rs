@@ -777,11 +777,23 @@ impl Agent {
         let parent = self.decider.goals[gi].state;
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
+            // Waiting: the bottom state's own line again, impasse included (E:t12).
             if self.settings.trace_level >= 1 {
+                let what = self.decider.goals[gi]
+                    .impasse
+                    .map(|(k, on_op)| {
+                        format!(
+                            "({} {})",
+                            if on_op { "operator" } else { "state" },
+                            k.word()
+                        )
+                    })
+                    .unwrap_or_default();
                 let s = format!(
-                    "{}==>S: {} ",
+                    "{}==>S: {} {}",
                     self.decision_prefix(level - 1),
-                    self.symbols.text(parent)
+                    self.symbols.text(parent),
+                    what
                 );
                 self.out(&s);
             }
