@@ -119,10 +119,17 @@ fn cond_vars(c: &Condition, out: &mut Vec<String>) {
 /// Orders conditions for joining: a positive condition goes when its id is bound (or it
 /// tests a state) and the variables of its relational tests are bound; a negation goes as
 /// soon as every variable it shares with positive conditions is bound. Source order breaks
-/// ties, so well-connected rules keep their written order.
+/// ties among positive conditions (9.6 breaks them by cost and its symbol table, which is
+/// not reproduced yet).
 fn order_conditions(conds: &[Condition], bound: &FxHashSet<String>) -> Vec<usize> {
-    if let Some(order) = source_order_if_joinable(conds, bound) {
-        return order;
+    // Negations move up to where their variables are bound, as 9.6's reorderer does (a
+    // ready negation wins a cost tie): only an all-positive rule can keep its written order
+    // without the search.
+    let all_positive = conds.iter().all(|c| matches!(c, Condition::Positive(_)));
+    if all_positive {
+        if let Some(order) = source_order_if_joinable(conds, bound) {
+            return order;
+        }
     }
     let mut positive_vars: FxHashSet<String> = bound.clone();
     for c in conds {
