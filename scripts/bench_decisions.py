@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Decision-cycle speed, side by side: every agent of tests/agents run in the official Soar
+9.6 kernel (pip package soar-sml) and in rusoar with the conformance settings (srand 1,
+watch 0, run 1000), reporting decisions, firings and decisions per second for each, and
+the ratio rusoar / official (above 1: rusoar is faster). One run per agent and kernel, the
+median of REPEAT timings; these machines are noisy.
+
+Official: `run 1000` timed around ExecuteCommandLine in a fresh agent after `source`.
+rusoar:   examples/time_run.rs, in-process: `run 1000` timed in a fresh interpreter after
+          the same setup.
+
+usage: python3 scripts/bench_decisions.py [--repeat N] [AGENT ...]
+"""
+import argparse
+import os
+import re
+import statistics
+import subprocess
+import time
+
+import soar_sml as sml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+AGENTS = os.path.join(ROOT, "tests", "agents")
+
+
+def official(path, repeat):
+    times, dec, fir = [], 0, 0
+    for _ in range(repeat):
+        k = sml.Kernel.CreateKernelInNewThread()
+        a = k.CreateAgent("soar")
+        for c in ["srand 1", "watch 0", f"source {path}"]:
+            a.ExecuteCommandLine(c)
+        t = time.perf_counter()
+        a.ExecuteCommandLine("run 1000")
+        times.append(time.perf_counter() - t)
+        stats = a.ExecuteCommandLine("stats")
+        dec = int(re.search(r"(\d+) decisions", stats).group(1))
+        fir = int(re.search(r"(\d+) production firings", stats).group(1))
+        k.Shutdown()
+    return statistics.median(times), dec, fir
+
+
+def ours_all(paths, repeat):
+    out = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "--example", "time_run", "--", str(repeat)]
+        + paths,
+        capture_output=True, text=True, cwd=ROOT, check=True).stdout
+    res = {}
+    for line in out.splitlines():
+        name, dec, fir, secs = line.split()
+        res[name] = (max(float(secs), 1e-9), int(dec), int(fir))
+    return res
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("agents", nargs="*")
+    opts = ap.parse_args()
+    names = opts.agents or sorted(f[:-5] for f in os.listdir(AGENTS) if f.endswith(".soar"))
+    print("| agent | decisions (ours / 9.6) | rusoar dec/s | official dec/s | ratio |")
+    print("|---|---|---|---|---|")
+    ratios = []
+    mine = ours_all([os.path.join(AGENTS, n + ".soar") for n in names], opts.repeat)
+    for name in names:
+        path = os.path.join(AGENTS, name + ".soar")
+        ot, od, _ = official(path, opts.repeat)
+        rt, rd, _ = mine[name]
+        ours_rate, off_rate = rd / rt, od / ot
+        ratio = ours_rate / off_rate
+        ratios.append(ratio)
+        print(f"| {name} | {rd} / {od} | {ours_rate:,.0f} | {off_rate:,.0f} | {ratio:.1f} |")
+    print(f"\nmedian ratio {statistics.median(ratios):.1f}, min {min(ratios):.1f}")
+
+
+if __name__ == "__main__":
+    main()
