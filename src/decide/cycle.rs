@@ -89,7 +89,8 @@ impl Agent {
         {
             let phase = self.decider.phase.unwrap_or(Phase::Input);
             let e_before = self.decider.e_cycles;
-            self.do_phase(phase);
+            // `run -e` stops after each elaboration cycle, inside the phase (spec §6a).
+            self.do_phase(phase, unit == RunUnit::Elaborations);
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
                     if phase == Phase::Decide {
@@ -113,7 +114,9 @@ impl Agent {
         )
     }
 
-    fn do_phase(&mut self, phase: Phase) {
+    /// Runs a phase; with `one_cycle`, at most one elaboration cycle of the propose or apply
+    /// phase, which then resumes where it stopped on the next call.
+    fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
         match phase {
             Phase::Input => {
                 self.run_input_callbacks();
@@ -121,7 +124,10 @@ impl Agent {
                 self.decider.phase = Some(Phase::Propose);
             }
             Phase::Propose => {
-                self.decider.e_cycles_this_phase = 0;
+                if !self.decider.phase_started {
+                    self.decider.e_cycles_this_phase = 0;
+                    self.decider.phase_started = true;
+                }
                 while self.has_pending(false) && !self.decider.halted {
                     if !self.elaboration_cycle(false) {
                         break;
@@ -129,7 +135,11 @@ impl Agent {
                     if self.max_elaborations_reached("decide") {
                         break;
                     }
+                    if one_cycle && self.has_pending(false) && !self.decider.halted {
+                        return;
+                    }
                 }
+                self.decider.phase_started = false;
                 self.decider.phase = Some(Phase::Decide);
             }
             Phase::Decide => {
@@ -148,6 +158,9 @@ impl Agent {
                     }
                     if self.max_elaborations_reached("output") {
                         break;
+                    }
+                    if one_cycle && self.has_pending(true) && !self.decider.halted {
+                        return;
                     }
                 }
                 self.decider.phase = Some(Phase::Output);

@@ -99,6 +99,8 @@ pub struct DecideState {
     pub changed: Vec<(Sym, Sym)>,
     pub goals: Vec<Goal>,
     pub phase: Option<Phase>,
+    /// The propose phase has begun (its elaboration count is reset once, at its start).
+    pub phase_started: bool,
     pub d_cycle_count: u64,
     pub decisions: u64,
     pub e_cycles: u64,
