@@ -6,6 +6,7 @@ pub mod aliases;
 mod files;
 mod memory;
 pub mod options;
+mod prefs;
 mod rules;
 mod running;
 mod settings;
@@ -290,6 +291,7 @@ impl Interpreter {
             "decide" => self.cmd_decide(&ctx, args),
             "output" => self.cmd_output(&ctx, args),
             "print" => self.cmd_print(&ctx, args),
+            "preferences" => self.cmd_preferences(&ctx, args),
             "production" => self.cmd_production(&ctx, args),
             "wm" => self.cmd_wm(&ctx, args),
             "run" => self.cmd_run(&ctx, args),

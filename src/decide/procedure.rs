@@ -104,9 +104,9 @@ fn has(prefs: &[Pref], kind: PrefType, value: Sym) -> bool {
     prefs.iter().any(|p| p.kind == kind && p.value == value)
 }
 
-/// Runs the preference semantics of spec §3d in 9.6's order and, when the remaining
-/// candidates are mutually indifferent, chooses one with `policy`.
-pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt19937) -> Outcome {
+/// The preference semantics of spec §3d in 9.6's order, up to the choice: the candidates
+/// to choose among (one, or several mutually indifferent ones), or the impasse.
+pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     // Step 1: require.
     let mut required = Vec::new();
     for p in prefs.iter().filter(|p| p.kind == PrefType::Require) {
@@ -114,13 +114,13 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
     }
     if !required.is_empty() {
         if required.len() > 1 {
-            return Outcome::ConstraintFailure(required);
+            return Err(Outcome::ConstraintFailure(required));
         }
         let r = required[0];
         if has(prefs, PrefType::Prohibit, r) {
-            return Outcome::ConstraintFailure(required);
+            return Err(Outcome::ConstraintFailure(required));
         }
-        return Outcome::Winner(r);
+        return Ok(vec![r]);
     }
     // Step 2: acceptable, minus prohibit and reject.
     let mut cands = Vec::new();
@@ -130,8 +130,8 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
         }
     }
     match cands.len() {
-        0 => return Outcome::NoCandidates,
-        1 => return Outcome::Winner(cands[0]),
+        0 => return Err(Outcome::NoCandidates),
+        1 => return Ok(vec![cands[0]]),
         _ => {}
     }
     // Step 3: better/worse between current candidates. A dominated candidate is out even if
@@ -156,7 +156,7 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
         }
     }
     if dominated.iter().all(|d| *d) {
-        return Outcome::Conflict(cands);
+        return Err(Outcome::Conflict(cands));
     }
     let mut cands: Vec<Sym> = cands
         .iter()
@@ -165,20 +165,20 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
         .map(|(c, _)| *c)
         .collect();
     if cands.len() == 1 {
-        return Outcome::Winner(cands[0]);
+        return Ok(vec![cands[0]]);
     }
     // Step 4: best.
     if cands.iter().any(|c| has(prefs, PrefType::Best, *c)) {
         cands.retain(|c| has(prefs, PrefType::Best, *c));
         if cands.len() == 1 {
-            return Outcome::Winner(cands[0]);
+            return Ok(vec![cands[0]]);
         }
     }
     // Step 5: worst, unless every candidate is worst.
     if !cands.iter().all(|c| has(prefs, PrefType::Worst, *c)) {
         cands.retain(|c| !has(prefs, PrefType::Worst, *c));
         if cands.len() == 1 {
-            return Outcome::Winner(cands[0]);
+            return Ok(vec![cands[0]]);
         }
     }
     // Step 6: indifference.
@@ -197,7 +197,20 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
     let all_indifferent =
         cands.iter().all(|c| unary(*c)) || cands.iter().all(|c| binary_with_all(*c));
     if !all_indifferent {
-        return Outcome::Tie(cands);
+        return Err(Outcome::Tie(cands));
+    }
+    Ok(cands)
+}
+
+/// Runs the preference semantics of spec §3d in 9.6's order and, when the remaining
+/// candidates are mutually indifferent, chooses one with `policy`.
+pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt19937) -> Outcome {
+    let cands = match candidates(prefs) {
+        Ok(c) => c,
+        Err(impasse) => return impasse,
+    };
+    if cands.len() == 1 {
+        return Outcome::Winner(cands[0]);
     }
     let values: Vec<f64> = cands
         .iter()
