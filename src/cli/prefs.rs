@@ -113,7 +113,7 @@ impl Interpreter {
             for p in of_kind {
                 out.push_str(&self.pref_line(p, context));
                 if names {
-                    out.push_str(&self.from_line(p));
+                    out.push_str(&self.rule_line(p));
                 }
             }
         }
@@ -157,7 +157,7 @@ impl Interpreter {
     }
 
     /// `    From rule` and a blank line, for `--names`.
-    fn from_line(&self, p: &Preference) -> String {
+    fn rule_line(&self, p: &Preference) -> String {
         match p.inst {
             Some(i) => {
                 let prod = self.agent.decider.insts[i as usize].prod;
@@ -238,7 +238,7 @@ impl Interpreter {
             ));
             if names {
                 if let Some(p) = made_by {
-                    out.push_str(&self.from_line(p));
+                    out.push_str(&self.rule_line(p));
                 }
             }
         }
