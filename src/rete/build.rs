@@ -647,7 +647,8 @@ impl Rete {
             }
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
-                    self.amems[amem as usize].successors.retain(|c| *c != n);
+                    let seq = self.nodes[n as usize].seq;
+                    self.amems[amem as usize].successors.remove(&seq);
                     self.release_amem(amem);
                 }
                 _ => {}

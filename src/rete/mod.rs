@@ -59,8 +59,9 @@ pub(crate) struct Amem {
     /// Head of the intrusive list of right-memory entries (newest first).
     pub first: u32,
     pub count: u32,
-    /// Linked successors; the *last* element is the head (activated first).
-    pub successors: Vec<NodeId>,
+    /// Linked successors by creation order (node `seq`); the newest is activated first.
+    /// Ordered and keyed so that unlinking one of thousands is cheap.
+    pub successors: std::collections::BTreeMap<u64, NodeId>,
     pub refs: u32,
 }
 
@@ -316,7 +317,7 @@ impl Rete {
             key,
             first: NIL,
             count: 0,
-            successors: Vec::new(),
+            successors: std::collections::BTreeMap::new(),
             refs: 1,
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
@@ -475,8 +476,13 @@ impl Rete {
         // Doorenbos does): relinking them all first would let a descendant on the same alpha
         // memory see this WME twice.
         self.amem_insert(a, w);
-        let succ = self.amems[a as usize].successors.clone();
-        for &n in succ.iter().rev() {
+        let succ: Vec<NodeId> = self.amems[a as usize]
+            .successors
+            .values()
+            .rev()
+            .copied()
+            .collect();
+        for n in succ {
             if !self.nodes[n as usize].alive {
                 continue;
             }
@@ -494,10 +500,12 @@ impl Rete {
             self.amem_remove_entry(e);
             if self.amems[amem as usize].count == 0 {
                 // Empty alpha memory: its joins need no left activations (Rete/UL).
-                let succ = self.amems[amem as usize].successors.clone();
-                for n in succ {
-                    self.unlink_left(n);
-                }
+                let succ: Vec<NodeId> = self.amems[amem as usize]
+                    .successors
+                    .values()
+                    .copied()
+                    .collect();
+                self.unlink_left_all(&succ);
             }
         }
         if let Some(x) = self.wmes[w.0 as usize].as_mut() {
@@ -848,6 +856,31 @@ impl Rete {
         self.nodes[parent as usize].children.retain(|c| *c != n);
     }
 
+    /// `unlink_left` for many joins at once: one pass over each parent's children.
+    fn unlink_left_all(&mut self, nodes: &[NodeId]) {
+        let mut by_parent: FxHashMap<NodeId, rustc_hash::FxHashSet<NodeId>> = FxHashMap::default();
+        for &n in nodes {
+            let parent = self.nodes[n as usize].parent;
+            if let Kind::Join {
+                left_unlinked,
+                right_unlinked,
+                ..
+            } = &mut self.nodes[n as usize].kind
+            {
+                if *left_unlinked || *right_unlinked {
+                    continue;
+                }
+                *left_unlinked = true;
+                by_parent.entry(parent).or_default().insert(n);
+            }
+        }
+        for (parent, gone) in by_parent {
+            self.nodes[parent as usize]
+                .children
+                .retain(|c| !gone.contains(c));
+        }
+    }
+
     fn relink_left(&mut self, n: NodeId) {
         let parent = self.nodes[n as usize].parent;
         if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
@@ -890,7 +923,8 @@ impl Rete {
             }
             _ => return,
         };
-        self.amems[amem as usize].successors.retain(|c| *c != n);
+        let seq = self.nodes[n as usize].seq;
+        self.amems[amem as usize].successors.remove(&seq);
     }
 
     /// Puts a node back among its alpha memory's successors.
@@ -925,12 +959,7 @@ impl Rete {
     /// (Doorenbos §4.3.2): descendants are always built after their ancestors.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
         let seq = self.nodes[n as usize].seq;
-        let succ = std::mem::take(&mut self.amems[amem as usize].successors);
-        // The vector is in reverse activation order: oldest first.
-        let pos = succ.partition_point(|&x| self.nodes[x as usize].seq < seq);
-        let mut succ = succ;
-        succ.insert(pos, n);
-        self.amems[amem as usize].successors = succ;
+        self.amems[amem as usize].successors.insert(seq, n);
     }
 
     // ------------------------------------------------------------------- queries
