@@ -124,7 +124,28 @@ impl Interpreter {
             opt('g', "gds"),
             opt_arg('d', "depth"),
         ];
-        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        // The depth is checked as the options are read, before any later bad option and
+        // before the target (9.6: `wmes`, which is `print -depth 0 -internal`, fails with
+        // the depth message).
+        let bad_depth = |p: &options::Parsed| {
+            p.value("depth")
+                .is_some_and(|d| d.parse::<usize>().is_err())
+        };
+        let parsed = match options::parse(args, &specs) {
+            Ok(p) => p,
+            Err(m) => {
+                let read_before_error = (0..args.len())
+                    .rev()
+                    .find_map(|k| options::parse(&args[..k], &specs).ok());
+                if read_before_error.as_ref().is_some_and(bad_depth) {
+                    return Err(ctx.error("Non-negative depth expected."));
+                }
+                return Err(ctx.error(m));
+            }
+        };
+        if bad_depth(&parsed) {
+            return Err(ctx.error("Non-negative depth expected."));
+        }
         if parsed.has("all") || parsed.has("user") {
             let mut s = String::new();
             for p in self.agent.productions().rev() {

@@ -39,8 +39,14 @@ impl Interpreter {
             RunUnit::Forever
         };
         let n = count.unwrap_or(1);
+        let hooks = self.begin_run_hooks();
         let (decisions, fired) = self.agent.run(n, unit);
+        let interrupted = self.end_run_hooks(hooks);
         self.flush_agent_output();
+        if interrupted {
+            self.events
+                .push(super::Event::Text("\nInterrupted.".to_string()));
+        }
         let dc = match decisions {
             1 => "1 decision cycle executed.".to_string(),
             d => format!("{d} decision cycles executed."),
