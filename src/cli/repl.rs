@@ -52,6 +52,51 @@ pub fn history_path() -> Option<PathBuf> {
     std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".rusoar_history"))
 }
 
+/// Runs a script as if typed at the REPL, without a terminal: each entry (one line, or
+/// several while a brace or quote is open) is shown after the prompt it was typed at,
+/// followed by what it printed; errors are rendered as the REPL shows them. For transcript
+/// tests and for replaying a session.
+pub fn transcript(interp: &mut Interpreter, script: &str) -> String {
+    let mut out = String::new();
+    let mut entry = String::new();
+    let mut entry_prompt = String::new();
+    let mut lines = script.lines().peekable();
+    while let Some(line) = lines.next() {
+        if entry.is_empty() {
+            if line.trim().is_empty() {
+                continue;
+            }
+            entry_prompt = prompt(interp);
+        } else {
+            entry.push('\n');
+        }
+        entry.push_str(line);
+        if is_incomplete(&entry) && lines.peek().is_some() {
+            continue;
+        }
+        let text = std::mem::take(&mut entry);
+        out.push_str(&entry_prompt);
+        out.push_str(&text.replace('\n', "\n... "));
+        out.push('\n');
+        let result = interp.run_text("<stdin>", &text);
+        let mut shown = interp.take_output();
+        if let Err(d) = result {
+            if !shown.is_empty() && !shown.ends_with('\n') {
+                shown.push('\n');
+            }
+            shown.push_str(&interp.sources.render(&d));
+        }
+        out.push_str(&shown);
+        if !out.ends_with('\n') {
+            out.push('\n');
+        }
+        if interp.exit_requested {
+            break;
+        }
+    }
+    out
+}
+
 /// What tab completion offers, refreshed from the interpreter before each prompt.
 #[derive(Debug, Default, Clone)]
 pub struct ReplHelper {
