@@ -65,8 +65,10 @@ fn a_session_in_a_pseudo_terminal() {
     )
     .unwrap();
     p.exp_string("***").unwrap();
+    p.exp_string("soar 1> ").unwrap();
     p.send_line("watch 0").unwrap();
     p.exp_string("Trace level 0 enabled").unwrap();
+    p.exp_string("soar 1> ").unwrap();
     p.send_line("run").unwrap();
     std::thread::sleep(Duration::from_millis(700));
     p.send_control('c').unwrap();
@@ -85,11 +87,15 @@ fn a_session_in_a_pseudo_terminal() {
     p.send_line("echo still here").unwrap();
     p.exp_string("still here").unwrap();
 
-    // Ctrl-C at the prompt drops the half-typed line.
+    p.exp_regex(r"soar \d+> ").unwrap();
+
+    // Ctrl-C at the prompt drops the half-typed line. (Wait for each echo and prompt:
+    // keys typed ahead of a Ctrl-C are dropped with it.)
     p.send("echo never printed").unwrap();
     p.flush().unwrap();
-    std::thread::sleep(Duration::from_millis(200));
+    p.exp_string("echo never printed").unwrap();
     p.send_control('c').unwrap();
+    p.exp_regex(r"soar \d+> ").unwrap();
     p.send_line("echo after ctrl-c").unwrap();
     let before = p.exp_string("after ctrl-c\r\n").unwrap();
     assert!(!before.contains("never printed\r\n"), "{before}");

@@ -6,15 +6,16 @@
 
 use super::{Event, Interpreter, COMMANDS};
 use crate::tokenizer::Tokenizer;
-use rustyline::completion::Completer;
+use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
 use rustyline::hint::Hinter;
 use rustyline::history::DefaultHistory;
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
-use rustyline::{Config, Context, Editor, Helper};
+use rustyline::{CompletionType, Config, Context, Editor, Helper};
 use std::cell::{Cell, RefCell};
 use std::io::Write;
+use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -158,14 +159,23 @@ impl ReplHelper {
 }
 
 impl Completer for ReplHelper {
-    type Candidate = String;
+    type Candidate = Pair;
+    /// A completed word is followed by a space, as in a shell.
     fn complete(
         &self,
         line: &str,
         pos: usize,
         _ctx: &Context<'_>,
-    ) -> rustyline::Result<(usize, Vec<String>)> {
-        Ok(self.candidates(line, pos))
+    ) -> rustyline::Result<(usize, Vec<Pair>)> {
+        let (start, words) = self.candidates(line, pos);
+        let pairs = words
+            .into_iter()
+            .map(|w| Pair {
+                replacement: format!("{w} "),
+                display: w,
+            })
+            .collect();
+        Ok((start, pairs))
     }
 }
 
@@ -216,7 +226,10 @@ fn print_events(interp: &mut Interpreter, at_line_start: &Cell<bool>) {
 /// Runs the REPL until Ctrl-D or `exit`. Returns false if the editor could not start (no
 /// terminal): the caller then reads standard input plainly.
 pub fn run(interp: &mut Interpreter) -> bool {
-    let config = Config::builder().auto_add_history(false).build();
+    let config = Config::builder()
+        .auto_add_history(false)
+        .completion_type(CompletionType::List)
+        .build();
     let mut editor: Editor<ReplHelper, DefaultHistory> = match Editor::with_config(config) {
         Ok(e) => e,
         Err(_) => return false,
@@ -233,7 +246,14 @@ pub fn run(interp: &mut Interpreter) -> bool {
     let interrupt = Arc::new(AtomicBool::new(false));
     {
         let flag = Arc::clone(&interrupt);
-        if let Err(e) = ctrlc::set_handler(move || flag.store(true, Ordering::SeqCst)) {
+        // A second Ctrl-C before the run has stopped (a decision that never ends) leaves.
+        let handler = move || {
+            if flag.swap(true, Ordering::SeqCst) {
+                eprintln!("\nInterrupted twice: leaving rusoar.");
+                std::process::exit(130);
+            }
+        };
+        if let Err(e) = ctrlc::set_handler(handler) {
             eprintln!("warning: Ctrl-C will not interrupt a run ({e})");
         }
     }
@@ -266,12 +286,25 @@ pub fn run(interp: &mut Interpreter) -> bool {
                 }
                 let _ = editor.add_history_entry(line.as_str());
                 interrupt.store(false, Ordering::SeqCst);
-                if let Err(d) = interp.run_text("<stdin>", &line) {
+                // A bug in rusoar must not end the session: the panic is reported (by the
+                // panic hook, then here) and the REPL goes on.
+                let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
+                    interp.run_text("<stdin>", &line)
+                }));
+                let failure = match result {
+                    Ok(r) => r.err().map(|d| interp.sources.render(&d)),
+                    Err(_) => Some(
+                        "internal error: rusoar panicked running this command (a bug: please \
+                         report it); the agent may be inconsistent, `init-soar` resets it\n"
+                            .to_string(),
+                    ),
+                };
+                if let Some(text) = failure {
                     print_events(interp, &at_line_start);
                     if !at_line_start.get() {
                         println!();
                     }
-                    eprint!("{}", interp.sources.render(&d));
+                    eprint!("{text}");
                     at_line_start.set(true);
                 }
                 print_events(interp, &at_line_start);
