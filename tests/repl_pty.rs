@@ -80,10 +80,12 @@ fn a_session_in_a_pseudo_terminal() {
         .next()
         .and_then(|n| n.parse().ok())
         .unwrap();
-    assert!(decisions > 1, "the run stopped at once: {count}");
+    assert!(decisions > 3, "the run stopped at once: {count}");
     // Still alive: the prompt counts the decisions run, and commands still work.
     let (_, prompt) = p.exp_regex(r"soar \d+> ").unwrap();
-    assert_eq!(prompt, format!("soar {}> ", decisions + 1), "after {count}");
+    // The run started in cycle 1, so 9.6's count is the cycle counter itself, which is one
+    // ahead of the decisions made after a stop at the end of a cycle.
+    assert_eq!(prompt, format!("soar {}> ", decisions - 1), "after {count}");
     p.send_line("echo still here").unwrap();
     p.exp_string("still here").unwrap();
 

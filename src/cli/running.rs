@@ -40,15 +40,22 @@ impl Interpreter {
         };
         let n = count.unwrap_or(1);
         let hooks = self.begin_run_hooks();
-        let (decisions, fired) = self.agent.run(n, unit);
+        let dc_before = self.agent.decider.d_cycle_count;
+        let (_, fired) = self.agent.run(n, unit);
         let interrupted = self.end_run_hooks(hooks);
         self.flush_agent_output();
         if interrupted {
             self.events
                 .push(super::Event::Text("\nInterrupted.".to_string()));
         }
+        // 9.6 reports the change of the decision-cycle counter, measured from 0 while the
+        // counter is still at its initial 1 (spec §6a, E:t18): so the second `run 1` after
+        // `init-soar` reports 2 cycles, and a run that ends inside the cycle it started in
+        // reports "0 decision cycle" (singular, as printed by 9.6).
+        let last_dc = if dc_before > 1 { dc_before } else { 0 };
+        let decisions = self.agent.decider.d_cycle_count.saturating_sub(last_dc);
         let dc = match decisions {
-            1 => "1 decision cycle executed.".to_string(),
+            0 | 1 => format!("{decisions} decision cycle executed."),
             d => format!("{d} decision cycles executed."),
         };
         let rules = match fired {
