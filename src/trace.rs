@@ -22,7 +22,7 @@ pub fn wme_internal(agent: &Agent, w: &Wme) -> String {
 }
 
 /// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.
-fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
+pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
     let mut ws: Vec<Wme> = agent
         .wm
         .of_id(id)

@@ -103,8 +103,17 @@ impl Interpreter {
         target: &str,
         depth: usize,
         internal: bool,
+        tree: bool,
     ) -> CmdResult {
         if let Some(id) = self.agent.symbols.find_id(target) {
+            if tree {
+                return Ok(super::printing::print_tree(
+                    &self.agent,
+                    id,
+                    depth,
+                    internal,
+                ));
+            }
             return Ok(crate::trace::print_object(&self.agent, id, depth, internal));
         }
         if let Ok(tt) = target.parse::<u64>() {

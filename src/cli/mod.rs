@@ -7,6 +7,7 @@ mod files;
 pub mod help;
 mod memory;
 pub mod options;
+mod printing;
 pub mod repl;
 mod rules;
 mod running;

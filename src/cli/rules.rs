@@ -117,9 +117,9 @@ impl Interpreter {
             opt('i', "internal"),
             opt('t', "tree"),
             opt('e', "exact"),
-            opt('s', "states"),
+            opt('s', "stack"),
             opt('o', "operators"),
-            opt('S', "stack"),
+            opt('S', "states"),
             opt('v', "varprint"),
             opt('g', "gds"),
             opt_arg('d', "depth"),
@@ -145,6 +145,21 @@ impl Interpreter {
         };
         if bad_depth(&parsed) {
             return Err(ctx.error("Non-negative depth expected."));
+        }
+        if parsed.has("stack") {
+            if !parsed.args.is_empty() {
+                return Err(ctx.error("No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack."));
+            }
+            return Ok(super::printing::print_stack(
+                &self.agent,
+                parsed.has("states"),
+                parsed.has("operators"),
+            ));
+        }
+        if parsed.has("states") || parsed.has("operators") {
+            return Err(ctx.error(
+                "Options --operators (-o) and --states (-S) are only valid when printing the stack.",
+            ));
         }
         if parsed.has("all") || parsed.has("user") {
             let mut s = String::new();
@@ -190,7 +205,13 @@ impl Interpreter {
                     .map_err(|_| ctx.error("Non-negative depth expected."))?,
                 None => 1,
             };
-            return self.print_memory(ctx, target, depth, parsed.has("internal"));
+            return self.print_memory(
+                ctx,
+                target,
+                depth,
+                parsed.has("internal"),
+                parsed.has("tree"),
+            );
         }
         Ok(format!("No production named {target}"))
     }
