@@ -53,7 +53,8 @@ fn a_session_in_a_pseudo_terminal() {
     p.exp_string("soar 1> ").unwrap();
 
     p.send_line("print s1").unwrap();
-    p.exp_string("(S1 ^epmem E1 ^io I1 ^operator O1 ^operator O1 + ^reward-link R1")
+    // The first line wraps early: the stream stood after the trace line (as in 9.6).
+    p.exp_string("(S1 ^epmem E1 ^io I1 ^operator O1 ^operator O1 +\r\n       ^reward-link R1")
         .unwrap();
     p.exp_string("soar 1> ").unwrap();
 

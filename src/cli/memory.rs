@@ -114,7 +114,13 @@ impl Interpreter {
                     internal,
                 ));
             }
-            return Ok(crate::trace::print_object(&self.agent, id, depth, internal));
+            return Ok(crate::trace::print_object_at(
+                &self.agent,
+                id,
+                depth,
+                internal,
+                self.print_column(),
+            ));
         }
         if let Ok(tt) = target.parse::<u64>() {
             if let Some(w) = self.agent.wm.by_timetag(tt) {

@@ -19,7 +19,7 @@ use crate::source::{Diagnostic, SourceMap, Span};
 use crate::tokenizer::{Command, Tokenizer, WordKind};
 use aliases::Aliases;
 use indexmap::IndexMap;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::path::PathBuf;
 use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -100,6 +100,18 @@ pub struct Interpreter {
     interrupt: Option<Arc<AtomicBool>>,
     /// Receives the trace while a `run` goes on, once per decision, instead of at its end.
     live: Option<LiveSink>,
+    /// The column where the agent's print stream stands: trace output and the output of
+    /// `print`, `matches`, `learn` and `chunk` move it, other command results do not. 9.6
+    /// wraps a printed object's first line from there.
+    print_col: Rc<Cell<usize>>,
+}
+
+/// Moves a print-stream column over `text`.
+fn advance_col(col: &Cell<usize>, text: &str) {
+    match text.rfind('\n') {
+        Some(i) => col.set(text[i + 1..].chars().count()),
+        None => col.set(col.get() + text.chars().count()),
+    }
 }
 
 /// A front end's sink for text printed during a long command (see [`Interpreter::set_live_output`]).
@@ -131,7 +143,14 @@ impl Interpreter {
             after_star: false,
             interrupt: None,
             live: None,
+            // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
+            print_col: Rc::new(Cell::new("     0: ==>S: S1 ".len())),
         }
+    }
+
+    /// The print stream's column (see [`Self::print_col`]).
+    pub(crate) fn print_column(&self) -> usize {
+        self.print_col.get()
     }
 
     /// A flag that, once set, stops the current `run` after the decision cycle's output
@@ -170,6 +189,7 @@ impl Interpreter {
         let inner = Rc::clone(&own);
         let flag = self.interrupt.clone();
         let live = self.live.clone();
+        let col = Rc::clone(&self.print_col);
         self.agent.output_callback = Some(Box::new(move |a: &mut Agent| {
             if let Some(cb) = inner.borrow_mut().as_mut() {
                 cb(a);
@@ -177,6 +197,7 @@ impl Interpreter {
             if let Some(live) = &live {
                 if !a.output.is_empty() {
                     let text = std::mem::take(&mut a.output);
+                    advance_col(&col, &text);
                     (live.borrow_mut())(&text);
                 }
             }
@@ -195,6 +216,7 @@ impl Interpreter {
         if let Some(live) = &self.live {
             if !self.agent.output.is_empty() {
                 let text = std::mem::take(&mut self.agent.output);
+                advance_col(&self.print_col, &text);
                 (live.borrow_mut())(&text);
             }
         }
@@ -358,34 +380,45 @@ impl Interpreter {
             alias: expanded_from.as_deref(),
         };
         let args = &words[1..];
+        let result = self.dispatch(name, &ctx, args);
+        // These commands print through the agent's printer in 9.6 (checked one by one).
+        let printed = matches!(name, "print" | "learn" | "chunk")
+            || (name == "production" && args.first().is_some_and(|a| a == "matches"));
+        if let (true, Ok(text)) = (printed, &result) {
+            advance_col(&self.print_col, text);
+        }
+        result
+    }
+
+    fn dispatch(&mut self, name: &'static str, ctx: &Ctx, args: &[String]) -> CmdResult {
         match name {
-            "sp" => self.cmd_sp(&ctx),
-            "load" => self.cmd_load(&ctx, args),
-            "pushd" => self.cmd_pushd(&ctx, args),
-            "popd" => self.cmd_popd(&ctx),
-            "cd" => self.cmd_cd(&ctx, args),
+            "sp" => self.cmd_sp(ctx),
+            "load" => self.cmd_load(ctx, args),
+            "pushd" => self.cmd_pushd(ctx, args),
+            "popd" => self.cmd_popd(ctx),
+            "cd" => self.cmd_cd(ctx, args),
             "pwd" => Ok(self.cwd.display().to_string()),
             "dirs" => Ok(self.cmd_dirs()),
-            "ls" => self.cmd_ls(&ctx),
+            "ls" => self.cmd_ls(ctx),
             "echo" => Ok(cmd_echo(args)),
-            "alias" => self.cmd_alias(&ctx, args),
-            "learn" => self.cmd_learn(&ctx, args),
-            "chunk" => self.cmd_chunk(&ctx, args),
-            "soar" => self.cmd_soar(&ctx, args),
-            "trace" => self.cmd_trace(&ctx, args),
-            "decide" => self.cmd_decide(&ctx, args),
-            "output" => self.cmd_output(&ctx, args),
-            "print" => self.cmd_print(&ctx, args),
-            "production" => self.cmd_production(&ctx, args),
-            "wm" => self.cmd_wm(&ctx, args),
-            "run" => self.cmd_run(&ctx, args),
+            "alias" => self.cmd_alias(ctx, args),
+            "learn" => self.cmd_learn(ctx, args),
+            "chunk" => self.cmd_chunk(ctx, args),
+            "soar" => self.cmd_soar(ctx, args),
+            "trace" => self.cmd_trace(ctx, args),
+            "decide" => self.cmd_decide(ctx, args),
+            "output" => self.cmd_output(ctx, args),
+            "print" => self.cmd_print(ctx, args),
+            "production" => self.cmd_production(ctx, args),
+            "wm" => self.cmd_wm(ctx, args),
+            "run" => self.cmd_run(ctx, args),
             "stats" => self.cmd_stats(),
-            "help" => self.cmd_help(&ctx, args),
+            "help" => self.cmd_help(ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())
             }
-            other => Err(not_yet(&ctx, other)),
+            other => Err(not_yet(ctx, other)),
         }
     }
 

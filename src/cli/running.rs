@@ -70,6 +70,7 @@ impl Interpreter {
     pub(super) fn flush_agent_output(&mut self) {
         if !self.agent.output.is_empty() {
             let text = std::mem::take(&mut self.agent.output);
+            super::advance_col(&self.print_col, &text);
             self.events.push(super::Event::Text(text));
         }
     }
