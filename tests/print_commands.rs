@@ -76,3 +76,46 @@ fn tree_prints_one_wme_per_line_under_its_parent() {
         "(4: S1 ^epmem E1)\n(11: S1 ^io I1)\n(18: S1 ^operator O1)\n(17: S1 ^operator O1 +)\n(3: S1 ^reward-link R1)\n(8: S1 ^smem L1)\n(2: S1 ^superstate nil)\n(1: S1 ^type state)\n"
     );
 }
+
+/// Where `print` wraps, from the official kernel's output: the first line counts from the
+/// column the print stream stood at (after a trace line, after the agent's creation line),
+/// and an item that would reach column 79 goes to the next line.
+#[test]
+fn print_wraps_from_the_stream_column_as_9_6_does() {
+    let mut i = Interpreter::new();
+    let out = |i: &mut Interpreter, cmd: &str| {
+        i.run_text("t", cmd).unwrap();
+        i.take_output()
+    };
+    out(
+        &mut i,
+        "sp {a (state <s> ^superstate nil) --> (<s> ^operator <o> +) (<o> ^name |a-rather-long-operator-name-that-goes-on-and-on|)}\nrun 1",
+    );
+    assert_eq!(
+        out(&mut i, "print s1"),
+        "(S1\n       ^epmem E1 ^io I1 ^operator O1 ^operator O1 + ^reward-link R1 ^smem L1\n       ^superstate nil ^type state)\n"
+    );
+    assert_eq!(
+        out(&mut i, "print s1"),
+        "(S1 ^epmem E1 ^io I1 ^operator O1 ^operator O1 + ^reward-link R1 ^smem L1\n       ^superstate nil ^type state)\n"
+    );
+    out(&mut i, "echo hi\ninit-soar");
+    assert_eq!(
+        out(&mut i, "print s1"),
+        "(S1 ^epmem E1 ^io I1 ^reward-link R1 ^smem L1 ^superstate nil\n       ^type state)\n"
+    );
+
+    let v = "v".repeat(60);
+    for (w, expected) in [
+        (7, format!("(I4 ^a {v} ^b wwwwwww)\n")),
+        (8, format!("(I4 ^a {v}\n       ^b wwwwwwww)\n")),
+    ] {
+        let mut i = Interpreter::new();
+        let b = "w".repeat(w);
+        out(
+            &mut i,
+            &format!("wm add s1 obj *\nwm add I4 a {v}\nwm add I4 b {b}\nprint -i s1"),
+        );
+        assert_eq!(out(&mut i, "print I4"), expected, "{w}");
+    }
+}
