@@ -39,10 +39,22 @@ impl Interpreter {
             RunUnit::Forever
         };
         let n = count.unwrap_or(1);
-        let hooks = self.begin_run_hooks();
         let dc_before = self.agent.decider.d_cycle_count;
-        let (_, fired) = self.agent.run(n, unit);
-        let interrupted = self.end_run_hooks(hooks);
+        let halted_before = self.agent.decider.halted;
+        // A halted agent does not run (and 9.6 prints no second "System halted.").
+        let (fired, interrupted) = if halted_before {
+            (0, false)
+        } else {
+            let hooks = self.begin_run_hooks();
+            let (_, fired) = self.agent.run(n, unit);
+            (fired, self.end_run_hooks(hooks))
+        };
+        if self.agent.decider.halted && !halted_before {
+            // 9.6's run scheduler says why the run ended, on the print stream.
+            self.agent
+                .output
+                .push_str("\nInterrupt received.This Agent halted.");
+        }
         self.flush_agent_output();
         if interrupted {
             self.events
@@ -63,7 +75,12 @@ impl Interpreter {
             1 => "1 rule fired.".to_string(),
             f => format!("{f} rules fired."),
         };
-        Ok(format!("\n\n--> {dc} {rules} "))
+        let halted = if self.agent.decider.halted {
+            "\nAn agent halted during the run."
+        } else {
+            ""
+        };
+        Ok(format!("\n\n--> {dc} {rules} {halted}"))
     }
 
     /// Moves the agent's trace output into the event stream.
