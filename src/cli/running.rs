@@ -49,13 +49,16 @@ impl Interpreter {
             let (_, fired) = self.agent.run(n, unit);
             (fired, self.end_run_hooks(hooks))
         };
-        if self.agent.decider.halted && !halted_before {
-            // 9.6's run scheduler says why the run ended, on the print stream.
-            self.agent
-                .output
-                .push_str("\nInterrupt received.This Agent halted.");
-        }
         self.flush_agent_output();
+        if self.agent.decider.halted && !halted_before {
+            // 9.6's kernel ends its halt message with a newline (the print column is 0 after
+            // it), then its run scheduler says why the run ended; that line does not move
+            // the kernel's print column (checked: a `print` after a halt wraps from 0).
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\nInterrupt received.This Agent halted.".to_string(),
+            ));
+        }
         if interrupted {
             self.events
                 .push(super::Event::Text("\nInterrupted.".to_string()));
