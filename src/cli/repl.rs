@@ -105,6 +105,41 @@ pub struct ReplHelper {
     commands: Vec<String>,
     /// Rule names and identifiers in working memory (later words).
     things: Vec<String>,
+    /// The interpreter's working directory, for completing file names.
+    cwd: PathBuf,
+}
+
+/// Commands whose arguments are file or directory names.
+const PATH_COMMANDS: &[&str] = &["source", "load", "pushd", "cd", "chdir", "ls", "dir"];
+
+/// File names in `cwd` completing `word` (which may hold a directory part); directories end
+/// in `/`. Hidden files only when asked for with a leading dot.
+fn path_candidates(cwd: &std::path::Path, word: &str) -> Vec<String> {
+    let (dir, prefix) = match word.rfind('/') {
+        Some(i) => (&word[..=i], &word[i + 1..]),
+        None => ("", word),
+    };
+    let base = if dir.starts_with('/') {
+        PathBuf::from(dir)
+    } else {
+        cwd.join(dir)
+    };
+    let Ok(entries) = std::fs::read_dir(&base) else {
+        return Vec::new();
+    };
+    let mut out: Vec<String> = entries
+        .filter_map(Result::ok)
+        .filter_map(|e| {
+            let name = e.file_name().to_str()?.to_string();
+            if !name.starts_with(prefix) || (name.starts_with('.') && !prefix.starts_with('.')) {
+                return None;
+            }
+            let slash = if e.path().is_dir() { "/" } else { "" };
+            Some(format!("{dir}{name}{slash}"))
+        })
+        .collect();
+    out.sort();
+    out
 }
 
 impl ReplHelper {
@@ -128,6 +163,7 @@ impl ReplHelper {
         ids.dedup();
         things.extend(ids);
         self.things = things;
+        self.cwd = interp.cwd().to_path_buf();
     }
 
     /// The candidates for the word that ends at `pos`: (start of the word, candidates).
@@ -137,10 +173,15 @@ impl ReplHelper {
             .rfind(|c: char| c.is_whitespace() || c == ';' || c == '{' || c == '(')
             .map_or(0, |i| i + 1);
         let word = &before[start..];
-        let first_word = before[..start]
-            .rsplit([';', '\n'])
-            .next()
-            .is_none_or(|seg| seg.trim().is_empty());
+        let command = before[..start].rsplit([';', '\n']).next().unwrap_or("");
+        let first_word = command.trim().is_empty();
+        let command_name = command.split_whitespace().next().unwrap_or("");
+        if !first_word && PATH_COMMANDS.contains(&command_name) {
+            let start = before
+                .rfind(|c: char| c.is_whitespace() || c == ';')
+                .map_or(0, |i| i + 1);
+            return (start, path_candidates(&self.cwd, &before[start..]));
+        }
         let pool = if first_word {
             &self.commands
         } else {
@@ -171,7 +212,12 @@ impl Completer for ReplHelper {
         let pairs = words
             .into_iter()
             .map(|w| Pair {
-                replacement: format!("{w} "),
+                // A directory is completed further, not ended.
+                replacement: if w.ends_with('/') {
+                    w.clone()
+                } else {
+                    format!("{w} ")
+                },
                 display: w,
             })
             .collect();
@@ -379,5 +425,18 @@ mod tests {
         assert_eq!(c, vec!["S1".to_string()]);
         let (_, c) = h.candidates("echo x; exc", 11);
         assert_eq!(c, vec!["excise".to_string()]);
+    }
+
+    #[test]
+    fn completes_file_names_from_the_interpreters_directory() {
+        let mut i = Interpreter::new();
+        i.set_cwd(PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+        let h = ReplHelper::new(&i);
+        let (start, c) = h.candidates("source rules/Co", 15);
+        assert_eq!((start, c), (7, vec!["rules/CopyWall.soar".to_string()]));
+        let (_, c) = h.candidates("pushd rules/mo", 14);
+        assert_eq!(c, vec!["rules/moving/".to_string()]);
+        let (_, c) = h.candidates("source no/such/dir/x", 20);
+        assert!(c.is_empty());
     }
 }

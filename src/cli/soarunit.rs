@@ -195,6 +195,8 @@ pub fn run_test(file: &TestFile, test: &TestCase, opts: &Options) -> TestResult 
     let outcome: Rc<RefCell<Option<Outcome>>> = Rc::new(RefCell::new(None));
     {
         let o = Rc::clone(&outcome);
+        // (9.6's built-in `(succeeded)` and `(failed)` only halt, so a test cannot tell
+        // them apart: a halt without `(pass)` or `(fail)` fails the test.)
         interp.agent.register_rhs_function("pass", move |_, _| {
             o.borrow_mut().get_or_insert(Outcome::Passed);
             String::new()
@@ -442,6 +444,11 @@ mod tests {
             Outcome::Failed("reached the decision limit (20) without (pass) or (fail)".into())
         );
         assert_eq!(limit.decisions, 20);
+        let quoted = run_one(
+            "test \"quoted name\" { sp {p (state <s> ^superstate nil) --> (pass)} }",
+            &opts,
+        );
+        assert_eq!(quoted.outcome, Outcome::Passed);
         let halt = run_one(
             "test h { sp {h (state <s> ^superstate nil) --> (halt)} }",
             &opts,
