@@ -195,7 +195,7 @@ impl Interpreter {
             "Trace level 5 enabled: Preferences",
         ];
         let Some(first) = args.first() else {
-            return Err(super::not_yet(ctx, "trace"));
+            return Ok(trace_listing(self.agent.settings.trace_level));
         };
         let Ok(level) = first.parse::<u8>() else {
             return Err(super::not_yet(ctx, "trace"));
@@ -269,7 +269,17 @@ impl Interpreter {
                             .at(ctx.arg_span(1))
                             .with_label("not a seed")
                     })?,
-                    None => 0,
+                    None => {
+                        // No seed: a new random one, as 9.6 does (from the clock).
+                        let now = std::time::SystemTime::now()
+                            .duration_since(std::time::UNIX_EPOCH)
+                            .map(|d| d.as_nanos())
+                            .unwrap_or(0);
+                        let seed = (now ^ (now >> 32)) as u32;
+                        self.agent.seed = Some(seed);
+                        self.agent.rng.seed(seed);
+                        return Ok("Random number generator seed set to new random value.\n".into());
+                    }
                 };
                 self.agent.seed = Some(seed);
                 self.agent.rng.seed(seed);
@@ -309,7 +319,8 @@ impl Interpreter {
                 }
             }
             [name] => match self.aliases.get(name) {
-                Some(exp) => Ok(format!("{name} = {}\n", exp.join(" "))),
+                // One alias is shown with its expansion quoted (9.6: `d = "run -d"`).
+                Some(exp) => Ok(format!("{name} = \"{}\"\n", exp.join(" "))),
                 None => Err(Diagnostic::error(format!("Alias not found: {name}"))
                     .at(ctx.arg_span(0))
                     .with_label("no such alias")),
@@ -369,4 +380,107 @@ fn int_setting(
                 .with_label(format!("{name} wants a positive integer"))),
         },
     }
+}
+
+/// `trace` with no arguments: 9.6's table of trace settings. rusoar keeps one trace level,
+/// so the flags of levels 1-5 follow it and the additional messages are off.
+fn trace_listing(level: u8) -> String {
+    fn header(text: &str, fill: char) -> String {
+        let text = format!(" {text} ");
+        let left = (60 - text.len()) / 2;
+        let right = 60 - text.len() - left;
+        format!(
+            "{}{text}{}\n",
+            fill.to_string().repeat(left),
+            fill.to_string().repeat(right)
+        )
+    }
+    fn row(name: &str, value: &str, flags: &str) -> String {
+        format!("{name}{value:>w$}     {flags}\n", w = 60 - name.len())
+    }
+    let on = |l: u8| if level >= l { "on" } else { "off" };
+    let rule = "=".repeat(60);
+    let mut s = format!("{rule}\n{:^60}\n{rule}\n", "Soar Trace Messages");
+    // `{:^60}` puts the odd space on the right, as 9.6 does.
+    s.push_str(&header("Level 1", '-'));
+    s.push_str(&row(
+        "Operator decisions and states",
+        on(1),
+        "-d, --decisions",
+    ));
+    s.push_str(&header("Level 2", '-'));
+    for (name, flags) in [
+        ("Phases", "-p, --phases"),
+        ("Chunking warnings", "-C, --chunk-warnings"),
+        ("State removals caused by GDS violation", "-g, --gds"),
+        (
+            "State removals caused by operator consistency checks",
+            "-o, --consistency",
+        ),
+    ] {
+        s.push_str(&row(name, on(2), flags));
+    }
+    s.push_str(&header("Level 3: Rule firings", '-'));
+    for (name, flags) in [
+        ("Default rules", "-D, --default"),
+        ("User rules", "-u, --user"),
+        ("Chunks", "-c, --chunks"),
+        ("Justifications", "-j, --justifications"),
+        ("Templates", "-T, --template"),
+        (
+            "Firings inhibited by higher-level firings",
+            "-W, --waterfall",
+        ),
+    ] {
+        s.push_str(&row(name, on(3), flags));
+    }
+    s.push_str(&header("Level 4", '-'));
+    s.push_str(&row("WME additions and removals", on(4), "-w, --wmes"));
+    s.push_str(&header("Level 5", '-'));
+    s.push_str(&row("Preferences", on(5), "-r, --preferences"));
+    s.push_str(" \n");
+    s.push_str(&header("Additional General Trace Messages", '-'));
+    s.push_str(&row(
+        "Assertions of rules and preferences",
+        "off",
+        "-A, --assertions",
+    ));
+    s.push_str(&row("Goal dependency set changes", "off", "-G, --gds-wmes"));
+    s.push_str(&row(
+        "Numeric preference calculations",
+        "off",
+        "-i, --indifferent-selection",
+    ));
+    s.push_str(&row(
+        "Reinforcement learning value updates",
+        "off",
+        "-R, --rl",
+    ));
+    s.push_str(&row(
+        "WME Detail Level",
+        "none",
+        "--nowmes, --timetags, --fullwmes",
+    ));
+    s.push_str(" \n");
+    s.push_str(&header("Additional Chunking Trace Messages", '-'));
+    s.push_str(&row("Dependency analysis", "off", "-b, --backtracing"));
+    s.push_str(&row(
+        "Rules learned (verbosity level)",
+        "none (0)",
+        "-L, --learning [0-2]",
+    ));
+    s.push_str(" \n");
+    s.push_str(&header("Additional Memory System Trace Messages", '-'));
+    s.push_str(&row(
+        "Episodic memory recording and queries",
+        "off",
+        "-e, --epmem",
+    ));
+    s.push_str(&row("Semantic memory additions", "off", "-s, --smem"));
+    s.push_str(&row(
+        "Working memory activation and forgetting",
+        "off",
+        "-a, --wma",
+    ));
+    s
 }
