@@ -76,3 +76,46 @@ fn a_halt_is_reported_and_a_halted_agent_does_not_run() {
         "--> 2 decision cycles executed. 3 rules fired."
     );
 }
+
+/// Misused `run`, `trace` and `print`: 9.6's messages (the official kernel's, one by one).
+#[test]
+fn misuse_gets_9_6_messages() {
+    let mut i = Interpreter::new();
+    for (cmd, msg) in [
+        ("run x", "Integer count expected."),
+        ("run -1", "Count must be positive."),
+        (
+            "run 1 2",
+            "Syntax: run  [-f|count]\nrun -[d|e|o|p][s][un][g] [f|count]\nrun -[d|e|o|p][un] count [-i e|p|d|o]",
+        ),
+        ("trace 9", "Expected trace level from 0 to 5."),
+        ("trace -1", "Expected trace level from 0 to 5."),
+        ("trace x", "Integer argument expected."),
+        ("trace 3 4", "Only non option argument allowed is watch level."),
+        ("p -d -1 s1", "Non-negative depth expected."),
+        ("wmes", "Non-negative depth expected."),
+        ("print --depth", "Option 'depth' requires an argument."),
+        (
+            "print -d 1",
+            "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
+        ),
+    ] {
+        let err = i.run_text("t", cmd).unwrap_err();
+        assert_eq!(err.message, msg, "{cmd}");
+    }
+    assert_eq!(out(&mut i, "print"), "");
+    assert_eq!(
+        out(&mut i, "print s1 s2"),
+        "Expected '(' to begin wme pattern not string 's1' or char ' '\n"
+    );
+    // A count of 0 runs one decision, and `1.5` reads as 1.
+    out(&mut i, "watch 0");
+    assert_eq!(
+        report(&mut i, "run 0"),
+        "--> 1 decision cycle executed. No rules fired."
+    );
+    assert_eq!(
+        report(&mut i, "run 1.5"),
+        "--> 2 decision cycles executed. No rules fired."
+    );
+}

@@ -184,8 +184,20 @@ impl Interpreter {
             return Ok(s);
         }
         let Some(target) = parsed.args.first() else {
-            return Err(super::not_yet(ctx, "print"));
+            // 9.6: a bare `print` prints nothing; options without a target are a misuse.
+            if parsed.options.is_empty() {
+                return Ok(String::new());
+            }
+            return Err(ctx.error(
+                "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
+            ));
         };
+        if parsed.args.len() > 1 {
+            // 9.6 reads several words as a WME pattern, which must start with `(`.
+            return Ok(format!(
+                "Expected '(' to begin wme pattern not string '{target}' or char ' '\n"
+            ));
+        }
         // `print |a quoted name|`: the word keeps its pipes; the rule name does not.
         let unquoted;
         let target = match target.strip_prefix('|').and_then(|t| t.strip_suffix('|')) {

@@ -5,6 +5,19 @@ use super::{CmdResult, Ctx, Interpreter};
 use crate::decide::cycle::RunUnit;
 use crate::source::Diagnostic;
 
+/// A `run` count as 9.6 reads it: the leading integer (`1.5` is 1), which must not be
+/// negative (`Count must be positive.`, though 0 is accepted).
+fn run_count(word: &str) -> Result<u64, &'static str> {
+    let digits_end = word
+        .char_indices()
+        .find(|&(i, c)| !(c.is_ascii_digit() || (i == 0 && (c == '-' || c == '+'))))
+        .map_or(word.len(), |(i, _)| i);
+    let n: i64 = word[..digits_end]
+        .parse()
+        .map_err(|_| "Integer count expected.")?;
+    u64::try_from(n).map_err(|_| "Count must be positive.")
+}
+
 impl Interpreter {
     /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
     /// decisions; a unit alone is one of it (spec §6a).
@@ -21,9 +34,14 @@ impl Interpreter {
             opt('g', "goal"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        if parsed.args.len() > 1 {
+            return Err(ctx.error(
+                "Syntax: run  [-f|count]\nrun -[d|e|o|p][s][un][g] [f|count]\nrun -[d|e|o|p][un] count [-i e|p|d|o]",
+            ));
+        }
         let count = match parsed.args.first() {
-            Some(c) => Some(c.parse::<u64>().map_err(|_| {
-                Diagnostic::error(format!("Integer expected: {c}"))
+            Some(c) => Some(run_count(c).map_err(|m| {
+                Diagnostic::error(m)
                     .at(ctx.arg_span(0))
                     .with_label("not a count")
             })?),
@@ -38,7 +56,8 @@ impl Interpreter {
         } else {
             RunUnit::Forever
         };
-        let n = count.unwrap_or(1);
+        // 9.6 runs one unit for a count of 0 (checked on the official kernel).
+        let n = count.unwrap_or(1).max(1);
         let dc_before = self.agent.decider.d_cycle_count;
         let halted_before = self.agent.decider.halted;
         // A halted agent does not run (and 9.6 prints no second "System halted.").

@@ -197,14 +197,24 @@ impl Interpreter {
         let Some(first) = args.first() else {
             return Ok(trace_listing(self.agent.settings.trace_level));
         };
-        let Ok(level) = first.parse::<u8>() else {
-            return Err(super::not_yet(ctx, "trace"));
-        };
-        if level > 5 {
-            return Err(Diagnostic::error(format!("Invalid trace level: {level}"))
-                .at(ctx.arg_span(0))
-                .with_label("levels are 0 to 5"));
+        if args.len() > 1 {
+            return Err(ctx.error("Only non option argument allowed is watch level."));
         }
+        let level = match first.parse::<i64>() {
+            Ok(l @ 0..=5) => l as u8,
+            Ok(_) => {
+                return Err(Diagnostic::error("Expected trace level from 0 to 5.")
+                    .at(ctx.arg_span(0))
+                    .with_label("levels are 0 to 5"))
+            }
+            // The flags (`-d`, `--phases`, ...) are not modelled: one level is kept.
+            Err(_) if first.starts_with('-') => return Err(super::not_yet(ctx, "trace")),
+            Err(_) => {
+                return Err(Diagnostic::error("Integer argument expected.")
+                    .at(ctx.arg_span(0))
+                    .with_label("not a trace level"))
+            }
+        };
         self.agent.settings.trace_level = level;
         let mut s = String::new();
         if level == 0 {
