@@ -180,8 +180,123 @@ impl Interpreter {
                 "rusoar {} (Soar 9.6 semantics)\n",
                 env!("CARGO_PKG_VERSION")
             )),
-            Some(_) | None => Err(super::not_yet(ctx, "soar")),
+            None => Ok(self.soar_summary()),
+            Some("?") => Ok(self.soar_settings()),
+            Some(_) => Err(super::not_yet(ctx, "soar")),
         }
+    }
+
+    /// `soar` with no arguments: 9.6's summary of the agent (rows 55 columns wide).
+    fn soar_summary(&self) -> String {
+        use crate::decide::state::Phase;
+        let a = &self.agent;
+        let row = |label: &str, value: &str| format!("{label}{value:>w$}\n", w = 55 - label.len());
+        let rule = "-".repeat(55);
+        let states: Vec<String> = if a.decider.goals.is_empty() {
+            vec![a.symbols.text(a.top.state)]
+        } else {
+            a.decider
+                .goals
+                .iter()
+                .map(|g| a.symbols.text(g.state))
+                .collect()
+        };
+        let phase = match a.decider.phase.unwrap_or(Phase::Input) {
+            Phase::Input => "input",
+            Phase::Propose => "propose",
+            Phase::Decide => "decide",
+            Phase::Apply => "apply",
+            Phase::Output => "output",
+        };
+        let mut s = format!(
+            "{eq}\n-{:^53}-\n{eq}\n",
+            format!("rusoar {} Summary", env!("CARGO_PKG_VERSION")),
+            eq = "=".repeat(55)
+        );
+        s.push_str(&row("Enabled:", "Core"));
+        s.push_str(&row("Disabled:", "EBC, SMem, EpMem, SVS, RL, WMA, SSA"));
+        s.push_str(&format!("{rule}\n"));
+        s.push_str(&row("Number of rules:", &a.production_count().to_string()));
+        s.push_str(&row("Number of chunks:", "0"));
+        s.push_str(&row("Decisions", &a.decider.d_cycle_count.to_string()));
+        s.push_str(&row("Elaborations", &a.decider.e_cycles.to_string()));
+        s.push_str(&format!("{rule}\n"));
+        s.push_str(&row("State stack", &states.join(", ")));
+        s.push_str(&row("Current number of states", &states.len().to_string()));
+        s.push_str(&row("Next phase", phase));
+        s.push_str(&format!("{rule}\n\n"));
+        s.push_str("Use 'soar ?' for a command overview or 'help soar' for the manual page.");
+        s
+    }
+
+    /// `soar ?`: the sub-commands and the settings with their values, as 9.6 lists them.
+    fn soar_settings(&self) -> String {
+        let st = &self.agent.settings;
+        let on_off = |b: bool| if b { "on" } else { "off" };
+        let mut s = String::from("====== Soar General Commands and Settings =====\n");
+        for (cmd, what) in [
+            ("soar ?", "Print this help listing"),
+            ("soar init", "Re-initializes current state of Soar"),
+            ("soar stop [--self]", "Stop Soar execution"),
+            ("soar version", "Print version number of Soar"),
+        ] {
+            s.push_str(&format!("{cmd:<51}{what}\n"));
+        }
+        s.push_str("----------------- Settings --------------------\n");
+        for (name, value, what) in [
+            (
+                "keep-all-top-oprefs",
+                "off".to_string(),
+                "Keep all preferences for o-supported WMEs on top state",
+            ),
+            (
+                "max-elaborations",
+                st.max_elaborations.to_string(),
+                "Maximum elaboration in a decision cycle",
+            ),
+            (
+                "max-goal-depth",
+                st.max_goal_depth.to_string(),
+                "Halt if goal stack reaches this depth",
+            ),
+            (
+                "max-nil-output-cycles",
+                st.max_nil_output_cycles.to_string(),
+                "Impasse after this many nil outputs (run --out)",
+            ),
+            (
+                "max-dc-time",
+                "0".into(),
+                "Interrupt decision after this much time",
+            ),
+            (
+                "max-memory-usage",
+                "100000000".into(),
+                "Threshold for memory warning (see help)",
+            ),
+            ("max-gp", "20000".into(), "Maximum rules gp can generate"),
+            (
+                "stop-phase",
+                "apply".into(),
+                "Phase before which Soar will stop",
+            ),
+            ("tcl", "off".into(), "Allow Tcl code in commands"),
+            ("timers", "on".into(), "Profile where Soar spends its time"),
+            (
+                "wait-snc",
+                on_off(st.wait_snc).into(),
+                "Wait instead of impasse after state-no-change",
+            ),
+        ] {
+            s.push_str(&format!(
+                "{name}{value:>w$}    {what}\n",
+                w = 47 - name.len()
+            ));
+        }
+        s.push_str("-----------------------------------------------\n\n");
+        s.push_str("To change a setting:                               soar <setting> [<value>]\n");
+        s.push_str("For a detailed explanation of these settings:      help soar\n");
+        s
     }
 
     /// `trace N` / `watch N`: the level is stored for the decision cycle's traces.
