@@ -86,15 +86,18 @@ pub fn usage(command: &str) -> Option<&'static str> {
     USAGE.iter().find(|(c, _)| *c == command).map(|(_, u)| *u)
 }
 
-/// `help` with no argument: the command list, as 9.6 prints it (E: `help`).
+/// `help` with no argument: the command list, as 9.6 prints it (`learn` and `exit` work
+/// but are not listed there either).
 pub fn listing() -> String {
     let mut s = String::from("Soar 9.6 Command List (rusoar):\n\n");
-    for c in COMMANDS {
+    for c in COMMANDS.iter().filter(|c| !matches!(**c, "learn" | "exit")) {
         s.push_str(c);
         s.push('\n');
     }
     s.push_str("\nTo read an in-depth description of the command:               help <command>\n");
     s.push_str("To get a quick summary of sub-command and settings:           <command> ?\n");
+    s.push_str("\nNote:  Many previous Soar commands are now sub-commands. To locate a help \n");
+    s.push_str("       entry, try 'help <old command name>'.");
     s
 }
 
