@@ -14,6 +14,11 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 fn cli() -> ClapCommand {
     ClapCommand::new("rusoar")
         .about("The Soar cognitive architecture in Rust")
+        .after_help(
+            "With no -c, on a terminal: an interactive session (after any --source).\n\
+             Also: `rusoar test FILE_OR_DIR` runs SoarUnit tests (.soarunit files);\n\
+             `rusoar slam` runs the Soar-SLAM experiment (`rusoar slam --help`).",
+        )
         .version(env!("CARGO_PKG_VERSION"))
         .arg(
             Arg::new("source")
