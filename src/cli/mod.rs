@@ -380,7 +380,35 @@ impl Interpreter {
             alias: expanded_from.as_deref(),
         };
         let args = &words[1..];
-        let result = self.dispatch(name, &ctx, args);
+        let result = match name {
+            "sp" => self.cmd_sp(&ctx),
+            "load" => self.cmd_load(&ctx, args),
+            "pushd" => self.cmd_pushd(&ctx, args),
+            "popd" => self.cmd_popd(&ctx),
+            "cd" => self.cmd_cd(&ctx, args),
+            "pwd" => Ok(self.cwd.display().to_string()),
+            "dirs" => Ok(self.cmd_dirs()),
+            "ls" => self.cmd_ls(&ctx),
+            "echo" => Ok(cmd_echo(args)),
+            "alias" => self.cmd_alias(&ctx, args),
+            "learn" => self.cmd_learn(&ctx, args),
+            "chunk" => self.cmd_chunk(&ctx, args),
+            "soar" => self.cmd_soar(&ctx, args),
+            "trace" => self.cmd_trace(&ctx, args),
+            "decide" => self.cmd_decide(&ctx, args),
+            "output" => self.cmd_output(&ctx, args),
+            "print" => self.cmd_print(&ctx, args),
+            "production" => self.cmd_production(&ctx, args),
+            "wm" => self.cmd_wm(&ctx, args),
+            "run" => self.cmd_run(&ctx, args),
+            "stats" => self.cmd_stats(),
+            "help" => self.cmd_help(&ctx, args),
+            "exit" => {
+                self.exit_requested = true;
+                Ok(String::new())
+            }
+            other => Err(not_yet(&ctx, other)),
+        };
         // These commands print through the agent's printer in 9.6 (checked one by one).
         let printed = matches!(name, "print" | "learn" | "chunk")
             || (name == "production" && args.first().is_some_and(|a| a == "matches"));
@@ -388,38 +416,6 @@ impl Interpreter {
             advance_col(&self.print_col, text);
         }
         result
-    }
-
-    fn dispatch(&mut self, name: &'static str, ctx: &Ctx, args: &[String]) -> CmdResult {
-        match name {
-            "sp" => self.cmd_sp(ctx),
-            "load" => self.cmd_load(ctx, args),
-            "pushd" => self.cmd_pushd(ctx, args),
-            "popd" => self.cmd_popd(ctx),
-            "cd" => self.cmd_cd(ctx, args),
-            "pwd" => Ok(self.cwd.display().to_string()),
-            "dirs" => Ok(self.cmd_dirs()),
-            "ls" => self.cmd_ls(ctx),
-            "echo" => Ok(cmd_echo(args)),
-            "alias" => self.cmd_alias(ctx, args),
-            "learn" => self.cmd_learn(ctx, args),
-            "chunk" => self.cmd_chunk(ctx, args),
-            "soar" => self.cmd_soar(ctx, args),
-            "trace" => self.cmd_trace(ctx, args),
-            "decide" => self.cmd_decide(ctx, args),
-            "output" => self.cmd_output(ctx, args),
-            "print" => self.cmd_print(ctx, args),
-            "production" => self.cmd_production(ctx, args),
-            "wm" => self.cmd_wm(ctx, args),
-            "run" => self.cmd_run(ctx, args),
-            "stats" => self.cmd_stats(),
-            "help" => self.cmd_help(ctx, args),
-            "exit" => {
-                self.exit_requested = true;
-                Ok(String::new())
-            }
-            other => Err(not_yet(ctx, other)),
-        }
     }
 
     /// `help [command]`: the list, or one command's usage (an alias: its expansion's).
