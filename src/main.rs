@@ -1,5 +1,7 @@
 //! The `rusoar` command line: run Soar commands from `--source FILE` and `-c COMMAND`
-//! arguments (in the order given), from standard input, or interactively.
+//! arguments (in the order given), from standard input, or interactively (the REPL of
+//! `cli::repl`, after any `--source`, when standard input is a terminal and no `-c` is
+//! given). `rusoar test FILE_OR_DIR` runs SoarUnit files; `rusoar slam` the experiment.
 
 use clap::{Arg, ArgAction, Command as ClapCommand};
 use rusoar::cli::{Event, Interpreter};
@@ -12,6 +14,11 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 fn cli() -> ClapCommand {
     ClapCommand::new("rusoar")
         .about("The Soar cognitive architecture in Rust")
+        .after_help(
+            "With no -c, on a terminal: an interactive session (after any --source).\n\
+             Also: `rusoar test FILE_OR_DIR` runs SoarUnit tests (.soarunit files);\n\
+             `rusoar slam` runs the Soar-SLAM experiment (`rusoar slam --help`).",
+        )
         .version(env!("CARGO_PKG_VERSION"))
         .arg(
             Arg::new("source")
@@ -171,6 +178,9 @@ fn main() -> ExitCode {
     if args.get(1).map(String::as_str) == Some("slam") {
         return rusoar::robot::experiment::main(&args[2..]);
     }
+    if args.get(1).map(String::as_str) == Some("test") {
+        return soarunit_main(&args[2..]);
+    }
     let mut interp = Interpreter::new();
     let code = run(&mut interp);
     // The process ends here: freeing a large agent piece by piece only costs time.
@@ -182,14 +192,27 @@ fn run(interp: &mut Interpreter) -> ExitCode {
     let interp = &mut *interp;
     let matches = cli().get_matches();
     let steps = ordered_steps(&matches);
-    if steps.is_empty() {
-        if std::io::stdin().is_terminal() {
-            println!(
-                "rusoar {} — Soar 9.6 commands; Ctrl-D to quit.",
-                env!("CARGO_PKG_VERSION")
-            );
-            return interactive(interp);
+    let terminal = std::io::stdin().is_terminal();
+    if terminal && steps.iter().all(|(_, is_source, _)| *is_source) {
+        // The REPL, after the `--source` files.
+        for (_, _, file) in &steps {
+            let r = interp.run_text("--source", &format!("source {{{file}}}"));
+            flush(interp);
+            match r {
+                Ok(()) => print!("{}", load_report(interp)),
+                Err(d) => report_failure(interp, d),
+            }
         }
+        println!(
+            "rusoar {} — Soar 9.6 commands; `help` lists them, Tab completes, Ctrl-D quits.",
+            env!("CARGO_PKG_VERSION")
+        );
+        if rusoar::cli::repl::run(interp) {
+            return ExitCode::SUCCESS;
+        }
+        return interactive(interp);
+    }
+    if steps.is_empty() {
         let mut text = String::new();
         if std::io::stdin().read_to_string(&mut text).is_err() {
             eprintln!("error: standard input is not valid UTF-8");
@@ -223,6 +246,64 @@ fn run(interp: &mut Interpreter) -> ExitCode {
         }
     }
     ExitCode::SUCCESS
+}
+
+/// `rusoar test [--max-decisions N] [--verbose] FILE_OR_DIR...`: SoarUnit.
+fn soarunit_main(args: &[String]) -> ExitCode {
+    let cmd = ClapCommand::new("rusoar test")
+        .about("Run SoarUnit tests (.soarunit files)")
+        .arg(
+            Arg::new("paths")
+                .value_name("FILE_OR_DIR")
+                .num_args(1..)
+                .required(true)
+                .help(".soarunit files, or directories searched for them"),
+        )
+        .arg(
+            Arg::new("max-decisions")
+                .long("max-decisions")
+                .short('d')
+                .value_name("N")
+                .value_parser(clap::value_parser!(u64))
+                .default_value("10000")
+                .help("A test that has not passed or failed after N decisions fails"),
+        )
+        .arg(
+            Arg::new("verbose")
+                .long("verbose")
+                .short('v')
+                .action(ArgAction::SetTrue)
+                .help("Print every test's transcript, not only failing ones'"),
+        );
+    let m = match cmd.try_get_matches_from(
+        std::iter::once("rusoar test".to_string()).chain(args.iter().cloned()),
+    ) {
+        Ok(m) => m,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() {
+                ExitCode::from(2)
+            } else {
+                ExitCode::SUCCESS
+            };
+        }
+    };
+    let paths: Vec<std::path::PathBuf> = m
+        .get_many::<String>("paths")
+        .into_iter()
+        .flatten()
+        .map(std::path::PathBuf::from)
+        .collect();
+    let opts = rusoar::cli::soarunit::Options {
+        decision_limit: m.get_one::<u64>("max-decisions").copied().unwrap_or(10_000),
+        verbose: m.get_flag("verbose"),
+    };
+    let summary = rusoar::cli::soarunit::run_paths(&paths, &opts, &mut std::io::stdout());
+    if summary.ok() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
 }
 
 fn finish(interp: &mut Interpreter, result: Result<(), rusoar::source::Diagnostic>) -> ExitCode {

@@ -22,7 +22,7 @@ pub fn wme_internal(agent: &Agent, w: &Wme) -> String {
 }
 
 /// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.
-fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
+pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
     let mut ws: Vec<Wme> = agent
         .wm
         .of_id(id)
@@ -43,6 +43,19 @@ fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
 /// `print <id>` with `--depth` and `--internal` (spec §6a): children indented two spaces per
 /// level, each identifier printed once at its shallowest depth.
 pub fn print_object(agent: &Agent, id: Sym, depth: usize, internal: bool) -> String {
+    print_object_at(agent, id, depth, internal, 0)
+}
+
+/// [`print_object`] when the output stream is already at column `start_col`: 9.6 counts the
+/// first line's width from there, so a print after a trace line wraps earlier (E:t7 vs
+/// E:t2), even right after `(S1`.
+pub fn print_object_at(
+    agent: &Agent,
+    id: Sym,
+    depth: usize,
+    internal: bool,
+    start_col: usize,
+) -> String {
     let mut out = String::new();
     let mut seen = std::collections::HashSet::new();
     let mut frontier = vec![(id, 0usize)];
@@ -66,6 +79,7 @@ pub fn print_object(agent: &Agent, id: Sym, depth: usize, internal: bool) -> Str
     let owners: std::collections::HashMap<Sym, usize> =
         order.iter().map(|(x, d)| (*x, *d)).collect();
     let mut printed = std::collections::HashSet::new();
+    let mut col = start_col;
     print_rec(
         agent,
         id,
@@ -75,6 +89,7 @@ pub fn print_object(agent: &Agent, id: Sym, depth: usize, internal: bool) -> Str
         &owners,
         &mut printed,
         &mut out,
+        &mut col,
     );
     out
 }
@@ -89,6 +104,8 @@ fn print_rec(
     owners: &std::collections::HashMap<Sym, usize>,
     printed: &mut std::collections::HashSet<Sym>,
     out: &mut String,
+    // The stream's column where the first line starts (0 after it).
+    col: &mut usize,
 ) {
     if !printed.insert(id) {
         return;
@@ -114,9 +131,12 @@ fn print_rec(
                 agent.symbols.text(w.value),
                 if w.acceptable { " +" } else { "" }
             );
-            if line.len() + item.len() >= 80 && line.len() > head.len() {
+            // 9.6 wraps when the item would reach column 79, also before the first attribute
+            // (`(I4` alone on its line); checked against the official kernel at both edges.
+            if *col + line.len() + item.len() >= 79 {
                 out.push_str(&line);
                 out.push('\n');
+                *col = 0;
                 // Continuation lines start 7 columns in, under the first attribute (E:t5).
                 line = format!("{indent}       {}", &item[1..]);
             } else {
@@ -127,6 +147,7 @@ fn print_rec(
         out.push_str(&line);
         out.push('\n');
     }
+    *col = 0;
     if level + 1 < depth {
         for w in &wmes {
             if agent.symbols.is_id(w.value) && owners.get(&w.value) == Some(&(level + 1)) {
@@ -139,6 +160,7 @@ fn print_rec(
                     owners,
                     printed,
                     out,
+                    col,
                 );
             }
         }

@@ -123,6 +123,10 @@ impl Aliases {
     pub fn get(&self, name: &str) -> Option<&[String]> {
         self.map.get(name).map(Vec::as_slice)
     }
+    /// The alias names, in the order they were defined.
+    pub fn names(&self) -> impl Iterator<Item = &str> {
+        self.map.keys().map(String::as_str)
+    }
     pub fn set(&mut self, name: &str, expansion: Vec<String>) {
         self.map.insert(name.to_string(), expansion);
     }

@@ -103,9 +103,24 @@ impl Interpreter {
         target: &str,
         depth: usize,
         internal: bool,
+        tree: bool,
     ) -> CmdResult {
         if let Some(id) = self.agent.symbols.find_id(target) {
-            return Ok(crate::trace::print_object(&self.agent, id, depth, internal));
+            if tree {
+                return Ok(super::printing::print_tree(
+                    &self.agent,
+                    id,
+                    depth,
+                    internal,
+                ));
+            }
+            return Ok(crate::trace::print_object_at(
+                &self.agent,
+                id,
+                depth,
+                internal,
+                self.print_column(),
+            ));
         }
         if let Ok(tt) = target.parse::<u64>() {
             if let Some(w) = self.agent.wm.by_timetag(tt) {

@@ -4,19 +4,27 @@
 
 pub mod aliases;
 mod files;
+pub mod help;
 mod memory;
 pub mod options;
 mod prefs;
+mod printing;
+pub mod repl;
 mod rules;
 mod running;
 mod settings;
+pub mod soarunit;
 
-use crate::agent::Agent;
+use crate::agent::{Agent, PhaseCallback};
 use crate::source::{Diagnostic, SourceMap, Span};
 use crate::tokenizer::{Command, Tokenizer, WordKind};
 use aliases::Aliases;
 use indexmap::IndexMap;
+use std::cell::{Cell, RefCell};
 use std::path::PathBuf;
+use std::rc::Rc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 /// The real (non-alias) top-level command names of 9.6 (`help`), plus `learn` and `exit`.
 pub const COMMANDS: &[&str] = &[
@@ -89,7 +97,26 @@ pub struct Interpreter {
     pub exit_requested: bool,
     /// The last thing printed was an `sp` progress mark, so other output starts a new line.
     after_star: bool,
+    /// Set from outside (the REPL's Ctrl-C handler) to stop a `run` at the next decision.
+    interrupt: Option<Arc<AtomicBool>>,
+    /// Receives the trace while a `run` goes on, once per decision, instead of at its end.
+    live: Option<LiveSink>,
+    /// The column where the agent's print stream stands: trace output and the output of
+    /// `print`, `matches`, `learn` and `chunk` move it, other command results do not. 9.6
+    /// wraps a printed object's first line from there.
+    print_col: Rc<Cell<usize>>,
 }
+
+/// Moves a print-stream column over `text`.
+fn advance_col(col: &Cell<usize>, text: &str) {
+    match text.rfind('\n') {
+        Some(i) => col.set(text[i + 1..].chars().count()),
+        None => col.set(col.get() + text.chars().count()),
+    }
+}
+
+/// A front end's sink for text printed during a long command (see [`Interpreter::set_live_output`]).
+pub type LiveSink = Rc<RefCell<dyn FnMut(&str)>>;
 
 /// A command's outcome: its result text, or the diagnostic that made it fail.
 pub type CmdResult = Result<String, Diagnostic>;
@@ -115,7 +142,88 @@ impl Interpreter {
             report: LoadReport::default(),
             exit_requested: false,
             after_star: false,
+            interrupt: None,
+            live: None,
+            // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
+            print_col: Rc::new(Cell::new("     0: ==>S: S1 ".len())),
         }
+    }
+
+    /// The print stream's column (see [`Self::print_col`]).
+    pub(crate) fn print_column(&self) -> usize {
+        self.print_col.get()
+    }
+
+    /// A flag that, once set, stops the current `run` after the decision cycle's output
+    /// phase (through the `soar stop` mechanism); the run then reports `Interrupted.` and
+    /// clears the flag. The REPL's Ctrl-C handler sets it.
+    pub fn set_interrupt(&mut self, flag: Arc<AtomicBool>) {
+        self.interrupt = Some(flag);
+    }
+
+    /// Sends the trace of a `run` to `sink` as it happens (once per decision), and whatever
+    /// was printed before the run first, so a terminal shows a long run while it goes on.
+    pub fn set_live_output(&mut self, sink: LiveSink) {
+        self.live = Some(sink);
+    }
+
+    /// The alias table (for completion and `help`).
+    pub fn aliases(&self) -> &Aliases {
+        &self.aliases
+    }
+
+    /// Wraps the agent's output callback for one run: the wrapper calls the program's own
+    /// callback, then hands the trace to the live sink and turns an interrupt into a stop
+    /// request. Gives back the program's callback for [`Self::end_run_hooks`].
+    fn begin_run_hooks(&mut self) -> Option<Rc<RefCell<Option<PhaseCallback>>>> {
+        if self.interrupt.is_none() && self.live.is_none() {
+            return None;
+        }
+        if let Some(live) = self.live.clone() {
+            // Text printed before the run comes out first.
+            let before = self.take_output();
+            if !before.is_empty() {
+                (live.borrow_mut())(&before);
+            }
+        }
+        let own = Rc::new(RefCell::new(self.agent.output_callback.take()));
+        let inner = Rc::clone(&own);
+        let flag = self.interrupt.clone();
+        let live = self.live.clone();
+        let col = Rc::clone(&self.print_col);
+        self.agent.output_callback = Some(Box::new(move |a: &mut Agent| {
+            if let Some(cb) = inner.borrow_mut().as_mut() {
+                cb(a);
+            }
+            if let Some(live) = &live {
+                if !a.output.is_empty() {
+                    let text = std::mem::take(&mut a.output);
+                    advance_col(&col, &text);
+                    (live.borrow_mut())(&text);
+                }
+            }
+            if flag.as_ref().is_some_and(|f| f.load(Ordering::SeqCst)) {
+                a.decider.stop_requested = true;
+            }
+        }));
+        Some(own)
+    }
+
+    /// Puts the program's own output callback back; true if the run was interrupted.
+    fn end_run_hooks(&mut self, own: Option<Rc<RefCell<Option<PhaseCallback>>>>) -> bool {
+        if let Some(own) = own {
+            self.agent.output_callback = own.borrow_mut().take();
+        }
+        if let Some(live) = &self.live {
+            if !self.agent.output.is_empty() {
+                let text = std::mem::take(&mut self.agent.output);
+                advance_col(&self.print_col, &text);
+                (live.borrow_mut())(&text);
+            }
+        }
+        self.interrupt
+            .as_ref()
+            .is_some_and(|f| f.swap(false, Ordering::SeqCst))
     }
 
     /// The directory relative paths resolve against (Soar's working directory).
@@ -273,7 +381,7 @@ impl Interpreter {
             alias: expanded_from.as_deref(),
         };
         let args = &words[1..];
-        match name {
+        let result = match name {
             "sp" => self.cmd_sp(&ctx),
             "load" => self.cmd_load(&ctx, args),
             "pushd" => self.cmd_pushd(&ctx, args),
@@ -296,12 +404,39 @@ impl Interpreter {
             "wm" => self.cmd_wm(&ctx, args),
             "run" => self.cmd_run(&ctx, args),
             "stats" => self.cmd_stats(),
-            "help" => Ok(cmd_help(args)),
+            "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())
             }
             other => Err(not_yet(&ctx, other)),
+        };
+        // These commands print through the agent's printer in 9.6 (checked one by one).
+        let printed = matches!(name, "print" | "learn" | "chunk")
+            || (name == "production" && args.first().is_some_and(|a| a == "matches"));
+        if let (true, Ok(text)) = (printed, &result) {
+            advance_col(&self.print_col, text);
+        }
+        result
+    }
+
+    /// `help [command]`: the list, or one command's usage (an alias: its expansion's).
+    fn cmd_help(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let Some(name) = args.first() else {
+            return Ok(help::listing());
+        };
+        match help::help_for(name, &self.aliases) {
+            Some(text) => Ok(text),
+            None => {
+                let mut d = Diagnostic::error(format!("No such command '{name}'."))
+                    .at(ctx.arg_span(0))
+                    .with_label("not a command or alias");
+                let near = nearest_commands(name, &self.aliases);
+                if !near.is_empty() {
+                    d = d.with_note(format!("did you mean: {}", near.join(", ")));
+                }
+                Err(d)
+            }
         }
     }
 
@@ -369,24 +504,6 @@ fn cmd_echo(args: &[String]) -> String {
     if newline {
         s.push('\n');
     }
-    s
-}
-
-fn cmd_help(args: &[String]) -> String {
-    if let Some(name) = args.first() {
-        return match COMMANDS.iter().find(|c| *c == name) {
-            Some(c) => format!(
-                "{c}: see the Soar manual's command reference; `{c} ?` lists its settings\n"
-            ),
-            None => format!("No help entry for {name}\n"),
-        };
-    }
-    let mut s = String::from("Soar 9.6 Command List (rusoar):\n\n");
-    for c in COMMANDS {
-        s.push_str(c);
-        s.push('\n');
-    }
-    s.push_str("\nTo read an in-depth description of the command:               help <command>\n");
     s
 }
 

@@ -98,10 +98,14 @@ pub fn parse(words: &[String], specs: &[OptSpec]) -> Result<Parsed, String> {
                     .iter()
                     .find(|s| s.short == Some(*c))
                     .ok_or_else(|| format!("No such option: {c}"))?;
+                if spec.takes_arg && k + 1 != letters.len() {
+                    // The rest of the cluster is the argument, as in 9.6's getopt-style
+                    // parser: `-depth 0` is `-d epth` ("Non-negative depth expected.").
+                    let rest: String = letters[k + 1..].iter().collect();
+                    out.options.push((spec.long, Some(rest)));
+                    break;
+                }
                 let arg = if spec.takes_arg {
-                    if k + 1 != letters.len() {
-                        // An argument-taking option inside a cluster takes the next word.
-                    }
                     let a = words
                         .get(i)
                         .cloned()

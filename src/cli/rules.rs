@@ -117,14 +117,50 @@ impl Interpreter {
             opt('i', "internal"),
             opt('t', "tree"),
             opt('e', "exact"),
-            opt('s', "states"),
+            opt('s', "stack"),
             opt('o', "operators"),
-            opt('S', "stack"),
+            opt('S', "states"),
             opt('v', "varprint"),
             opt('g', "gds"),
             opt_arg('d', "depth"),
         ];
-        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        // The depth is checked as the options are read, before any later bad option and
+        // before the target (9.6: `wmes`, which is `print -depth 0 -internal`, fails with
+        // the depth message).
+        let bad_depth = |p: &options::Parsed| {
+            p.value("depth")
+                .is_some_and(|d| d.parse::<usize>().is_err())
+        };
+        let parsed = match options::parse(args, &specs) {
+            Ok(p) => p,
+            Err(m) => {
+                let read_before_error = (0..args.len())
+                    .rev()
+                    .find_map(|k| options::parse(&args[..k], &specs).ok());
+                if read_before_error.as_ref().is_some_and(bad_depth) {
+                    return Err(ctx.error("Non-negative depth expected."));
+                }
+                return Err(ctx.error(m));
+            }
+        };
+        if bad_depth(&parsed) {
+            return Err(ctx.error("Non-negative depth expected."));
+        }
+        if parsed.has("stack") {
+            if !parsed.args.is_empty() {
+                return Err(ctx.error("No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack."));
+            }
+            return Ok(super::printing::print_stack(
+                &self.agent,
+                parsed.has("states"),
+                parsed.has("operators"),
+            ));
+        }
+        if parsed.has("states") || parsed.has("operators") {
+            return Err(ctx.error(
+                "Options --operators (-o) and --states (-S) are only valid when printing the stack.",
+            ));
+        }
         if parsed.has("all") || parsed.has("user") {
             let mut s = String::new();
             for p in self.agent.productions().rev() {
@@ -148,8 +184,20 @@ impl Interpreter {
             return Ok(s);
         }
         let Some(target) = parsed.args.first() else {
-            return Err(super::not_yet(ctx, "print"));
+            // 9.6: a bare `print` prints nothing; options without a target are a misuse.
+            if parsed.options.is_empty() {
+                return Ok(String::new());
+            }
+            return Err(ctx.error(
+                "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
+            ));
         };
+        if parsed.args.len() > 1 {
+            // 9.6 reads several words as a WME pattern, which must start with `(`.
+            return Ok(format!(
+                "Expected '(' to begin wme pattern not string '{target}' or char ' '\n"
+            ));
+        }
         // `print |a quoted name|`: the word keeps its pipes; the rule name does not.
         let unquoted;
         let target = match target.strip_prefix('|').and_then(|t| t.strip_suffix('|')) {
@@ -169,7 +217,13 @@ impl Interpreter {
                     .map_err(|_| ctx.error("Non-negative depth expected."))?,
                 None => 1,
             };
-            return self.print_memory(ctx, target, depth, parsed.has("internal"));
+            return self.print_memory(
+                ctx,
+                target,
+                depth,
+                parsed.has("internal"),
+                parsed.has("tree"),
+            );
         }
         Ok(format!("No production named {target}"))
     }

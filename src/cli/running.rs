@@ -5,6 +5,19 @@ use super::{CmdResult, Ctx, Interpreter};
 use crate::decide::cycle::RunUnit;
 use crate::source::Diagnostic;
 
+/// A `run` count as 9.6 reads it: the leading integer (`1.5` is 1), which must not be
+/// negative (`Count must be positive.`, though 0 is accepted).
+fn run_count(word: &str) -> Result<u64, &'static str> {
+    let digits_end = word
+        .char_indices()
+        .find(|&(i, c)| !(c.is_ascii_digit() || (i == 0 && (c == '-' || c == '+'))))
+        .map_or(word.len(), |(i, _)| i);
+    let n: i64 = word[..digits_end]
+        .parse()
+        .map_err(|_| "Integer count expected.")?;
+    u64::try_from(n).map_err(|_| "Count must be positive.")
+}
+
 impl Interpreter {
     /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
     /// decisions; a unit alone is one of it (spec §6a).
@@ -21,9 +34,14 @@ impl Interpreter {
             opt('g', "goal"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        if parsed.args.len() > 1 {
+            return Err(ctx.error(
+                "Syntax: run  [-f|count]\nrun -[d|e|o|p][s][un][g] [f|count]\nrun -[d|e|o|p][un] count [-i e|p|d|o]",
+            ));
+        }
         let count = match parsed.args.first() {
-            Some(c) => Some(c.parse::<u64>().map_err(|_| {
-                Diagnostic::error(format!("Integer expected: {c}"))
+            Some(c) => Some(run_count(c).map_err(|m| {
+                Diagnostic::error(m)
                     .at(ctx.arg_span(0))
                     .with_label("not a count")
             })?),
@@ -38,11 +56,40 @@ impl Interpreter {
         } else {
             RunUnit::Forever
         };
-        let n = count.unwrap_or(1);
-        let (decisions, fired) = self.agent.run(n, unit);
+        // 9.6 runs one unit for a count of 0 (checked on the official kernel).
+        let n = count.unwrap_or(1).max(1);
+        let dc_before = self.agent.decider.d_cycle_count;
+        let halted_before = self.agent.decider.halted;
+        // A halted agent does not run (and 9.6 prints no second "System halted.").
+        let (fired, interrupted) = if halted_before {
+            (0, false)
+        } else {
+            let hooks = self.begin_run_hooks();
+            let (_, fired) = self.agent.run(n, unit);
+            (fired, self.end_run_hooks(hooks))
+        };
         self.flush_agent_output();
+        if self.agent.decider.halted && !halted_before {
+            // 9.6's kernel ends its halt message with a newline (the print column is 0 after
+            // it), then its run scheduler says why the run ended; that line does not move
+            // the kernel's print column (checked: a `print` after a halt wraps from 0).
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\nInterrupt received.This Agent halted.".to_string(),
+            ));
+        }
+        if interrupted {
+            self.events
+                .push(super::Event::Text("\nInterrupted.".to_string()));
+        }
+        // 9.6 reports the change of the decision-cycle counter, measured from 0 while the
+        // counter is still at its initial 1 (spec §6a, E:t18): so the second `run 1` after
+        // `init-soar` reports 2 cycles, and a run that ends inside the cycle it started in
+        // reports "0 decision cycle" (singular, as printed by 9.6).
+        let last_dc = if dc_before > 1 { dc_before } else { 0 };
+        let decisions = self.agent.decider.d_cycle_count.saturating_sub(last_dc);
         let dc = match decisions {
-            1 => "1 decision cycle executed.".to_string(),
+            0 | 1 => format!("{decisions} decision cycle executed."),
             d => format!("{d} decision cycles executed."),
         };
         let rules = match fired {
@@ -50,13 +97,19 @@ impl Interpreter {
             1 => "1 rule fired.".to_string(),
             f => format!("{f} rules fired."),
         };
-        Ok(format!("\n\n--> {dc} {rules} "))
+        let halted = if self.agent.decider.halted {
+            "\nAn agent halted during the run."
+        } else {
+            ""
+        };
+        Ok(format!("\n\n--> {dc} {rules} {halted}"))
     }
 
     /// Moves the agent's trace output into the event stream.
     pub(super) fn flush_agent_output(&mut self) {
         if !self.agent.output.is_empty() {
             let text = std::mem::take(&mut self.agent.output);
+            super::advance_col(&self.print_col, &text);
             self.events.push(super::Event::Text(text));
         }
     }

@@ -180,8 +180,123 @@ impl Interpreter {
                 "rusoar {} (Soar 9.6 semantics)\n",
                 env!("CARGO_PKG_VERSION")
             )),
-            Some(_) | None => Err(super::not_yet(ctx, "soar")),
+            None => Ok(self.soar_summary()),
+            Some("?") => Ok(self.soar_settings()),
+            Some(_) => Err(super::not_yet(ctx, "soar")),
         }
+    }
+
+    /// `soar` with no arguments: 9.6's summary of the agent (rows 55 columns wide).
+    fn soar_summary(&self) -> String {
+        use crate::decide::state::Phase;
+        let a = &self.agent;
+        let row = |label: &str, value: &str| format!("{label}{value:>w$}\n", w = 55 - label.len());
+        let rule = "-".repeat(55);
+        let states: Vec<String> = if a.decider.goals.is_empty() {
+            vec![a.symbols.text(a.top.state)]
+        } else {
+            a.decider
+                .goals
+                .iter()
+                .map(|g| a.symbols.text(g.state))
+                .collect()
+        };
+        let phase = match a.decider.phase.unwrap_or(Phase::Input) {
+            Phase::Input => "input",
+            Phase::Propose => "propose",
+            Phase::Decide => "decide",
+            Phase::Apply => "apply",
+            Phase::Output => "output",
+        };
+        let mut s = format!(
+            "{eq}\n-{:^53}-\n{eq}\n",
+            format!("rusoar {} Summary", env!("CARGO_PKG_VERSION")),
+            eq = "=".repeat(55)
+        );
+        s.push_str(&row("Enabled:", "Core"));
+        s.push_str(&row("Disabled:", "EBC, SMem, EpMem, SVS, RL, WMA, SSA"));
+        s.push_str(&format!("{rule}\n"));
+        s.push_str(&row("Number of rules:", &a.production_count().to_string()));
+        s.push_str(&row("Number of chunks:", "0"));
+        s.push_str(&row("Decisions", &a.decider.d_cycle_count.to_string()));
+        s.push_str(&row("Elaborations", &a.decider.e_cycles.to_string()));
+        s.push_str(&format!("{rule}\n"));
+        s.push_str(&row("State stack", &states.join(", ")));
+        s.push_str(&row("Current number of states", &states.len().to_string()));
+        s.push_str(&row("Next phase", phase));
+        s.push_str(&format!("{rule}\n\n"));
+        s.push_str("Use 'soar ?' for a command overview or 'help soar' for the manual page.");
+        s
+    }
+
+    /// `soar ?`: the sub-commands and the settings with their values, as 9.6 lists them.
+    fn soar_settings(&self) -> String {
+        let st = &self.agent.settings;
+        let on_off = |b: bool| if b { "on" } else { "off" };
+        let mut s = String::from("====== Soar General Commands and Settings =====\n");
+        for (cmd, what) in [
+            ("soar ?", "Print this help listing"),
+            ("soar init", "Re-initializes current state of Soar"),
+            ("soar stop [--self]", "Stop Soar execution"),
+            ("soar version", "Print version number of Soar"),
+        ] {
+            s.push_str(&format!("{cmd:<51}{what}\n"));
+        }
+        s.push_str("----------------- Settings --------------------\n");
+        for (name, value, what) in [
+            (
+                "keep-all-top-oprefs",
+                "off".to_string(),
+                "Keep all preferences for o-supported WMEs on top state",
+            ),
+            (
+                "max-elaborations",
+                st.max_elaborations.to_string(),
+                "Maximum elaboration in a decision cycle",
+            ),
+            (
+                "max-goal-depth",
+                st.max_goal_depth.to_string(),
+                "Halt if goal stack reaches this depth",
+            ),
+            (
+                "max-nil-output-cycles",
+                st.max_nil_output_cycles.to_string(),
+                "Impasse after this many nil outputs (run --out)",
+            ),
+            (
+                "max-dc-time",
+                "0".into(),
+                "Interrupt decision after this much time",
+            ),
+            (
+                "max-memory-usage",
+                "100000000".into(),
+                "Threshold for memory warning (see help)",
+            ),
+            ("max-gp", "20000".into(), "Maximum rules gp can generate"),
+            (
+                "stop-phase",
+                "apply".into(),
+                "Phase before which Soar will stop",
+            ),
+            ("tcl", "off".into(), "Allow Tcl code in commands"),
+            ("timers", "on".into(), "Profile where Soar spends its time"),
+            (
+                "wait-snc",
+                on_off(st.wait_snc).into(),
+                "Wait instead of impasse after state-no-change",
+            ),
+        ] {
+            s.push_str(&format!(
+                "{name}{value:>w$}    {what}\n",
+                w = 47 - name.len()
+            ));
+        }
+        s.push_str("-----------------------------------------------\n\n");
+        s.push_str("To change a setting:                               soar <setting> [<value>]\n");
+        s.push_str("For a detailed explanation of these settings:      help soar\n");
+        s
     }
 
     /// `trace N` / `watch N`: the level is stored for the decision cycle's traces.
@@ -195,16 +310,26 @@ impl Interpreter {
             "Trace level 5 enabled: Preferences",
         ];
         let Some(first) = args.first() else {
-            return Err(super::not_yet(ctx, "trace"));
+            return Ok(trace_listing(self.agent.settings.trace_level));
         };
-        let Ok(level) = first.parse::<u8>() else {
-            return Err(super::not_yet(ctx, "trace"));
-        };
-        if level > 5 {
-            return Err(Diagnostic::error(format!("Invalid trace level: {level}"))
-                .at(ctx.arg_span(0))
-                .with_label("levels are 0 to 5"));
+        if args.len() > 1 {
+            return Err(ctx.error("Only non option argument allowed is watch level."));
         }
+        let level = match first.parse::<i64>() {
+            Ok(l @ 0..=5) => l as u8,
+            Ok(_) => {
+                return Err(Diagnostic::error("Expected trace level from 0 to 5.")
+                    .at(ctx.arg_span(0))
+                    .with_label("levels are 0 to 5"))
+            }
+            // The flags (`-d`, `--phases`, ...) are not modelled: one level is kept.
+            Err(_) if first.starts_with('-') => return Err(super::not_yet(ctx, "trace")),
+            Err(_) => {
+                return Err(Diagnostic::error("Integer argument expected.")
+                    .at(ctx.arg_span(0))
+                    .with_label("not a trace level"))
+            }
+        };
         self.agent.settings.trace_level = level;
         let mut s = String::new();
         if level == 0 {
@@ -269,7 +394,17 @@ impl Interpreter {
                             .at(ctx.arg_span(1))
                             .with_label("not a seed")
                     })?,
-                    None => 0,
+                    None => {
+                        // No seed: a new random one, as 9.6 does (from the clock).
+                        let now = std::time::SystemTime::now()
+                            .duration_since(std::time::UNIX_EPOCH)
+                            .map(|d| d.as_nanos())
+                            .unwrap_or(0);
+                        let seed = (now ^ (now >> 32)) as u32;
+                        self.agent.seed = Some(seed);
+                        self.agent.rng.seed(seed);
+                        return Ok("Random number generator seed set to new random value.\n".into());
+                    }
                 };
                 self.agent.seed = Some(seed);
                 self.agent.rng.seed(seed);
@@ -309,7 +444,8 @@ impl Interpreter {
                 }
             }
             [name] => match self.aliases.get(name) {
-                Some(exp) => Ok(format!("{name} = {}\n", exp.join(" "))),
+                // One alias is shown with its expansion quoted (9.6: `d = "run -d"`).
+                Some(exp) => Ok(format!("{name} = \"{}\"\n", exp.join(" "))),
                 None => Err(Diagnostic::error(format!("Alias not found: {name}"))
                     .at(ctx.arg_span(0))
                     .with_label("no such alias")),
@@ -369,4 +505,107 @@ fn int_setting(
                 .with_label(format!("{name} wants a positive integer"))),
         },
     }
+}
+
+/// `trace` with no arguments: 9.6's table of trace settings. rusoar keeps one trace level,
+/// so the flags of levels 1-5 follow it and the additional messages are off.
+fn trace_listing(level: u8) -> String {
+    fn header(text: &str, fill: char) -> String {
+        let text = format!(" {text} ");
+        let left = (60 - text.len()) / 2;
+        let right = 60 - text.len() - left;
+        format!(
+            "{}{text}{}\n",
+            fill.to_string().repeat(left),
+            fill.to_string().repeat(right)
+        )
+    }
+    fn row(name: &str, value: &str, flags: &str) -> String {
+        format!("{name}{value:>w$}     {flags}\n", w = 60 - name.len())
+    }
+    let on = |l: u8| if level >= l { "on" } else { "off" };
+    let rule = "=".repeat(60);
+    let mut s = format!("{rule}\n{:^60}\n{rule}\n", "Soar Trace Messages");
+    // `{:^60}` puts the odd space on the right, as 9.6 does.
+    s.push_str(&header("Level 1", '-'));
+    s.push_str(&row(
+        "Operator decisions and states",
+        on(1),
+        "-d, --decisions",
+    ));
+    s.push_str(&header("Level 2", '-'));
+    for (name, flags) in [
+        ("Phases", "-p, --phases"),
+        ("Chunking warnings", "-C, --chunk-warnings"),
+        ("State removals caused by GDS violation", "-g, --gds"),
+        (
+            "State removals caused by operator consistency checks",
+            "-o, --consistency",
+        ),
+    ] {
+        s.push_str(&row(name, on(2), flags));
+    }
+    s.push_str(&header("Level 3: Rule firings", '-'));
+    for (name, flags) in [
+        ("Default rules", "-D, --default"),
+        ("User rules", "-u, --user"),
+        ("Chunks", "-c, --chunks"),
+        ("Justifications", "-j, --justifications"),
+        ("Templates", "-T, --template"),
+        (
+            "Firings inhibited by higher-level firings",
+            "-W, --waterfall",
+        ),
+    ] {
+        s.push_str(&row(name, on(3), flags));
+    }
+    s.push_str(&header("Level 4", '-'));
+    s.push_str(&row("WME additions and removals", on(4), "-w, --wmes"));
+    s.push_str(&header("Level 5", '-'));
+    s.push_str(&row("Preferences", on(5), "-r, --preferences"));
+    s.push_str(" \n");
+    s.push_str(&header("Additional General Trace Messages", '-'));
+    s.push_str(&row(
+        "Assertions of rules and preferences",
+        "off",
+        "-A, --assertions",
+    ));
+    s.push_str(&row("Goal dependency set changes", "off", "-G, --gds-wmes"));
+    s.push_str(&row(
+        "Numeric preference calculations",
+        "off",
+        "-i, --indifferent-selection",
+    ));
+    s.push_str(&row(
+        "Reinforcement learning value updates",
+        "off",
+        "-R, --rl",
+    ));
+    s.push_str(&row(
+        "WME Detail Level",
+        "none",
+        "--nowmes, --timetags, --fullwmes",
+    ));
+    s.push_str(" \n");
+    s.push_str(&header("Additional Chunking Trace Messages", '-'));
+    s.push_str(&row("Dependency analysis", "off", "-b, --backtracing"));
+    s.push_str(&row(
+        "Rules learned (verbosity level)",
+        "none (0)",
+        "-L, --learning [0-2]",
+    ));
+    s.push_str(" \n");
+    s.push_str(&header("Additional Memory System Trace Messages", '-'));
+    s.push_str(&row(
+        "Episodic memory recording and queries",
+        "off",
+        "-e, --epmem",
+    ));
+    s.push_str(&row("Semantic memory additions", "off", "-s, --smem"));
+    s.push_str(&row(
+        "Working memory activation and forgetting",
+        "off",
+        "-a, --wma",
+    ));
+    s
 }

@@ -1,0 +1,116 @@
+//! `print --stack` (`ps`) and `print --tree`: the goal stack as decision lines with a blank
+//! cycle field, and working memory one WME per line in a tree (spec §6a, §6c; checked
+//! against the official kernel's output).
+
+use crate::agent::Agent;
+use crate::symbols::Sym;
+use crate::trace::{sorted_wmes, wme_internal};
+use crate::wm::Wme;
+use std::collections::HashSet;
+
+/// The values of `o ^name`, as a decision line shows them: `(a b)`, or nothing.
+fn operator_name(agent: &Agent, o: Sym) -> String {
+    let vals: Vec<String> = sorted_wmes(agent, o)
+        .iter()
+        .filter(|w| !w.acceptable && agent.symbols.text(w.attr) == "name")
+        .map(|w| agent.symbols.text(w.value))
+        .collect();
+    if vals.is_empty() {
+        String::new()
+    } else {
+        format!("({})", vals.join(" "))
+    }
+}
+
+/// `print --stack [--states] [--operators]`: one line per state and selected operator, top
+/// first, in the format of the decision trace with `      : ` for the cycle number. With
+/// neither or both flags, states and operators.
+pub fn print_stack(agent: &Agent, states: bool, operators: bool) -> String {
+    let (states, operators) = if states == operators {
+        (true, true)
+    } else {
+        (states, operators)
+    };
+    let mut out = String::new();
+    let goals = &agent.decider.goals;
+    if goals.is_empty() {
+        // Before the first run: only the top state.
+        if states {
+            out.push_str(&format!(
+                "      : ==>S: {} \n",
+                agent.symbols.text(agent.top.state)
+            ));
+        }
+        return out;
+    }
+    for g in goals {
+        let indent = "   ".repeat(g.level.saturating_sub(1) as usize);
+        if states {
+            let what = match g.impasse {
+                Some((kind, on_operator)) => format!(
+                    "({} {})",
+                    if on_operator { "operator" } else { "state" },
+                    kind.word()
+                ),
+                None => String::new(),
+            };
+            out.push_str(&format!(
+                "      : {indent}==>S: {} {what}\n",
+                agent.symbols.text(g.state)
+            ));
+        }
+        if let (true, Some((o, _))) = (operators, g.operator) {
+            out.push_str(&format!(
+                "      : {indent}   O: {} {}\n",
+                agent.symbols.text(o),
+                operator_name(agent, o)
+            ));
+        }
+    }
+    out
+}
+
+/// `(id ^attr value[ +])`
+fn wme_plain(agent: &Agent, w: &Wme) -> String {
+    let s = &agent.symbols;
+    format!(
+        "({} ^{} {}{})",
+        s.text(w.id),
+        s.text(w.attr),
+        s.text(w.value),
+        if w.acceptable { " +" } else { "" }
+    )
+}
+
+/// `print --tree [--depth n] [--internal] id`: one WME per line, each identifier's WMEs
+/// right under the WME that leads to it (indented two spaces per level), each identifier
+/// expanded once.
+pub fn print_tree(agent: &Agent, id: Sym, depth: usize, internal: bool) -> String {
+    let mut out = String::new();
+    let mut seen = HashSet::from([id]);
+    tree_rec(agent, id, 0, depth.max(1), internal, &mut seen, &mut out);
+    out
+}
+
+fn tree_rec(
+    agent: &Agent,
+    id: Sym,
+    level: usize,
+    depth: usize,
+    internal: bool,
+    seen: &mut HashSet<Sym>,
+    out: &mut String,
+) {
+    for w in sorted_wmes(agent, id) {
+        out.push_str(&"  ".repeat(level));
+        out.push_str(&if internal {
+            wme_internal(agent, &w)
+        } else {
+            wme_plain(agent, &w)
+        });
+        out.push('\n');
+        if level + 1 < depth && agent.symbols.is_id(w.value) && seen.insert(w.value) {
+            tree_rec(agent, w.value, level + 1, depth, internal, seen, out);
+        }
+    }
+}

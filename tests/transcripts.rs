@@ -1,0 +1,47 @@
+//! Snapshots of what a user sees (STYLE habit 9): REPL sessions typed without a terminal
+//! (`tests/data/repl/*.txt`), and the trace and final state of short runs of small agents
+//! (`tests/data/traces/*.soar`). One snapshot per input file.
+
+use rusoar::cli::repl::transcript;
+use rusoar::cli::Interpreter;
+use std::path::Path;
+
+/// An interpreter working in `path`'s directory, as if started there.
+fn interpreter_at(path: &Path) -> Interpreter {
+    let mut interp = Interpreter::new();
+    let dir = path.parent().expect("a file in a directory");
+    interp.set_cwd(dir.canonicalize().expect("the data directory exists"));
+    interp
+}
+
+#[test]
+fn repl_sessions() {
+    insta::glob!("data/repl/*.txt", |path| {
+        let script = std::fs::read_to_string(path).unwrap();
+        let mut interp = interpreter_at(path);
+        insta::assert_snapshot!(transcript(&mut interp, &script));
+    });
+}
+
+/// `# run: N` in an agent file sets how many decisions its trace covers (default 5).
+fn decisions_to_run(agent: &str) -> u64 {
+    agent
+        .lines()
+        .find_map(|l| l.strip_prefix("# run:"))
+        .and_then(|n| n.trim().parse().ok())
+        .unwrap_or(5)
+}
+
+#[test]
+fn traces_of_short_runs() {
+    insta::glob!("data/traces/*.soar", |path| {
+        let agent = std::fs::read_to_string(path).unwrap();
+        let name = path.file_name().unwrap().to_string_lossy();
+        let script = format!(
+            "srand 1\nsource {name}\nwatch 4\nrun {}\nprint --depth 3 s1\n",
+            decisions_to_run(&agent)
+        );
+        let mut interp = interpreter_at(path);
+        insta::assert_snapshot!(transcript(&mut interp, &script));
+    });
+}
