@@ -462,7 +462,7 @@ impl MapFigure<'_> {
             .configure_mesh()
             .x_desc("x, m")
             .y_desc("y, m")
-            .label_style((FONT, 13))
+            .label_style((FONT, 14))
             .axis_desc_style((FONT, 14))
             .light_line_style(RGBColor(240, 240, 240))
             .draw()
@@ -629,7 +629,7 @@ impl Figure for HoughFigure<'_> {
             .configure_mesh()
             .x_desc("θ, degrees")
             .y_desc("r, m")
-            .label_style((FONT, 13))
+            .label_style((FONT, 14))
             .axis_desc_style((FONT, 14))
             .disable_mesh()
             .draw()
@@ -681,7 +681,7 @@ impl Figure for HoughFigure<'_> {
             .configure_mesh()
             .x_desc("x, m (believed frame)")
             .y_desc("y, m")
-            .label_style((FONT, 13))
+            .label_style((FONT, 14))
             .axis_desc_style((FONT, 14))
             .light_line_style(RGBColor(240, 240, 240))
             .draw()
@@ -816,7 +816,7 @@ pub struct PairedScatter {
 
 impl Figure for PairedScatter {
     fn size(&self) -> (u32, u32) {
-        (480 * self.panels.len().max(1) as u32, 540)
+        (560 * self.panels.len().max(1) as u32, 580)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -834,7 +834,7 @@ impl Figure for PairedScatter {
             let below = pts.iter().filter(|p| p.2 < p.1).count();
             let cell = cell
                 .titled(
-                    &format!("{title}: on below the diagonal in {below} of {}", pts.len()),
+                    &format!("{title}: {below} of {} seeds lower with SLAM", pts.len()),
                     (FONT, 14),
                 )
                 .map_err(err)?;
@@ -848,7 +848,7 @@ impl Figure for PairedScatter {
                 .configure_mesh()
                 .x_desc(format!("SLAM off, {unit}"))
                 .y_desc(format!("SLAM on, {unit}"))
-                .label_style((FONT, 13))
+                .label_style((FONT, 14))
                 .axis_desc_style((FONT, 14))
                 .light_line_style(RGBColor(240, 240, 240))
                 .draw()

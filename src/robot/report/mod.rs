@@ -511,8 +511,8 @@ pub fn write_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, St
             &PairedScatter {
                 title: "Per seed, without (x) and with (y) the SLAM rules".into(),
                 panels: vec![
-                    ("RMSE of the position error".into(), "m".into(), rmse),
-                    (format!("position error at {last:.0} s"), "m".into(), fin),
+                    ("RMSE".into(), "m".into(), rmse),
+                    (format!("error at {last:.0} s"), "m".into(), fin),
                 ],
             },
             dir,
@@ -631,6 +631,71 @@ fn verdict(s: &PairStats) -> String {
     format!("{dir}; {sig}")
 }
 
+/// Checkpoints at which most paired seeds have a lower (`lower`) or higher error with the rules.
+fn checkpoints_where(exp: &Experiment, lower: bool) -> Vec<f64> {
+    exp.checkpoints
+        .iter()
+        .copied()
+        .filter(|&t| {
+            let st = pair_stats(&exp.paired(|r| r.err_at(t).unwrap_or(f64::NAN)));
+            if lower {
+                st.better * 2 > st.n
+            } else {
+                st.worse * 2 > st.n
+            }
+        })
+        .collect()
+}
+
+/// The corrections made in one time window, summed up.
+#[derive(Debug, Clone, PartialEq)]
+struct Window {
+    from: f64,
+    to: f64,
+    n: usize,
+    helped: usize,
+    helped_head: usize,
+    /// Sum of the changes of the position error, mm.
+    sum_pos_mm: f64,
+    /// Sum of the changes of the heading error, degrees.
+    sum_head_deg: f64,
+    median_jump_mm: f64,
+}
+
+/// The corrections of `corr` split at the checkpoints.
+fn windows(corr: &[&Correction], checkpoints: &[f64]) -> Vec<Window> {
+    let mut edges = vec![0.0];
+    edges.extend(checkpoints.iter().copied());
+    edges
+        .windows(2)
+        .map(|e| {
+            let inside: Vec<&&Correction> = corr
+                .iter()
+                .filter(|c| c.time_s > e[0] && c.time_s <= e[1])
+                .collect();
+            Window {
+                from: e[0],
+                to: e[1],
+                n: inside.len(),
+                helped: inside.iter().filter(|c| c.helped()).count(),
+                helped_head: inside.iter().filter(|c| c.helped_heading()).count(),
+                sum_pos_mm: inside
+                    .iter()
+                    .map(|c| c.err_after_mm - c.err_before_mm)
+                    .sum(),
+                sum_head_deg: inside
+                    .iter()
+                    .map(|c| c.head_after_deg - c.head_before_deg)
+                    .sum(),
+                median_jump_mm: quantile(
+                    &inside.iter().map(|c| c.jump_mm).collect::<Vec<_>>(),
+                    0.5,
+                ),
+            }
+        })
+        .collect()
+}
+
 /// `report.md`.
 pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> String {
     let mut s = String::new();
@@ -675,22 +740,29 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
         w.run.dt
     );
     let m = SonarModel::preset(exp.noise);
+    let noise = if m.sigma_const_m == 0.0 && m.sigma_prop == 0.0 {
+        "no range noise".to_string()
+    } else {
+        format!(
+            "Gaussian range noise σ = {:.0} mm + {:.1} % of range",
+            m.sigma_const_m * 1000.0,
+            m.sigma_prop * 100.0
+        )
+    };
+    let misses = match m.max_incidence_deg {
+        Some(a) => format!("specular misses beyond {a:.0}° incidence"),
+        None => "no specular misses".into(),
+    };
+    let outliers = if m.outlier_prob > 0.0 {
+        format!("{:.1} % outliers", m.outlier_prob * 100.0)
+    } else {
+        "no outliers".into()
+    };
     let _ = writeln!(
         s,
-        "- **Sonar** (`{}` preset): 16 transducers, {} ray(s) over a {:.0}° cone, range {:.2}–{:.1} m, \
-         Gaussian range noise σ = {:.0} mm + {:.1} % of range, {}, {:.1} % outliers.",
-        exp.noise,
-        m.rays,
-        m.cone_deg,
-        m.min_range_m,
-        m.max_range_m,
-        m.sigma_const_m * 1000.0,
-        m.sigma_prop * 100.0,
-        match m.max_incidence_deg {
-            Some(a) => format!("specular misses beyond {a:.0}° incidence"),
-            None => "no specular misses".into(),
-        },
-        m.outlier_prob * 100.0
+        "- **Sonar** (`{}` preset): 16 transducers, {} ray(s) over a {:.0}° cone, range \
+         {:.2}–{:.1} m, {noise}, {misses}, {outliers}.",
+        exp.noise, m.rays, m.cone_deg, m.min_range_m, m.max_range_m,
     );
     let d = DriftParams::STAGE2;
     let _ = writeln!(
@@ -821,24 +893,8 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
                 "the same"
             }
         );
-        let helps_at: Vec<f64> = exp
-            .checkpoints
-            .iter()
-            .copied()
-            .filter(|&t| {
-                let st = pair_stats(&exp.paired(|r| r.err_at(t).unwrap_or(f64::NAN)));
-                st.better * 2 > st.n
-            })
-            .collect();
-        let hurts_at: Vec<f64> = exp
-            .checkpoints
-            .iter()
-            .copied()
-            .filter(|&t| {
-                let st = pair_stats(&exp.paired(|r| r.err_at(t).unwrap_or(f64::NAN)));
-                st.worse * 2 > st.n
-            })
-            .collect();
+        let helps_at = checkpoints_where(exp, true);
+        let hurts_at = checkpoints_where(exp, false);
         let list = |v: &[f64]| {
             v.iter()
                 .map(|t| format!("{t:.0} s"))
@@ -998,6 +1054,114 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
             quantile(&head_change, 0.5),
             head_change.iter().sum::<f64>(),
         );
+        let win = windows(&all, &exp.checkpoints);
+        let _ = writeln!(
+            s,
+            "| corrections made | count | position closer | sum of position changes, mm | heading closer | sum of heading changes, ° | median jump, mm |"
+        );
+        let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+        for w in &win {
+            let pct = |k: usize| {
+                fmt_pct(if w.n == 0 {
+                    f64::NAN
+                } else {
+                    k as f64 / w.n as f64
+                })
+            };
+            let _ = writeln!(
+                s,
+                "| {:.0}–{:.0} s | {} | {} | {} | {} | {:.1} | {} |",
+                w.from,
+                w.to,
+                w.n,
+                pct(w.helped),
+                fmt_mm(w.sum_pos_mm),
+                pct(w.helped_head),
+                w.sum_head_deg,
+                fmt_mm(w.median_jump_mm)
+            );
+        }
+        let _ = writeln!(s);
+        let hurts_at = checkpoints_where(exp, false);
+        if both && !hurts_at.is_empty() {
+            let phantoms = quantile(
+                &map_scores(exp, true)
+                    .iter()
+                    .map(|m| 1.0 - m.matched_share())
+                    .collect::<Vec<_>>(),
+                0.5,
+            );
+            let last = win.iter().rev().find(|w| w.n > 0);
+            let first = win.iter().find(|w| w.n > 0);
+            let _ = writeln!(
+                s,
+                "### Why the rules do not help at {}
+",
+                {
+                    hurts_at
+                        .iter()
+                        .map(|t| format!("{t:.0} s"))
+                        .collect::<Vec<_>>()
+                        .join(" and ")
+                }
+            );
+            if let (Some(f), Some(l)) = (first, last) {
+                let _ = writeln!(
+                    s,
+                    "The numbers above: in {:.0}–{:.0} s, {} of the {} corrections moved the                      believed position closer to the truth (a coin flip gives 50 %), and together                      they moved it {} mm {}; the corrections grow (median jump {} mm in {:.0}–{:.0} s,                      {} mm in {:.0}–{:.0} s), while the map fills with walls that match no true wall                      ({} of the walls in memory at the end, median over seeds).
+",
+                    l.from,
+                    l.to,
+                    l.helped,
+                    l.n,
+                    fmt_mm(l.sum_pos_mm.abs()),
+                    if l.sum_pos_mm > 0.0 {
+                        "further away"
+                    } else {
+                        "closer"
+                    },
+                    fmt_mm(f.median_jump_mm),
+                    f.from,
+                    f.to,
+                    fmt_mm(l.median_jump_mm),
+                    l.from,
+                    l.to,
+                    fmt_pct(phantoms)
+                );
+            }
+            let _ = writeln!(
+                s,
+                "Our reading, from the rules (`rules/README.md`): a correction compares a newly \
+                 extracted wall with a remembered wall of an earlier time (hypothesis 2), trusts \
+                 the earlier one, and moves the believed pose by their difference. A remembered \
+                 wall was placed with the believed pose of its time, so it is only as right as \
+                 the belief was then; once the belief has drifted, and once earlier corrections \
+                 have moved it, the map holds displaced copies of the walls, and a correction \
+                 against one of them is as likely to pull the belief away from the truth as \
+                 towards it: the corrections become a random walk whose steps grow with the \
+                 map's spread. The printed correction also moves the robot along its heading \
+                 plus the walls' angle difference, not along the wall's normal (`rules/README.md` \
+                 §5), which puts part of every correction in the wrong direction.\n"
+            );
+            let helps_at = checkpoints_where(exp, true);
+            if let Some(f) = first.filter(|f| f.sum_head_deg < 0.0 && !helps_at.is_empty()) {
+                let _ = writeln!(
+                    s,
+                    "Early on the rules do help (at {}): in {:.0}–{:.0} s the heading corrections \
+                     reduce the heading error on net (sum {:.1}°), and a smaller heading error \
+                     slows the growth of the position error, while the remembered walls are still \
+                     near the true ones.\n",
+                    helps_at
+                        .iter()
+                        .map(|t| format!("{t:.0} s"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    f.from,
+                    f.to,
+                    f.sum_head_deg
+                );
+            }
+        }
     }
 
     // Figures.
@@ -1279,6 +1443,34 @@ mod tests {
             assert_eq!(c[6], walls, "{per_seed}");
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn corrections_are_summed_per_window_between_checkpoints() {
+        let c = |t: f64, before: f64, after: f64, hb: f64, ha: f64| Correction {
+            step: (t * 10.0) as u64,
+            time_s: t,
+            jump_mm: (after - before).abs(),
+            turn_deg: (ha - hb).abs(),
+            err_before_mm: before,
+            err_after_mm: after,
+            head_before_deg: hb,
+            head_after_deg: ha,
+        };
+        let all = [
+            c(10.0, 100.0, 50.0, 5.0, 4.0),
+            c(60.0, 100.0, 120.0, 5.0, 6.0),
+            c(61.0, 300.0, 100.0, 2.0, 1.0),
+            c(500.0, 0.0, 10.0, 1.0, 1.0),
+        ];
+        let refs: Vec<&Correction> = all.iter().collect();
+        let w = windows(&refs, &[60.0, 300.0, 600.0]);
+        assert_eq!(w.len(), 3);
+        assert_eq!((w[0].from, w[0].to, w[0].n, w[0].helped), (0.0, 60.0, 2, 1));
+        assert_eq!((w[0].sum_pos_mm, w[0].sum_head_deg), (-30.0, 0.0));
+        assert_eq!((w[1].n, w[1].helped, w[1].helped_head), (1, 1, 1));
+        assert_eq!((w[2].n, w[2].helped, w[2].sum_pos_mm), (1, 0, 10.0));
+        assert_eq!(w[0].median_jump_mm, 35.0);
     }
 
     #[test]
