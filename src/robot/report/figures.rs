@@ -451,11 +451,11 @@ impl MapFigure<'_> {
         p: &MapPanel<'_>,
     ) -> Result<(), String> {
         let area = area.titled(&p.title, (FONT, 17)).map_err(err)?;
-        let v = equal_axes(&area, self.view, 40, 55, 8);
+        let v = equal_axes(&area, self.view, 52, 72, 8);
         let mut chart = ChartBuilder::on(&area)
             .margin(8)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
+            .x_label_area_size(52)
+            .y_label_area_size(72)
             .build_cartesian_2d(v.0..v.1, v.2..v.3)
             .map_err(err)?;
         chart
@@ -621,8 +621,8 @@ impl Figure for HoughFigure<'_> {
             .map_err(err)?;
         let mut chart = ChartBuilder::on(&left)
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
+            .x_label_area_size(52)
+            .y_label_area_size(72)
             .build_cartesian_2d(0.0..360.0, (acc.r_min_mm() / 1000.0)..r_top)
             .map_err(err)?;
         chart
@@ -655,7 +655,7 @@ impl Figure for HoughFigure<'_> {
         let right = right
             .titled(
                 &format!(
-                    "{} returns, {} kept, {} walls",
+                    "{} returns, {} kept, {} wall(s)",
                     self.extraction.points.len(),
                     self.extraction.filtered.len(),
                     self.extraction.walls.len()
@@ -670,11 +670,11 @@ impl Figure for HoughFigure<'_> {
                 view = (view.0.min(x), view.1.max(x), view.2.min(y), view.3.max(y));
             }
         }
-        let v = equal_axes(&right, view, 40, 55, 10);
+        let v = equal_axes(&right, view, 52, 72, 10);
         let mut chart = ChartBuilder::on(&right)
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
+            .x_label_area_size(52)
+            .y_label_area_size(72)
             .build_cartesian_2d(v.0..v.1, v.2..v.3)
             .map_err(err)?;
         chart

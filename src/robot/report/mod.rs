@@ -1108,8 +1108,12 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
             if let (Some(f), Some(l)) = (first, last) {
                 let _ = writeln!(
                     s,
-                    "The numbers above: in {:.0}–{:.0} s, {} of the {} corrections moved the                      believed position closer to the truth (a coin flip gives 50 %), and together                      they moved it {} mm {}; the corrections grow (median jump {} mm in {:.0}–{:.0} s,                      {} mm in {:.0}–{:.0} s), while the map fills with walls that match no true wall                      ({} of the walls in memory at the end, median over seeds).
-",
+                    "The numbers above: in {:.0}–{:.0} s, {} of the {} corrections moved the \
+                     believed position closer to the truth (a coin flip gives 50 %), and \
+                     together they moved it {} mm {}; the corrections grow (median jump {} mm \
+                     in {:.0}–{:.0} s, {} mm in {:.0}–{:.0} s), while the map fills with walls \
+                     that match no true wall ({} of the walls in memory at the end, median over \
+                     seeds).\n",
                     l.from,
                     l.to,
                     l.helped,
@@ -1384,6 +1388,10 @@ mod tests {
         }
         let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
         assert!(report.contains("**A reduced run**"));
+        assert!(
+            !report.contains("     "),
+            "a string literal kept its indentation"
+        );
         assert!(report.contains("--seeds 3 --first-seed 1 --duration 12"));
         for stem in ["fig-error", "fig-map", "fig-hough"] {
             assert!(report.contains(&format!("![{stem}]({stem}.svg)")), "{stem}");
