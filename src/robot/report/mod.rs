@@ -836,6 +836,11 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
              describe that condition alone.\n",
             conds.first().map_or("–", |c| condition_name(*c))
         );
+    } else if exp.paired(|r| r.rmse_mm).is_empty() {
+        let _ = writeln!(
+            s,
+            "No seed completed in both conditions, so the thesis's comparison cannot be made.\n"
+        );
     } else {
         let _ = writeln!(
             s,
@@ -866,10 +871,10 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
         let st = pair_stats(&exp.paired(|r| r.rmse_heading_deg));
         let _ = writeln!(
             s,
-            "- **Heading** (RMSE of the heading error) is {}. Median {:.1}° without, {:.1}° with.",
+            "- **Heading** (RMSE of the heading error) is {}. Median {}° without, {}° with.",
             verdict(&st),
-            st.median_off,
-            st.median_on
+            fmt_1(st.median_off),
+            fmt_1(st.median_on)
         );
         let on_mem = quantile(&exp.column(true, |r| r.final_walls as f64), 0.5);
         let off_ext = quantile(&exp.column(false, |r| r.extracted.len() as f64), 0.5);
@@ -1000,7 +1005,13 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
 
     // Corrections.
     let on_runs = exp.completed(true);
-    if !on_runs.is_empty() {
+    if !on_runs.is_empty() && on_runs.iter().all(|r| r.correction_log.is_empty()) {
+        let _ = writeln!(
+            s,
+            "## Corrections\n\nThe SLAM rules made no `setOdometry` correction in {} run(s).\n",
+            on_runs.len()
+        );
+    } else if !on_runs.is_empty() {
         let all: Vec<&Correction> = on_runs
             .iter()
             .flat_map(|r| r.correction_log.iter())
@@ -1231,6 +1242,9 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
     let _ = writeln!(s, "## Speed\n");
     for &slam in &conds {
         let wt = exp.column(slam, |r| r.wall_time_s);
+        if wt.is_empty() {
+            continue;
+        }
         let _ = writeln!(
             s,
             "- SLAM {}: {:.2} s of wall time per run (median; max {:.2} s), {:.0}× real time.",
