@@ -1495,6 +1495,40 @@ mod tests {
         assert_eq!(w[0].median_jump_mm, 35.0);
     }
 
+    /// Runs that fail (here: no rules) still give a report and figures, saying what happened,
+    /// with no NaN in the text.
+    #[test]
+    fn failed_runs_give_a_plain_report() {
+        use super::super::experiment::{parse_options, run_experiment};
+        let dir = std::env::temp_dir().join(format!("rusoar-report-fail-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let args: Vec<String> = [
+            "--seeds",
+            "1",
+            "--duration",
+            "1",
+            "--rules",
+            "/nonexistent",
+            "--out",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .chain([dir.display().to_string()])
+        .collect();
+        let exp = run_experiment(&parse_options(&args).unwrap(), false).unwrap();
+        assert!(exp.runs.iter().all(|r| !r.outcome.completed()));
+        let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+        assert!(report.contains("**2 run(s) did not complete**"), "{report}");
+        assert!(report.contains("robotagent.soar"));
+        assert!(report.contains("No seed completed in both conditions"));
+        assert!(
+            !report.contains("NaN") && !report.contains("inf"),
+            "{report}"
+        );
+        assert!(dir.join("fig-error.svg").is_file() && dir.join("fig-error.png").is_file());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
     #[test]
     fn bin_widths_are_round() {
         assert_eq!(nice_bin(0.3), 1.0);
