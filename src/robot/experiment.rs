@@ -10,9 +10,14 @@
 //!   (`t x y z qx qy qz qw`, metres), for the usual trajectory tools;
 //! - `map-<on|off>-<seed>.csv`: the walls in the agent's memory at the end;
 //! - `runs.csv`: one row per run with its summary numbers;
+//! - `corrections-on-<seed>.csv`: every `setOdometry` of a SLAM-on run, with the position and
+//!   heading error just before and after it;
 //! - `summary.md`: per condition the median and 10–90 % band of the position error at 60, 300
 //!   and 600 s, RMSE, maximum and final error, heading error, walls in memory, corrections,
-//!   and the paired comparison (seeds improved, Wilcoxon signed-rank p-value).
+//!   the map against the true walls, and the paired comparison (seeds improved, Wilcoxon
+//!   signed-rank p-value);
+//! - `fig-*.svg` and `fig-*.png`, and `report.md` putting numbers and figures together (see
+//!   [`super::report`]).
 //!
 //! Runs go in parallel over `--jobs` threads (default: all cores), each with its own agent.
 
@@ -27,7 +32,9 @@ use std::time::Instant;
 use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
-use super::soar_loop::{self, LoopConfig, Outcome, RunResult, StepRecord};
+use super::geom::Point;
+use super::pipeline::{Extraction, Wall};
+use super::soar_loop::{self, Correction, LoopConfig, MemoryWall, Outcome, RunResult, StepRecord};
 use super::sonar::NoisePreset;
 use super::world::{World, BUILTIN_WORLDS};
 
@@ -313,6 +320,25 @@ pub struct RunSummary {
     pub message_count: u64,
     pub bad_commands: Vec<String>,
     pub productions: usize,
+    /// Heading error (degrees) at each step.
+    pub heading_err_deg: Vec<f64>,
+    /// Walls in memory (the top state's `^wallData`) at each step.
+    pub walls_memory: Vec<u32>,
+    /// Walls extracted so far, at each step.
+    pub walls_extracted_so_far: Vec<u32>,
+    /// True and believed position at each step, m.
+    pub true_path: Vec<Point>,
+    pub believed_path: Vec<Point>,
+    /// The map in memory at the end.
+    pub memory_walls: Vec<MemoryWall>,
+    /// Every wall the pipeline extracted.
+    pub extracted: Vec<Wall>,
+    /// Every `setOdometry` carried out.
+    pub correction_log: Vec<Correction>,
+    /// The map in memory at chosen times (example seed only).
+    pub map_snapshots: Vec<(f64, Vec<MemoryWall>)>,
+    /// One whole pipeline output (example seed only).
+    pub sample_extraction: Option<(f64, Box<Extraction>)>,
 }
 
 impl RunSummary {
@@ -357,6 +383,16 @@ impl RunSummary {
             bad_commands: r.stats.bad_commands.clone(),
             productions: r.productions,
             pos_err_mm: errs,
+            heading_err_deg: r.steps.iter().map(|s| s.heading_err_deg).collect(),
+            walls_memory: r.steps.iter().map(|s| s.walls_memory as u32).collect(),
+            walls_extracted_so_far: r.steps.iter().map(|s| s.walls_extracted as u32).collect(),
+            true_path: r.steps.iter().map(|s| s.true_pose.position()).collect(),
+            believed_path: r.steps.iter().map(|s| s.believed.position()).collect(),
+            memory_walls: r.memory_walls.clone(),
+            extracted: r.stats.extracted.clone(),
+            correction_log: r.stats.corrections.clone(),
+            map_snapshots: r.map_snapshots.clone(),
+            sample_extraction: r.sample_extraction.clone(),
         }
     }
 
@@ -374,7 +410,7 @@ impl RunSummary {
 }
 
 /// A seed's value of a measure without and with the SLAM rules: (seed, off, on).
-type Pair = (u64, f64, f64);
+pub(crate) type Pair = (u64, f64, f64);
 
 /// Everything the experiment produced.
 #[derive(Debug, Clone)]
@@ -386,6 +422,10 @@ pub struct Experiment {
     pub jobs: usize,
     pub world_label: String,
     pub noise: NoisePreset,
+    /// The world the runs drove in (its walls are the ground truth of the map figures).
+    pub world: World,
+    /// The seed whose maps, snapshots and Hough space are plotted (the first seed).
+    pub example_seed: u64,
 }
 
 /// Runs every seed of every condition, writing the per-run files and `summary.md` into
@@ -423,6 +463,11 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                 };
                 let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
                 cfg.rules_dir = opts.rules_dir.clone();
+                if seed == opts.first_seed {
+                    let n = cfg.steps();
+                    cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
+                    cfg.sample_extraction_at = Some(sample_step(&cfg));
+                }
                 let result = soar_loop::run(&cfg);
                 let summary = RunSummary::of(&result, opts.world.run.dt);
                 if let Err(e) = write_run(&opts.out, &result) {
@@ -471,6 +516,8 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         jobs: threads,
         world_label: opts.world_label.clone(),
         noise: opts.world.run.noise,
+        world: opts.world.clone(),
+        example_seed: opts.first_seed,
     };
     let write = |name: &str, text: String| -> Result<(), String> {
         let p = opts.out.join(name);
@@ -478,7 +525,20 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     };
     write("runs.csv", exp.runs_csv())?;
     write("summary.md", exp.summary_md(opts))?;
+    super::report::write_report(&exp, opts)?;
     Ok(exp)
+}
+
+/// The step from which the example run keeps one pipeline output for the Hough figure: 30 s in,
+/// or half-way through a shorter run (a full scan window has been seen by then).
+fn sample_step(cfg: &LoopConfig) -> u64 {
+    let dt = cfg.world.run.dt;
+    let at_30s = if dt > 0.0 {
+        (30.0 / dt).round() as u64
+    } else {
+        1
+    };
+    at_30s.min(cfg.steps() / 2).max(1)
 }
 
 fn progress_line(k: usize, total: usize, s: &RunSummary) -> String {
@@ -523,7 +583,17 @@ fn write_run(out: &Path, r: &RunResult) -> Result<(), String> {
             w.r, w.th, w.start.0, w.start.1, w.end.0, w.end.1, w.length, w.time
         );
     }
-    write(format!("map-{tag}.csv"), map)
+    write(format!("map-{tag}.csv"), map)?;
+    if r.slam {
+        let mut c = String::from(soar_loop::CORRECTIONS_HEADER);
+        c.push('\n');
+        for k in &r.stats.corrections {
+            c.push_str(&k.csv_row());
+            c.push('\n');
+        }
+        write(format!("corrections-{tag}.csv"), c)?;
+    }
+    Ok(())
 }
 
 /// A trajectory in TUM format: `t x y z qx qy qz qw`, metres, a yaw-only quaternion.
@@ -549,7 +619,7 @@ pub fn quantile(v: &[f64], q: f64) -> f64 {
 }
 
 /// Median and 10–90 % band.
-fn band(v: &[f64]) -> (f64, f64, f64) {
+pub(crate) fn band(v: &[f64]) -> (f64, f64, f64) {
     (quantile(v, 0.5), quantile(v, 0.1), quantile(v, 0.9))
 }
 
@@ -600,7 +670,7 @@ pub fn wilcoxon(diffs: &[f64]) -> Option<(usize, f64, f64)> {
     Some((n, w2 as f64 / 2.0, (2.0 * low.min(high)).min(1.0)))
 }
 
-fn fmt_mm(v: f64) -> String {
+pub(crate) fn fmt_mm(v: f64) -> String {
     if v.is_finite() {
         format!("{v:.0}")
     } else {
@@ -608,7 +678,7 @@ fn fmt_mm(v: f64) -> String {
     }
 }
 
-fn fmt_band(v: &[f64]) -> String {
+pub(crate) fn fmt_band(v: &[f64]) -> String {
     if v.is_empty() {
         return "–".into();
     }
@@ -617,7 +687,7 @@ fn fmt_band(v: &[f64]) -> String {
 }
 
 impl Experiment {
-    fn conditions(&self) -> Vec<bool> {
+    pub(crate) fn conditions(&self) -> Vec<bool> {
         let mut c: Vec<bool> = self.runs.iter().map(|r| r.slam).collect();
         c.sort();
         c.dedup();
@@ -625,19 +695,19 @@ impl Experiment {
     }
 
     /// Completed runs of a condition.
-    fn completed(&self, slam: bool) -> Vec<&RunSummary> {
+    pub(crate) fn completed(&self, slam: bool) -> Vec<&RunSummary> {
         self.runs
             .iter()
             .filter(|r| r.slam == slam && r.outcome.completed())
             .collect()
     }
 
-    fn column(&self, slam: bool, f: impl Fn(&RunSummary) -> f64) -> Vec<f64> {
+    pub(crate) fn column(&self, slam: bool, f: impl Fn(&RunSummary) -> f64) -> Vec<f64> {
         self.completed(slam).into_iter().map(f).collect()
     }
 
     /// Seeds completed in both conditions, with (off, on) values.
-    fn paired(&self, f: impl Fn(&RunSummary) -> f64) -> Vec<Pair> {
+    pub(crate) fn paired(&self, f: impl Fn(&RunSummary) -> f64) -> Vec<Pair> {
         let off: BTreeMap<u64, f64> = self
             .completed(false)
             .into_iter()
@@ -839,6 +909,8 @@ impl Experiment {
                 quantile(&self.column(slam, |r| r.wall_time_s), 0.9),
             );
         }
+        let _ = writeln!(s, "\n### The map against the true walls\n");
+        s.push_str(&super::report::map_table_md(self));
         let _ = writeln!(s, "\nOperator selections, median per run:\n");
         let mut names: Vec<&String> = self.runs.iter().flat_map(|r| r.operators.keys()).collect();
         names.sort();

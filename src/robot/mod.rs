@@ -7,6 +7,9 @@
 //! - [`odometry`]: Stage 2's drift model and the believed pose;
 //! - [`sim`]: the [`Simulator`] tying them together, deterministic for a seed;
 //! - [`pipeline`]: converter, noise filter, Hough transform and wall extraction;
+//! - [`soar_loop`]: the SoarRobot loop joining simulator, pipeline and the thesis rules;
+//! - [`experiment`]: `rusoar slam`, the thesis's experiment over many seeds, and [`report`]:
+//!   its figures (SVG and PNG) and `report.md`;
 //! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share.
 //!
 //! Sources: the thesis's "Hough-Transform Java" section (`soar-slam-thesis.txt`) and
@@ -18,6 +21,7 @@ pub mod geom;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;
+pub mod report;
 pub mod rng;
 pub mod sim;
 pub mod soar_loop;

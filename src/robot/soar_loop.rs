@@ -53,7 +53,7 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 
 use super::geom::{deg_0_360, Pose};
-use super::pipeline::{self, Scan, Settings as PipelineSettings, Wall};
+use super::pipeline::{self, Extraction, Scan, Settings as PipelineSettings, Wall};
 use super::sim::Simulator;
 use super::sonar::{NUM_SONARS, P2DX_SONARS};
 use super::world::World;
@@ -78,6 +78,12 @@ pub struct LoopConfig {
     /// it until CopyWall copies it (the contract). [`LoopConfig::new`] gives `None` with the
     /// SLAM rules and 8 without them (no rule reads `^wallData` then).
     pub expire_after: Option<u64>,
+    /// Steps after which the map in memory is copied into [`RunResult::map_snapshots`]
+    /// (the thesis's Figure 28, walls over time). Empty by default.
+    pub snapshot_steps: Vec<u64>,
+    /// Keep the whole pipeline output ([`Extraction`]) of the first extraction at or after this
+    /// step that yields a wall, for the Hough figure (the thesis's Figure 20). `None` by default.
+    pub sample_extraction_at: Option<u64>,
 }
 
 impl LoopConfig {
@@ -90,6 +96,8 @@ impl LoopConfig {
             duration_s,
             rules_dir: default_rules_dir(),
             expire_after: if slam { None } else { Some(8) },
+            snapshot_steps: Vec::new(),
+            sample_extraction_at: None,
         }
     }
 
@@ -222,6 +230,63 @@ pub struct MemoryWall {
     pub time: f64,
 }
 
+/// One `setOdometry` the rules carried out: how far it moved the believed pose and whether
+/// that brought the belief closer to the truth.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Correction {
+    /// Loop step in which it was carried out.
+    pub step: u64,
+    /// Simulated time, s.
+    pub time_s: f64,
+    /// Distance between the believed positions before and after, mm.
+    pub jump_mm: f64,
+    /// Heading change, degrees in [0, 180].
+    pub turn_deg: f64,
+    /// Position error (true vs believed) just before, mm.
+    pub err_before_mm: f64,
+    /// Position error just after, mm.
+    pub err_after_mm: f64,
+    /// Heading error just before, degrees in [0, 180].
+    pub head_before_deg: f64,
+    /// Heading error just after, degrees in [0, 180].
+    pub head_after_deg: f64,
+}
+
+impl Correction {
+    /// Whether the correction brought the believed position closer to the true one.
+    pub fn helped(&self) -> bool {
+        self.err_after_mm < self.err_before_mm
+    }
+
+    /// Whether it brought the believed heading closer to the true one.
+    pub fn helped_heading(&self) -> bool {
+        self.head_after_deg < self.head_before_deg
+    }
+}
+
+/// The CSV header matching [`Correction::csv_row`].
+pub const CORRECTIONS_HEADER: &str = "step,time_s,jump_mm,turn_deg,err_before_mm,err_after_mm,\
+head_before_deg,head_after_deg,helped_position,helped_heading";
+
+impl Correction {
+    /// One CSV line (no newline).
+    pub fn csv_row(&self) -> String {
+        format!(
+            "{},{:.1},{:.1},{:.2},{:.1},{:.1},{:.2},{:.2},{},{}",
+            self.step,
+            self.time_s,
+            self.jump_mm,
+            self.turn_deg,
+            self.err_before_mm,
+            self.err_after_mm,
+            self.head_before_deg,
+            self.head_after_deg,
+            self.helped(),
+            self.helped_heading()
+        )
+    }
+}
+
 /// Counters of one run beyond the per-step records.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RunStats {
@@ -249,6 +314,11 @@ pub struct RunStats {
     pub messages: Vec<String>,
     /// How many such lines there were.
     pub message_count: u64,
+    /// Every `setOdometry` carried out, in order.
+    pub corrections: Vec<Correction>,
+    /// Every wall the pipeline put on the input-link, in order (what the agent would hold if
+    /// it kept them all, as in the thesis's Figure 26).
+    pub extracted: Vec<Wall>,
 }
 
 /// A finished run.
@@ -267,6 +337,10 @@ pub struct RunResult {
     pub load_log: String,
     /// Wall-clock time of the loop (loading excluded).
     pub wall_time: Duration,
+    /// The map in memory after each of [`LoopConfig::snapshot_steps`] reached: (time s, walls).
+    pub map_snapshots: Vec<(f64, Vec<MemoryWall>)>,
+    /// The pipeline output asked for by [`LoopConfig::sample_extraction_at`]: (time s, output).
+    pub sample_extraction: Option<(f64, Box<Extraction>)>,
 }
 
 impl RunResult {
@@ -312,6 +386,8 @@ struct Env {
     input_walls: Vec<InputWall>,
     corrections: u64,
     stats: RunStats,
+    sample_at: Option<u64>,
+    sample: Option<(f64, Box<Extraction>)>,
 }
 
 fn heading_0_359(p: &Pose) -> i64 {
@@ -383,6 +459,13 @@ impl Env {
             self.stats.extractions += 1;
             for wall in &out.walls {
                 self.add_wall(agent, wall);
+            }
+            self.stats.extracted.extend(out.walls.iter().cloned());
+            let wanted = self
+                .sample_at
+                .is_some_and(|at| self.steps >= at && self.sample.is_none());
+            if wanted && !out.walls.is_empty() {
+                self.sample = Some((self.sim.time_s(), Box::new(out)));
             }
         }
     }
@@ -507,6 +590,17 @@ impl Env {
         let old = self.sim.believed();
         self.sim.set_odometry_mm_deg(x_mm, y_mm, th_deg);
         let new = self.sim.believed();
+        let truth = self.sim.true_pose();
+        self.stats.corrections.push(Correction {
+            step: self.steps,
+            time_s: self.sim.time_s(),
+            jump_mm: old.distance(&new) * 1000.0,
+            turn_deg: old.heading_error(&new).to_degrees(),
+            err_before_mm: truth.distance(&old) * 1000.0,
+            err_after_mm: truth.distance(&new) * 1000.0,
+            head_before_deg: truth.heading_error(&old).to_degrees(),
+            head_after_deg: truth.heading_error(&new).to_degrees(),
+        });
         for scan in &mut self.window {
             scan.pose = reframe(&old, &new, &scan.pose);
         }
@@ -634,6 +728,8 @@ impl SoarRobot {
             input_walls: Vec::new(),
             corrections: 0,
             stats: RunStats::default(),
+            sample_at: cfg.sample_extraction_at,
+            sample: None,
         }));
         let e = Rc::clone(&env);
         agent.input_callback = Some(Box::new(move |a: &mut Agent| e.borrow_mut().input(a)));
@@ -839,6 +935,8 @@ pub fn run(cfg: &LoopConfig) -> RunResult {
         productions: 0,
         load_log: String::new(),
         wall_time: Duration::ZERO,
+        map_snapshots: Vec::new(),
+        sample_extraction: None,
     };
     let mut robot = match SoarRobot::new(cfg) {
         Ok(r) => r,
@@ -853,10 +951,16 @@ pub fn run(cfg: &LoopConfig) -> RunResult {
     result.steps.reserve(n as usize);
     let start = Instant::now();
     let steps = &mut result.steps;
+    let snapshots = &mut result.map_snapshots;
     let caught = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         for _ in 0..n {
             match robot.step() {
-                Ok(r) => steps.push(r),
+                Ok(r) => {
+                    if cfg.snapshot_steps.contains(&r.step) {
+                        snapshots.push((r.time_s, robot.memory_walls()));
+                    }
+                    steps.push(r)
+                }
                 Err(o) => return (o, robot),
             }
         }
@@ -868,6 +972,7 @@ pub fn run(cfg: &LoopConfig) -> RunResult {
             result.outcome = outcome;
             result.stats = robot.stats();
             result.memory_walls = robot.memory_walls();
+            result.sample_extraction = robot.env.borrow_mut().sample.take();
         }
         Err(panic) => {
             let msg = panic
