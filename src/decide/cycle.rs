@@ -511,7 +511,8 @@ impl Agent {
         let mut changed = std::mem::take(&mut self.decider.changed);
         changed.reverse();
         let mut adds: Vec<(Sym, Sym, Sym, bool)> = Vec::new();
-        let mut removes: Vec<WmeId> = Vec::new();
+        // Removals are buffered with their timetags (handles are reused).
+        let mut removes: Vec<(WmeId, u64)> = Vec::new();
         let mut context = Vec::new();
         for key in changed {
             if self.is_context_slot(key) {
@@ -543,7 +544,7 @@ impl Agent {
             }
             for (&(v, acc), &w) in &slot.wmes {
                 if !acc && !wanted.contains(&v) {
-                    removes.push(w);
+                    removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
                 }
             }
             for v in want {
@@ -556,7 +557,7 @@ impl Agent {
         // REMOVING lines come first, and its removals are buffered in that order).
         for &key in &context {
             if let Some(w) = self.check_operator_consistency(key) {
-                removes.push(w);
+                removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
             }
         }
         for key in context {
@@ -574,7 +575,7 @@ impl Agent {
             }
             for (&(v, acc), &w) in &slot.wmes {
                 if acc && !want.contains(&v) {
-                    removes.push(w);
+                    removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
                 }
             }
             for v in want {
@@ -611,8 +612,12 @@ impl Agent {
         for &w in &added {
             self.gds_for_new_wme(w);
         }
-        for w in removes.into_iter().rev() {
-            self.remove_slot_wme(w);
+        for (w, tt) in removes.into_iter().rev() {
+            // A WME already gone (with a substate removed above) may have lent its handle
+            // to one just added: only the WME with the timetag seen is removed.
+            if self.wm.get(w).is_some_and(|x| x.timetag == tt) {
+                self.remove_slot_wme(w);
+            }
         }
         self.remove_invalid_gds_goals();
         self.collect_garbage();
