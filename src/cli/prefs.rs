@@ -169,19 +169,8 @@ impl Interpreter {
 
     /// An operator with its names: `O1 (count-items)`.
     fn object_text(&self, o: Sym) -> String {
-        let agent = &self.agent;
-        let text = agent.symbols.text(o);
-        let Some(name) = agent.symbols.find_str("name") else {
-            return text;
-        };
-        let names: Vec<String> = agent
-            .wm
-            .of_id(o)
-            .iter()
-            .filter_map(|w| agent.wm.get(*w))
-            .filter(|w| w.attr == name && !w.acceptable)
-            .map(|w| agent.symbols.text(w.value))
-            .collect();
+        let text = self.agent.symbols.text(o);
+        let names = self.agent.name_values(o);
         if names.is_empty() {
             text
         } else {

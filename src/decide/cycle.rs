@@ -768,20 +768,26 @@ impl Agent {
     }
 
     fn operator_name(&mut self, o: Sym) -> String {
-        let name = self.symbols.str("name");
-        let vals: Vec<String> = self
-            .wm
-            .of_id(o)
-            .iter()
-            .filter_map(|w| self.wm.get(*w))
-            .filter(|w| w.attr == name && !w.acceptable)
-            .map(|w| self.symbols.text(w.value))
-            .collect();
+        let vals = self.name_values(o);
         if vals.is_empty() {
             String::new()
         } else {
             format!("({})", vals.join(" "))
         }
+    }
+
+    /// The `^name` values of an object (operators are printed with them).
+    pub(crate) fn name_values(&self, o: Sym) -> Vec<String> {
+        let Some(name) = self.symbols.find_str("name") else {
+            return Vec::new();
+        };
+        self.wm
+            .of_id(o)
+            .iter()
+            .filter_map(|w| self.wm.get(*w))
+            .filter(|w| w.attr == name && !w.acceptable)
+            .map(|w| self.symbols.text(w.value))
+            .collect()
     }
 
     /// Creates (or keeps) the substate for an impasse at goal `gi` (spec §2, §3e).

@@ -837,40 +837,36 @@ impl Rete {
 
     // ------------------------------------------------------------------ unlinking
 
+    /// Marks a linked join left-unlinked; false if it was unlinked on either side already
+    /// (a join is never unlinked on both sides, Doorenbos §4.3).
+    fn mark_left_unlinked(&mut self, n: NodeId) -> bool {
+        match &mut self.nodes[n as usize].kind {
+            Kind::Join {
+                left_unlinked,
+                right_unlinked,
+                ..
+            } if !*left_unlinked && !*right_unlinked => {
+                *left_unlinked = true;
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// Takes a join out of its parent's children: its alpha memory is empty.
     fn unlink_left(&mut self, n: NodeId) {
-        let parent = self.nodes[n as usize].parent;
-        if let Kind::Join {
-            left_unlinked,
-            right_unlinked,
-            ..
-        } = &mut self.nodes[n as usize].kind
-        {
-            if *left_unlinked || *right_unlinked {
-                return;
-            }
-            *left_unlinked = true;
-        } else {
-            return;
+        if self.mark_left_unlinked(n) {
+            let parent = self.nodes[n as usize].parent;
+            self.nodes[parent as usize].children.retain(|c| *c != n);
         }
-        self.nodes[parent as usize].children.retain(|c| *c != n);
     }
 
     /// `unlink_left` for many joins at once: one pass over each parent's children.
     fn unlink_left_all(&mut self, nodes: &[NodeId]) {
         let mut by_parent: FxHashMap<NodeId, rustc_hash::FxHashSet<NodeId>> = FxHashMap::default();
         for &n in nodes {
-            let parent = self.nodes[n as usize].parent;
-            if let Kind::Join {
-                left_unlinked,
-                right_unlinked,
-                ..
-            } = &mut self.nodes[n as usize].kind
-            {
-                if *left_unlinked || *right_unlinked {
-                    continue;
-                }
-                *left_unlinked = true;
+            if self.mark_left_unlinked(n) {
+                let parent = self.nodes[n as usize].parent;
                 by_parent.entry(parent).or_default().insert(n);
             }
         }
