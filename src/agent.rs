@@ -39,6 +39,8 @@ pub struct Settings {
     pub wait_snc: bool,
     pub trace_level: u8,
     pub warnings: bool,
+    /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too (spec §4).
+    pub learning_trace: u8,
 }
 
 impl Default for Settings {
@@ -53,6 +55,7 @@ impl Default for Settings {
             wait_snc: false,
             trace_level: 1,
             warnings: true,
+            learning_trace: 0,
         }
     }
 }
@@ -139,6 +142,8 @@ pub struct Agent {
     pub input_callback: Option<PhaseCallback>,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
+    /// Chunking's state and counters (spec §4).
+    pub learn: crate::learn::LearnState,
 }
 
 impl Agent {
@@ -165,6 +170,7 @@ impl Agent {
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,
+            learn: crate::learn::LearnState::default(),
         }
     }
 
@@ -284,6 +290,7 @@ impl Agent {
         self.wm.get(w)?;
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
+        self.justification_wme_removed(w, wme.timetag);
         if let Some(goal) = self.decider.gds.remove(&w) {
             self.decider.gds_invalid.push(goal);
         }

@@ -4,6 +4,7 @@ pub mod ast;
 pub mod cli;
 pub mod decide;
 pub mod io;
+pub mod learn;
 pub mod lexer;
 pub mod parser;
 pub mod printer;

@@ -337,6 +337,7 @@ pub fn production_text(p: &Production) -> String {
     for (on, name) in [
         (f.default, "    :default"),
         (f.chunk, "    :chunk"),
+        (f.justification, "    :justification ;# not reloadable"),
         (f.o_support, "    :o-support"),
         (f.i_support, "    :i-support"),
         // The kernel indents :template one space less than the others (observed).

@@ -17,6 +17,8 @@ pub struct Flags {
     pub template: bool,
     pub interrupt: bool,
     pub explain: bool,
+    /// A justification (spec §4): printed, never loaded.
+    pub justification: bool,
 }
 
 #[derive(Debug, Clone, PartialEq)]

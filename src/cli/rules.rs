@@ -161,25 +161,34 @@ impl Interpreter {
                 "Options --operators (-o) and --states (-S) are only valid when printing the stack.",
             ));
         }
-        if parsed.has("all") || parsed.has("user") {
+        if parsed.has("all")
+            || parsed.has("user")
+            || parsed.has("chunks")
+            || parsed.has("defaults")
+            || parsed.has("justifications")
+        {
+            // Newest first, each kind as its option selects (spec §4: chunks, and the live
+            // justifications, which are not in the rule list).
+            let all = parsed.has("all");
             let mut s = String::new();
             for p in self.agent.productions().rev() {
-                s.push_str(&crate::printer::rereadable(&p.name));
-                s.push_str(" \n");
+                let kind_wanted = if p.flags.chunk {
+                    parsed.has("chunks")
+                } else if p.flags.default {
+                    parsed.has("defaults")
+                } else {
+                    parsed.has("user")
+                };
+                if all || kind_wanted {
+                    s.push_str(&crate::printer::rereadable(&p.name));
+                    s.push_str(" \n");
+                }
             }
-            return Ok(s);
-        }
-        if parsed.has("chunks") || parsed.has("justifications") || parsed.has("defaults") {
-            let want_default = parsed.has("defaults");
-            let mut s = String::new();
-            for p in self
-                .agent
-                .productions()
-                .rev()
-                .filter(|p| p.flags.default == want_default && want_default)
-            {
-                s.push_str(&p.name);
-                s.push_str(" \n");
+            if all || parsed.has("justifications") {
+                for j in self.agent.learn.justifications.iter().rev() {
+                    s.push_str(&j.production.name);
+                    s.push_str(" \n");
+                }
             }
             return Ok(s);
         }
@@ -209,6 +218,18 @@ impl Interpreter {
         };
         if let Some(p) = self.agent.production(target) {
             return Ok(format!("{}\n", crate::printer::production_text(p)));
+        }
+        if let Some(j) = self
+            .agent
+            .learn
+            .justifications
+            .iter()
+            .find(|j| j.production.name == *target)
+        {
+            return Ok(format!(
+                "{}\n",
+                crate::printer::production_text(&j.production)
+            ));
         }
         if looks_like_wm_target(target) {
             let depth = match parsed.value("depth") {

@@ -102,7 +102,13 @@ impl Interpreter {
         } else {
             ""
         };
-        Ok(format!("\n\n--> {dc} {rules} {halted}"))
+        // 9.6 adds how many rules the run learned (spec §4, E:t13).
+        let learned = match self.agent.learn.learned_this_run {
+            0 => String::new(),
+            1 => "1 new rule learned.".to_string(),
+            n => format!("{n} new rules learned."),
+        };
+        Ok(format!("\n\n--> {dc} {rules} {learned}{halted}"))
     }
 
     /// Moves the agent's trace output into the event stream.
@@ -149,10 +155,18 @@ impl Interpreter {
     /// `stats`: the counts of spec §6a (timings are not compared).
     pub(super) fn cmd_stats(&mut self) -> CmdResult {
         let d = &self.agent.decider;
+        let (mut defaults, mut chunks) = (0, 0);
+        for p in self.agent.productions() {
+            defaults += usize::from(p.flags.default);
+            chunks += usize::from(p.flags.chunk);
+        }
+        let total = self.agent.production_count();
         Ok(format!(
-            "Soar 9.6 (rusoar) on agent {}\n{} productions\n{} decisions\n{} elaboration cycles\n{} production firings\n{} wme changes\nWM size: {} current\n",
+            "Soar 9.6 (rusoar) on agent {}\n{} productions ({defaults} default, {} user, {chunks} chunks)\n   + {} justifications\n{} decisions\n{} elaboration cycles\n{} production firings\n{} wme changes\nWM size: {} current\n",
             self.agent.name,
-            self.agent.production_count(),
+            total,
+            total - defaults - chunks,
+            self.agent.learn.justifications.len(),
             d.decisions,
             d.e_cycles,
             d.firings,

@@ -310,8 +310,29 @@ impl Interpreter {
             "Trace level 5 enabled: Preferences",
         ];
         let Some(first) = args.first() else {
-            return Ok(trace_listing(self.agent.settings.trace_level));
+            return Ok(trace_listing(
+                self.agent.settings.trace_level,
+                self.agent.settings.learning_trace,
+            ));
         };
+        if matches!(first.as_str(), "-L" | "--learning") {
+            let level = match args.get(1).map(|a| a.parse::<u8>()) {
+                None => 2,
+                Some(Ok(l @ 0..=2)) => l,
+                Some(_) => {
+                    return Err(Diagnostic::error("Learning trace level must be 0, 1 or 2.")
+                        .at(ctx.arg_span(1))
+                        .with_label("levels are 0 to 2"))
+                }
+            };
+            self.agent.settings.learning_trace = level;
+            return Ok(match level {
+                0 => "Printing of chunks and justifications learned disabled.\n",
+                1 => "Now printing only the names of chunks and justifications learned and any chunking issues detected.\n",
+                _ => "Now printing the full chunks and justifications that are learned and any chunking issues detected.\n",
+            }
+            .to_string());
+        }
         if args.len() > 1 {
             return Err(ctx.error("Only non option argument allowed is watch level."));
         }
@@ -509,7 +530,7 @@ fn int_setting(
 
 /// `trace` with no arguments: 9.6's table of trace settings. rusoar keeps one trace level,
 /// so the flags of levels 1-5 follow it and the additional messages are off.
-fn trace_listing(level: u8) -> String {
+fn trace_listing(level: u8, learning: u8) -> String {
     fn header(text: &str, fill: char) -> String {
         let text = format!(" {text} ");
         let left = (60 - text.len()) / 2;
@@ -591,7 +612,11 @@ fn trace_listing(level: u8) -> String {
     s.push_str(&row("Dependency analysis", "off", "-b, --backtracing"));
     s.push_str(&row(
         "Rules learned (verbosity level)",
-        "none (0)",
+        match learning {
+            0 => "none (0)",
+            1 => "rule names (1)",
+            _ => "full rules (2)",
+        },
         "-L, --learning [0-2]",
     ));
     s.push_str(" \n");

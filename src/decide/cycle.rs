@@ -69,6 +69,7 @@ impl Agent {
     /// default stop phase does. Returns (decisions executed, rules fired).
     pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
         self.decider.stop_requested = false;
+        self.learn.learned_this_run = 0;
         if self.decider.goals.is_empty() {
             self.decider.goals.push(Goal {
                 state: self.top.state,
@@ -117,6 +118,8 @@ impl Agent {
     /// Runs a phase; with `one_cycle`, at most one elaboration cycle of the propose or apply
     /// phase, which then resumes where it stopped on the next call.
     fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
+        // max-chunks counts per phase (spec §4).
+        self.learn.chunks_this_phase = 0;
         match phase {
             Phase::Input => {
                 self.run_input_callbacks();
@@ -239,10 +242,17 @@ impl Agent {
         self.matches.assertions = keep;
         // Token ids are reused: resolve retractions to their instantiations before new
         // matches (possibly on a reused id) fire.
-        let retracted: Vec<InstId> = retractions
+        let mut retracted: Vec<InstId> = retractions
             .iter()
             .filter_map(|k| self.decider.inst_by_token.remove(k))
             .collect();
+        // Justifications that lost a WME retract with them (spec §4).
+        for (i, serial) in std::mem::take(&mut self.decider.justification_retractions) {
+            let inst = &self.decider.insts[i as usize];
+            if inst.alive && inst.serial == serial && !retracted.contains(&i) {
+                retracted.push(i);
+            }
+        }
         let mut new_prefs = Vec::new();
         for (p, t) in to_fire {
             // A halt ends the run after this elaboration cycle: the rest of it still fires.
@@ -279,18 +289,17 @@ impl Agent {
             o_support: o_support || prod.flags.o_support,
             prefs: Vec::new(),
             alive: true,
+            serial: 0,
         };
-        // Results (preferences for a higher goal's objects) take their support from what a
-        // justification would test there: a superstate's selected operator gives O
-        // (spec §3c, E:t13, E:t22). Justifications themselves come with issue 5.
-        let result_o = level > 1 && self.tests_superstate_operator(p, t, level);
         if prod.flags.i_support {
             inst.o_support = false;
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
         let mut new_ids: FxHashMap<String, Sym> = FxHashMap::default();
-        for action in &prod.actions {
+        // Substate firings are recorded for backtracing: each preference with its action.
+        let mut made: Vec<(PrefId, usize)> = Vec::new();
+        for (action_index, action) in prod.actions.iter().enumerate() {
             match action {
                 Action::Call(f) => {
                     let args: Option<Vec<Sym>> = f
@@ -332,43 +341,32 @@ impl Agent {
                         value,
                         referent,
                         number,
-                        o_support: if self
-                            .symbols
-                            .id_data(id)
-                            .is_some_and(|d| d.level > 0 && d.level < level)
-                        {
-                            result_o || inst.o_support
-                        } else {
-                            inst.o_support
-                        },
+                        o_support: inst.o_support,
                         inst: Some(inst_id),
                         alive: true,
                         freed: false,
+                        origin: None,
                     };
                     let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);
                     new_prefs.push(pid);
+                    made.push((pid, action_index));
                 }
             }
         }
         self.decider.inst_by_token.insert((p, t), inst_id);
+        let own_prefs = inst.prefs.clone();
         self.decider.insts[inst_id as usize] = inst;
-    }
-
-    /// Did the match test the selected operator of a goal above `level`?
-    fn tests_superstate_operator(&mut self, p: ProdId, t: TokId, level: u32) -> bool {
-        let op = self.operator_sym();
-        self.rete.match_wmes(p, t).into_iter().any(|w| {
-            self.wm.get(w).is_some_and(|wme| {
-                wme.attr == op
-                    && !wme.acceptable
-                    && self.symbols.is_goal(wme.id)
-                    && self
-                        .symbols
-                        .id_data(wme.id)
-                        .is_some_and(|d| d.level < level)
-            })
-        })
+        // Results of a substate firing are learned from at once (spec §4): a justification
+        // or a chunk takes them over.
+        if level >= 2 {
+            if let Some(trace) = self.record_firing(p, t, &prod, level, &new_ids, &made) {
+                let results = self.find_results(&own_prefs, level);
+                if !results.is_empty() {
+                    self.learn_from_results(results, level, &trace, new_prefs);
+                }
+            }
+        }
     }
 
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
@@ -417,11 +415,16 @@ impl Agent {
     fn retract(&mut self, inst_id: InstId) {
         let p = self.decider.insts[inst_id as usize].prod;
         let name = self.production_name(p).to_string();
+        let serial = self.decider.insts[inst_id as usize].serial;
+        if serial != 0 {
+            let o = self.decider.insts[inst_id as usize].o_support;
+            self.forget_justification(serial, o);
+        }
         // An o-supported instantiation, or one that made no preferences, has nothing to
-        // retract: 9.6 prints nothing for it.
+        // retract: 9.6 prints nothing for it, nor for a justification (`trace -j` is off).
         let quiet = {
             let inst = &self.decider.insts[inst_id as usize];
-            inst.o_support || inst.prefs.is_empty()
+            inst.o_support || inst.prefs.is_empty() || serial != 0
         };
         if self.settings.trace_level >= 3 && !quiet {
             self.out(&format!("\nRetracting {name}"));
@@ -1103,6 +1106,7 @@ impl Agent {
         self.matches.retractions.clear();
         self.matches.support.clear();
         self.decider = crate::decide::state::DecideState::new();
+        self.learn.reset_for_init();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         self.top = crate::agent::create_top_state(

@@ -12,7 +12,7 @@ use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
 
 impl Agent {
-    fn sym_level(&self, s: Sym) -> u32 {
+    pub(crate) fn sym_level(&self, s: Sym) -> u32 {
         self.symbols.id_data(s).map_or(0, |d| d.level)
     }
 

@@ -18,6 +18,9 @@ pub struct Instantiation {
     pub o_support: bool,
     pub prefs: Vec<PrefId>,
     pub alive: bool,
+    /// A learned rule's instantiation not matched by the network (a justification): its
+    /// serial in the learner's list; 0 for rule firings.
+    pub serial: u64,
 }
 
 #[derive(Debug, Clone)]
@@ -33,6 +36,9 @@ pub struct Preference {
     pub alive: bool,
     /// On the free list (guards against freeing twice).
     pub freed: bool,
+    /// For a preference made in a substate: the firing and identities that made it, for
+    /// backtracing (spec §4).
+    pub origin: Option<std::sync::Arc<crate::learn::PrefOrigin>>,
 }
 
 /// All preferences for one (id, attr), oldest first (Soar's list read from its tail), and the
@@ -121,6 +127,8 @@ pub struct DecideState {
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
+    /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
+    pub justification_retractions: Vec<(InstId, u64)>,
 }
 
 impl DecideState {
@@ -175,6 +183,7 @@ impl DecideState {
         let inst = &mut self.insts[i as usize];
         inst.alive = false;
         inst.prefs = Vec::new();
+        inst.serial = 0;
         self.free_insts.push(i);
     }
 
@@ -186,6 +195,7 @@ impl DecideState {
         }
         pref.freed = true;
         pref.alive = false;
+        pref.origin = None;
         if let Some(i) = pref.inst.take() {
             let inst = &mut self.insts[i as usize];
             if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {

@@ -1,0 +1,167 @@
+//! Backtracing (spec §4): from each result, through the firings that made the local WMEs it
+//! tested, to the superstate WMEs ("grounds") the reasoning depended on. Identities are
+//! joined where a condition tested what an action made, and a literal tested on such a WME
+//! fixes the identity to that literal (EBC's constraint propagation).
+
+use super::{Ident, InstTrace, PrefOrigin, TraceCond};
+use crate::symbols::Sym;
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::Arc;
+
+/// A superstate WME the result depended on, with the identities its tests had.
+#[derive(Debug, Clone)]
+pub struct Ground {
+    pub cond: TraceCond,
+    pub trace: Arc<InstTrace>,
+}
+
+/// A negated condition (or conjunctive negation) of a backtraced firing.
+#[derive(Debug, Clone)]
+pub struct Negation {
+    pub trace: Arc<InstTrace>,
+    pub cond: usize,
+}
+
+#[derive(Debug, Default)]
+pub struct Backtrace {
+    /// The learning goal's level: WMEs whose id is above it are grounds.
+    pub level: u32,
+    pub grounds: Vec<Ground>,
+    ground_at: FxHashMap<u64, usize>,
+    pub negations: Vec<Negation>,
+    parent: FxHashMap<Ident, Ident>,
+    pub literal: FxHashMap<Ident, Sym>,
+    visited: FxHashSet<*const InstTrace>,
+    /// Firings backtraced (for `chunk stats`).
+    pub firings: usize,
+    /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
+    pub tested_quiescence: bool,
+}
+
+impl Backtrace {
+    pub fn new(level: u32) -> Self {
+        Backtrace {
+            level,
+            ..Default::default()
+        }
+    }
+
+    /// The representative of an identity's joined set.
+    pub fn find(&self, mut i: Ident) -> Ident {
+        while let Some(&p) = self.parent.get(&i) {
+            if p == i {
+                break;
+            }
+            i = p;
+        }
+        i
+    }
+
+    pub fn join(&mut self, a: Ident, b: Ident) {
+        if a == 0 || b == 0 {
+            return;
+        }
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra == rb {
+            return;
+        }
+        // The older identity stays the representative (stable variable names).
+        let (keep, gone) = if ra < rb { (ra, rb) } else { (rb, ra) };
+        self.parent.insert(gone, keep);
+        if let Some(l) = self.literal.remove(&gone) {
+            self.literal.entry(keep).or_insert(l);
+        }
+    }
+
+    /// Backtraces a result preference through the firing that made it.
+    pub fn result(&mut self, origin: &PrefOrigin, quiescence: Sym, t: Sym) {
+        self.firing(&origin.trace, quiescence, t);
+    }
+
+    fn firing(&mut self, trace: &Arc<InstTrace>, quiescence: Sym, t: Sym) {
+        let mut stack = vec![trace.clone()];
+        while let Some(trace) = stack.pop() {
+            if !self.visited.insert(Arc::as_ptr(&trace)) {
+                continue;
+            }
+            self.firings += 1;
+            let mut locals = Vec::new();
+            for c in &trace.conds {
+                if c.level > 0 && c.level < self.level {
+                    self.add_ground(c, &trace);
+                    continue;
+                }
+                if c.wme.attr == quiescence && c.wme.value == t {
+                    self.tested_quiescence = true;
+                }
+                if let Some(origin) = &c.support {
+                    let fields = [c.wme.id, c.wme.attr, c.wme.value];
+                    for ((&tested, &made), field) in c.ids.iter().zip(&origin.ids).zip(fields) {
+                        match (tested, made) {
+                            (0, 0) => {}
+                            // A literal tested on what was made from a variable: the
+                            // chunk can only fire for that literal.
+                            (0, made) => {
+                                let r = self.find(made);
+                                self.literal.entry(r).or_insert(field);
+                            }
+                            (tested, made) => self.join(tested, made),
+                        }
+                    }
+                    locals.push(origin.trace.clone());
+                }
+            }
+            if let Some(prod) = &trace.prod {
+                for (i, c) in prod.conditions.iter().enumerate() {
+                    if !matches!(c, crate::production::Condition::Positive(_)) {
+                        self.negations.push(Negation {
+                            trace: trace.clone(),
+                            cond: i,
+                        });
+                    }
+                }
+            }
+            // Depth first, in condition order.
+            stack.extend(locals.into_iter().rev());
+        }
+    }
+
+    /// Identifiers are always variables, and one identifier is one variable: identities
+    /// that matched the same identifier are joined (so the conditions stay connected).
+    pub fn join_same_identifiers(&mut self, symbols: &crate::symbols::Symbols) {
+        let mut first: FxHashMap<Sym, Ident> = FxHashMap::default();
+        let mut pairs = Vec::new();
+        for g in &self.grounds {
+            let w = g.cond.wme;
+            for (s, i) in [w.id, w.attr, w.value].into_iter().zip(g.cond.ids) {
+                if i != 0 && symbols.is_id(s) {
+                    match first.get(&s) {
+                        Some(&f) => pairs.push((f, i)),
+                        None => {
+                            first.insert(s, i);
+                        }
+                    }
+                }
+            }
+        }
+        for (a, b) in pairs {
+            self.join(a, b);
+        }
+    }
+
+    /// A superstate WME: the same WME tested twice joins the identities of both tests.
+    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>) {
+        if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
+            let ids = self.grounds[g].cond.ids;
+            for (a, b) in ids.into_iter().zip(c.ids) {
+                self.join(a, b);
+            }
+            return;
+        }
+        self.ground_at.insert(c.wme.timetag, self.grounds.len());
+        self.grounds.push(Ground {
+            cond: c.clone(),
+            trace: trace.clone(),
+        });
+    }
+}

@@ -1,0 +1,437 @@
+//! Building the learned rule from a backtrace (spec §4): its conditions are the grounds
+//! (plus the negations on superstate objects the reasoning used), its actions the results.
+//! A chunk gets one variable per joined identity, named after the attribute it first sits
+//! under (`<o1>` for `^operator`), counted per letter; literals stay literals. A
+//! justification keeps the symbols themselves.
+
+use super::backtrace::Backtrace;
+use super::record::equality_var;
+use super::{Ident, InstTrace};
+use crate::agent::Agent;
+use crate::ast::{Constant, Head};
+use crate::decide::procedure::PrefType;
+use crate::decide::state::PrefId;
+use crate::production::{
+    Action, Cond, Condition, Flags, FuncCall, Make, PrefKind, Production, RhsTerm, Term, Test,
+};
+use crate::symbols::{Sym, SymData};
+use rustc_hash::{FxHashMap, FxHashSet};
+
+fn pref_kind(t: PrefType) -> PrefKind {
+    match t {
+        PrefType::Acceptable => PrefKind::Acceptable,
+        PrefType::Reject => PrefKind::Reject,
+        PrefType::Require => PrefKind::Require,
+        PrefType::Prohibit => PrefKind::Prohibit,
+        PrefType::Best => PrefKind::Best,
+        PrefType::Worst => PrefKind::Worst,
+        PrefType::UnaryIndifferent => PrefKind::Indifferent,
+        PrefType::Better => PrefKind::Better,
+        PrefType::Worse => PrefKind::Worse,
+        PrefType::BinaryIndifferent => PrefKind::BinaryIndifferent,
+        PrefType::NumericIndifferent => PrefKind::NumericIndifferent,
+    }
+}
+
+/// Variable names for a chunk: one per identity set, `<letter><n>` counted per letter.
+struct Namer {
+    variablize: bool,
+    by_ident: FxHashMap<Ident, String>,
+    by_sym: FxHashMap<Sym, String>,
+    counters: FxHashMap<char, u32>,
+}
+
+impl Namer {
+    fn fresh(&mut self, letter: char) -> String {
+        let n = self.counters.entry(letter).or_insert(0);
+        *n += 1;
+        format!("<{letter}{n}>")
+    }
+}
+
+/// The letter a variable is named by: the attribute's first letter for a value, the
+/// identifier's own letter otherwise.
+fn letter_for(agent: &Agent, sym: Sym, under: Option<Sym>) -> char {
+    if let Some(SymData::Str(s)) = under.map(|a| agent.symbols.get(a)) {
+        if let Some(c) = s.chars().next().filter(char::is_ascii_alphabetic) {
+            return c.to_ascii_lowercase();
+        }
+    }
+    match agent.symbols.get(sym) {
+        SymData::Id(d) => (d.letter as char).to_ascii_lowercase(),
+        _ => 'v',
+    }
+}
+
+fn constant_of(agent: &Agent, s: Sym) -> Constant {
+    match agent.symbols.get(s) {
+        SymData::Str(x) => Constant::Str(x.to_string()),
+        SymData::Int(i) => Constant::Int(*i),
+        SymData::Float(f) => Constant::Float(*f),
+        SymData::Id(_) => Constant::Str(agent.symbols.text(s)),
+    }
+}
+
+struct Builder<'a> {
+    agent: &'a Agent,
+    bt: &'a Backtrace,
+    namer: Namer,
+    /// Identity sets that some positive condition binds (only these may appear elsewhere).
+    bound: FxHashSet<Ident>,
+    /// The identity set each identifier of the conditions has (an action naming the same
+    /// identifier through another identity gets the same variable).
+    ground_ids: FxHashMap<Sym, Ident>,
+}
+
+impl Builder<'_> {
+    /// The term for a symbol seen with an identity.
+    fn term(&mut self, sym: Sym, ident: Ident, under: Option<Sym>) -> Term {
+        let is_id = self.agent.symbols.is_id(sym);
+        if !self.namer.variablize {
+            return if is_id {
+                // Justifications print their identifiers bare (`(state S1 ^operator O1)`).
+                Term::Var(self.agent.symbols.text(sym))
+            } else {
+                Term::Const(constant_of(self.agent, sym))
+            };
+        }
+        let mut root = self.bt.find(ident);
+        if is_id && !self.bound.contains(&root) {
+            if let Some(&r) = self.ground_ids.get(&sym) {
+                root = r;
+            }
+        }
+        if root != 0 {
+            if let Some(&l) = self.bt.literal.get(&root) {
+                return Term::Const(constant_of(self.agent, l));
+            }
+            if let Some(n) = self.namer.by_ident.get(&root) {
+                return Term::Var(n.clone());
+            }
+            let n = self.namer.fresh(letter_for(self.agent, sym, under));
+            self.namer.by_ident.insert(root, n.clone());
+            return Term::Var(n);
+        }
+        if is_id {
+            if let Some(n) = self.namer.by_sym.get(&sym) {
+                return Term::Var(n.clone());
+            }
+            let n = self.namer.fresh(letter_for(self.agent, sym, under));
+            self.namer.by_sym.insert(sym, n.clone());
+            return Term::Var(n);
+        }
+        Term::Const(constant_of(self.agent, sym))
+    }
+
+    /// A variable of a rule's test, as the chunk names it; `None` when the chunk cannot
+    /// test it (its identity is not bound by the chunk's conditions).
+    fn var_term(&mut self, trace: &InstTrace, v: &str) -> Option<Term> {
+        let &(ident, sym) = trace.vars.get(v)?;
+        if !self.namer.variablize {
+            return Some(self.term(sym, ident, None));
+        }
+        let root = self.bt.find(ident);
+        if self.bt.literal.contains_key(&root) || self.bound.contains(&root) {
+            return Some(self.term(sym, ident, None));
+        }
+        if self.agent.symbols.is_id(sym) {
+            None
+        } else {
+            Some(Term::Const(constant_of(self.agent, sym)))
+        }
+    }
+
+    /// The non-equality tests of a rule's test, carried over to the chunk.
+    fn extra_tests(&mut self, trace: &InstTrace, t: &Test, out: &mut Vec<Test>) {
+        match t {
+            Test::Relational(r, Term::Var(v)) => {
+                if let Some(term) = self.var_term(trace, v) {
+                    out.push(Test::Relational(*r, term));
+                }
+            }
+            Test::Relational(_, Term::Const(_)) | Test::Disjunction(_) => out.push(t.clone()),
+            Test::Conjunction(ts) => ts.iter().for_each(|x| self.extra_tests(trace, x, out)),
+            Test::Equal(_) => {}
+        }
+    }
+
+    fn field_test(&mut self, main: Term, extra: Vec<Test>) -> Test {
+        if extra.is_empty() {
+            Test::Equal(main)
+        } else {
+            let mut ts = extra;
+            ts.push(Test::Equal(main));
+            Test::Conjunction(ts)
+        }
+    }
+
+    /// A negated condition of a backtraced firing, translated; `None` when it tests
+    /// something the chunk cannot name (local structure).
+    fn negation(
+        &mut self,
+        trace: &InstTrace,
+        c: &Condition,
+        locals: &mut FxHashMap<String, String>,
+    ) -> Option<Condition> {
+        match c {
+            Condition::Positive(x) | Condition::Negative(x) => {
+                let mut fields = Vec::with_capacity(3);
+                for t in [&x.id, &x.attr, &x.value] {
+                    fields.push(self.negated_test(trace, t, locals)?);
+                }
+                let value = fields.pop()?;
+                let attr = fields.pop()?;
+                let id = fields.pop()?;
+                let cond = Cond {
+                    id,
+                    attr,
+                    value,
+                    acceptable: x.acceptable,
+                    goal: Head::None,
+                    span: x.span,
+                };
+                Some(match c {
+                    Condition::Positive(_) => Condition::Positive(cond),
+                    _ => Condition::Negative(cond),
+                })
+            }
+            Condition::Ncc(cs) => {
+                let mut out = Vec::with_capacity(cs.len());
+                for x in cs {
+                    out.push(self.negation(trace, x, locals)?);
+                }
+                Some(Condition::Ncc(out))
+            }
+        }
+    }
+
+    fn negated_test(
+        &mut self,
+        trace: &InstTrace,
+        t: &Test,
+        locals: &mut FxHashMap<String, String>,
+    ) -> Option<Test> {
+        let term = |b: &mut Self, term: &Term, locals: &mut FxHashMap<String, String>| match term {
+            Term::Var(v) if trace.vars.contains_key(v) => b.var_term(trace, v),
+            Term::Var(v) => Some(Term::Var(match locals.get(v) {
+                Some(n) => n.clone(),
+                None => {
+                    let letter = v
+                        .chars()
+                        .nth(1)
+                        .filter(char::is_ascii_alphabetic)
+                        .unwrap_or('v');
+                    let n = b.namer.fresh(letter.to_ascii_lowercase());
+                    locals.insert(v.clone(), n.clone());
+                    n
+                }
+            })),
+            Term::Const(c) => Some(Term::Const(c.clone())),
+        };
+        Some(match t {
+            Test::Equal(x) => Test::Equal(term(self, x, locals)?),
+            Test::Relational(r, x) => Test::Relational(*r, term(self, x, locals)?),
+            Test::Disjunction(cs) => Test::Disjunction(cs.clone()),
+            Test::Conjunction(ts) => {
+                let mut out = Vec::with_capacity(ts.len());
+                for x in ts {
+                    out.push(self.negated_test(trace, x, locals)?);
+                }
+                Test::Conjunction(out)
+            }
+        })
+    }
+
+    /// An action's term: a function call of the original action is rebuilt over the
+    /// chunk's variables; anything else is the symbol the result holds.
+    fn action_term(
+        &mut self,
+        trace: Option<&InstTrace>,
+        orig: Option<&RhsTerm>,
+        sym: Sym,
+        ident: Ident,
+        under: Option<Sym>,
+    ) -> RhsTerm {
+        if let (Some(trace), Some(RhsTerm::Call(f)), true) = (trace, orig, self.namer.variablize) {
+            if let Some(call) = self.call(trace, f) {
+                return RhsTerm::Call(call);
+            }
+        }
+        match self.term(sym, ident, under) {
+            Term::Var(v) => RhsTerm::Var(v),
+            Term::Const(c) => RhsTerm::Const(c),
+        }
+    }
+
+    fn call(&mut self, trace: &InstTrace, f: &FuncCall) -> Option<FuncCall> {
+        let mut args = Vec::with_capacity(f.args.len());
+        for a in &f.args {
+            args.push(match a {
+                RhsTerm::Var(v) => match self.var_term(trace, v)? {
+                    Term::Var(x) => RhsTerm::Var(x),
+                    Term::Const(c) => RhsTerm::Const(c),
+                },
+                RhsTerm::Const(c) => RhsTerm::Const(c.clone()),
+                RhsTerm::Call(g) => RhsTerm::Call(self.call(trace, g)?),
+            });
+        }
+        Some(FuncCall {
+            name: f.name.clone(),
+            args,
+            span: f.span,
+        })
+    }
+}
+
+impl Agent {
+    /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
+    pub(crate) fn build_learned_rule(
+        &self,
+        bt: &Backtrace,
+        results: &[PrefId],
+        name: String,
+        variablize: bool,
+    ) -> Production {
+        let mut b = Builder {
+            agent: self,
+            bt,
+            namer: Namer {
+                variablize,
+                by_ident: FxHashMap::default(),
+                by_sym: FxHashMap::default(),
+                counters: FxHashMap::default(),
+            },
+            bound: FxHashSet::default(),
+            ground_ids: FxHashMap::default(),
+        };
+        for g in &bt.grounds {
+            let w = g.cond.wme;
+            for (&i, s) in g.cond.ids.iter().zip([w.id, w.attr, w.value]) {
+                if i != 0 {
+                    b.bound.insert(bt.find(i));
+                    if self.symbols.is_id(s) {
+                        b.ground_ids.entry(s).or_insert(bt.find(i));
+                    }
+                }
+            }
+        }
+        let mut conditions = Vec::new();
+        let mut goal_tested: FxHashSet<Sym> = FxHashSet::default();
+        for g in &bt.grounds {
+            let w = g.cond.wme;
+            let orig =
+                g.cond
+                    .cond
+                    .and_then(|ci| match g.trace.prod.as_ref()?.conditions.get(ci)? {
+                        Condition::Positive(c) => Some(c.clone()),
+                        _ => None,
+                    });
+            let id = b.term(w.id, g.cond.ids[0], None);
+            let attr = b.term(w.attr, g.cond.ids[1], None);
+            let value = b.term(w.value, g.cond.ids[2], Some(w.attr));
+            let mut tests = [Vec::new(), Vec::new(), Vec::new()];
+            if let Some(o) = &orig {
+                for (k, t) in [&o.id, &o.attr, &o.value].into_iter().enumerate() {
+                    b.extra_tests(&g.trace, t, &mut tests[k]);
+                }
+            }
+            let [ti, ta, tv] = tests;
+            let goal = if self.symbols.is_goal(w.id) && goal_tested.insert(w.id) {
+                Head::State
+            } else {
+                Head::None
+            };
+            conditions.push(Condition::Positive(Cond {
+                id: b.field_test(id, ti),
+                attr: b.field_test(attr, ta),
+                value: b.field_test(value, tv),
+                acceptable: w.acceptable,
+                goal,
+                span: orig.map(|o| o.span).unwrap_or_default(),
+            }));
+        }
+        let level = bt.level;
+        for n in &bt.negations {
+            let Some(prod) = n.trace.prod.clone() else {
+                continue;
+            };
+            let Some(c) = prod.conditions.get(n.cond) else {
+                continue;
+            };
+            // Only negations about superstate objects belong to the rule.
+            let first = match c {
+                Condition::Negative(x) | Condition::Positive(x) => Some(x),
+                Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
+                    Condition::Positive(x) | Condition::Negative(x) => Some(x),
+                    _ => None,
+                }),
+            };
+            let id_level = first
+                .and_then(|x| equality_var(&x.id))
+                .and_then(|v| n.trace.vars.get(v))
+                .and_then(|&(_, s)| self.symbols.id_data(s))
+                .map_or(u32::MAX, |d| d.level);
+            if id_level == 0 || id_level >= level {
+                continue;
+            }
+            let mut locals = FxHashMap::default();
+            if let Some(t) = b.negation(&n.trace, c, &mut locals) {
+                if !conditions.contains(&t) {
+                    conditions.push(t);
+                }
+            }
+        }
+        let mut actions = Vec::new();
+        for &r in results {
+            let p = self.decider.prefs[r as usize].clone();
+            let origin = p.origin.clone();
+            let ids = origin.as_ref().map_or([0; 4], |o| o.ids);
+            let make = origin.as_ref().and_then(|o| {
+                let prod = o.trace.prod.as_ref()?;
+                match prod.actions.get(o.action?)? {
+                    Action::Make(m) => Some(m.clone()),
+                    _ => None,
+                }
+            });
+            let trace = origin.as_ref().map(|o| &*o.trace);
+            let id = b.action_term(trace, make.as_ref().map(|m| &m.id), p.id, ids[0], None);
+            let attr = b.action_term(trace, make.as_ref().map(|m| &m.attr), p.attr, ids[1], None);
+            let value = b.action_term(
+                trace,
+                make.as_ref().map(|m| &m.value),
+                p.value,
+                ids[2],
+                Some(p.attr),
+            );
+            let referent = p.referent.map(|s| {
+                b.action_term(
+                    trace,
+                    make.as_ref().and_then(|m| m.referent.as_ref()),
+                    s,
+                    ids[3],
+                    None,
+                )
+            });
+            actions.push(Action::Make(Box::new(Make {
+                id,
+                attr,
+                value,
+                pref: pref_kind(p.kind),
+                referent,
+                span: make.map(|m| m.span).unwrap_or_default(),
+            })));
+        }
+        Production {
+            name,
+            doc: None,
+            flags: Flags {
+                chunk: variablize,
+                justification: !variablize,
+                ..Flags::default()
+            },
+            conditions,
+            actions,
+            span: Default::default(),
+        }
+    }
+}

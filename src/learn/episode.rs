@@ -1,0 +1,450 @@
+//! One learning episode (spec §4): a substate firing made results; backtrace them, build a
+//! chunk (when learning is on for that state) or a justification, and give the results to
+//! that rule's instantiation, whose support they take (spec §3c, last row). A result that
+//! is still a result one level up (a level-3 firing returning to the top state) is learned
+//! again from that instantiation, as 9.6 does (`chunkx2*...`, E:c4).
+
+use super::backtrace::Backtrace;
+use super::{InstTrace, Justification, PrefOrigin, TraceCond};
+use crate::agent::{Added, Agent, LearnMode};
+use crate::decide::procedure::PrefType;
+use crate::decide::state::{ImpasseKind, InstId, Instantiation, PrefId};
+use crate::production::Production;
+use crate::rete::{ProdId, TokId};
+use crate::symbols::Sym;
+use rustc_hash::FxHashSet;
+use std::sync::Arc;
+
+/// A rule name's base and generation: `chunkx2*foo*t6-2` was learned from a chunk of
+/// `foo`; a user rule is its own base.
+pub(crate) fn chunk_base(name: &str, is_chunk: bool) -> (String, u32) {
+    if !is_chunk {
+        return (name.to_string(), 0);
+    }
+    let (gen, rest) = if let Some(r) = name.strip_prefix("chunk*") {
+        (1, r)
+    } else if let Some(r) = name.strip_prefix("chunkx") {
+        let digits: String = r.chars().take_while(char::is_ascii_digit).collect();
+        let g = digits.parse().unwrap_or(2);
+        (g, r[digits.len()..].trim_start_matches('*'))
+    } else {
+        return (name.to_string(), 0);
+    };
+    // Drop `*t<...>` and an impasse suffix before it.
+    let mut parts: Vec<&str> = rest.split('*').collect();
+    if parts.last().is_some_and(|p| p.starts_with('t')) {
+        parts.pop();
+    }
+    if parts.last().is_some_and(|p| {
+        matches!(
+            *p,
+            "Tie" | "Conflict" | "Failure" | "OpNoChange" | "StateNoChange"
+        )
+    }) {
+        parts.pop();
+    }
+    (parts.join("*"), gen)
+}
+
+impl Agent {
+    /// The results among a firing's preferences (spec §4): those for objects of a higher
+    /// level, and everything on new objects they link up, which move up to that level.
+    pub(crate) fn find_results(&mut self, made: &[PrefId], level: u32) -> Vec<PrefId> {
+        let mut queue: Vec<PrefId> = made
+            .iter()
+            .copied()
+            .filter(|&p| {
+                let l = self.sym_level(self.decider.prefs[p as usize].id);
+                l > 0 && l < level
+            })
+            .collect();
+        let mut seen: FxHashSet<PrefId> = FxHashSet::default();
+        let mut results = Vec::new();
+        let mut i = 0;
+        while i < queue.len() {
+            let r = queue[i];
+            i += 1;
+            if !seen.insert(r) {
+                continue;
+            }
+            results.push(r);
+            let p = &self.decider.prefs[r as usize];
+            let target = self.sym_level(p.id);
+            let linked: Vec<Sym> = [Some(p.value), p.referent].into_iter().flatten().collect();
+            for x in linked {
+                for y in self.promote(x, target) {
+                    queue.extend(
+                        made.iter()
+                            .copied()
+                            .filter(|&q| self.decider.prefs[q as usize].id == y),
+                    );
+                    let mut on_y: Vec<(Sym, Sym)> = self
+                        .decider
+                        .slots
+                        .keys()
+                        .filter(|k| k.0 == y)
+                        .copied()
+                        .collect();
+                    on_y.sort();
+                    for k in on_y {
+                        if let Some(slot) = self.decider.slots.get(&k) {
+                            queue.extend(slot.prefs.iter().copied());
+                        }
+                    }
+                }
+            }
+        }
+        results
+    }
+
+    /// Moves an identifier (and what hangs off it) up to `level`; returns those moved.
+    fn promote(&mut self, x: Sym, level: u32) -> Vec<Sym> {
+        let mut moved = Vec::new();
+        let mut stack = vec![x];
+        while let Some(y) = stack.pop() {
+            match self.symbols.id_data_mut(y) {
+                Some(d) if d.level > level && !d.is_goal => d.level = level,
+                _ => continue,
+            }
+            moved.push(y);
+            for &w in self.wm.of_id(y) {
+                if let Some(wme) = self.wm.get(w) {
+                    if self.symbols.is_id(wme.value) {
+                        stack.push(wme.value);
+                    }
+                }
+            }
+        }
+        moved
+    }
+
+    /// Learns from the results of a firing at `level` whose trace is `source`.
+    pub(crate) fn learn_from_results(
+        &mut self,
+        results: Vec<PrefId>,
+        level: u32,
+        source: &InstTrace,
+        new_prefs: &mut Vec<PrefId>,
+    ) {
+        let quiescence = self.symbols.str("quiescence");
+        let t = self.symbols.str("t");
+        let mut bt = Backtrace::new(level);
+        for &r in &results {
+            if let Some(o) = self.decider.prefs[r as usize].origin.clone() {
+                bt.result(&o, quiescence, t);
+            }
+        }
+        if bt.grounds.is_empty() {
+            // No superstate knowledge tested: nothing to learn (9.6 skips it too).
+            return;
+        }
+        bt.join_same_identifiers(&self.symbols);
+        let goal = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.level == level)
+            .map(|g| g.state);
+        let want_chunk = match self.settings.learn {
+            LearnMode::Always => true,
+            LearnMode::Never => false,
+            LearnMode::Only => goal.is_some_and(|g| self.learn.force_learn.contains(&g)),
+            LearnMode::Except => !goal.is_some_and(|g| self.learn.dont_learn.contains(&g)),
+        };
+        let mut chunk: Option<(ProdId, Arc<Production>)> = None;
+        if want_chunk && !bt.tested_quiescence {
+            if self.learn.chunks_this_phase >= self.settings.max_chunks {
+                if self.settings.warnings {
+                    self.output.push_str(
+                        "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
+                    );
+                }
+            } else {
+                let name = self.chunk_name(source, level);
+                let prod = self.build_learned_rule(&bt, &results, name.clone(), true);
+                match self.add_production(prod) {
+                    Added::Duplicate { .. } => self.learn.duplicates += 1,
+                    _ => {
+                        self.learn.chunks_learned += 1;
+                        self.learn.learned_this_run += 1;
+                        self.learn.chunks_this_phase += 1;
+                        if let (Some(l), Some(p)) = (self.loaded(&name), self.production_arc(&name))
+                        {
+                            chunk = Some((l.id, p));
+                        }
+                        self.print_learned(&name);
+                    }
+                }
+            }
+        }
+        let ground_wmes: Vec<_> = bt.grounds.iter().map(|g| g.cond.wme_id).collect();
+        let owner_level = bt.grounds.iter().map(|g| g.cond.level).max().unwrap_or(1);
+        let refracted = chunk
+            .as_ref()
+            .and_then(|(pid, _)| self.take_refracted_match(*pid, &ground_wmes));
+        let (inst_id, o_support, name) = match (&chunk, refracted) {
+            (Some((pid, prod)), Some(tok)) => {
+                let o = crate::support::match_support(self, *pid, tok).o_support;
+                let inst = Instantiation {
+                    prod: *pid,
+                    token: tok,
+                    goal: crate::support::match_goal(self, *pid, tok),
+                    o_support: o,
+                    prefs: Vec::new(),
+                    alive: true,
+                    serial: 0,
+                };
+                let id = self.decider.alloc_inst(inst);
+                self.decider.inst_by_token.insert((*pid, tok), id);
+                (id, o, prod.name.clone())
+            }
+            _ => {
+                // A justification: named unless a chunk was learned (and only failed to
+                // match at once).
+                let named = chunk.is_none();
+                let o = self.justification_support(&bt, &results);
+                let name = if named {
+                    self.learn.justification_counter += 2;
+                    format!("justify{}", self.learn.justification_counter - 1)
+                } else {
+                    chunk.as_ref().map(|c| c.1.name.clone()).unwrap_or_default()
+                };
+                let id = self.add_justification(&bt, &results, &name, named, o);
+                (id, o, name)
+            }
+        };
+        // The results' copies, owned by the learned rule's instantiation (the originals
+        // stay with the substate's firing, as 9.6 lists both, E:c3).
+        let trace = Arc::new(InstTrace {
+            name: name.clone(),
+            prod: None,
+            level: owner_level,
+            conds: bt
+                .grounds
+                .iter()
+                .map(|g| TraceCond {
+                    ids: g.cond.ids.map(|i| bt.find(i)),
+                    cond: None,
+                    ..g.cond.clone()
+                })
+                .collect(),
+            vars: Default::default(),
+            base: source.base.clone(),
+            generation: source.generation + u32::from(chunk.is_some()),
+        });
+        let mut clones = Vec::with_capacity(results.len());
+        for &r in &results {
+            let mut p = self.decider.prefs[r as usize].clone();
+            let ids = p
+                .origin
+                .as_ref()
+                .map_or([0; 4], |o| o.ids.map(|i| bt.find(i)));
+            p.o_support = o_support;
+            p.inst = Some(inst_id);
+            p.alive = true;
+            p.freed = false;
+            p.origin = Some(Arc::new(PrefOrigin {
+                trace: trace.clone(),
+                ids,
+                action: None,
+            }));
+            let pid = self.decider.alloc_pref(p);
+            self.decider.insts[inst_id as usize].prefs.push(pid);
+            new_prefs.push(pid);
+            clones.push(pid);
+        }
+        // Still results one level up: learn again from this instantiation.
+        if owner_level >= 2 {
+            let again = self.find_results(&clones, owner_level);
+            if !again.is_empty() {
+                self.learn_from_results(again, owner_level, &trace, new_prefs);
+            }
+        }
+    }
+
+    /// `chunk*<rule>*[<impasse>*]t[<init+1>-]<dc>-<n>` (spec §4, E:t13, E:c4).
+    fn chunk_name(&mut self, source: &InstTrace, level: u32) -> String {
+        let dc = self.decider.d_cycle_count;
+        if self.learn.chunk_name_dc != dc {
+            self.learn.chunk_name_dc = dc;
+            self.learn.chunk_name_count = 0;
+        }
+        self.learn.chunk_name_count += 1;
+        let prefix = match source.generation {
+            0 => "chunk".to_string(),
+            g => format!("chunkx{}", g + 1),
+        };
+        let suffix = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.level + 1 == level)
+            .and_then(|g| g.impasse)
+            .map(|(kind, on_op)| match kind {
+                ImpasseKind::Tie => "Tie*",
+                ImpasseKind::Conflict => "Conflict*",
+                ImpasseKind::ConstraintFailure => "Failure*",
+                ImpasseKind::NoChange if on_op => "OpNoChange*",
+                ImpasseKind::NoChange => "StateNoChange*",
+            })
+            .unwrap_or("");
+        let init = if self.learn.init_count > 0 {
+            format!("{}-", self.learn.init_count + 1)
+        } else {
+            String::new()
+        };
+        let name = format!(
+            "{prefix}*{}*{suffix}t{init}{dc}-{}",
+            source.base, self.learn.chunk_name_count
+        );
+        if self.productions_contains(&name) {
+            format!("{name}-{}", self.learn.chunks_learned)
+        } else {
+            name
+        }
+    }
+
+    fn productions_contains(&self, name: &str) -> bool {
+        self.loaded(name).is_some()
+    }
+
+    /// The new chunk's match on the very WMEs the result came from: it must not fire (the
+    /// results already exist), so it is taken off the match set.
+    fn take_refracted_match(&mut self, pid: ProdId, grounds: &[crate::wm::WmeId]) -> Option<TokId> {
+        let mut want: Vec<_> = grounds.to_vec();
+        want.sort();
+        want.dedup();
+        let pos = self.matches.assertions.iter().position(|&(p, t)| {
+            if p != pid {
+                return false;
+            }
+            let mut got = self.rete.match_wmes(p, t);
+            got.sort();
+            got.dedup();
+            got == want
+        })?;
+        let (p, t) = self.matches.assertions.remove(pos);
+        self.matches.support.remove(&(p, t));
+        Some(t)
+    }
+
+    /// Spec §3c applied to a justification's conditions: it tests the selected operator of
+    /// the lowest goal it tests, and makes something other than that operator.
+    fn justification_support(&mut self, bt: &Backtrace, results: &[PrefId]) -> bool {
+        let op = self.symbols.str("operator");
+        let lowest = bt
+            .grounds
+            .iter()
+            .map(|g| g.cond.wme.id)
+            .filter(|&s| self.symbols.is_goal(s))
+            .max_by_key(|&s| self.sym_level(s));
+        let Some(goal) = lowest else { return false };
+        let Some(selected) = bt
+            .grounds
+            .iter()
+            .find(|g| g.cond.wme.id == goal && g.cond.wme.attr == op && !g.cond.wme.acceptable)
+            .map(|g| g.cond.wme.value)
+        else {
+            return false;
+        };
+        let prefs: Vec<_> = results
+            .iter()
+            .map(|&r| self.decider.prefs[r as usize].clone())
+            .collect();
+        if prefs
+            .iter()
+            .any(|p| p.attr == op && p.kind == PrefType::Acceptable && self.symbols.is_goal(p.id))
+        {
+            return false;
+        }
+        let applies = prefs.iter().any(|p| p.id != selected);
+        let elaborates = prefs.iter().any(|p| p.id == selected);
+        applies && !elaborates
+    }
+
+    /// An instantiation for learned results that the network does not hold: it retracts
+    /// when one of its WMEs goes (spec §4, justifications).
+    fn add_justification(
+        &mut self,
+        bt: &Backtrace,
+        results: &[PrefId],
+        name: &str,
+        named: bool,
+        o_support: bool,
+    ) -> InstId {
+        self.learn.next_serial += 1;
+        let serial = self.learn.next_serial;
+        let inst = Instantiation {
+            prod: ProdId(u32::MAX),
+            token: 0,
+            goal: None,
+            o_support,
+            prefs: Vec::new(),
+            alive: true,
+            serial,
+        };
+        let id = self.decider.alloc_inst(inst);
+        for g in &bt.grounds {
+            let key = (g.cond.wme_id, g.cond.wme.timetag);
+            if self.wm.get(key.0).is_some_and(|w| w.timetag == key.1) {
+                self.learn
+                    .justified_by_wme
+                    .entry(key)
+                    .or_default()
+                    .push((id, serial));
+            } else {
+                self.decider.justification_retractions.push((id, serial));
+            }
+        }
+        if named {
+            self.learn.justifications_learned += 1;
+            let prod = self.build_learned_rule(bt, results, name.to_string(), false);
+            if self.settings.learning_trace >= 2 {
+                self.output.push_str(&format!(
+                    "\n\nLearning new rule {name}\n\n{}\n",
+                    crate::printer::production_text(&prod).trim_end()
+                ));
+            }
+            self.learn.justifications.push(Justification {
+                production: Arc::new(prod),
+                inst: id,
+                serial,
+            });
+        }
+        id
+    }
+
+    /// `trace -L 1` prints the new rule's name, `-L 2` the rule too.
+    fn print_learned(&mut self, name: &str) {
+        match self.settings.learning_trace {
+            0 => {}
+            1 => self
+                .output
+                .push_str(&format!("\n\nLearning new rule {name}\n")),
+            _ => {
+                if let Some(p) = self.production(name) {
+                    let text = crate::printer::production_text(p);
+                    self.output.push_str(&format!(
+                        "\n\nLearning new rule {name}\n\n{}\n",
+                        text.trim_end()
+                    ));
+                }
+            }
+        }
+    }
+
+    /// A justification's instantiation lost a WME: its retraction is queued.
+    pub(crate) fn justification_wme_removed(&mut self, w: crate::wm::WmeId, timetag: u64) {
+        if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
+            self.decider.justification_retractions.extend(list);
+        }
+    }
+
+    /// A justification retracted: it leaves the list unless o-supported results keep it
+    /// (9.6 keeps it while its preferences live).
+    pub(crate) fn forget_justification(&mut self, serial: u64, o_support: bool) {
+        if !o_support {
+            self.learn.justifications.retain(|j| j.serial != serial);
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Learning from substate results (spec §4; issue 5): what a substate firing records so it
+//! can be backtraced later, the detection of results, and the justifications and chunks
+//! built from them. `backtrace.rs` walks from a result to the superstate WMEs it depended
+//! on, `build.rs` turns that into a rule.
+
+mod backtrace;
+mod build;
+mod episode;
+mod record;
+
+use crate::production::Production;
+use crate::symbols::Sym;
+use crate::wm::{Wme, WmeId};
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+
+pub use backtrace::Backtrace;
+
+/// An identity (EBC): one variable of one instantiation. Identities that backtracing shows
+/// to be the same thing are joined, and each joined set becomes one variable of a chunk.
+/// 0 means "no identity": the rule tested or made a literal there.
+pub type Ident = u64;
+
+/// One positive condition of a recorded firing.
+#[derive(Debug, Clone)]
+pub struct TraceCond {
+    pub wme: Wme,
+    pub wme_id: WmeId,
+    /// The level of the WME's identifier when it matched: below the learning goal's level
+    /// means superstate knowledge (a chunk condition), otherwise local to the substate.
+    pub level: u32,
+    /// The identities of the condition's id, attribute and value tests.
+    pub ids: [Ident; 3],
+    /// Index of the condition in the rule (for its relational tests), when there is a rule.
+    pub cond: Option<usize>,
+    /// For a local WME: the preference that made it, so backtracing can go on through it.
+    pub support: Option<Arc<PrefOrigin>>,
+}
+
+/// What a firing in a substate looked like, kept as long as its preferences need it (the
+/// instantiation itself may retract before a later result backtraces through it).
+#[derive(Debug)]
+pub struct InstTrace {
+    pub name: String,
+    /// The rule fired (none for a justification).
+    pub prod: Option<Arc<Production>>,
+    pub level: u32,
+    pub conds: Vec<TraceCond>,
+    /// Each variable of the rule: its identity and what it was bound to (or made).
+    pub vars: FxHashMap<String, (Ident, Sym)>,
+    /// The user rule at the origin of a chunk, and how many learning steps away it is
+    /// (`chunk*r*...` is 1, `chunkx2*r*...` 2): names of chunks learned from this firing.
+    pub base: String,
+    pub generation: u32,
+}
+
+/// Where a preference came from: the firing and the identities of its fields.
+#[derive(Debug)]
+pub struct PrefOrigin {
+    pub trace: Arc<InstTrace>,
+    /// Identities of the id, attribute, value and referent.
+    pub ids: [Ident; 4],
+    /// The make action of `trace.prod` that made it (for RHS function calls in chunks).
+    pub action: Option<usize>,
+}
+
+/// A justification alive in preference memory (`print --justifications`).
+#[derive(Debug, Clone)]
+pub struct Justification {
+    pub production: Arc<Production>,
+    /// Its instantiation, and the serial that tells it from a reused slot.
+    pub inst: u32,
+    pub serial: u64,
+}
+
+/// Learning's counters and state that survive `init-soar` (chunks do) and those that do not.
+#[derive(Debug, Default)]
+pub struct LearnState {
+    pub next_ident: Ident,
+    /// Chunks learned over the agent's life (names and `stats`).
+    pub chunks_learned: u64,
+    /// The count used in chunk names (`t<dc>-<n>`).
+    pub chunk_name_count: u64,
+    pub chunk_name_dc: u64,
+    /// The justification name counter (incremented twice per name, E:t22).
+    pub justification_counter: u64,
+    pub justifications_learned: u64,
+    /// Chunks learned during the current `run` (for its summary line).
+    pub learned_this_run: u64,
+    /// Chunks learned in the current phase (max-chunks is per phase, spec §4).
+    pub chunks_this_phase: i64,
+    pub duplicates: u64,
+    /// `init-soar` calls so far (chunk names after one carry the count).
+    pub init_count: u64,
+    /// States marked by `force-learn` / `dont-learn` (for `chunk only` / `except`).
+    pub force_learn: rustc_hash::FxHashSet<Sym>,
+    pub dont_learn: rustc_hash::FxHashSet<Sym>,
+    /// Live justifications, by serial.
+    pub justifications: Vec<Justification>,
+    /// The justifications that test each WME (by handle and timetag): a removal retracts them.
+    pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(u32, u64)>>,
+    pub next_serial: u64,
+}
+
+impl LearnState {
+    /// `init-soar`: justifications go with working memory; chunks and their counters stay.
+    pub fn reset_for_init(&mut self) {
+        self.init_count += 1;
+        self.justification_counter = 0;
+        self.justifications.clear();
+        self.justified_by_wme.clear();
+        self.force_learn.clear();
+        self.dont_learn.clear();
+        self.chunks_this_phase = 0;
+    }
+
+    /// Fresh identities for `n` variables: the first of them.
+    pub fn new_idents(&mut self, n: usize) -> Ident {
+        let first = self.next_ident + 1;
+        self.next_ident += n as u64;
+        first
+    }
+}

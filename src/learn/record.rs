@@ -1,0 +1,133 @@
+//! Recording substate firings (spec §4): a firing below the top state keeps its matched
+//! WMEs, the identities of its variables and, for each local WME, the preference that made
+//! it. Top-state firings are never backtraced and record nothing (speed).
+
+use super::{Ident, InstTrace, PrefOrigin, TraceCond};
+use crate::agent::Agent;
+use crate::decide::procedure::PrefType;
+use crate::decide::state::PrefId;
+use crate::production::{Action, Condition, Production, RhsTerm, Term, Test};
+use crate::rete::{ProdId, TokId};
+use crate::symbols::Sym;
+use rustc_hash::FxHashMap;
+use std::sync::Arc;
+
+/// The variable a test binds by equality, if any.
+pub(crate) fn equality_var(t: &Test) -> Option<&str> {
+    match t {
+        Test::Equal(Term::Var(v)) => Some(v),
+        Test::Conjunction(ts) => ts.iter().find_map(equality_var),
+        _ => None,
+    }
+}
+
+impl Agent {
+    /// Records a firing at `level` (≥ 2) and gives each preference it made (with the index
+    /// of its make action) an origin.
+    pub(crate) fn record_firing(
+        &mut self,
+        p: ProdId,
+        t: TokId,
+        prod: &Arc<Production>,
+        level: u32,
+        new_ids: &FxHashMap<String, Sym>,
+        made: &[(PrefId, usize)],
+    ) -> Option<Arc<InstTrace>> {
+        let mut vars: FxHashMap<String, (Ident, Sym)> = FxHashMap::default();
+        if let Some(info) = self.rete.production(p) {
+            let names: Vec<String> = info.bindings.keys().cloned().collect();
+            let mut names = names;
+            names.sort();
+            let first = self.learn.new_idents(names.len() + new_ids.len());
+            for (k, v) in names.into_iter().enumerate() {
+                if let Some(s) = self.rete.binding(p, t, &v) {
+                    vars.insert(v, (first + k as u64, s));
+                }
+            }
+            let mut made_ids: Vec<(&String, &Sym)> = new_ids.iter().collect();
+            made_ids.sort();
+            let base = first + vars.len() as u64;
+            for (k, (v, s)) in made_ids.into_iter().enumerate() {
+                vars.insert(v.clone(), (base + k as u64, *s));
+            }
+        }
+        let wmes = self.rete.match_wmes(p, t);
+        let positives = prod
+            .conditions
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| matches!(c, Condition::Positive(_)));
+        let mut conds = Vec::with_capacity(wmes.len());
+        for ((ci, c), &w) in positives.zip(wmes.iter()) {
+            let (Condition::Positive(c), Some(wme)) = (c, self.wm.get(w).copied()) else {
+                continue;
+            };
+            let wme_level = self.symbols.id_data(wme.id).map_or(0, |d| d.level);
+            let ident = |t: &Test| equality_var(t).and_then(|v| vars.get(v)).map_or(0, |x| x.0);
+            // Any substate WME may be local to a later episode one level up (E:c4).
+            let support = if wme_level >= 2 {
+                self.supporting_origin(&wme)
+            } else {
+                None
+            };
+            conds.push(TraceCond {
+                wme,
+                wme_id: w,
+                level: wme_level,
+                ids: [ident(&c.id), ident(&c.attr), ident(&c.value)],
+                cond: Some(ci),
+                support,
+            });
+        }
+        let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
+        let trace = Arc::new(InstTrace {
+            base,
+            generation,
+            name: prod.name.clone(),
+            prod: Some(prod.clone()),
+            level,
+            conds,
+            vars,
+        });
+        for &(pid, ai) in made {
+            let Some(Action::Make(m)) = prod.actions.get(ai) else {
+                continue;
+            };
+            let ident = |t: &RhsTerm| match t {
+                RhsTerm::Var(v) => trace.vars.get(v).map_or(0, |x| x.0),
+                _ => 0,
+            };
+            let ids = [
+                ident(&m.id),
+                ident(&m.attr),
+                ident(&m.value),
+                m.referent.as_ref().map_or(0, ident),
+            ];
+            self.decider.prefs[pid as usize].origin = Some(Arc::new(PrefOrigin {
+                trace: trace.clone(),
+                ids,
+                action: Some(ai),
+            }));
+        }
+        Some(trace)
+    }
+
+    /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
+    /// operator proposal) preference for its value that was recorded.
+    fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
+        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        slot.prefs.iter().find_map(|&pid| {
+            let p = &self.decider.prefs[pid as usize];
+            let kind_ok = match p.kind {
+                PrefType::Acceptable => true,
+                PrefType::Require => wme.acceptable,
+                _ => false,
+            };
+            if kind_ok && p.value == wme.value {
+                p.origin.clone()
+            } else {
+                None
+            }
+        })
+    }
+}
