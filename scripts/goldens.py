@@ -37,6 +37,12 @@ Conventions (tests/conformance.rs follows the same ones):
             All of these are exact integers in 9.6 (stats' timings, means and ratios are
             not used; `wme changes` is not used either).
   Golden    tests/golden/NAME.txt: the decision lines, then `--- counts ---` and the counts.
+  Learning  agents named learn-*.soar (issue 5) add `chunks learned: N` (from run's
+            `N new rule(s) learned.`, 0 without it) to their counts, then
+            `--- after init-soar ---` and the same text for a second `init-soar` +
+            `run 1000` + `stats` in the same agent (chunks are kept). Their learned rules go
+            to tests/golden/NAME.rules.txt: `print --chunks` after the first run, then
+            `print NAME` of each chunk listed.
   rusoar    tests/conformance.rs gives rusoar::cli::Interpreter (cwd: the repository)
             "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
             (trace and run summary together), then runs `stats`, and builds the same text.
@@ -75,6 +81,11 @@ STATS = [
 
 class AgentError(Exception):
     pass
+
+
+def learned_count(run_result):
+    m = re.search(r"(\d+) new rules? learned\.", run_result)
+    return m.group(1) if m else "0"
 
 
 def golden_text(trace, run_result, stats):
@@ -124,7 +135,21 @@ def run_agent(kernel, path, raw=False):
         stats = cmd("stats")
         if raw:
             return trace + "\n" + run_result + "\n" + stats
-        return golden_text(trace, run_result, stats)
+        text = golden_text(trace, run_result, stats)
+        if not os.path.basename(path).startswith("learn-"):
+            return text, None
+        text += "chunks learned: %s\n" % learned_count(run_result)
+        listing = cmd("print --chunks")
+        rules = listing + "".join(
+            cmd("print %s" % n.strip()) for n in listing.splitlines() if n.strip()
+        )
+        cmd("init-soar")
+        run2 = cmd(RUN)
+        trace2 = "".join(printed)
+        stats2 = cmd("stats")
+        text += "--- after init-soar ---\n" + golden_text(trace2, run2, stats2)
+        text += "chunks learned: %s\n" % learned_count(run2)
+        return text, rules
     finally:
         agent.UnregisterForPrintEvent(cb)
         kernel.DestroyAgent(agent)
@@ -140,14 +165,22 @@ def generate(out_dir):
     os.makedirs(out_dir, exist_ok=True)
     names = agent_names()
     for f in os.listdir(out_dir):
-        if f.endswith(".txt") and f[: -len(".txt")] not in names:
+        base = f[: -len(".txt")]
+        if base.endswith(".rules"):
+            base = base[: -len(".rules")]
+        if f.endswith(".txt") and base not in names:
             os.remove(os.path.join(out_dir, f))
     kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
     try:
         for name in names:
-            text = run_agent(kernel, os.path.join(AGENTS, name + ".soar"))
+            text, rules = run_agent(kernel, os.path.join(AGENTS, name + ".soar"))
             with open(os.path.join(out_dir, name + ".txt"), "w", newline="\n") as f:
                 f.write(text)
+            if rules is not None:
+                with open(
+                    os.path.join(out_dir, name + ".rules.txt"), "w", newline="\n"
+                ) as f:
+                    f.write(rules)
     finally:
         kernel.Shutdown()
 
