@@ -212,7 +212,7 @@ impl Agent {
             if s.mixed && self.settings.warnings {
                 let name = self.production_name(key.0).to_string();
                 self.out(&format!(
-                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {name}\n"
+                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {name}"
                 ));
             }
             self.matches.support.insert(key, s.o_support);

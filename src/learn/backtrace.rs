@@ -15,6 +15,15 @@ pub struct Ground {
     pub trace: Arc<InstTrace>,
 }
 
+/// A relational test a local condition made on something that came from elsewhere: it
+/// constrains that identity wherever the chunk tests it (EBC's constraint propagation).
+#[derive(Debug, Clone)]
+pub struct Constraint {
+    pub ident: Ident,
+    pub test: crate::production::Test,
+    pub trace: Arc<InstTrace>,
+}
+
 /// A negated condition (or conjunctive negation) of a backtraced firing.
 #[derive(Debug, Clone)]
 pub struct Negation {
@@ -29,6 +38,7 @@ pub struct Backtrace {
     pub grounds: Vec<Ground>,
     ground_at: FxHashMap<u64, usize>,
     pub negations: Vec<Negation>,
+    pub constraints: Vec<Constraint>,
     parent: FxHashMap<Ident, Ident>,
     pub literal: FxHashMap<Ident, Sym>,
     visited: FxHashSet<*const InstTrace>,
@@ -108,6 +118,7 @@ impl Backtrace {
                             (tested, made) => self.join(tested, made),
                         }
                     }
+                    self.local_constraints(&trace, c, origin);
                     locals.push(origin.trace.clone());
                 }
             }
@@ -123,6 +134,33 @@ impl Backtrace {
             }
             // Depth first, in condition order.
             stack.extend(locals.into_iter().rev());
+        }
+    }
+
+    /// The relational tests of a local condition, on fields made from an identity.
+    fn local_constraints(&mut self, trace: &Arc<InstTrace>, c: &TraceCond, origin: &PrefOrigin) {
+        let Some(crate::production::Condition::Positive(cond)) = c
+            .cond
+            .and_then(|ci| trace.prod.as_ref()?.conditions.get(ci).cloned())
+        else {
+            return;
+        };
+        for (t, &made) in [&cond.id, &cond.attr, &cond.value]
+            .into_iter()
+            .zip(&origin.ids)
+        {
+            if made == 0 {
+                continue;
+            }
+            let mut tests = Vec::new();
+            relational_parts(t, &mut tests);
+            for test in tests {
+                self.constraints.push(Constraint {
+                    ident: made,
+                    test,
+                    trace: trace.clone(),
+                });
+            }
         }
     }
 
@@ -163,5 +201,15 @@ impl Backtrace {
             cond: c.clone(),
             trace: trace.clone(),
         });
+    }
+}
+
+/// The relational and disjunction tests inside a test.
+fn relational_parts(t: &crate::production::Test, out: &mut Vec<crate::production::Test>) {
+    use crate::production::Test;
+    match t {
+        Test::Relational(..) | Test::Disjunction(_) => out.push(t.clone()),
+        Test::Conjunction(ts) => ts.iter().for_each(|x| relational_parts(x, out)),
+        Test::Equal(_) => {}
     }
 }

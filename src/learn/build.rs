@@ -315,6 +315,15 @@ impl Agent {
                 }
             }
         }
+        // Variables are named where they are first tested for equality (9.6: `^to <t1>`,
+        // even when a relational test elsewhere names it first).
+        for g in &bt.grounds {
+            let w = g.cond.wme;
+            b.term(w.id, g.cond.ids[0], None);
+            b.term(w.attr, g.cond.ids[1], None);
+            b.term(w.value, g.cond.ids[2], Some(w.attr));
+        }
+        let mut constrained: FxHashSet<Ident> = FxHashSet::default();
         let mut conditions = Vec::new();
         let mut goal_tested: FxHashSet<Sym> = FxHashSet::default();
         for g in &bt.grounds {
@@ -335,8 +344,33 @@ impl Agent {
                     b.extra_tests(&g.trace, t, &mut tests[k]);
                 }
             }
+            for (k, &i) in g.cond.ids.iter().enumerate() {
+                let root = bt.find(i);
+                if i == 0 || !constrained.insert(root) {
+                    continue;
+                }
+                for c in bt.constraints.iter().filter(|c| bt.find(c.ident) == root) {
+                    b.extra_tests(&c.trace, &c.test, &mut tests[k]);
+                }
+            }
+            // A literalized field needs no other test (9.6 drops them).
+            for (k, &i) in g.cond.ids.iter().enumerate() {
+                if i != 0 && bt.literal.contains_key(&bt.find(i)) {
+                    tests[k].clear();
+                }
+                let mut seen = Vec::new();
+                tests[k].retain(|t| {
+                    let new = !seen.contains(t);
+                    seen.push(t.clone());
+                    new
+                });
+            }
             let [ti, ta, tv] = tests;
-            let goal = if self.symbols.is_goal(w.id) && goal_tested.insert(w.id) {
+            // 9.6 marks the state the rule will match in (the learning goal's superstate).
+            let goal = if self.symbols.is_goal(w.id)
+                && self.sym_level(w.id) + 1 == bt.level
+                && goal_tested.insert(w.id)
+            {
                 Head::State
             } else {
                 Head::None

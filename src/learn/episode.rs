@@ -46,6 +46,23 @@ pub(crate) fn chunk_base(name: &str, is_chunk: bool) -> (String, u32) {
     (parts.join("*"), gen)
 }
 
+/// The identities of the fields of a chunk's `k`-th action, in a recorded firing of it.
+fn action_idents(trace: &InstTrace, prod: &Production, k: usize) -> [super::Ident; 4] {
+    let Some(crate::production::Action::Make(m)) = prod.actions.get(k) else {
+        return [0; 4];
+    };
+    let ident = |t: &crate::production::RhsTerm| match t {
+        crate::production::RhsTerm::Var(v) => trace.vars.get(v).map_or(0, |x| x.0),
+        _ => 0,
+    };
+    [
+        ident(&m.id),
+        ident(&m.attr),
+        ident(&m.value),
+        m.referent.as_ref().map_or(0, ident),
+    ]
+}
+
 impl Agent {
     /// The results among a firing's preferences (spec §4): those for objects of a higher
     /// level, and everything on new objects they link up, which move up to that level.
@@ -182,6 +199,10 @@ impl Agent {
         let refracted = chunk
             .as_ref()
             .and_then(|(pid, _)| self.take_refracted_match(*pid, &ground_wmes));
+        let chunk_match = chunk
+            .as_ref()
+            .zip(refracted)
+            .map(|((p, prod), t)| (*p, t, prod.clone()));
         let (inst_id, o_support, name) = match (&chunk, refracted) {
             (Some((pid, prod)), Some(tok)) => {
                 let o = crate::support::match_support(self, *pid, tok).o_support;
@@ -215,30 +236,57 @@ impl Agent {
         };
         // The results' copies, owned by the learned rule's instantiation (the originals
         // stay with the substate's firing, as 9.6 lists both, E:c3).
-        let trace = Arc::new(InstTrace {
-            name: name.clone(),
-            prod: None,
-            level: owner_level,
-            conds: bt
-                .grounds
-                .iter()
-                .map(|g| TraceCond {
-                    ids: g.cond.ids.map(|i| bt.find(i)),
-                    cond: None,
-                    ..g.cond.clone()
-                })
-                .collect(),
-            vars: Default::default(),
-            base: source.base.clone(),
-            generation: source.generation + u32::from(chunk.is_some()),
+        // A chunk's instantiation is recorded like any firing of it (its own variables and
+        // tests carry on to a learning episode one level up); a justification keeps the
+        // grounds, a literalized identity becoming a literal.
+        let recorded = chunk_match.and_then(|(pid, tok, prod)| {
+            let trace = self.record_firing(
+                pid,
+                tok,
+                &prod,
+                owner_level.max(2),
+                &Default::default(),
+                &[],
+            )?;
+            Some((trace, prod))
         });
+        let trace = match &recorded {
+            Some((t, _)) => t.clone(),
+            None => Arc::new(InstTrace {
+                name: name.clone(),
+                prod: None,
+                level: owner_level,
+                conds: bt
+                    .grounds
+                    .iter()
+                    .map(|g| TraceCond {
+                        ids: g.cond.ids.map(|i| {
+                            let r = bt.find(i);
+                            if bt.literal.contains_key(&r) {
+                                0
+                            } else {
+                                r
+                            }
+                        }),
+                        cond: None,
+                        ..g.cond.clone()
+                    })
+                    .collect(),
+                vars: Default::default(),
+                base: source.base.clone(),
+                generation: source.generation,
+            }),
+        };
         let mut clones = Vec::with_capacity(results.len());
-        for &r in &results {
+        for (k, &r) in results.iter().enumerate() {
             let mut p = self.decider.prefs[r as usize].clone();
-            let ids = p
-                .origin
-                .as_ref()
-                .map_or([0; 4], |o| o.ids.map(|i| bt.find(i)));
+            let ids = match &recorded {
+                Some((t, prod)) => action_idents(t, prod, k),
+                None => p
+                    .origin
+                    .as_ref()
+                    .map_or([0; 4], |o| o.ids.map(|i| bt.find(i))),
+            };
             p.o_support = o_support;
             p.inst = Some(inst_id);
             p.alive = true;
@@ -246,7 +294,7 @@ impl Agent {
             p.origin = Some(Arc::new(PrefOrigin {
                 trace: trace.clone(),
                 ids,
-                action: None,
+                action: recorded.as_ref().map(|_| k),
             }));
             let pid = self.decider.alloc_pref(p);
             self.decider.insts[inst_id as usize].prefs.push(pid);

@@ -70,11 +70,26 @@ impl Agent {
             } else {
                 None
             };
+            let ids = [ident(&c.id), ident(&c.attr), ident(&c.value)];
+            // An impasse's `^item` stands for the acceptable preference it shows, in the
+            // state above (9.6 backtraces to `(S1 ^operator O1 +)`, E:look3).
+            if let Some(acc) = self.item_preference_wme(&wme) {
+                if let Some(aw) = self.wm.get(acc).copied() {
+                    conds.push(TraceCond {
+                        wme: aw,
+                        wme_id: acc,
+                        level: self.symbols.id_data(aw.id).map_or(0, |d| d.level),
+                        ids: [0, 0, ids[2]],
+                        cond: None,
+                        support: None,
+                    });
+                }
+            }
             conds.push(TraceCond {
                 wme,
                 wme_id: w,
                 level: wme_level,
-                ids: [ident(&c.id), ident(&c.attr), ident(&c.value)],
+                ids,
                 cond: Some(ci),
                 support,
             });
@@ -110,6 +125,19 @@ impl Agent {
             }));
         }
         Some(trace)
+    }
+
+    /// For `(G ^item X)` of a tie or conflict substate G: the WME `(S ^operator X +)` of
+    /// the state above.
+    fn item_preference_wme(&self, wme: &crate::wm::Wme) -> Option<crate::wm::WmeId> {
+        if self.symbols.find_str("item") != Some(wme.attr) || !self.symbols.is_goal(wme.id) {
+            return None;
+        }
+        let gi = self.decider.goals.iter().position(|g| g.state == wme.id)?;
+        let above = self.decider.goals.get(gi.checked_sub(1)?)?.state;
+        let op = self.symbols.find_str("operator")?;
+        let slot = self.decider.slots.get(&(above, op))?;
+        slot.wmes.get(&(wme.value, true)).copied()
     }
 
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
