@@ -15,6 +15,7 @@ pub mod rhs_functions;
 pub mod rng;
 pub mod robot;
 pub mod source;
+pub mod stdlib;
 pub mod support;
 pub mod symbols;
 pub mod tokenizer;

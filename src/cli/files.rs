@@ -83,6 +83,16 @@ impl Interpreter {
                 "source: nested more than {MAX_SOURCE_DEPTH} files deep"
             )));
         }
+        // `<stdlib>/NAME`: the default rules embedded in the binary (issue 5).
+        if let Some(text) = crate::stdlib::lookup(name) {
+            let file = self.sources.add(name.to_string(), text.to_string());
+            let path = std::path::PathBuf::from(name);
+            self.source_stack.push(path.clone());
+            self.report.per_file.entry(path).or_insert(0);
+            let result = self.run_file_id_at(file).map_err(|(d, _)| d);
+            self.source_stack.pop();
+            return result;
+        }
         let path = self.resolve(name);
         let bytes = std::fs::read(&path).map_err(|e| {
             Diagnostic::error(format!("Failed to open file for reading: {name}"))

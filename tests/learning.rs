@@ -1,0 +1,65 @@
+//! Chunking (issue 5), beyond the goldens of tests/conformance.rs: the embedded stdlib
+//! loads by name, and a learning agent's second run after `init-soar` uses its chunks.
+
+use rusoar::cli::Interpreter;
+
+fn run(interp: &mut Interpreter, cmd: &str) -> String {
+    interp
+        .run_text("<learning>", cmd)
+        .unwrap_or_else(|d| panic!("`{cmd}` failed: {}", d.message));
+    interp.take_output()
+}
+
+#[test]
+fn stdlib_selection_loads_by_name() {
+    let mut interp = Interpreter::new();
+    let out = run(&mut interp, "source <stdlib>/selection.soar");
+    assert!(out.contains("Total: 11 productions sourced."), "{out}");
+    let rules = run(&mut interp, "print --all");
+    assert!(
+        rules.contains("selection*propose*evaluate-operator"),
+        "{rules}"
+    );
+}
+
+#[test]
+fn lookahead_chunks_remove_the_tie_on_the_second_run() {
+    let mut interp = Interpreter::new();
+    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    run(&mut interp, "srand 1");
+    run(&mut interp, "source tests/agents/learn-lookahead.soar");
+    let first = run(&mut interp, "run 100");
+    assert!(first.contains("(operator tie)"), "{first}");
+    assert!(first.contains("2 new rules learned."), "{first}");
+    let chunks = run(&mut interp, "print --chunks");
+    assert_eq!(
+        chunks.lines().filter(|l| l.starts_with("chunk*")).count(),
+        2
+    );
+    run(&mut interp, "init-soar");
+    let second = run(&mut interp, "run 100");
+    assert!(!second.contains("tie"), "{second}");
+    assert!(
+        second.contains("--> 2 decision cycles executed."),
+        "{second}"
+    );
+    // The chunk that made the tie go tests the operator's proposal and the dead end.
+    let rule = run(
+        &mut interp,
+        "print chunk*selection*compare*failure*worst*t5-2",
+    );
+    assert!(rule.contains("^operator <o1> +"), "{rule}");
+    assert!(rule.contains("^dead-end <d1>"), "{rule}");
+}
+
+#[test]
+fn learning_off_gives_justifications_that_keep_i_supported_results() {
+    let mut interp = Interpreter::new();
+    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    run(&mut interp, "source tests/agents/learn-justification.soar");
+    let out = run(&mut interp, "run 100");
+    assert!(out.contains("isup kept by its justification"), "{out}");
+    let js = run(&mut interp, "print --justifications");
+    assert_eq!(js, "justify3 \njustify1 \n");
+    assert_eq!(run(&mut interp, "print --chunks"), "");
+}
