@@ -176,7 +176,11 @@ impl Agent {
 
     /// Adds a rule: a same-named rule is excised first; an identical body is ignored. The
     /// rule's matches against working memory are queued at once.
-    pub fn add_production(&mut self, p: Production) -> Added {
+    pub fn add_production(&mut self, mut p: Production) -> Added {
+        // 9.6 creates a rule's constants as it parses it, then reorders its conditions
+        // (spec §3i); the network joins them in that order and `print` shows it.
+        crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
+        p.conditions = crate::rete::reorder::reorder(&p.conditions, &self.symbols);
         let replaced = self.excise(&p.name);
         let id = match self
             .rete

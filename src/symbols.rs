@@ -42,11 +42,23 @@ pub struct Symbols {
 }
 
 impl Symbols {
+    /// A symbol table holding the constants the official kernel creates when an agent is
+    /// made, in its order (`src/initial_symbols.txt`, read off Soar 9.6.5 by
+    /// `scripts/initial_symbols.py`): the condition reorderer breaks ties by creation order
+    /// (spec §3i).
     pub fn new() -> Self {
-        Symbols {
+        let mut s = Symbols {
             counters: [1; 26],
             ..Default::default()
+        };
+        for line in include_str!("initial_symbols.txt").lines() {
+            if let Some(name) = line.strip_prefix("s:") {
+                s.str(&name.replace("\\n", "\n"));
+            } else if let Some(n) = line.strip_prefix("i:").and_then(|n| n.parse().ok()) {
+                s.int(n);
+            }
         }
+        s
     }
 
     fn push(&mut self, d: SymData) -> Sym {

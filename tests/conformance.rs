@@ -19,40 +19,11 @@ use std::path::{Path, PathBuf};
 /// Agents whose trace or counts still differ from the official kernel, with the reason.
 /// "Match order" is the order in which one rule's several new matches fire (spec §3i and
 /// §8 risk 1): it sets operator ids and the candidate order, hence seeded random choices.
-/// Most of these come down to 9.6's condition reorderer (`production_reorder.cpp`: cost
-/// estimates, lookahead, ties broken by symbol hash ids), which rusoar does not reproduce yet.
 const KNOWN_DIFFERENCES: &[(&str, &str)] = &[
-    (
-        "impasse-tie",
-        "match order: the tie substate's inspect proposals fire in another order, so the \
-         seeded choice at decision 4 differs (alpha vs gamma)",
-    ),
-    (
-        "blocks-world",
-        "match order: another candidate order at decision 2 (B>C vs D>B)",
-    ),
-    (
-        "missionaries-cannibals",
-        "match order: operator ids from decision 8 on (O26 vs O28 for the same move)",
-    ),
-    (
-        "o-reject",
-        "condition order: 9.6's reorderer moves `-^derived` up to just after `^name` and \
-         breaks cost ties by its symbol table, so the monitors of decision 1 fire in \
-         another order (written order and depth are ours)",
-    ),
-    (
-        "random-tokens",
-        "match order: another candidate order, so other random choices from decision 7",
-    ),
     (
         "substate-results",
         "decision lines match; elaboration cycles 13 vs 14: 9.6 counts an empty cycle in the \
          propose phase after a substate is removed",
-    ),
-    (
-        "towers-of-hanoi",
-        "match order: operator ids from decision 4 on (O16 vs O17 for the same move)",
     ),
     (
         "water-jug",
@@ -148,19 +119,12 @@ fn golden_text(output: &str, stats: &str) -> String {
 
 /// Learning agents whose learned rules (`tests/golden/NAME.rules.txt`) still differ from
 /// the official kernel's, with the reason.
-const KNOWN_RULE_DIFFERENCES: &[(&str, &str)] = &[
-    (
-        "learn-lookahead",
-        "condition order and variable numbering: 9.6 orders a chunk's conditions with its \
+const KNOWN_RULE_DIFFERENCES: &[(&str, &str)] = &[(
+    "learn-lookahead",
+    "condition order and variable numbering: 9.6 orders a chunk's conditions with its \
          reorderer and numbers variables in its own backtrace order (`<s2>`/`<s3>`, \
          `<t1>` vs `<d1>` for the same identity); the rules are the same up to renaming",
-    ),
-    (
-        "learn-negation",
-        "condition order: 9.6 prints a chunk's conditions as its reorderer left them \
-         (`^value <v1> -^blocked <b1> ^operator <o1>`); ours keep backtrace order",
-    ),
-];
+)];
 
 /// The number in run's `N new rule(s) learned.`, 0 without it.
 fn learned_count(run: &str) -> String {

@@ -49,7 +49,7 @@ fn lookahead_chunks_remove_the_tie_on_the_second_run() {
         "print chunk*selection*compare*failure*worst*t5-2",
     );
     assert!(rule.contains("^operator <o1> +"), "{rule}");
-    assert!(rule.contains("^dead-end <d1>"), "{rule}");
+    assert!(rule.contains("^dead-end <t1>"), "{rule}");
 }
 
 #[test]

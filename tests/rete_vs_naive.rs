@@ -6,7 +6,7 @@
 use proptest::prelude::*;
 use rusoar::ast::{Constant, Head, Relation};
 use rusoar::production::{Cond, Condition, Flags, Production, Term, Test};
-use rusoar::rete::{MatchSink, ProdId, Rete, TokId};
+use rusoar::rete::{reorder, MatchSink, ProdId, Rete, TokId};
 use rusoar::source::Span;
 use rusoar::symbols::{Sym, Symbols};
 use rusoar::wm::WmeId;
@@ -371,6 +371,22 @@ fn naive_relation(syms: &Symbols, r: Relation, a: Sym, b: Sym) -> bool {
     }
 }
 
+fn has_ordering_test_between_variables(conds: &[Condition]) -> bool {
+    fn test(t: &Test) -> bool {
+        match t {
+            Test::Relational(r, Term::Var(_)) => !matches!(r, Relation::Ne | Relation::SameType),
+            Test::Conjunction(ts) => ts.iter().any(test),
+            _ => false,
+        }
+    }
+    conds.iter().any(|c| match c {
+        Condition::Positive(c) | Condition::Negative(c) => {
+            [&c.id, &c.attr, &c.value].into_iter().any(test)
+        }
+        Condition::Ncc(inner) => has_ordering_test_between_variables(inner),
+    })
+}
+
 fn matches_naive(p: &Production, syms: &Symbols, wm: &[W]) -> BTreeSet<Vec<WmeId>> {
     let naive = Naive { syms, wm };
     let mut out = Vec::new();
@@ -431,7 +447,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
     let mut sink = Events::default();
     let mut wm: Vec<W> = Vec::new();
     let mut next_wme = 0u32;
-    let mut prods: Vec<(ProdId, Production)> = Vec::new();
+    let mut prods: Vec<(ProdId, Production, Production)> = Vec::new();
     for (n, step) in steps.iter().enumerate() {
         match step {
             Step::AddWme(i, a, v, acc) => {
@@ -466,8 +482,13 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
             }
             Step::AddProd(g) => {
                 let p = build(&format!("p{n}"), g);
-                match rete.add_production(&p, &mut syms, &mut sink) {
-                    Ok(id) => prods.push((id, p)),
+                // The network joins conditions in the reorderer's order (spec §3i), as the
+                // agent adds them; the naive matcher reads the rule as written.
+                let mut joined = p.clone();
+                reorder::intern_in_text_order(&p, &mut syms);
+                joined.conditions = reorder::reorder(&p.conditions, &syms);
+                match rete.add_production(&joined, &mut syms, &mut sink) {
+                    Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added (spec §1c).
                     Err(rusoar::rete::BuildError::Duplicate(_)) => {}
                     Err(e) => return Err(TestCaseError::fail(e.to_string())),
@@ -475,7 +496,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
             }
             Step::Excise(k) => {
                 if !prods.is_empty() {
-                    let (id, _) = prods.remove(k % prods.len());
+                    let (id, _, _) = prods.remove(k % prods.len());
                     rete.excise(id, &syms, &mut sink);
                 }
             }
@@ -485,8 +506,32 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
         for (p, _) in &sink.live {
             *from_sink.entry(*p).or_default() += 1;
         }
-        for (id, p) in &prods {
+        for (id, written, p) in &prods {
             let expected = matches_naive(p, &syms, &wm);
+            // Reordering keeps what the rule matches: the same WMEs, in another order.
+            let sorted = |set: &BTreeSet<Vec<WmeId>>| -> BTreeSet<Vec<WmeId>> {
+                set.iter()
+                    .map(|m| {
+                        let mut m = m.clone();
+                        m.sort();
+                        m
+                    })
+                    .collect()
+            };
+            // Except where 9.6 itself changes it: a `<`/`>` test between two variables may be
+            // turned round (`<x> < <y>` becoming `<y> > <x>`), which is not the same test when
+            // the two symbols differ in type (§3g: a mismatch compares as "less").
+            if !has_ordering_test_between_variables(&written.conditions) {
+                let as_written = matches_naive(written, &syms, &wm);
+                prop_assert_eq!(
+                    sorted(&as_written),
+                    sorted(&expected),
+                    "reordering changed what {:#?} matches: reordered {:#?}",
+                    written,
+                    p.conditions
+                );
+                prop_assert_eq!(as_written.len(), expected.len());
+            }
             let got: BTreeSet<Vec<WmeId>> = rete
                 .matches_of(*id)
                 .into_iter()

@@ -8,7 +8,7 @@ use super::{AlphaKey, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, NIL, NIL_
 use crate::ast::Head;
 use crate::production::{Cond, Condition, Production, Term, Test};
 use crate::symbols::{Sym, Symbols};
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
@@ -80,198 +80,6 @@ enum Cur {
 }
 
 type Bindings = FxHashMap<String, (u32, Field)>;
-
-fn term_vars(t: &Test, out: &mut Vec<String>) {
-    match t {
-        Test::Equal(Term::Var(v)) | Test::Relational(_, Term::Var(v)) => out.push(v.clone()),
-        Test::Conjunction(ts) => ts.iter().for_each(|t| term_vars(t, out)),
-        _ => {}
-    }
-}
-
-fn equality_vars(t: &Test, out: &mut Vec<String>) {
-    match t {
-        Test::Equal(Term::Var(v)) => out.push(v.clone()),
-        Test::Conjunction(ts) => ts.iter().for_each(|t| equality_vars(t, out)),
-        _ => {}
-    }
-}
-
-fn relational_vars(t: &Test, out: &mut Vec<String>) {
-    match t {
-        Test::Relational(_, Term::Var(v)) => out.push(v.clone()),
-        Test::Conjunction(ts) => ts.iter().for_each(|t| relational_vars(t, out)),
-        _ => {}
-    }
-}
-
-fn cond_vars(c: &Condition, out: &mut Vec<String>) {
-    match c {
-        Condition::Positive(c) | Condition::Negative(c) => {
-            for t in [&c.id, &c.attr, &c.value] {
-                term_vars(t, out);
-            }
-        }
-        Condition::Ncc(cs) => cs.iter().for_each(|c| cond_vars(c, out)),
-    }
-}
-
-/// Orders conditions for joining: a positive condition goes when its id is bound (or it
-/// tests a state) and the variables of its relational tests are bound; a negation goes as
-/// soon as every variable it shares with positive conditions is bound. Source order breaks
-/// ties among positive conditions (9.6 breaks them by cost and its symbol table, which is
-/// not reproduced yet).
-fn order_conditions(conds: &[Condition], bound: &FxHashSet<String>) -> Vec<usize> {
-    // Negations move up to where their variables are bound, as 9.6's reorderer does (a
-    // ready negation wins a cost tie): only an all-positive rule can keep its written order
-    // without the search.
-    let all_positive = conds.iter().all(|c| matches!(c, Condition::Positive(_)));
-    if all_positive {
-        if let Some(order) = source_order_if_joinable(conds, bound) {
-            return order;
-        }
-    }
-    let mut positive_vars: FxHashSet<String> = bound.clone();
-    for c in conds {
-        if let Condition::Positive(p) = c {
-            let mut v = Vec::new();
-            for t in [&p.id, &p.attr, &p.value] {
-                equality_vars(t, &mut v);
-            }
-            positive_vars.extend(v);
-        }
-    }
-    let mut bound = bound.clone();
-    let mut done = vec![false; conds.len()];
-    let mut order = Vec::with_capacity(conds.len());
-    let place_negations =
-        |bound: &FxHashSet<String>, done: &mut Vec<bool>, order: &mut Vec<usize>| {
-            for (i, c) in conds.iter().enumerate() {
-                if done[i] || matches!(c, Condition::Positive(_)) {
-                    continue;
-                }
-                let mut v = Vec::new();
-                cond_vars(c, &mut v);
-                if v.iter()
-                    .filter(|x| positive_vars.contains(*x))
-                    .all(|x| bound.contains(x))
-                {
-                    done[i] = true;
-                    order.push(i);
-                }
-            }
-        };
-    place_negations(&bound, &mut done, &mut order);
-    loop {
-        let candidates: Vec<(usize, &Cond)> = conds
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| !done[*i])
-            .filter_map(|(i, c)| match c {
-                Condition::Positive(p) => Some((i, p)),
-                _ => None,
-            })
-            .collect();
-        if candidates.is_empty() {
-            break;
-        }
-        let connected = |p: &Cond| {
-            let mut v = Vec::new();
-            equality_vars(&p.id, &mut v);
-            p.goal != Head::None || v.iter().any(|x| bound.contains(x))
-        };
-        let rel_ok = |p: &Cond| {
-            let mut v = Vec::new();
-            for t in [&p.id, &p.attr, &p.value] {
-                relational_vars(t, &mut v);
-            }
-            let mut own = Vec::new();
-            for t in [&p.id, &p.attr, &p.value] {
-                equality_vars(t, &mut own);
-            }
-            v.iter()
-                .all(|x| bound.contains(x) || own.contains(x) || !positive_vars.contains(x))
-        };
-        let pick = candidates
-            .iter()
-            .find(|(_, p)| connected(p) && rel_ok(p))
-            .or_else(|| candidates.iter().find(|(_, p)| rel_ok(p)))
-            .or_else(|| candidates.iter().find(|(_, p)| connected(p)))
-            .or_else(|| candidates.first())
-            .map(|(i, _)| *i);
-        let Some(i) = pick else { break };
-        done[i] = true;
-        order.push(i);
-        if let Condition::Positive(p) = &conds[i] {
-            let mut v = Vec::new();
-            for t in [&p.id, &p.attr, &p.value] {
-                equality_vars(t, &mut v);
-            }
-            bound.extend(v);
-        }
-        place_negations(&bound, &mut done, &mut order);
-    }
-    for (i, d) in done.iter().enumerate() {
-        if !d {
-            order.push(i);
-        }
-    }
-    order
-}
-
-/// The written order, when it already joins well: each positive condition's id is bound (or
-/// it tests a state) and its relational tests name bound variables, and each negation's
-/// outside variables are bound where it stands. Linear, for the common case.
-fn source_order_if_joinable(conds: &[Condition], bound: &FxHashSet<String>) -> Option<Vec<usize>> {
-    let mut positive_vars: FxHashSet<&str> = bound.iter().map(String::as_str).collect();
-    let mut eq = Vec::new();
-    for c in conds {
-        if let Condition::Positive(p) = c {
-            for t in [&p.id, &p.attr, &p.value] {
-                equality_vars(t, &mut eq);
-            }
-        }
-    }
-    positive_vars.extend(eq.iter().map(String::as_str));
-    let mut bound: FxHashSet<String> = bound.clone();
-    for c in conds {
-        match c {
-            Condition::Positive(p) => {
-                let mut own = Vec::new();
-                for t in [&p.id, &p.attr, &p.value] {
-                    equality_vars(t, &mut own);
-                }
-                let mut id = Vec::new();
-                equality_vars(&p.id, &mut id);
-                if p.goal == Head::None && !id.iter().any(|x| bound.contains(x)) {
-                    return None;
-                }
-                let mut rel = Vec::new();
-                for t in [&p.id, &p.attr, &p.value] {
-                    relational_vars(t, &mut rel);
-                }
-                if !rel.iter().all(|x| {
-                    bound.contains(x) || own.contains(x) || !positive_vars.contains(x.as_str())
-                }) {
-                    return None;
-                }
-                bound.extend(own);
-            }
-            other => {
-                let mut v = Vec::new();
-                cond_vars(other, &mut v);
-                if !v
-                    .iter()
-                    .filter(|x| positive_vars.contains(x.as_str()))
-                    .all(|x| bound.contains(x))
-                {
-                    return None;
-                }
-            }
-        }
-    }
-    Some((0..conds.len()).collect())
-}
 
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
@@ -409,8 +217,8 @@ impl Rete {
         syms: &mut Symbols,
         mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>, &mut Vec<usize>)>,
     ) -> Cur {
-        let bound: FxHashSet<String> = bindings.keys().cloned().collect();
-        for i in order_conditions(conds, &bound) {
+        // Conditions come in join order: `reorder` put them there (spec §3i).
+        for i in 0..conds.len() {
             match &conds[i] {
                 Condition::Positive(c) => {
                     // The depth its WME will have: one below the holder it joins from.

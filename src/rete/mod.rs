@@ -13,6 +13,7 @@
 
 mod build;
 mod hash;
+pub mod reorder;
 pub mod tests;
 mod tokens;
 

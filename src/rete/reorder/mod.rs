@@ -1,0 +1,329 @@
+//! Soar 9.6's condition reorderer (spec §3i, §8 risk 1): the order in which a rule's
+//! conditions are joined, which is also the order `print` shows them in and the order that
+//! decides which of several new matches fires first.
+//!
+//! The method, as the Soar manual and the kernel's observable behaviour describe it:
+//! 1. only the root variables (ids tested but never bound as a value, normally `<s>`) keep
+//!    their `state`/`impasse` test; others lose it;
+//! 2. positive conditions are *simplified*: every test but the equality test of each field
+//!    is set aside, indexed by the symbol of that equality test;
+//! 3. conditions are chosen greedily by cost: a condition whose id is unbound costs
+//!    [`MAX_COST`]; otherwise 1, times 8 if its attribute is unbound, times 8 if its value is
+//!    unbound; a negation or conjunctive negation costs 1 once every variable it shares with
+//!    positive conditions is bound. Ties above cost 1 are broken by a one-step look-ahead,
+//!    then by the *canonical order*: the condition whose attribute (then value) constant was
+//!    created last wins. Ties at cost 1 go to a negation, else by the canonical order. Within
+//!    a tie the candidate list runs from the last condition to the first;
+//! 4. the set-aside tests are restored on the first condition, in the new order, where they
+//!    can be tested: where their own variable is bound and their referent is bound (or
+//!    reversed, `<y> > <x>` becoming `<x> < <y>`, where the referent is bound first).
+//!
+//! Constants are ranked by the order they were created in the agent's symbol table
+//! ([`Symbols`] interns the kernel's start-up constants first, `src/initial_symbols.txt`,
+//! then each rule's constants in text order), which reproduces the kernel's tie breaks.
+
+mod choose;
+mod set_aside;
+
+use crate::ast::{Constant, Head};
+use crate::production::{Condition, Term, Test};
+use crate::symbols::Symbols;
+use choose::{Chooser, Pending};
+use rustc_hash::FxHashSet;
+
+type Bound = FxHashSet<String>;
+
+/// Reorders a rule's conditions as 9.6 does. `syms` must already hold every constant of the
+/// rule (see [`intern_in_text_order`]); an unknown constant ranks as a variable.
+pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
+    let rank = |c: &Constant| syms.find_constant(c).map_or(0, |s| s.0 as u64 + 1);
+    let outside = Bound::default();
+    let mut roots = root_variables(conds, &outside);
+    let mut conds = conds.to_vec();
+    if !roots.is_empty() {
+        drop_goal_tests_of_non_roots(&mut conds, &roots);
+    } else if let Some(v) = conds.iter().find_map(|c| match c {
+        Condition::Positive(p) if p.goal != Head::None => equality_var(&p.id),
+        _ => None,
+    }) {
+        roots.push(v.to_string());
+    } else {
+        // No state is referenced: compile rejects such rules; keep them as written.
+        return conds;
+    }
+    let required = requirements(&conds, &outside);
+    reorder_list(conds, required, roots, &outside, &rank, &mut 0)
+}
+
+/// Interns the name and the constants of a rule in the order 9.6's parser creates them: the
+/// name, then the conditions, then the actions, left to right.
+pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbols) {
+    use crate::production::{Action, RhsTerm};
+    fn test(t: &Test, syms: &mut Symbols) {
+        match t {
+            Test::Equal(Term::Const(c)) | Test::Relational(_, Term::Const(c)) => {
+                syms.constant(c);
+            }
+            Test::Disjunction(cs) => cs.iter().for_each(|c| {
+                syms.constant(c);
+            }),
+            Test::Conjunction(ts) => ts.iter().for_each(|t| test(t, syms)),
+            _ => {}
+        }
+    }
+    fn cond(c: &Condition, syms: &mut Symbols) {
+        match c {
+            Condition::Positive(p) | Condition::Negative(p) => {
+                for t in [&p.id, &p.attr, &p.value] {
+                    test(t, syms);
+                }
+            }
+            Condition::Ncc(inner) => inner.iter().for_each(|c| cond(c, syms)),
+        }
+    }
+    fn rhs(t: &RhsTerm, syms: &mut Symbols) {
+        match t {
+            RhsTerm::Const(c) => {
+                syms.constant(c);
+            }
+            RhsTerm::Call(f) => {
+                syms.str(&f.name);
+                f.args.iter().for_each(|a| rhs(a, syms));
+            }
+            RhsTerm::Var(_) => {}
+        }
+    }
+    syms.str(&p.name);
+    p.conditions.iter().for_each(|c| cond(c, syms));
+    for a in &p.actions {
+        match a {
+            Action::Make(m) => {
+                for t in [&m.id, &m.attr, &m.value] {
+                    rhs(t, syms);
+                }
+                if let Some(r) = &m.referent {
+                    rhs(r, syms);
+                }
+            }
+            Action::Call(f) => rhs(&RhsTerm::Call(f.clone()), syms),
+        }
+    }
+}
+
+// ------------------------------------------------------------------ variables
+
+fn equality_term(t: &Test) -> Option<&Term> {
+    match t {
+        Test::Equal(term) => Some(term),
+        Test::Conjunction(ts) => ts.iter().find_map(equality_term),
+        _ => None,
+    }
+}
+
+fn equality_var(t: &Test) -> Option<&str> {
+    match equality_term(t) {
+        Some(Term::Var(v)) => Some(v),
+        _ => None,
+    }
+}
+
+/// Variables a positive condition binds (its equality tests).
+fn bound_by(c: &Condition) -> Vec<&str> {
+    match c {
+        Condition::Positive(p) => [&p.id, &p.attr, &p.value]
+            .into_iter()
+            .filter_map(|t| equality_var(t))
+            .collect(),
+        _ => Vec::new(),
+    }
+}
+
+/// Every variable a condition tests (equality and relational referents), NCCs included.
+fn tested_vars<'a>(c: &'a Condition, out: &mut Vec<&'a str>) {
+    fn test<'a>(t: &'a Test, out: &mut Vec<&'a str>) {
+        match t {
+            Test::Equal(Term::Var(v)) | Test::Relational(_, Term::Var(v)) => out.push(v),
+            Test::Conjunction(ts) => ts.iter().for_each(|t| test(t, out)),
+            _ => {}
+        }
+    }
+    match c {
+        Condition::Positive(p) | Condition::Negative(p) => {
+            for t in [&p.id, &p.attr, &p.value] {
+                test(t, out);
+            }
+        }
+        Condition::Ncc(inner) => inner.iter().for_each(|c| tested_vars(c, out)),
+    }
+}
+
+/// Ids of positive conditions that no positive condition binds as a value, and that are
+/// not bound outside, in order of first appearance.
+fn root_variables(conds: &[Condition], outside: &Bound) -> Vec<String> {
+    let values: FxHashSet<&str> = conds
+        .iter()
+        .filter_map(|c| match c {
+            Condition::Positive(p) => equality_var(&p.value),
+            _ => None,
+        })
+        .collect();
+    let mut roots: Vec<String> = Vec::new();
+    for c in conds {
+        if let Condition::Positive(p) = c {
+            if let Some(v) = equality_var(&p.id) {
+                if !values.contains(v) && !outside.contains(v) && !roots.iter().any(|r| r == v) {
+                    roots.push(v.to_string());
+                }
+            }
+        }
+    }
+    roots
+}
+
+/// A `state`/`impasse` test stays only on conditions whose id is a root (9.6 keeps the goal
+/// test of chunks and rules on their root states only).
+fn drop_goal_tests_of_non_roots(conds: &mut [Condition], roots: &[String]) {
+    for c in conds.iter_mut() {
+        if let Condition::Positive(p) = c {
+            if p.goal != Head::None
+                && !equality_var(&p.id).is_some_and(|v| roots.iter().any(|r| r == v))
+            {
+                p.goal = Head::None;
+            }
+        }
+    }
+}
+
+/// For each negation or NCC of a list: the variables it tests that positive conditions of
+/// this list or of an enclosing one bind. Indexed like the list; NCCs carry their inner
+/// lists' requirements along.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Required {
+    vars: Vec<Vec<String>>,
+    inner: Vec<Option<Required>>,
+}
+
+fn requirements(conds: &[Condition], outside: &Bound) -> Required {
+    let mut bound = outside.clone();
+    for c in conds {
+        bound.extend(bound_by(c).into_iter().map(str::to_string));
+    }
+    let mut req = Required::default();
+    for c in conds {
+        let mut vars = Vec::new();
+        if !matches!(c, Condition::Positive(_)) {
+            let mut tested = Vec::new();
+            tested_vars(c, &mut tested);
+            for v in tested {
+                if bound.contains(v) && !vars.iter().any(|x: &String| x == v) {
+                    vars.push(v.to_string());
+                }
+            }
+        }
+        req.vars.push(vars);
+        req.inner.push(match c {
+            Condition::Ncc(inner) => Some(requirements(inner, &bound)),
+            _ => None,
+        });
+    }
+    req
+}
+
+// ------------------------------------------------------------------ one list
+
+fn reorder_list(
+    mut conds: Vec<Condition>,
+    required: Required,
+    roots: Vec<String>,
+    outside: &Bound,
+    rank: &dyn Fn(&Constant) -> u64,
+    dummies: &mut usize,
+) -> Vec<Condition> {
+    let saved = set_aside::simplify(&mut conds, dummies);
+    let Required {
+        mut vars,
+        mut inner,
+    } = required;
+    let pending: Vec<Pending> = conds
+        .into_iter()
+        .enumerate()
+        .map(|(k, cond)| Pending {
+            cond,
+            required: vars.get_mut(k).map(std::mem::take).unwrap_or_default(),
+            inner: inner.get_mut(k).and_then(Option::take),
+        })
+        .collect();
+    let mut chooser = Chooser::new(pending, outside, roots, rank);
+    let mut out = Vec::new();
+    while let Some(Pending { cond, inner, .. }) = chooser.next() {
+        let cond = match cond {
+            // An NCC's own conditions are ordered when it is placed, with what is bound
+            // by then counting as bound outside them.
+            Condition::Ncc(inner_conds) => {
+                let inner_roots = root_variables(&inner_conds, &chooser.bound);
+                Condition::Ncc(reorder_list(
+                    inner_conds,
+                    inner.unwrap_or_default(),
+                    inner_roots,
+                    &chooser.bound.clone(),
+                    rank,
+                    dummies,
+                ))
+            }
+            other => other,
+        };
+        chooser.bind(&cond);
+        out.push(cond);
+    }
+    set_aside::restore(&mut out, outside, saved);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ast::Relation;
+    use crate::production::Cond;
+    use crate::source::Span;
+
+    fn var(v: &str) -> Test {
+        Test::Equal(Term::Var(v.into()))
+    }
+    fn attr(a: &str) -> Test {
+        Test::Equal(Term::Const(Constant::Str(a.into())))
+    }
+    fn pos(id: &str, a: Test, v: Test, goal: Head) -> Condition {
+        Condition::Positive(Cond {
+            id: var(id),
+            attr: a,
+            value: v,
+            acceptable: false,
+            goal,
+            span: Span::default(),
+        })
+    }
+
+    #[test]
+    fn a_bare_relational_test_moves_to_where_its_referent_is_bound() {
+        let mut syms = Symbols::new();
+        syms.str("a");
+        let conds = vec![
+            pos("<s>", var("<at>"), var("<z>"), Head::State),
+            pos(
+                "<s>",
+                attr("a"),
+                Test::Relational(Relation::Lt, Term::Var("<z>".into())),
+                Head::None,
+            ),
+        ];
+        let out = reorder(&conds, &syms);
+        let text: Vec<String> = out.iter().map(crate::printer::cond_text).collect();
+        assert_eq!(
+            text,
+            [
+                "(state <s> ^a <#dummy 1>)",
+                "(<s> ^<at> { > <#dummy 1> <z> })"
+            ]
+        );
+    }
+}

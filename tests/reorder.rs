@@ -1,0 +1,102 @@
+//! The condition reorderer (spec §3i): rules whose conditions 9.6 reorders, and the order
+//! `print` shows afterwards, as the official kernel (soar-sml 9.6.5) printed it for the
+//! same rules loaded in the same order into a fresh agent.
+
+use rusoar::cli::Interpreter;
+
+fn printed(rules: &[&str], name: &str) -> String {
+    let mut i = Interpreter::new();
+    for r in rules {
+        i.run_text("rule", r).unwrap();
+    }
+    i.take_output();
+    i.run_text("print", &format!("print {name}")).unwrap();
+    // The `*` each rule printed leaves the column off 0, so print starts a fresh line.
+    i.take_output().trim_start_matches('\n').to_string()
+}
+
+#[test]
+fn tied_conditions_go_newest_constant_first() {
+    let out = printed(
+        &["sp {rule-1 (state <s> ^aa <x> ^bb <y> ^cc <z>) --> (write hi)}"],
+        "rule-1",
+    );
+    assert_eq!(
+        out,
+        "sp {rule-1\n    (state <s> ^cc <z> ^bb <y> ^aa <x>)\n    -->\n    (write hi)\n}\n\n"
+    );
+}
+
+#[test]
+fn the_lookahead_prefers_a_condition_that_makes_the_next_one_cheap() {
+    let rules = [
+        "sp {rule-1 (state <s> ^aa <x> ^bb <y> ^cc <z>) --> (write hi)}",
+        "sp {rule-3 (state <s> ^aa <x> ^bb <y>) (<x> ^dd <q>) (<y> ^ee 1) --> (write hi)}",
+    ];
+    assert_eq!(
+        printed(&rules, "rule-3"),
+        "sp {rule-3\n    (state <s> ^bb <y> ^aa <x>)\n    (<y> ^ee 1)\n    (<x> ^dd <q>)\n    \
+         -->\n    (write hi)\n}\n\n"
+    );
+}
+
+#[test]
+fn negations_win_cost_one_ties_and_relational_tests_move_to_their_referent() {
+    let rules = [
+        "sp {rule-1 (state <s> ^aa <x> ^bb <y> ^cc <z>) --> (write hi)}",
+        "sp {rule-4 (state <s> ^name foo ^aa <x> -^zz ^bb {<y> > <x>}) --> (write hi)}",
+        "sp {rule-e (state <s> ^aa <x> ^bb 3 ^cc 4 -^dd 1 -^ee 2) --> (write hi)}",
+    ];
+    assert_eq!(
+        printed(&rules, "rule-4"),
+        "sp {rule-4\n    (state <s> ^name foo -^zz <z*1> ^bb <y> ^aa { < <y> <x> })\n    -->\n    \
+         (write hi)\n}\n\n"
+    );
+    assert_eq!(
+        printed(&rules, "rule-e"),
+        "sp {rule-e\n    (state <s> ^cc 4 -^ee 2 -^dd 1 ^bb 3 ^aa <x>)\n    -->\n    (write hi)\n}\n\n"
+    );
+}
+
+#[test]
+fn start_up_constants_are_older_than_a_rules_own() {
+    // `superstate` and the small integers exist before any rule is loaded.
+    let rules = [
+        "sp {rule-5 (state <s> ^superstate <ss> ^aa <x>) (<ss> ^operator <o>) (<o> ^name bar) --> (write hi)}",
+        "sp {rule-c (state <s> ^aa 8 ^aa 2) --> (write hi)}",
+        "sp {rule-a (state <s> ^aa 1234 ^aa 5678) --> (write hi)}",
+    ];
+    assert!(printed(&rules, "rule-5").contains("(state <s> ^aa <x> ^superstate <ss>)"));
+    assert!(printed(&rules, "rule-c").contains("(state <s> ^aa 8 ^aa 2)"));
+    assert!(printed(&rules, "rule-a").contains("(state <s> ^aa 5678 ^aa 1234)"));
+}
+
+#[test]
+fn an_ncc_goes_where_its_variables_are_bound_and_non_root_state_tests_go() {
+    let rules = [
+        "sp {rule-a (state <s> ^aa <x> ^cc <z>) (<x> ^bb 1) --> (write hi)}",
+        "sp {rule-b (state <s> ^aa <x> ^cc <z>) (<x> ^bb 1) -{(<z> ^dd <q>) (<q> ^ee 2)} --> (write hi)}",
+        "sp {rule-e (state <s> ^aa <x>) (state <x> ^bb <y>) --> (write hi)}",
+    ];
+    assert_eq!(
+        printed(&rules, "rule-b"),
+        "sp {rule-b\n    (state <s> ^cc <z> ^aa <x>)\n   -{ (<z> ^dd <q>)\n      (<q> ^ee 2)}\n    \
+         (<x> ^bb 1)\n    -->\n    (write hi)\n}\n\n"
+    );
+    assert_eq!(
+        printed(&rules, "rule-e"),
+        "sp {rule-e\n    (state <s> ^aa <x>)\n    (<x> ^bb <y>)\n    -->\n    (write hi)\n}\n\n"
+    );
+}
+
+#[test]
+fn several_set_aside_tests_come_back_in_their_order() {
+    let out = printed(
+        &["sp {rule-d (state <s> ^aa { > 1 < 5 <x> } ^bb { <y> <> <x> > 2 }) --> (write hi)}"],
+        "rule-d",
+    );
+    assert!(
+        out.contains("(state <s> ^bb { > 2 <y> } ^aa { > 1 < 5 <> <y> <x> })"),
+        "{out}"
+    );
+}
