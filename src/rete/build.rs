@@ -315,6 +315,7 @@ impl Rete {
             self.nodes[j as usize].hash = Some((d, f));
             self.add_left_key(h, d, f);
         }
+        self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
         self.link_to_amem(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
@@ -357,6 +358,7 @@ impl Rete {
             self.nodes[n as usize].hash = Some((d, f));
             self.add_left_key(n, d, f);
         }
+        self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
         self.link_to_amem(n, amem);
         self.fill_new_node(n, syms, &mut super::NullSink);
         if self.nodes[n as usize].token_count == 0 {
@@ -455,8 +457,10 @@ impl Rete {
             }
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
-                    let seq = self.nodes[n as usize].seq;
-                    self.amems[amem as usize].successors.remove(&seq);
+                    if !self.is_right_unlinked(n) {
+                        let key = self.nodes[n as usize].amem_key;
+                        self.amems[amem as usize].successors.remove(&key);
+                    }
                     self.release_amem(amem);
                 }
                 _ => {}

@@ -60,8 +60,8 @@ pub(crate) struct Amem {
     /// Head of the intrusive list of right-memory entries (newest first).
     pub first: u32,
     pub count: u32,
-    /// Linked successors by creation order (node `seq`); the newest is activated first.
-    /// Ordered and keyed so that unlinking one of thousands is cheap.
+    /// Linked successors in activation order, keyed by their `amem_key`; ordered and keyed
+    /// so that unlinking one of thousands is cheap.
     pub successors: std::collections::BTreeMap<u64, NodeId>,
     pub refs: u32,
 }
@@ -139,8 +139,12 @@ pub(crate) struct Node {
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: Vec<(u32, Field, u32)>,
-    /// Creation order (node ids are reused, this is not).
-    pub seq: u64,
+    /// Join and negative nodes: the place among their alpha memory's successors (ascending
+    /// = activation order), while linked.
+    pub amem_key: u64,
+    /// Join and negative nodes: the nearest ancestor on the same alpha memory (NIL if none),
+    /// found when the node is built.
+    pub same_amem_ancestor: NodeId,
 }
 
 impl Node {
@@ -234,7 +238,6 @@ pub struct Rete {
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
     pub(crate) hentries: Vec<hash::HEntry>,
     free_hentries: Vec<u32>,
-    next_seq: u64,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -267,7 +270,6 @@ impl Rete {
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
             free_hentries: Vec::new(),
-            next_seq: 0,
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -290,9 +292,9 @@ impl Rete {
             alive: true,
             hash: None,
             left_keys: Vec::new(),
-            seq: self.next_seq,
+            amem_key: 0,
+            same_amem_ancestor: NIL,
         };
-        self.next_seq += 1;
         alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
 
@@ -480,7 +482,6 @@ impl Rete {
         let succ: Vec<NodeId> = self.amems[a as usize]
             .successors
             .values()
-            .rev()
             .copied()
             .collect();
         for n in succ {
@@ -920,8 +921,8 @@ impl Rete {
             }
             _ => return,
         };
-        let seq = self.nodes[n as usize].seq;
-        self.amems[amem as usize].successors.remove(&seq);
+        let key = self.nodes[n as usize].amem_key;
+        self.amems[amem as usize].successors.remove(&key);
     }
 
     /// Puts a node back among its alpha memory's successors.
@@ -948,15 +949,81 @@ impl Rete {
         self.link_to_amem(n, amem);
     }
 
-    /// Links a node into its alpha memory's successors at the place creation gave it: Soar
-    /// head-inserts a node there when it is built, so the newest node is activated first,
-    /// and a relinked node (Rete/UL) goes back to that place, not to the head, or unlinking
-    /// history would change the firing order (spec §3i). Newest first also puts every node
-    /// before its ancestors on the same memory, so no descendant sees a new WME twice
-    /// (Doorenbos §4.3.2): descendants are always built after their ancestors.
+    /// Links a node into its alpha memory's successors where Soar's Rete/UL puts it, when
+    /// it is built and whenever it is relinked: just before its nearest linked ancestor on
+    /// the same memory (so no descendant sees a new WME twice, Doorenbos §4.3.2), or else
+    /// at the tail. The order therefore follows linking history, which decides the firing
+    /// order of rules matched by one WME (spec §3i): 9.6 activates from the head.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
-        let seq = self.nodes[n as usize].seq;
-        self.amems[amem as usize].successors.insert(seq, n);
+        const GAP: u64 = 1 << 20;
+        let mut a = self.nodes[n as usize].same_amem_ancestor;
+        while a != NIL && self.is_right_unlinked(a) {
+            a = self.nodes[a as usize].same_amem_ancestor;
+        }
+        let succ = &self.amems[amem as usize].successors;
+        let key = if a == NIL {
+            succ.keys().next_back().map_or(GAP, |&k| k + GAP)
+        } else {
+            let at = self.nodes[a as usize].amem_key;
+            let before = succ.range(..at).next_back().map_or(0, |(&k, _)| k);
+            if at - before >= 2 {
+                before + (at - before) / 2
+            } else {
+                self.respace_successors(amem);
+                return self.link_to_amem(n, amem);
+            }
+        };
+        self.nodes[n as usize].amem_key = key;
+        self.amems[amem as usize].successors.insert(key, n);
+    }
+
+    /// Spreads an alpha memory's successor keys out again, keeping their order.
+    fn respace_successors(&mut self, amem: AmemId) {
+        let nodes: Vec<NodeId> = self.amems[amem as usize]
+            .successors
+            .values()
+            .copied()
+            .collect();
+        let mut fresh = std::collections::BTreeMap::new();
+        for (i, n) in nodes.into_iter().enumerate() {
+            let key = (i as u64 + 1) << 20;
+            self.nodes[n as usize].amem_key = key;
+            fresh.insert(key, n);
+        }
+        self.amems[amem as usize].successors = fresh;
+    }
+
+    /// The nearest ancestor of `n` that is a join or negative node on `amem` (none when `n`
+    /// is the memory's only user, which spares the walk up a long rule).
+    pub(crate) fn find_same_amem_ancestor(&self, n: NodeId, amem: AmemId) -> NodeId {
+        if self.amems[amem as usize].refs <= 1 {
+            return NIL;
+        }
+        let mut p = self.nodes[n as usize].parent;
+        while p != NIL {
+            match self.nodes[p as usize].kind {
+                Kind::Join { amem: m, .. } | Kind::Negative { amem: m, .. } if m == amem => {
+                    return p
+                }
+                Kind::Root => return NIL,
+                _ => {}
+            }
+            p = self.nodes[p as usize].parent;
+        }
+        NIL
+    }
+
+    pub(crate) fn is_right_unlinked(&self, n: NodeId) -> bool {
+        matches!(
+            self.nodes[n as usize].kind,
+            Kind::Join {
+                right_unlinked: true,
+                ..
+            } | Kind::Negative {
+                right_unlinked: true,
+                ..
+            }
+        )
     }
 
     // ------------------------------------------------------------------- queries
