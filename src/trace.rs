@@ -253,3 +253,210 @@ pub fn match_wme_lines(agent: &Agent, ws: &[WmeId]) -> String {
         .collect::<Vec<_>>()
         .join("\n ")
 }
+
+/// The character of a preference type in traces (`+`, `-`, `!`, `~`, `=`, `>`, `<`).
+pub fn pref_type_char(k: crate::decide::procedure::PrefType) -> char {
+    use crate::decide::procedure::PrefType;
+    match k {
+        PrefType::Acceptable => '+',
+        PrefType::Require => '!',
+        PrefType::Reject => '-',
+        PrefType::Prohibit => '~',
+        PrefType::UnaryIndifferent | PrefType::BinaryIndifferent => '=',
+        PrefType::NumericIndifferent => '=',
+        PrefType::Best | PrefType::Better => '>',
+        PrefType::Worst | PrefType::Worse => '<',
+    }
+}
+
+/// A preference as the level-5 trace shows it (spec §6c):
+/// `(S1 ^count 0 +  :O ) [level 2] (rule)`: the referent of a binary or numeric preference
+/// after the type, `  :O ` for o-support, the level of its identifier below the top state,
+/// and the rule whose firing made it.
+pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> String {
+    let s = &agent.symbols;
+    let mut out = format!(
+        "({} ^{} {} {}",
+        s.text(p.id),
+        s.text(p.attr),
+        s.text(p.value),
+        pref_type_char(p.kind)
+    );
+    if let Some(r) = p.referent {
+        out.push(' ');
+        out.push_str(&s.text(r));
+    }
+    if p.o_support {
+        out.push_str("  :O ");
+    }
+    out.push(')');
+    let level = s.id_data(p.id).map_or(1, |d| d.level);
+    if level > 1 {
+        out.push_str(&format!(" [level {level}]"));
+    }
+    if let Some(i) = p.inst {
+        let prod = agent.decider.insts[i as usize].prod;
+        out.push_str(&format!(" ({})", agent.production_name(prod)));
+    }
+    out
+}
+
+impl Agent {
+    /// Does the print stream stand at the start of a line? (What is still in `output`
+    /// decides; when it has been taken, the front end's record of it.)
+    pub(crate) fn at_line_start(&self) -> bool {
+        match self.output.as_bytes().last() {
+            Some(&b) => b == b'\n',
+            None => self.output_line_start,
+        }
+    }
+
+    /// A newline unless the print stream is at the start of a line (9.6's fresh line).
+    pub(crate) fn fresh_line(&mut self) {
+        if !self.at_line_start() {
+            self.output.push('\n');
+        }
+    }
+
+    /// A phase header of trace level 2 (`trace -p`), printed as given.
+    pub(crate) fn trace_phase(&mut self, text: &str) {
+        if self.settings.trace.phases {
+            self.output.push_str(text);
+        }
+    }
+
+    /// `+ (pref) (rule)` or `- ...` on a line of its own (`trace -r`).
+    pub(crate) fn trace_pref(&mut self, sign: char, pid: crate::decide::state::PrefId) {
+        if !self.settings.trace.preferences {
+            return;
+        }
+        let text = pref_trace_text(self, &self.decider.prefs[pid as usize]);
+        self.fresh_line();
+        self.output.push(sign);
+        self.output.push(' ');
+        self.output.push_str(&text);
+        self.output.push('\n');
+    }
+
+    /// `=>WM: (tt: id ^attr value)` or `<=WM: ...` (`trace -w`).
+    pub(crate) fn trace_wme(&mut self, arrow: &str, w: &Wme) {
+        if self.settings.trace.wmes {
+            let text = wme_internal(self, w);
+            self.output.push_str(arrow);
+            self.output.push_str(&text);
+            self.output.push('\n');
+        }
+    }
+}
+
+/// The trace of the decision cycle's steps (spec §6c): elaboration headers, retractions,
+/// new preferences, operators removed by the consistency check.
+impl Agent {
+    /// `\t--- Firing Productions (PE) For State At Depth N ---` (apply phase, `-p`) and
+    /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before an
+    /// elaboration cycle. The active level is the highest goal any of the cycle's firings
+    /// and retractions is in (the top state if there are none).
+    pub(crate) fn trace_elaboration_header(
+        &mut self,
+        to_fire: &[(crate::rete::ProdId, crate::rete::TokId)],
+        retracted: &[crate::decide::state::InstId],
+        apply: bool,
+        o_support: bool,
+    ) {
+        let level_of = |agent: &Agent, g: Option<Sym>| {
+            g.and_then(|g| agent.symbols.id_data(g))
+                .map_or(1, |d| d.level)
+        };
+        let fired = to_fire
+            .iter()
+            .map(|&(p, t)| level_of(self, crate::support::match_goal(self, p, t)));
+        let gone = retracted
+            .iter()
+            .map(|&i| level_of(self, self.decider.insts[i as usize].goal));
+        let level = fired.chain(gone).min().unwrap_or(1);
+        let goal = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.level == level)
+            .map_or(self.top.state, |g| g.state);
+        if apply && self.settings.trace.phases {
+            let kind = if o_support { "PE" } else { "IE" };
+            self.output.push_str(&format!(
+                "\t--- Firing Productions ({kind}) For State At Depth {level} ---\n"
+            ));
+        }
+        if self.settings.trace.waterfall {
+            let s = format!(
+                "\n--- Inner Elaboration Phase, active level {level} goal {} ---\n",
+                self.symbols.text(goal)
+            );
+            self.output.push_str(&s);
+        }
+    }
+
+    /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).
+    pub(crate) fn trace_retraction(&mut self, name: &str, inst: crate::decide::state::InstId) {
+        let prod = self.decider.insts[inst as usize].prod;
+        let traced = self
+            .production_arc(name)
+            .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
+        let _ = prod;
+        if traced {
+            self.output.push_str(&format!("\nRetracting {name}\n"));
+        }
+        if self.settings.trace.preferences {
+            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            for pid in prefs.into_iter().rev() {
+                let p = &self.decider.prefs[pid as usize];
+                if p.alive && !p.o_support {
+                    self.trace_pref('-', pid);
+                }
+            }
+        }
+    }
+
+    /// The preferences of one elaboration cycle's firings as they are asserted: the newest
+    /// firing first, each one's preferences newest first; an o-supported reject shows as
+    /// the removal of the preferences it takes away.
+    pub(crate) fn trace_new_preferences(&mut self, new_prefs: &[crate::decide::state::PrefId]) {
+        use crate::decide::procedure::PrefType;
+        for &pid in new_prefs.iter().rev() {
+            let p = self.decider.prefs[pid as usize].clone();
+            if p.kind == PrefType::Reject && p.o_support {
+                let removed: Vec<_> = self
+                    .decider
+                    .slots
+                    .get(&(p.id, p.attr))
+                    .map(|slot| {
+                        slot.prefs
+                            .iter()
+                            .rev()
+                            .copied()
+                            .filter(|&x| x != pid && self.decider.prefs[x as usize].value == p.value)
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                for r in removed {
+                    self.trace_pref('-', r);
+                }
+            } else {
+                self.trace_pref('+', pid);
+            }
+        }
+    }
+
+    /// `REMOVING: Operator from context slot (proposal no longer matches): (wme)` (`-o`).
+    pub(crate) fn trace_operator_removal(&mut self, key: (Sym, Sym), op: Sym) {
+        let w = self
+            .decider
+            .slots
+            .get(&key)
+            .and_then(|s| s.wmes.get(&(op, true)).copied())
+            .and_then(|w| self.wm.get(w).copied());
+        let text = w.map(|w| wme_internal(self, &w)).unwrap_or_default();
+        self.output.push_str(&format!(
+            "\n        REMOVING: Operator from context slot (proposal no longer matches): {text}\n"
+        ));
+    }
+}

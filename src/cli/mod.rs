@@ -13,6 +13,7 @@ pub mod repl;
 mod rules;
 mod running;
 mod settings;
+mod tracing;
 pub mod soarunit;
 
 use crate::agent::{Agent, PhaseCallback};
@@ -199,6 +200,7 @@ impl Interpreter {
                 if !a.output.is_empty() {
                     let text = std::mem::take(&mut a.output);
                     advance_col(&col, &text);
+                    a.output_line_start = col.get() == 0;
                     (live.borrow_mut())(&text);
                 }
             }

@@ -59,7 +59,7 @@ impl Agent {
 
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
     pub fn print_initial_state(&mut self) {
-        if self.settings.trace_level >= 1 {
+        if self.settings.trace.decisions {
             let s = format!("\n{:>6}: ==>S: {} ", 0, self.symbols.text(self.top.state));
             self.out(&s);
         }
@@ -122,12 +122,15 @@ impl Agent {
         self.learn.chunks_this_phase = 0;
         match phase {
             Phase::Input => {
+                self.trace_phase("\n--- Input Phase --- \n");
                 self.run_input_callbacks();
                 self.classify_new_matches();
+                self.trace_phase("\n--- END Input Phase --- \n");
                 self.decider.phase = Some(Phase::Propose);
             }
             Phase::Propose => {
                 if !self.decider.phase_started {
+                    self.trace_phase("\n--- Propose Phase ---\n");
                     self.decider.e_cycles_this_phase = 0;
                     self.decider.phase_started = true;
                 }
@@ -143,16 +146,25 @@ impl Agent {
                     }
                 }
                 self.decider.phase_started = false;
+                if !self.decider.halted {
+                    self.trace_phase("\n--- END Propose Phase ---\n");
+                }
                 self.decider.phase = Some(Phase::Decide);
             }
             Phase::Decide => {
+                self.trace_phase("\n--- Decision Phase ---\n");
                 self.decide_context_slots();
                 self.classify_new_matches();
+                self.trace_phase("\n--- END Decision Phase ---\n");
                 self.decider.decisions += 1;
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
             }
             Phase::Apply => {
+                if !self.decider.phase_started {
+                    self.trace_phase("\n--- Application Phase ---\n");
+                    self.decider.phase_started = true;
+                }
                 while self.has_pending(true) && !self.decider.halted {
                     // IE before PE: i-supported firings reach quiescence first (spec §3a).
                     let pe = !self.has_pending(false);
@@ -166,10 +178,17 @@ impl Agent {
                         return;
                     }
                 }
+                self.decider.phase_started = false;
+                // A halt ends the phase without its END line (checked on 9.6).
+                if !self.decider.halted {
+                    self.trace_phase("\n--- END Application Phase ---\n");
+                }
                 self.decider.phase = Some(Phase::Output);
             }
             Phase::Output => {
+                self.trace_phase("\n--- Output Phase ---\n");
                 self.run_output_callbacks();
+                self.trace_phase("\n--- END Output Phase ---\n");
                 self.decider.d_cycle_count += 1;
                 self.decider.phase = Some(Phase::Input);
             }
@@ -253,6 +272,10 @@ impl Agent {
                 retracted.push(i);
             }
         }
+        let apply = self.decider.phase == Some(Phase::Apply);
+        if self.settings.trace.phases || self.settings.trace.waterfall {
+            self.trace_elaboration_header(&to_fire, &retracted, apply, o_support);
+        }
         let mut new_prefs = Vec::new();
         for (p, t) in to_fire {
             // A halt ends the run after this elaboration cycle: the rest of it still fires.
@@ -263,6 +286,10 @@ impl Agent {
         self.assert_preferences(new_prefs);
         for inst in retracted {
             self.retract(inst);
+        }
+        if apply {
+            let kind = if o_support { "PE" } else { "IE" };
+            self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
         self.update_slots();
         true
@@ -275,8 +302,8 @@ impl Agent {
         };
         self.decider.firings += 1;
         *self.decider.firing_counts.entry(p).or_default() += 1;
-        if self.settings.trace_level >= 3 {
-            self.out(&format!("\nFiring {name}"));
+        if self.settings.trace.firings_of(&prod.flags) {
+            self.out(&format!("\nFiring {name}\n"));
         }
         let goal = crate::support::match_goal(self, p, t);
         let level = goal
@@ -426,8 +453,8 @@ impl Agent {
             let inst = &self.decider.insts[inst_id as usize];
             inst.o_support || inst.prefs.is_empty() || serial != 0
         };
-        if self.settings.trace_level >= 3 && !quiet {
-            self.out(&format!("\nRetracting {name}"));
+        if !quiet {
+            self.trace_retraction(&name, inst_id);
         }
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
@@ -467,6 +494,9 @@ impl Agent {
     /// O-supported rejects remove every preference for their value first; the other new
     /// preferences join their slots, newest at the head (spec §3a).
     fn assert_preferences(&mut self, new_prefs: Vec<PrefId>) {
+        if self.settings.trace.preferences {
+            self.trace_new_preferences(&new_prefs);
+        }
         for &pid in &new_prefs {
             let p = self.decider.prefs[pid as usize].clone();
             if p.kind == PrefType::Reject && p.o_support {
@@ -597,12 +627,7 @@ impl Agent {
         }
         for &w in added.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
-                if self.settings.trace_level >= 4 {
-                    self.out(&format!(
-                        "\n=>WM: {}",
-                        crate::trace::wme_internal(self, &wme)
-                    ));
-                }
+                self.trace_wme("=>WM: ", &wme);
                 self.rete.add_wme(
                     w,
                     (wme.id, wme.attr, wme.value),
@@ -644,12 +669,7 @@ impl Agent {
         let Some(wme) = self.wm.get(w).copied() else {
             return;
         };
-        if self.settings.trace_level >= 4 {
-            self.out(&format!(
-                "\n<=WM: {}",
-                crate::trace::wme_internal(self, &wme)
-            ));
-        }
+        self.trace_wme("<=WM: ", &wme);
         let key = (wme.id, wme.attr);
         if let Some(slot) = self.decider.slots.get_mut(&key) {
             slot.wmes.remove(&(wme.value, wme.acceptable));
@@ -674,6 +694,9 @@ impl Agent {
                 .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
         if still {
             return None;
+        }
+        if self.settings.trace.consistency {
+            self.trace_operator_removal(key, op);
         }
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
@@ -724,10 +747,13 @@ impl Agent {
                 Outcome::Winner(o) => {
                     self.remove_goals_below(gi);
                     let w = self.add_wme(goal.state, op, o, false);
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        self.trace_wme("=>WM: ", &wme);
+                    }
                     self.classify_new_matches();
                     self.decider.wme_changes += 1;
                     self.decider.goals[gi].operator = Some((o, w));
-                    if self.settings.trace_level >= 1 {
+                    if self.settings.trace.decisions {
                         let name = self.operator_name(o);
                         let mut line = format!(
                             "{}   O: {} {}",
@@ -805,7 +831,7 @@ impl Agent {
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
             // Waiting: the bottom state's own line again, impasse included (E:t12).
-            if self.settings.trace_level >= 1 {
+            if self.settings.trace.decisions {
                 let what = self.decider.goals[gi]
                     .impasse
                     .map(|(k, on_op)| {
@@ -895,7 +921,7 @@ impl Agent {
                 );
             }
         }
-        if self.settings.trace_level >= 1 {
+        if self.settings.trace.decisions {
             let what = format!(
                 "({} {})",
                 if on_operator { "operator" } else { "state" },
@@ -1026,12 +1052,7 @@ impl Agent {
                 }
             }
             if self.wm.get(w).is_some() {
-                if self.settings.trace_level >= 4 {
-                    self.out(&format!(
-                        "\n<=WM: {}",
-                        crate::trace::wme_internal(self, &wme)
-                    ));
-                }
+                self.trace_wme("<=WM: ", &wme);
                 self.remove_wme(w);
             }
         }
