@@ -165,6 +165,15 @@ impl TraceFlags {
         }
     }
 
+    /// Are the firings of some kind of rule traced?
+    pub fn any_firings(&self) -> bool {
+        self.user_rules
+            || self.default_rules
+            || self.chunks
+            || self.justifications
+            || self.templates
+    }
+
     /// Are firings and retractions of a rule with these flags traced?
     pub fn firings_of(&self, flags: &crate::production::Flags) -> bool {
         if flags.justification {

@@ -294,8 +294,11 @@ pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> S
     if level > 1 {
         out.push_str(&format!(" [level {level}]"));
     }
-    if let Some(i) = p.inst {
-        let prod = agent.decider.insts[i as usize].prod;
+    let rule = p
+        .inst
+        .map(|i| agent.decider.insts[i as usize].prod)
+        .or(p.rule);
+    if let Some(prod) = rule {
         out.push_str(&format!(" ({})", agent.production_name(prod)));
     }
     out
@@ -396,12 +399,20 @@ impl Agent {
     }
 
     /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).
-    pub(crate) fn trace_retraction(&mut self, name: &str, inst: crate::decide::state::InstId) {
-        let prod = self.decider.insts[inst as usize].prod;
+    /// An o-supported instantiation, or one that made no preferences, has nothing to
+    /// retract: 9.6 prints nothing for it, nor for a justification.
+    pub(crate) fn trace_retraction(&mut self, inst: crate::decide::state::InstId) {
+        let (prod, quiet) = {
+            let i = &self.decider.insts[inst as usize];
+            (i.prod, i.o_support || i.prefs.is_empty() || i.serial != 0)
+        };
+        if quiet {
+            return;
+        }
+        let name = self.production_name(prod).to_string();
         let traced = self
-            .production_arc(name)
+            .production_arc(&name)
             .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
-        let _ = prod;
         if traced {
             self.output.push_str(&format!("\nRetracting {name}\n"));
         }
@@ -433,7 +444,9 @@ impl Agent {
                             .iter()
                             .rev()
                             .copied()
-                            .filter(|&x| x != pid && self.decider.prefs[x as usize].value == p.value)
+                            .filter(|&x| {
+                                x != pid && self.decider.prefs[x as usize].value == p.value
+                            })
                             .collect()
                     })
                     .unwrap_or_default();
@@ -458,5 +471,32 @@ impl Agent {
         self.output.push_str(&format!(
             "\n        REMOVING: Operator from context slot (proposal no longer matches): {text}\n"
         ));
+    }
+}
+
+impl Agent {
+    /// `Removing state S2 because element in GDS changed. WME: (...)` (`-g`), before the
+    /// working-memory changes of the cycle that take a WME out of a substate's GDS: once
+    /// for the highest such goal (the ones below it go with it).
+    pub(crate) fn trace_gds_removals(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
+        let mut reported: Option<u32> = None;
+        for &(w, tt) in removes.iter().rev() {
+            let Some(wme) = self.wm.get(w).copied().filter(|x| x.timetag == tt) else {
+                continue;
+            };
+            let Some(&goal) = self.decider.gds.get(&w) else {
+                continue;
+            };
+            let level = self.symbols.id_data(goal).map_or(0, |d| d.level);
+            if reported.is_some_and(|l| l <= level) {
+                continue;
+            }
+            reported = Some(level);
+            let g = self.symbols.text(goal);
+            let text = wme_internal(self, &wme);
+            self.output.push_str(&format!(
+                "Removing state {g} because element in GDS changed. WME: {text}\n\n    REMOVING GOAL [{g}] due to change in GDS WME {text}\n"
+            ));
+        }
     }
 }

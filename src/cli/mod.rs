@@ -13,8 +13,8 @@ pub mod repl;
 mod rules;
 mod running;
 mod settings;
-mod tracing;
 pub mod soarunit;
+mod tracing;
 
 use crate::agent::{Agent, PhaseCallback};
 use crate::source::{Diagnostic, SourceMap, Span};

@@ -196,9 +196,9 @@ fn parse(args: &[String]) -> Result<Vec<Change>, String> {
                 .map(|c| long_name(&c.to_string()))
                 .collect::<Result<_, _>>()?
         };
-        let next_is_value = args.get(i).is_some_and(|w| {
-            !(w.len() > 1 && w.starts_with('-') && w.parse::<i64>().is_err())
-        });
+        let next_is_value = args
+            .get(i)
+            .is_some_and(|w| !(w.len() > 1 && w.starts_with('-') && w.parse::<i64>().is_err()));
         let last = names.len() - 1;
         for (k, name) in names.into_iter().enumerate() {
             let takes_value = k == last && next_is_value;
@@ -368,12 +368,12 @@ fn trace_listing(t: &TraceFlags, learning: u8) -> String {
     s.push_str(&header("Level 2", '-'));
     for (name, b, flags) in [
         ("Phases", t.phases, "-p, --phases"),
-        ("Chunking warnings", t.chunk_warnings, "-C, --chunk-warnings"),
         (
-            "State removals caused by GDS violation",
-            t.gds,
-            "-g, --gds",
+            "Chunking warnings",
+            t.chunk_warnings,
+            "-C, --chunk-warnings",
         ),
+        ("State removals caused by GDS violation", t.gds, "-g, --gds"),
         (
             "State removals caused by operator consistency checks",
             t.consistency,

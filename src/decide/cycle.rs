@@ -146,7 +146,9 @@ impl Agent {
                     }
                 }
                 self.decider.phase_started = false;
-                if !self.decider.halted {
+                // A halt with firings still pending ends the phase without its END line
+                // (checked on 9.6).
+                if !(self.decider.halted && self.has_pending(false)) {
                     self.trace_phase("\n--- END Propose Phase ---\n");
                 }
                 self.decider.phase = Some(Phase::Decide);
@@ -179,8 +181,7 @@ impl Agent {
                     }
                 }
                 self.decider.phase_started = false;
-                // A halt ends the phase without its END line (checked on 9.6).
-                if !self.decider.halted {
+                if !(self.decider.halted && self.has_pending(true)) {
                     self.trace_phase("\n--- END Application Phase ---\n");
                 }
                 self.decider.phase = Some(Phase::Output);
@@ -284,6 +285,12 @@ impl Agent {
         // New preferences go in before the retractions are processed (9.6 prints the `+`
         // lines before `Retracting`), which sets the order slots change in (spec §3i).
         self.assert_preferences(new_prefs);
+        // 9.6 lists the retractions newest first; they are processed oldest first here.
+        if self.settings.trace.preferences || self.settings.trace.any_firings() {
+            for &inst in retracted.iter().rev() {
+                self.trace_retraction(inst);
+            }
+        }
         for inst in retracted {
             self.retract(inst);
         }
@@ -370,6 +377,7 @@ impl Agent {
                         number,
                         o_support: inst.o_support,
                         inst: Some(inst_id),
+                        rule: Some(p),
                         alive: true,
                         freed: false,
                         origin: None,
@@ -440,21 +448,10 @@ impl Agent {
     }
 
     fn retract(&mut self, inst_id: InstId) {
-        let p = self.decider.insts[inst_id as usize].prod;
-        let name = self.production_name(p).to_string();
         let serial = self.decider.insts[inst_id as usize].serial;
         if serial != 0 {
             let o = self.decider.insts[inst_id as usize].o_support;
             self.forget_justification(serial, o);
-        }
-        // An o-supported instantiation, or one that made no preferences, has nothing to
-        // retract: 9.6 prints nothing for it, nor for a justification (`trace -j` is off).
-        let quiet = {
-            let inst = &self.decider.insts[inst_id as usize];
-            inst.o_support || inst.prefs.is_empty() || serial != 0
-        };
-        if !quiet {
-            self.trace_retraction(&name, inst_id);
         }
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
@@ -597,13 +594,14 @@ impl Agent {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             let mut want: Vec<Sym> = Vec::new();
-            for &pid in slot.prefs.iter() {
-                let p = &self.decider.prefs[pid as usize];
-                // Require preferences show as `+` WMEs too (checked on 9.6).
-                if matches!(p.kind, PrefType::Acceptable | PrefType::Require)
-                    && !want.contains(&p.value)
-                {
-                    want.push(p.value);
+            // Require preferences show as `+` WMEs too, before the acceptable ones, each
+            // kind oldest first: that sets their timetags (checked on 9.6).
+            for kind in [PrefType::Require, PrefType::Acceptable] {
+                for &pid in slot.prefs.iter().rev() {
+                    let p = &self.decider.prefs[pid as usize];
+                    if p.kind == kind && !want.contains(&p.value) {
+                        want.push(p.value);
+                    }
                 }
             }
             for (&(v, acc), &w) in &slot.wmes {
@@ -616,6 +614,9 @@ impl Agent {
                     adds.push((key.0, key.1, v, true));
                 }
             }
+        }
+        if self.settings.trace.gds {
+            self.trace_gds_removals(&removes);
         }
         // Timetags in action order, but the matcher gets the batch newest first, and the
         // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher
@@ -697,6 +698,13 @@ impl Agent {
         }
         if self.settings.trace.consistency {
             self.trace_operator_removal(key, op);
+            if let Some(sub) = self.decider.goals.get(gi + 1) {
+                let s = format!(
+                    "Removing state {} because of an operator removal.\n",
+                    self.symbols.text(sub.state)
+                );
+                self.out(&s);
+            }
         }
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
@@ -909,9 +917,19 @@ impl Agent {
             }
             add(self, s, "non-numeric-count", n);
         }
+        // 9.6 prints the depth message before the new state's WMEs and line.
+        if level as i64 > self.settings.max_goal_depth {
+            let msg = format!(
+                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
+                self.settings.max_goal_depth
+            );
+            self.out(&msg);
+            self.decider.halted = true;
+        }
         self.decider.wme_changes += wmes.len() as u64;
         for &w in wmes.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme("=>WM: ", &wme);
                 self.rete.add_wme(
                     w,
                     (wme.id, wme.attr, wme.value),
@@ -944,14 +962,6 @@ impl Agent {
             wmes,
             slot_changed: true,
         });
-        if level as i64 > self.settings.max_goal_depth {
-            let msg = format!(
-                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
-                self.settings.max_goal_depth
-            );
-            self.out(&msg);
-            self.decider.halted = true;
-        }
     }
 
     /// Removes every goal below `gi`, deepest first, with its architecture WMEs; what they
@@ -1037,6 +1047,8 @@ impl Agent {
             return;
         }
         garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
+        // 9.6 lists the removals newest first; they happen oldest first here.
+        let mut removed_lines = Vec::new();
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
@@ -1052,9 +1064,12 @@ impl Agent {
                 }
             }
             if self.wm.get(w).is_some() {
-                self.trace_wme("<=WM: ", &wme);
+                removed_lines.push(wme);
                 self.remove_wme(w);
             }
+        }
+        for wme in removed_lines.iter().rev() {
+            self.trace_wme("<=WM: ", wme);
         }
         // What these removals point at was all collected above.
         self.decider.gc_candidates.clear();
