@@ -415,6 +415,13 @@ impl Agent {
             .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
         if traced {
             self.output.push_str(&format!("\nRetracting {name}\n"));
+            let (p, t) = {
+                let i = &self.decider.insts[inst as usize];
+                (i.prod, i.token)
+            };
+            self.trace_match_wmes(p, t);
+            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            self.trace_instantiation_prefs(&prefs);
         }
         if self.settings.trace.preferences {
             let prefs = self.decider.insts[inst as usize].prefs.clone();
@@ -497,6 +504,53 @@ impl Agent {
             self.output.push_str(&format!(
                 "Removing state {g} because element in GDS changed. WME: {text}\n\n    REMOVING GOAL [{g}] due to change in GDS WME {text}\n"
             ));
+        }
+    }
+}
+
+impl Agent {
+    /// With `trace --timetags` or `--fullwmes`, the WMEs a traced firing or retraction
+    /// matched, after its `Firing`/`Retracting` line and before its actions run: ` 16 14`
+    /// or one ` (16: S1 ^operator O1)` a line, then ` -->`. (9.6 lists them in its
+    /// reordered condition order, ours in the written order; and its `--fullwmes` prints
+    /// some as `WME with time tag 16`.)
+    pub(crate) fn trace_match_wmes(&mut self, p: crate::rete::ProdId, t: crate::rete::TokId) {
+        let detail = self.settings.trace.wme_detail;
+        if detail == crate::agent::WmeDetail::None {
+            return;
+        }
+        let wmes: Vec<Wme> = self
+            .rete
+            .match_wmes(p, t)
+            .into_iter()
+            .filter_map(|w| self.wm.get(w).copied())
+            .collect();
+        for w in wmes {
+            if detail == crate::agent::WmeDetail::Full {
+                let text = wme_internal(self, &w);
+                self.output.push_str(&format!(" {text}\n"));
+            } else {
+                self.output.push_str(&format!(" {}", w.timetag));
+            }
+        }
+        self.output.push_str(" -->\n");
+    }
+
+    /// The instantiation's preferences, one a line, newest first (with `--timetags` or
+    /// `--fullwmes`), after its actions ran.
+    pub(crate) fn trace_instantiation_prefs(&mut self, prefs: &[crate::decide::state::PrefId]) {
+        if self.settings.trace.wme_detail == crate::agent::WmeDetail::None {
+            return;
+        }
+        for &pid in prefs.iter().rev() {
+            let mut bare = self.decider.prefs[pid as usize].clone();
+            bare.inst = None;
+            bare.rule = None;
+            let text = pref_trace_text(self, &bare);
+            self.fresh_line();
+            self.output.push(' ');
+            self.output.push_str(&text);
+            self.output.push('\n');
         }
     }
 }

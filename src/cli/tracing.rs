@@ -427,7 +427,7 @@ fn trace_listing(t: &TraceFlags, learning: u8) -> String {
         "WME Detail Level",
         match t.wme_detail {
             WmeDetail::None => "none",
-            WmeDetail::Timetags => "timetags",
+            WmeDetail::Timetags => "timetag",
             WmeDetail::Full => "full",
         },
         "--nowmes, --timetags, --fullwmes",

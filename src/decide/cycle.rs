@@ -309,8 +309,10 @@ impl Agent {
         };
         self.decider.firings += 1;
         *self.decider.firing_counts.entry(p).or_default() += 1;
-        if self.settings.trace.firings_of(&prod.flags) {
+        let traced = self.settings.trace.firings_of(&prod.flags);
+        if traced {
             self.out(&format!("\nFiring {name}\n"));
+            self.trace_match_wmes(p, t);
         }
         let goal = crate::support::match_goal(self, p, t);
         let level = goal
@@ -392,6 +394,9 @@ impl Agent {
         self.decider.inst_by_token.insert((p, t), inst_id);
         let own_prefs = inst.prefs.clone();
         self.decider.insts[inst_id as usize] = inst;
+        if traced {
+            self.trace_instantiation_prefs(&own_prefs);
+        }
         // Results of a substate firing are learned from at once (spec §4): a justification
         // or a chunk takes them over.
         if level >= 2 {
