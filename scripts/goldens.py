@@ -82,10 +82,13 @@ RUN = "run 1000"
 TRACE_AGENTS = [
     "gds",
     "halt",
+    "impasse-conflict",
     "impasse-state-no-change",
     "prefs-binary",
     "substates",
+    "support-declared",
     "support-retraction",
+    "wait-snc",
 ]
 TRACE_LEVELS = [2, 3, 4, 5]
 TRACE_RUN = "run 50"

@@ -269,6 +269,9 @@ pub struct Agent {
     /// Whether the print stream stood at the start of a line when `output` was last taken
     /// (9.6 starts some trace lines on a fresh line only).
     pub output_line_start: bool,
+    /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
+    /// end of the working-memory phase.
+    pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
@@ -301,6 +304,7 @@ impl Agent {
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
             output_line_start: false,
+            removed_wmes: None,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,

@@ -343,6 +343,12 @@ impl Agent {
 
     /// `=>WM: (tt: id ^attr value)` or `<=WM: ...` (`trace -w`).
     pub(crate) fn trace_wme(&mut self, arrow: &str, w: &Wme) {
+        if arrow.starts_with("<=") {
+            if let Some(buffer) = self.removed_wmes.as_mut() {
+                buffer.push(*w);
+                return;
+            }
+        }
         if self.settings.trace.wmes {
             let text = wme_internal(self, w);
             self.output.push_str(arrow);
@@ -439,6 +445,7 @@ impl Agent {
     /// the removal of the preferences it takes away.
     pub(crate) fn trace_new_preferences(&mut self, new_prefs: &[crate::decide::state::PrefId]) {
         use crate::decide::procedure::PrefType;
+        // The o-rejects' removals first, then the other preferences (checked on 9.6).
         for &pid in new_prefs.iter().rev() {
             let p = self.decider.prefs[pid as usize].clone();
             if p.kind == PrefType::Reject && p.o_support {
@@ -460,7 +467,11 @@ impl Agent {
                 for r in removed {
                     self.trace_pref('-', r);
                 }
-            } else {
+            }
+        }
+        for &pid in new_prefs.iter().rev() {
+            let p = &self.decider.prefs[pid as usize];
+            if !(p.kind == PrefType::Reject && p.o_support) {
                 self.trace_pref('+', pid);
             }
         }
@@ -551,6 +562,38 @@ impl Agent {
             self.output.push(' ');
             self.output.push_str(&text);
             self.output.push('\n');
+        }
+    }
+}
+
+impl Agent {
+    /// The `<=WM:` lines of one working-memory phase in 9.6's order: an operator removed
+    /// from its slot (its `+` WME, then the selected one), the operator slots' other `+`
+    /// WMEs oldest first, then the rest newest first (what is removed does not change,
+    /// only the order it is listed in).
+    pub(crate) fn trace_removed_wmes(&mut self) {
+        let Some(mut wmes) = self.removed_wmes.take() else {
+            return;
+        };
+        let op = self.symbols.find_str("operator");
+        let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
+        let selected: Vec<(Sym, Sym)> = wmes
+            .iter()
+            .filter(|w| !w.acceptable && context(self, w))
+            .map(|w| (w.id, w.value))
+            .collect();
+        let rank = |agent: &Agent, w: &Wme| -> (u8, u8, i64) {
+            if !context(agent, w) {
+                (2, 0, -(w.timetag as i64))
+            } else if selected.contains(&(w.id, w.value)) {
+                (0, u8::from(!w.acceptable), w.timetag as i64)
+            } else {
+                (1, 0, w.timetag as i64)
+            }
+        };
+        wmes.sort_by_key(|w| rank(self, w));
+        for w in wmes {
+            self.trace_wme("<=WM: ", &w);
         }
     }
 }

@@ -21,28 +21,16 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
     ),
     ("gds", 5, "as at level 4"),
     (
-        "halt",
-        4,
-        "order of `<=WM:` lines when an operator and its structure go: 9.6 lists the \
-         object's WMEs newest first",
-    ),
-    ("halt", 5, "as at level 4"),
-    (
         "prefs-binary",
         4,
-        "order of `<=WM:` lines when operators and their structure go",
+        "order of `<=WM:` lines when several operators and their structure go at once",
     ),
     ("prefs-binary", 5, "as at level 4"),
     (
-        "substates",
-        4,
-        "order of `<=WM:` lines when an operator and its structure go",
-    ),
-    ("substates", 5, "as at level 4"),
-    (
         "support-retraction",
         4,
-        "order of `<=WM:` lines when operators and their structure go",
+        "order of `<=WM:` lines: 9.6 lists an o-supported WME of the removed operator \
+         first, and an elaboration before the operator's structure",
     ),
     ("support-retraction", 5, "as at level 4"),
 ];

@@ -646,6 +646,9 @@ impl Agent {
         for &w in &added {
             self.gds_for_new_wme(w);
         }
+        if self.settings.trace.wmes {
+            self.removed_wmes = Some(Vec::new());
+        }
         for (w, tt) in removes.into_iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
@@ -655,6 +658,7 @@ impl Agent {
         }
         self.remove_invalid_gds_goals();
         self.collect_garbage();
+        self.trace_removed_wmes();
         self.classify_new_matches();
     }
 
