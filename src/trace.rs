@@ -410,7 +410,14 @@ impl Agent {
     pub(crate) fn trace_retraction(&mut self, inst: crate::decide::state::InstId) {
         let (prod, quiet) = {
             let i = &self.decider.insts[inst as usize];
-            (i.prod, i.o_support || i.prefs.is_empty() || i.serial != 0)
+            // Firings in a substate that is gone retract silently too (checked on 9.6).
+            let goal_gone = i
+                .goal
+                .is_some_and(|g| !self.decider.goals.iter().any(|x| x.state == g));
+            (
+                i.prod,
+                i.o_support || i.prefs.is_empty() || i.serial != 0 || goal_gone,
+            )
         };
         if quiet {
             return;
