@@ -47,6 +47,17 @@ Conventions (tests/conformance.rs follows the same ones):
             "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
             (trace and run summary together), then runs `stats`, and builds the same text.
 
+  Traces    (issue 4, deliverable 6) for the agents in TRACE_AGENTS and each trace level
+            in TRACE_LEVELS, in a fresh agent of the official kernel:
+                srand 1
+                source /abs/path/tests/agents/NAME.soar
+                trace LEVEL
+                run 50
+            The print callback's text during `run 50`, then run's result text, go to
+            tests/golden/traces/NAME.LEVEL.txt, whole (a newline added if the text does not
+            end with one). tests/trace_goldens.rs runs the same commands in rusoar and
+            compares the text line for line.
+
 usage: python3 scripts/goldens.py [--out DIR]   write goldens to DIR (default tests/golden)
        python3 scripts/goldens.py --check       regenerate into a temporary folder and exit
                                                 1 if any file differs from tests/golden
@@ -66,6 +77,21 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 AGENTS = os.path.join(ROOT, "tests", "agents")
 GOLDEN = os.path.join(ROOT, "tests", "golden")
 RUN = "run 1000"
+
+# Agents whose whole trace at levels 2 to 5 is kept as a golden (tests/trace_goldens.rs).
+TRACE_AGENTS = [
+    "gds",
+    "halt",
+    "impasse-conflict",
+    "impasse-state-no-change",
+    "prefs-binary",
+    "substates",
+    "support-declared",
+    "support-retraction",
+    "wait-snc",
+]
+TRACE_LEVELS = [2, 3, 4, 5]
+TRACE_RUN = "run 50"
 
 DECISION = re.compile(r"^\s+\d+: ")
 RUN_RESULT = re.compile(
@@ -155,6 +181,27 @@ def run_agent(kernel, path, raw=False):
         kernel.DestroyAgent(agent)
 
 
+def trace_agent(kernel, path, level):
+    """The whole text the official kernel prints for `trace LEVEL` and `run 50`."""
+    agent = kernel.CreateAgent("traces")
+    printed = []
+    cb = agent.RegisterForPrintEvent(
+        sml.smlEVENT_PRINT, lambda _id, _ud, _agent, msg: printed.append(msg), None
+    )
+    try:
+        for c in ["srand 1", "source %s" % path, "trace %d" % level]:
+            agent.ExecuteCommandLine(c)
+            if not agent.GetLastCommandLineResult():
+                raise AgentError("%s: `%s` failed" % (path, c))
+        printed.clear()
+        result = agent.ExecuteCommandLine(TRACE_RUN)
+        text = "".join(printed) + result
+        return text if text.endswith("\n") else text + "\n"
+    finally:
+        agent.UnregisterForPrintEvent(cb)
+        kernel.DestroyAgent(agent)
+
+
 def agent_names():
     return sorted(f[: -len(".soar")] for f in os.listdir(AGENTS) if f.endswith(".soar"))
 
@@ -181,20 +228,38 @@ def generate(out_dir):
                     os.path.join(out_dir, name + ".rules.txt"), "w", newline="\n"
                 ) as f:
                     f.write(rules)
+        traces = os.path.join(out_dir, "traces")
+        os.makedirs(traces, exist_ok=True)
+        wanted = set()
+        for name in TRACE_AGENTS:
+            for level in TRACE_LEVELS:
+                f = "%s.%d.txt" % (name, level)
+                wanted.add(f)
+                text = trace_agent(kernel, os.path.join(AGENTS, name + ".soar"), level)
+                with open(os.path.join(traces, f), "w", newline="\n") as out:
+                    out.write(text)
+        for f in os.listdir(traces):
+            if f.endswith(".txt") and f not in wanted:
+                os.remove(os.path.join(traces, f))
     finally:
         kernel.Shutdown()
+
+
+def golden_files(folder):
+    """The golden files under folder: NAME.txt, NAME.rules.txt and traces/NAME.L.txt."""
+    found = set(f for f in os.listdir(folder) if f.endswith(".txt"))
+    traces = os.path.join(folder, "traces")
+    if os.path.isdir(traces):
+        found |= set("traces/" + f for f in os.listdir(traces) if f.endswith(".txt"))
+    return found
 
 
 def check():
     """Regenerates into a temporary folder; 1 if anything differs from tests/golden."""
     with tempfile.TemporaryDirectory() as tmp:
         generate(tmp)
-        fresh = set(f for f in os.listdir(tmp) if f.endswith(".txt"))
-        committed = (
-            set(f for f in os.listdir(GOLDEN) if f.endswith(".txt"))
-            if os.path.isdir(GOLDEN)
-            else set()
-        )
+        fresh = golden_files(tmp)
+        committed = golden_files(GOLDEN) if os.path.isdir(GOLDEN) else set()
         bad = 0
         for f in sorted(fresh | committed):
             if f not in committed:

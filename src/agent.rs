@@ -37,7 +37,9 @@ pub struct Settings {
     pub max_goal_depth: i64,
     pub max_nil_output_cycles: i64,
     pub wait_snc: bool,
-    pub trace_level: u8,
+    /// What the trace shows: `trace N` sets the flags of levels 1 to N, `trace -p` etc. one
+    /// each (spec §6c).
+    pub trace: TraceFlags,
     pub warnings: bool,
     /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too (spec §4).
     pub learning_trace: u8,
@@ -53,9 +55,137 @@ impl Default for Settings {
             max_goal_depth: 100,
             max_nil_output_cycles: 15,
             wait_snc: false,
-            trace_level: 1,
+            trace: TraceFlags::level(1),
             warnings: true,
             learning_trace: 0,
+        }
+    }
+}
+
+/// How `trace --nowmes`, `--timetags` and `--fullwmes` show the WMEs of a firing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum WmeDetail {
+    #[default]
+    None,
+    Timetags,
+    Full,
+}
+
+/// 9.6's trace settings (`trace` with no arguments lists them): one flag per kind of
+/// message. Levels 0 to 5 are shorthands for groups of these (spec §6c).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TraceFlags {
+    /// Level 1 (`-d`): decision lines and new states.
+    pub decisions: bool,
+    /// Level 2 (`-p`): the phase headers.
+    pub phases: bool,
+    /// Level 2 (`-C`).
+    pub chunk_warnings: bool,
+    /// Level 2 (`-g`): states removed by a GDS violation.
+    pub gds: bool,
+    /// Level 2 (`-o`): operators removed by the consistency check (`REMOVING: ...`).
+    pub consistency: bool,
+    /// Level 3 (`-D`): firings and retractions of default rules (the selection space).
+    pub default_rules: bool,
+    /// Level 3 (`-u`): firings and retractions of user rules.
+    pub user_rules: bool,
+    /// Level 3 (`-c`): firings of chunks.
+    pub chunks: bool,
+    /// Level 3 (`-j`): firings of justifications.
+    pub justifications: bool,
+    /// Level 3 (`-T`): firings of templates.
+    pub templates: bool,
+    /// Level 3 (`-W`): the inner elaboration headers (`--- Inner Elaboration Phase ...`).
+    pub waterfall: bool,
+    /// Level 4 (`-w`): `=>WM:` and `<=WM:` lines.
+    pub wmes: bool,
+    /// Level 5 (`-r`): the preferences of traced firings and retractions.
+    pub preferences: bool,
+    /// `--nowmes`, `--timetags`, `--fullwmes`: the matched WMEs after `Firing`.
+    pub wme_detail: WmeDetail,
+    /// `-A`: assertions of rules and preferences (not printed yet).
+    pub assertions: bool,
+    /// `-b`, `-G`, `-i`, `-R`, `-e`, `-s`, `-a`: kept for the listing only.
+    pub backtracing: bool,
+    pub gds_wmes: bool,
+    pub indifferent: bool,
+    pub rl: bool,
+    pub epmem: bool,
+    pub smem: bool,
+    pub wma: bool,
+}
+
+impl TraceFlags {
+    /// The flags of `trace N`: those of levels 1 to N on, the other level flags off (the
+    /// additional ones are left alone by [`TraceFlags::set_level`]).
+    pub fn level(n: u8) -> Self {
+        let mut t = TraceFlags::default();
+        t.set_level(n);
+        t
+    }
+
+    /// `trace N`: level 0 turns everything off, including the additional messages; other
+    /// levels set the level flags only.
+    pub fn set_level(&mut self, n: u8) {
+        if n == 0 {
+            *self = TraceFlags::default();
+            return;
+        }
+        self.decisions = true;
+        let l2 = n >= 2;
+        self.phases = l2;
+        self.chunk_warnings = l2;
+        self.gds = l2;
+        self.consistency = l2;
+        let l3 = n >= 3;
+        self.default_rules = l3;
+        self.user_rules = l3;
+        self.chunks = l3;
+        self.justifications = l3;
+        self.templates = l3;
+        self.waterfall = l3;
+        self.wmes = n >= 4;
+        self.preferences = n >= 5;
+    }
+
+    /// The highest level whose flags are all on (for code that only knows levels).
+    pub fn level_number(&self) -> u8 {
+        if !self.decisions {
+            0
+        } else if !(self.phases && self.gds) {
+            1
+        } else if !(self.user_rules && self.default_rules && self.chunks) {
+            2
+        } else if !self.wmes {
+            3
+        } else if !self.preferences {
+            4
+        } else {
+            5
+        }
+    }
+
+    /// Are the firings of some kind of rule traced?
+    pub fn any_firings(&self) -> bool {
+        self.user_rules
+            || self.default_rules
+            || self.chunks
+            || self.justifications
+            || self.templates
+    }
+
+    /// Are firings and retractions of a rule with these flags traced?
+    pub fn firings_of(&self, flags: &crate::production::Flags) -> bool {
+        if flags.justification {
+            self.justifications
+        } else if flags.chunk {
+            self.chunks
+        } else if flags.template {
+            self.templates
+        } else if flags.default {
+            self.default_rules
+        } else {
+            self.user_rules
         }
     }
 }
@@ -136,6 +266,12 @@ pub struct Agent {
     pub rng: crate::rng::Mt19937,
     /// Trace and `write` output not yet taken by the front end.
     pub output: String,
+    /// Whether the print stream stood at the start of a line when `output` was last taken
+    /// (9.6 starts some trace lines on a fresh line only).
+    pub output_line_start: bool,
+    /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
+    /// end of the working-memory phase.
+    pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
@@ -167,6 +303,8 @@ impl Agent {
             decider: crate::decide::state::DecideState::new(),
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
+            output_line_start: false,
+            removed_wmes: None,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,

@@ -253,3 +253,354 @@ pub fn match_wme_lines(agent: &Agent, ws: &[WmeId]) -> String {
         .collect::<Vec<_>>()
         .join("\n ")
 }
+
+/// The character of a preference type in traces (`+`, `-`, `!`, `~`, `=`, `>`, `<`).
+pub fn pref_type_char(k: crate::decide::procedure::PrefType) -> char {
+    use crate::decide::procedure::PrefType;
+    match k {
+        PrefType::Acceptable => '+',
+        PrefType::Require => '!',
+        PrefType::Reject => '-',
+        PrefType::Prohibit => '~',
+        PrefType::UnaryIndifferent | PrefType::BinaryIndifferent => '=',
+        PrefType::NumericIndifferent => '=',
+        PrefType::Best | PrefType::Better => '>',
+        PrefType::Worst | PrefType::Worse => '<',
+    }
+}
+
+/// A preference as the level-5 trace shows it (spec §6c):
+/// `(S1 ^count 0 +  :O ) [level 2] (rule)`: the referent of a binary or numeric preference
+/// after the type, `  :O ` for o-support, the level of its identifier below the top state,
+/// and the rule whose firing made it.
+pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> String {
+    let s = &agent.symbols;
+    let mut out = format!(
+        "({} ^{} {} {}",
+        s.text(p.id),
+        s.text(p.attr),
+        s.text(p.value),
+        pref_type_char(p.kind)
+    );
+    if let Some(r) = p.referent {
+        out.push(' ');
+        out.push_str(&s.text(r));
+    }
+    if p.o_support {
+        out.push_str("  :O ");
+    }
+    out.push(')');
+    let level = s.id_data(p.id).map_or(1, |d| d.level);
+    if level > 1 {
+        out.push_str(&format!(" [level {level}]"));
+    }
+    let rule = p
+        .inst
+        .map(|i| agent.decider.insts[i as usize].prod)
+        .or(p.rule);
+    if let Some(prod) = rule {
+        out.push_str(&format!(" ({})", agent.production_name(prod)));
+    }
+    out
+}
+
+impl Agent {
+    /// Does the print stream stand at the start of a line? (What is still in `output`
+    /// decides; when it has been taken, the front end's record of it.)
+    pub(crate) fn at_line_start(&self) -> bool {
+        match self.output.as_bytes().last() {
+            Some(&b) => b == b'\n',
+            None => self.output_line_start,
+        }
+    }
+
+    /// A newline unless the print stream is at the start of a line (9.6's fresh line).
+    pub(crate) fn fresh_line(&mut self) {
+        if !self.at_line_start() {
+            self.output.push('\n');
+        }
+    }
+
+    /// A phase header of trace level 2 (`trace -p`), printed as given.
+    pub(crate) fn trace_phase(&mut self, text: &str) {
+        if self.settings.trace.phases {
+            self.output.push_str(text);
+        }
+    }
+
+    /// `+ (pref) (rule)` or `- ...` on a line of its own (`trace -r`).
+    pub(crate) fn trace_pref(&mut self, sign: char, pid: crate::decide::state::PrefId) {
+        if !self.settings.trace.preferences {
+            return;
+        }
+        let text = pref_trace_text(self, &self.decider.prefs[pid as usize]);
+        self.fresh_line();
+        self.output.push(sign);
+        self.output.push(' ');
+        self.output.push_str(&text);
+        self.output.push('\n');
+    }
+
+    /// `=>WM: (tt: id ^attr value)` or `<=WM: ...` (`trace -w`).
+    pub(crate) fn trace_wme(&mut self, arrow: &str, w: &Wme) {
+        if arrow.starts_with("<=") {
+            if let Some(buffer) = self.removed_wmes.as_mut() {
+                buffer.push(*w);
+                return;
+            }
+        }
+        if self.settings.trace.wmes {
+            let text = wme_internal(self, w);
+            self.output.push_str(arrow);
+            self.output.push_str(&text);
+            self.output.push('\n');
+        }
+    }
+}
+
+/// The trace of the decision cycle's steps (spec §6c): elaboration headers, retractions,
+/// new preferences, operators removed by the consistency check.
+impl Agent {
+    /// `\t--- Firing Productions (PE) For State At Depth N ---` (apply phase, `-p`) and
+    /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before an
+    /// elaboration cycle. The active level is the highest goal any of the cycle's firings
+    /// and retractions is in (the top state if there are none).
+    pub(crate) fn trace_elaboration_header(
+        &mut self,
+        to_fire: &[(crate::rete::ProdId, crate::rete::TokId)],
+        retracted: &[crate::decide::state::InstId],
+        apply: bool,
+        o_support: bool,
+    ) {
+        let level_of = |agent: &Agent, g: Option<Sym>| {
+            g.and_then(|g| agent.symbols.id_data(g))
+                .map_or(1, |d| d.level)
+        };
+        let fired = to_fire
+            .iter()
+            .map(|&(p, t)| level_of(self, crate::support::match_goal(self, p, t)));
+        let gone = retracted
+            .iter()
+            .map(|&i| level_of(self, self.decider.insts[i as usize].goal));
+        let level = fired.chain(gone).min().unwrap_or(1);
+        let goal = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.level == level)
+            .map_or(self.top.state, |g| g.state);
+        if apply && self.settings.trace.phases {
+            let kind = if o_support { "PE" } else { "IE" };
+            self.output.push_str(&format!(
+                "\t--- Firing Productions ({kind}) For State At Depth {level} ---\n"
+            ));
+        }
+        if self.settings.trace.waterfall {
+            let s = format!(
+                "\n--- Inner Elaboration Phase, active level {level} goal {} ---\n",
+                self.symbols.text(goal)
+            );
+            self.output.push_str(&s);
+        }
+    }
+
+    /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).
+    /// An o-supported instantiation, or one that made no preferences, has nothing to
+    /// retract: 9.6 prints nothing for it, nor for a justification.
+    pub(crate) fn trace_retraction(&mut self, inst: crate::decide::state::InstId) {
+        let (prod, quiet) = {
+            let i = &self.decider.insts[inst as usize];
+            // Firings in a substate that is gone retract silently too (checked on 9.6).
+            let goal_gone = i
+                .goal
+                .is_some_and(|g| !self.decider.goals.iter().any(|x| x.state == g));
+            (
+                i.prod,
+                i.o_support || i.prefs.is_empty() || i.serial != 0 || goal_gone,
+            )
+        };
+        if quiet {
+            return;
+        }
+        let name = self.production_name(prod).to_string();
+        let traced = self
+            .production_arc(&name)
+            .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
+        if traced {
+            self.output.push_str(&format!("\nRetracting {name}\n"));
+            let (p, t) = {
+                let i = &self.decider.insts[inst as usize];
+                (i.prod, i.token)
+            };
+            self.trace_match_wmes(p, t);
+            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            self.trace_instantiation_prefs(&prefs);
+        }
+        if self.settings.trace.preferences {
+            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            for pid in prefs.into_iter().rev() {
+                let p = &self.decider.prefs[pid as usize];
+                if p.alive && !p.o_support {
+                    self.trace_pref('-', pid);
+                }
+            }
+        }
+    }
+
+    /// The preferences of one elaboration cycle's firings as they are asserted: the newest
+    /// firing first, each one's preferences newest first; an o-supported reject shows as
+    /// the removal of the preferences it takes away.
+    pub(crate) fn trace_new_preferences(&mut self, new_prefs: &[crate::decide::state::PrefId]) {
+        use crate::decide::procedure::PrefType;
+        // The o-rejects' removals first, then the other preferences (checked on 9.6).
+        for &pid in new_prefs.iter().rev() {
+            let p = self.decider.prefs[pid as usize].clone();
+            if p.kind == PrefType::Reject && p.o_support {
+                let removed: Vec<_> = self
+                    .decider
+                    .slots
+                    .get(&(p.id, p.attr))
+                    .map(|slot| {
+                        slot.prefs
+                            .iter()
+                            .rev()
+                            .copied()
+                            .filter(|&x| {
+                                x != pid && self.decider.prefs[x as usize].value == p.value
+                            })
+                            .collect()
+                    })
+                    .unwrap_or_default();
+                for r in removed {
+                    self.trace_pref('-', r);
+                }
+            }
+        }
+        for &pid in new_prefs.iter().rev() {
+            let p = &self.decider.prefs[pid as usize];
+            if !(p.kind == PrefType::Reject && p.o_support) {
+                self.trace_pref('+', pid);
+            }
+        }
+    }
+
+    /// `REMOVING: Operator from context slot (proposal no longer matches): (wme)` (`-o`).
+    pub(crate) fn trace_operator_removal(&mut self, key: (Sym, Sym), op: Sym) {
+        let w = self
+            .decider
+            .slots
+            .get(&key)
+            .and_then(|s| s.wmes.get(&(op, true)).copied())
+            .and_then(|w| self.wm.get(w).copied());
+        let text = w.map(|w| wme_internal(self, &w)).unwrap_or_default();
+        self.output.push_str(&format!(
+            "\n        REMOVING: Operator from context slot (proposal no longer matches): {text}\n"
+        ));
+    }
+}
+
+impl Agent {
+    /// `Removing state S2 because element in GDS changed. WME: (...)` (`-g`), before the
+    /// working-memory changes of the cycle that take a WME out of a substate's GDS: once
+    /// for the highest such goal (the ones below it go with it).
+    pub(crate) fn trace_gds_removals(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
+        let mut reported: Option<u32> = None;
+        for &(w, tt) in removes.iter().rev() {
+            let Some(wme) = self.wm.get(w).copied().filter(|x| x.timetag == tt) else {
+                continue;
+            };
+            let Some(&goal) = self.decider.gds.get(&w) else {
+                continue;
+            };
+            let level = self.symbols.id_data(goal).map_or(0, |d| d.level);
+            if reported.is_some_and(|l| l <= level) {
+                continue;
+            }
+            reported = Some(level);
+            let g = self.symbols.text(goal);
+            let text = wme_internal(self, &wme);
+            self.output.push_str(&format!(
+                "Removing state {g} because element in GDS changed. WME: {text}\n\n    REMOVING GOAL [{g}] due to change in GDS WME {text}\n"
+            ));
+        }
+    }
+}
+
+impl Agent {
+    /// With `trace --timetags` or `--fullwmes`, the WMEs a traced firing or retraction
+    /// matched, after its `Firing`/`Retracting` line and before its actions run: ` 16 14`
+    /// or one ` (16: S1 ^operator O1)` a line, then ` -->`. (9.6 lists them in its
+    /// reordered condition order, ours in the written order; and its `--fullwmes` prints
+    /// some as `WME with time tag 16`.)
+    pub(crate) fn trace_match_wmes(&mut self, p: crate::rete::ProdId, t: crate::rete::TokId) {
+        let detail = self.settings.trace.wme_detail;
+        if detail == crate::agent::WmeDetail::None {
+            return;
+        }
+        let wmes: Vec<Wme> = self
+            .rete
+            .match_wmes(p, t)
+            .into_iter()
+            .filter_map(|w| self.wm.get(w).copied())
+            .collect();
+        for w in wmes {
+            if detail == crate::agent::WmeDetail::Full {
+                let text = wme_internal(self, &w);
+                self.output.push_str(&format!(" {text}\n"));
+            } else {
+                self.output.push_str(&format!(" {}", w.timetag));
+            }
+        }
+        self.output.push_str(" -->\n");
+    }
+
+    /// The instantiation's preferences, one a line, newest first (with `--timetags` or
+    /// `--fullwmes`), after its actions ran.
+    pub(crate) fn trace_instantiation_prefs(&mut self, prefs: &[crate::decide::state::PrefId]) {
+        if self.settings.trace.wme_detail == crate::agent::WmeDetail::None {
+            return;
+        }
+        for &pid in prefs.iter().rev() {
+            let mut bare = self.decider.prefs[pid as usize].clone();
+            bare.inst = None;
+            bare.rule = None;
+            let text = pref_trace_text(self, &bare);
+            self.fresh_line();
+            self.output.push(' ');
+            self.output.push_str(&text);
+            self.output.push('\n');
+        }
+    }
+}
+
+impl Agent {
+    /// The `<=WM:` lines of one working-memory phase in 9.6's order: an operator removed
+    /// from its slot (its `+` WME, then the selected one), the operator slots' other `+`
+    /// WMEs oldest first, then the rest newest first (what is removed does not change,
+    /// only the order it is listed in).
+    pub(crate) fn trace_removed_wmes(&mut self) {
+        let Some(mut wmes) = self.removed_wmes.take() else {
+            return;
+        };
+        let op = self.symbols.find_str("operator");
+        let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
+        let selected: Vec<(Sym, Sym)> = wmes
+            .iter()
+            .filter(|w| !w.acceptable && context(self, w))
+            .map(|w| (w.id, w.value))
+            .collect();
+        let rank = |agent: &Agent, w: &Wme| -> (u8, u8, i64) {
+            if !context(agent, w) {
+                (2, 0, -(w.timetag as i64))
+            } else if selected.contains(&(w.id, w.value)) {
+                (0, u8::from(!w.acceptable), w.timetag as i64)
+            } else {
+                (1, 0, w.timetag as i64)
+            }
+        };
+        wmes.sort_by_key(|w| rank(self, w));
+        for w in wmes {
+            self.trace_wme("<=WM: ", &w);
+        }
+    }
+}

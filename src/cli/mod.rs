@@ -14,6 +14,7 @@ mod rules;
 mod running;
 mod settings;
 pub mod soarunit;
+mod tracing;
 
 use crate::agent::{Agent, PhaseCallback};
 use crate::source::{Diagnostic, SourceMap, Span};
@@ -199,6 +200,7 @@ impl Interpreter {
                 if !a.output.is_empty() {
                     let text = std::mem::take(&mut a.output);
                     advance_col(&col, &text);
+                    a.output_line_start = col.get() == 0;
                     (live.borrow_mut())(&text);
                 }
             }

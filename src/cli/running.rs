@@ -64,6 +64,7 @@ impl Interpreter {
         let (fired, interrupted) = if halted_before {
             (0, false)
         } else {
+            self.agent.output_line_start = self.print_col.get() == 0;
             let hooks = self.begin_run_hooks();
             let (_, fired) = self.agent.run(n, unit);
             (fired, self.end_run_hooks(hooks))

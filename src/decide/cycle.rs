@@ -59,7 +59,7 @@ impl Agent {
 
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
     pub fn print_initial_state(&mut self) {
-        if self.settings.trace_level >= 1 {
+        if self.settings.trace.decisions {
             let s = format!("\n{:>6}: ==>S: {} ", 0, self.symbols.text(self.top.state));
             self.out(&s);
         }
@@ -122,12 +122,15 @@ impl Agent {
         self.learn.chunks_this_phase = 0;
         match phase {
             Phase::Input => {
+                self.trace_phase("\n--- Input Phase --- \n");
                 self.run_input_callbacks();
                 self.classify_new_matches();
+                self.trace_phase("\n--- END Input Phase --- \n");
                 self.decider.phase = Some(Phase::Propose);
             }
             Phase::Propose => {
                 if !self.decider.phase_started {
+                    self.trace_phase("\n--- Propose Phase ---\n");
                     self.decider.e_cycles_this_phase = 0;
                     self.decider.phase_started = true;
                 }
@@ -143,16 +146,27 @@ impl Agent {
                     }
                 }
                 self.decider.phase_started = false;
+                // A halt with firings still pending ends the phase without its END line
+                // (checked on 9.6).
+                if !(self.decider.halted && self.has_pending(false)) {
+                    self.trace_phase("\n--- END Propose Phase ---\n");
+                }
                 self.decider.phase = Some(Phase::Decide);
             }
             Phase::Decide => {
+                self.trace_phase("\n--- Decision Phase ---\n");
                 self.decide_context_slots();
                 self.classify_new_matches();
+                self.trace_phase("\n--- END Decision Phase ---\n");
                 self.decider.decisions += 1;
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
             }
             Phase::Apply => {
+                if !self.decider.phase_started {
+                    self.trace_phase("\n--- Application Phase ---\n");
+                    self.decider.phase_started = true;
+                }
                 while self.has_pending(true) && !self.decider.halted {
                     // IE before PE: i-supported firings reach quiescence first (spec §3a).
                     let pe = !self.has_pending(false);
@@ -166,10 +180,16 @@ impl Agent {
                         return;
                     }
                 }
+                self.decider.phase_started = false;
+                if !(self.decider.halted && self.has_pending(true)) {
+                    self.trace_phase("\n--- END Application Phase ---\n");
+                }
                 self.decider.phase = Some(Phase::Output);
             }
             Phase::Output => {
+                self.trace_phase("\n--- Output Phase ---\n");
                 self.run_output_callbacks();
+                self.trace_phase("\n--- END Output Phase ---\n");
                 self.decider.d_cycle_count += 1;
                 self.decider.phase = Some(Phase::Input);
             }
@@ -253,6 +273,10 @@ impl Agent {
                 retracted.push(i);
             }
         }
+        let apply = self.decider.phase == Some(Phase::Apply);
+        if self.settings.trace.phases || self.settings.trace.waterfall {
+            self.trace_elaboration_header(&to_fire, &retracted, apply, o_support);
+        }
         let mut new_prefs = Vec::new();
         for (p, t) in to_fire {
             // A halt ends the run after this elaboration cycle: the rest of it still fires.
@@ -261,8 +285,18 @@ impl Agent {
         // New preferences go in before the retractions are processed (9.6 prints the `+`
         // lines before `Retracting`), which sets the order slots change in (spec §3i).
         self.assert_preferences(new_prefs);
+        // 9.6 lists the retractions newest first; they are processed oldest first here.
+        if self.settings.trace.preferences || self.settings.trace.any_firings() {
+            for &inst in retracted.iter().rev() {
+                self.trace_retraction(inst);
+            }
+        }
         for inst in retracted {
             self.retract(inst);
+        }
+        if apply {
+            let kind = if o_support { "PE" } else { "IE" };
+            self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
         self.update_slots();
         true
@@ -275,8 +309,10 @@ impl Agent {
         };
         self.decider.firings += 1;
         *self.decider.firing_counts.entry(p).or_default() += 1;
-        if self.settings.trace_level >= 3 {
-            self.out(&format!("\nFiring {name}"));
+        let traced = self.settings.trace.firings_of(&prod.flags);
+        if traced {
+            self.out(&format!("\nFiring {name}\n"));
+            self.trace_match_wmes(p, t);
         }
         let goal = crate::support::match_goal(self, p, t);
         let level = goal
@@ -343,6 +379,7 @@ impl Agent {
                         number,
                         o_support: inst.o_support,
                         inst: Some(inst_id),
+                        rule: Some(p),
                         alive: true,
                         freed: false,
                         origin: None,
@@ -357,6 +394,9 @@ impl Agent {
         self.decider.inst_by_token.insert((p, t), inst_id);
         let own_prefs = inst.prefs.clone();
         self.decider.insts[inst_id as usize] = inst;
+        if traced {
+            self.trace_instantiation_prefs(&own_prefs);
+        }
         // Results of a substate firing are learned from at once (spec §4): a justification
         // or a chunk takes them over.
         if level >= 2 {
@@ -413,21 +453,10 @@ impl Agent {
     }
 
     fn retract(&mut self, inst_id: InstId) {
-        let p = self.decider.insts[inst_id as usize].prod;
-        let name = self.production_name(p).to_string();
         let serial = self.decider.insts[inst_id as usize].serial;
         if serial != 0 {
             let o = self.decider.insts[inst_id as usize].o_support;
             self.forget_justification(serial, o);
-        }
-        // An o-supported instantiation, or one that made no preferences, has nothing to
-        // retract: 9.6 prints nothing for it, nor for a justification (`trace -j` is off).
-        let quiet = {
-            let inst = &self.decider.insts[inst_id as usize];
-            inst.o_support || inst.prefs.is_empty() || serial != 0
-        };
-        if self.settings.trace_level >= 3 && !quiet {
-            self.out(&format!("\nRetracting {name}"));
         }
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
@@ -467,6 +496,9 @@ impl Agent {
     /// O-supported rejects remove every preference for their value first; the other new
     /// preferences join their slots, newest at the head (spec §3a).
     fn assert_preferences(&mut self, new_prefs: Vec<PrefId>) {
+        if self.settings.trace.preferences {
+            self.trace_new_preferences(&new_prefs);
+        }
         for &pid in &new_prefs {
             let p = self.decider.prefs[pid as usize].clone();
             if p.kind == PrefType::Reject && p.o_support {
@@ -567,13 +599,14 @@ impl Agent {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             let mut want: Vec<Sym> = Vec::new();
-            for &pid in slot.prefs.iter() {
-                let p = &self.decider.prefs[pid as usize];
-                // Require preferences show as `+` WMEs too (checked on 9.6).
-                if matches!(p.kind, PrefType::Acceptable | PrefType::Require)
-                    && !want.contains(&p.value)
-                {
-                    want.push(p.value);
+            // Require preferences show as `+` WMEs too, before the acceptable ones, each
+            // kind oldest first: that sets their timetags (checked on 9.6).
+            for kind in [PrefType::Require, PrefType::Acceptable] {
+                for &pid in slot.prefs.iter().rev() {
+                    let p = &self.decider.prefs[pid as usize];
+                    if p.kind == kind && !want.contains(&p.value) {
+                        want.push(p.value);
+                    }
                 }
             }
             for (&(v, acc), &w) in &slot.wmes {
@@ -587,6 +620,9 @@ impl Agent {
                 }
             }
         }
+        if self.settings.trace.gds {
+            self.trace_gds_removals(&removes);
+        }
         // Timetags in action order, but the matcher gets the batch newest first, and the
         // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher
         // before removals, which go in the reverse of the order they were found (9.6
@@ -597,12 +633,7 @@ impl Agent {
         }
         for &w in added.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
-                if self.settings.trace_level >= 4 {
-                    self.out(&format!(
-                        "\n=>WM: {}",
-                        crate::trace::wme_internal(self, &wme)
-                    ));
-                }
+                self.trace_wme("=>WM: ", &wme);
                 self.rete.add_wme(
                     w,
                     (wme.id, wme.attr, wme.value),
@@ -615,6 +646,9 @@ impl Agent {
         for &w in &added {
             self.gds_for_new_wme(w);
         }
+        if self.settings.trace.wmes {
+            self.removed_wmes = Some(Vec::new());
+        }
         for (w, tt) in removes.into_iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
@@ -624,6 +658,7 @@ impl Agent {
         }
         self.remove_invalid_gds_goals();
         self.collect_garbage();
+        self.trace_removed_wmes();
         self.classify_new_matches();
     }
 
@@ -644,12 +679,7 @@ impl Agent {
         let Some(wme) = self.wm.get(w).copied() else {
             return;
         };
-        if self.settings.trace_level >= 4 {
-            self.out(&format!(
-                "\n<=WM: {}",
-                crate::trace::wme_internal(self, &wme)
-            ));
-        }
+        self.trace_wme("<=WM: ", &wme);
         let key = (wme.id, wme.attr);
         if let Some(slot) = self.decider.slots.get_mut(&key) {
             slot.wmes.remove(&(wme.value, wme.acceptable));
@@ -674,6 +704,16 @@ impl Agent {
                 .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
         if still {
             return None;
+        }
+        if self.settings.trace.consistency {
+            self.trace_operator_removal(key, op);
+            if let Some(sub) = self.decider.goals.get(gi + 1) {
+                let s = format!(
+                    "Removing state {} because of an operator removal.\n",
+                    self.symbols.text(sub.state)
+                );
+                self.out(&s);
+            }
         }
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
@@ -724,10 +764,13 @@ impl Agent {
                 Outcome::Winner(o) => {
                     self.remove_goals_below(gi);
                     let w = self.add_wme(goal.state, op, o, false);
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        self.trace_wme("=>WM: ", &wme);
+                    }
                     self.classify_new_matches();
                     self.decider.wme_changes += 1;
                     self.decider.goals[gi].operator = Some((o, w));
-                    if self.settings.trace_level >= 1 {
+                    if self.settings.trace.decisions {
                         let name = self.operator_name(o);
                         let mut line = format!(
                             "{}   O: {} {}",
@@ -805,7 +848,7 @@ impl Agent {
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
             // Waiting: the bottom state's own line again, impasse included (E:t12).
-            if self.settings.trace_level >= 1 {
+            if self.settings.trace.decisions {
                 let what = self.decider.goals[gi]
                     .impasse
                     .map(|(k, on_op)| {
@@ -883,9 +926,19 @@ impl Agent {
             }
             add(self, s, "non-numeric-count", n);
         }
+        // 9.6 prints the depth message before the new state's WMEs and line.
+        if level as i64 > self.settings.max_goal_depth {
+            let msg = format!(
+                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
+                self.settings.max_goal_depth
+            );
+            self.out(&msg);
+            self.decider.halted = true;
+        }
         self.decider.wme_changes += wmes.len() as u64;
         for &w in wmes.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme("=>WM: ", &wme);
                 self.rete.add_wme(
                     w,
                     (wme.id, wme.attr, wme.value),
@@ -895,7 +948,7 @@ impl Agent {
                 );
             }
         }
-        if self.settings.trace_level >= 1 {
+        if self.settings.trace.decisions {
             let what = format!(
                 "({} {})",
                 if on_operator { "operator" } else { "state" },
@@ -918,14 +971,6 @@ impl Agent {
             wmes,
             slot_changed: true,
         });
-        if level as i64 > self.settings.max_goal_depth {
-            let msg = format!(
-                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
-                self.settings.max_goal_depth
-            );
-            self.out(&msg);
-            self.decider.halted = true;
-        }
     }
 
     /// Removes every goal below `gi`, deepest first, with its architecture WMEs; what they
@@ -1011,6 +1056,8 @@ impl Agent {
             return;
         }
         garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
+        // 9.6 lists the removals newest first; they happen oldest first here.
+        let mut removed_lines = Vec::new();
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
@@ -1026,14 +1073,12 @@ impl Agent {
                 }
             }
             if self.wm.get(w).is_some() {
-                if self.settings.trace_level >= 4 {
-                    self.out(&format!(
-                        "\n<=WM: {}",
-                        crate::trace::wme_internal(self, &wme)
-                    ));
-                }
+                removed_lines.push(wme);
                 self.remove_wme(w);
             }
+        }
+        for wme in removed_lines.iter().rev() {
+            self.trace_wme("<=WM: ", wme);
         }
         // What these removals point at was all collected above.
         self.decider.gc_candidates.clear();

@@ -6,7 +6,7 @@ use crate::symbols::Sym;
 
 pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
     let agent_name = agent.name.clone();
-    let trace_level = agent.settings.trace_level;
+    let trace_level = agent.settings.trace.level_number();
     let mut ctx = crate::rhs::RhsContext::new(
         &mut agent.symbols,
         &agent.wm,

@@ -33,6 +33,9 @@ pub struct Preference {
     pub number: Option<f64>,
     pub o_support: bool,
     pub inst: Option<InstId>,
+    /// The rule whose firing made it, kept when an o-supported preference outlives its
+    /// instantiation (the level-5 trace names it).
+    pub rule: Option<ProdId>,
     pub alive: bool,
     /// On the free list (guards against freeing twice).
     pub freed: bool,

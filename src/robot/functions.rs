@@ -381,7 +381,7 @@ mod tests {
                         ^miss (int (exec getwalldistance 0 |, | 0 |, | 0 |, | 0 |, | -500 |, | -1136 |, | 500 |, | -1136)))}",
             )
             .unwrap();
-        interp.agent.settings.trace_level = 0;
+        interp.agent.settings.trace.set_level(0);
         interp.agent.run(1, RunUnit::Decisions);
         let a = &interp.agent;
         let value = |attr: &str| -> String {

@@ -715,7 +715,7 @@ impl SoarRobot {
         let load_log = interp.take_output();
         let agent = &mut interp.agent;
         agent.output.clear();
-        agent.settings.trace_level = 1;
+        agent.settings.trace.set_level(1);
         super::functions::register(agent);
         let env = Rc::new(RefCell::new(Env {
             sim: Simulator::new(cfg.world.clone(), cfg.seed),
