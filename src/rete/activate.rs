@@ -7,7 +7,7 @@
 //! The copy keeps the old snapshot semantics exactly (a list that changes during the
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
-use super::tests::{relation_holds, JoinTest, Operand};
+use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
 use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::Symbols;
 use crate::wm::WmeId;
@@ -23,9 +23,31 @@ impl Rete {
         new_depth: u32,
         syms: &Symbols,
     ) -> bool {
+        self.tests_pass_but(tests, None, t, w, new_depth, syms)
+    }
+
+    /// `tests_pass`, leaving out the first identifier equality on `skip`: the pair came
+    /// from the hash index on that key, so it holds.
+    fn tests_pass_but(
+        &self,
+        tests: &[JoinTest],
+        mut skip: Option<(u32, Field)>,
+        t: TokId,
+        w: WmeId,
+        new_depth: u32,
+        syms: &Symbols,
+    ) -> bool {
         for test in tests {
             let ok = match test {
                 JoinTest::Compare { field, op, operand } => {
+                    if let (Field::Id, Op::Eq, Operand::Bound { depth, field: bf }) =
+                        (field, op, operand)
+                    {
+                        if skip == Some((*depth, *bf)) {
+                            skip = None;
+                            continue;
+                        }
+                    }
                     let a = self.field(w, *field);
                     let b = match operand {
                         Operand::Const(c) => *c,
@@ -54,11 +76,13 @@ impl Rete {
         true
     }
 
-    /// `tests_pass` with the tests of join or negative node `n` (read in place, not cloned).
+    /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
+    /// candidate lists gave.
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
-        match &self.nodes[n as usize].kind {
+        let node = &self.nodes[n as usize];
+        match &node.kind {
             Kind::Join { tests, .. } | Kind::Negative { tests, .. } => {
-                self.tests_pass(tests, t, w, new_depth, s)
+                self.tests_pass_but(tests, node.hash, t, w, new_depth, s)
             }
             _ => true,
         }
@@ -89,8 +113,9 @@ impl Rete {
         sink: &mut dyn MatchSink,
     ) {
         let base = self.scratch.len();
-        let succ = &self.amems[a as usize].successors;
-        self.scratch.extend(succ.values().rev());
+        self.amems[a as usize]
+            .successors
+            .push_newest_first(&mut self.scratch);
         for i in base..self.scratch.len() {
             let n = self.scratch[i];
             if self.nodes[n as usize].alive {

@@ -647,8 +647,7 @@ impl Rete {
             }
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
-                    let seq = self.nodes[n as usize].seq;
-                    self.amems[amem as usize].successors.remove(&seq);
+                    self.detach_from_amem(n, amem);
                     self.release_amem(amem);
                 }
                 _ => {}

@@ -10,6 +10,9 @@ use super::{alloc, AmemId, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
+/// Alpha memories up to this size are scanned rather than looked up by identifier.
+const SMALL_AMEM: u32 = 4;
+
 /// A left-index bucket: holder, key depth, key field, value.
 pub(crate) type TokKey = (NodeId, u32, Field, Sym);
 
@@ -55,18 +58,36 @@ impl Rete {
     /// with token `t`, newest first: only those whose identifier is the token's value at
     /// `n`'s key, when it has one.
     pub(crate) fn push_amem_candidates(&mut self, a: AmemId, n: NodeId, t: TokId) {
-        let mut e = match self.nodes[n as usize].hash {
-            None => self.amems[a as usize].first,
-            Some((d, f)) => match self.key_value(t, d, f) {
-                None => return,
-                Some(id) => self.amem_by_id.get(&(a, id)).copied().unwrap_or(NIL),
-            },
+        let Some((d, f)) = self.nodes[n as usize].hash else {
+            let mut e = self.amems[a as usize].first;
+            while e != NIL {
+                self.scratch.push(self.rm[e as usize].wme.0);
+                e = self.rm[e as usize].next;
+            }
+            return;
         };
-        let hashed = self.nodes[n as usize].hash.is_some();
+        let Some(id) = self.key_value(t, d, f) else {
+            return;
+        };
+        let am = &self.amems[a as usize];
+        if am.count <= SMALL_AMEM {
+            // A few entries: filtering them is cheaper than the hash probe, and gives the
+            // same WMEs in the same (newest first) order.
+            let mut e = am.first;
+            while e != NIL {
+                let entry = &self.rm[e as usize];
+                if entry.id == id {
+                    self.scratch.push(entry.wme.0);
+                }
+                e = entry.next;
+            }
+            return;
+        }
+        let mut e = self.amem_by_id.get(&(a, id)).copied().unwrap_or(NIL);
         while e != NIL {
             let entry = &self.rm[e as usize];
             self.scratch.push(entry.wme.0);
-            e = if hashed { entry.id_next } else { entry.next };
+            e = entry.id_next;
         }
     }
 

@@ -14,6 +14,7 @@
 mod activate;
 mod build;
 mod hash;
+mod succ;
 pub mod tests;
 mod tokens;
 
@@ -60,9 +61,8 @@ pub(crate) struct Amem {
     /// Head of the intrusive list of right-memory entries (newest first).
     pub first: u32,
     pub count: u32,
-    /// Linked successors by creation order (node `seq`); the newest is activated first.
-    /// Ordered and keyed so that unlinking one of thousands is cheap.
-    pub successors: std::collections::BTreeMap<u64, NodeId>,
+    /// Linked successors by creation order; the newest is activated first.
+    pub successors: succ::Successors,
     pub refs: u32,
 }
 
@@ -70,6 +70,8 @@ pub(crate) struct Amem {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RmEntry {
     pub wme: WmeId,
+    /// The WME's identifier (read here when a small memory is scanned by identifier).
+    pub id: Sym,
     pub amem: AmemId,
     pub prev: u32,
     pub next: u32,
@@ -141,8 +143,8 @@ pub(crate) struct Node {
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: Vec<(u32, Field, u32)>,
-    /// Creation order (node ids are reused, this is not).
-    pub seq: u64,
+    /// Join and negative nodes: their position among their alpha memory's successors.
+    pub amem_pos: u32,
 }
 
 impl Node {
@@ -236,7 +238,6 @@ pub struct Rete {
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
     pub(crate) hentries: Vec<hash::HEntry>,
     free_hentries: Vec<u32>,
-    next_seq: u64,
     /// The activations' shared stack of list copies (see `activate.rs`).
     scratch: Vec<u32>,
     /// Counters for the benchmarks and `stats`.
@@ -271,7 +272,6 @@ impl Rete {
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
             free_hentries: Vec::new(),
-            next_seq: 0,
             scratch: Vec::new(),
             root: 0,
             root_token: 0,
@@ -295,9 +295,8 @@ impl Rete {
             alive: true,
             hash: None,
             left_keys: Vec::new(),
-            seq: self.next_seq,
+            amem_pos: NIL,
         };
-        self.next_seq += 1;
         alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
 
@@ -323,7 +322,7 @@ impl Rete {
             key,
             first: NIL,
             count: 0,
-            successors: std::collections::BTreeMap::new(),
+            successors: succ::Successors::default(),
             refs: 1,
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
@@ -377,6 +376,7 @@ impl Rete {
         let head = self.amems[a as usize].first;
         let entry = RmEntry {
             wme: w,
+            id: self.wme(w).id,
             amem: a,
             prev: NIL,
             next: head,
@@ -498,11 +498,10 @@ impl Rete {
             self.amem_remove_entry(e);
             if self.amems[amem as usize].count == 0 {
                 // Empty alpha memory: its joins need no left activations (Rete/UL).
-                let succ: Vec<NodeId> = self.amems[amem as usize]
+                let mut succ = Vec::new();
+                self.amems[amem as usize]
                     .successors
-                    .values()
-                    .copied()
-                    .collect();
+                    .push_newest_first(&mut succ);
                 self.unlink_left_all(&succ);
             }
         }
@@ -629,8 +628,8 @@ impl Rete {
             }
             _ => return,
         };
-        let seq = self.nodes[n as usize].seq;
-        self.amems[amem as usize].successors.remove(&seq);
+        let pos = self.nodes[n as usize].amem_pos;
+        self.amems[amem as usize].successors.unlink(pos);
     }
 
     /// Puts a node back among its alpha memory's successors.
@@ -664,8 +663,21 @@ impl Rete {
     /// before its ancestors on the same memory, so no descendant sees a new WME twice
     /// (Doorenbos §4.3.2): descendants are always built after their ancestors.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
-        let seq = self.nodes[n as usize].seq;
-        self.amems[amem as usize].successors.insert(seq, n);
+        let succ = &mut self.amems[amem as usize].successors;
+        let node = &mut self.nodes[n as usize];
+        if node.amem_pos == NIL {
+            // First link, when it is built: positions follow creation order.
+            node.amem_pos = succ.attach(n);
+        }
+        succ.link(node.amem_pos);
+    }
+
+    /// Takes an excised node out of its alpha memory's successors for good.
+    pub(crate) fn detach_from_amem(&mut self, n: NodeId, amem: AmemId) {
+        let pos = self.nodes[n as usize].amem_pos;
+        if pos != NIL {
+            self.amems[amem as usize].successors.detach(pos);
+        }
     }
 
     // ------------------------------------------------------------------- queries
