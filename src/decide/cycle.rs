@@ -269,14 +269,14 @@ impl Agent {
     }
 
     fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
-        let name = self.production_name(p).to_string();
-        let Some(prod) = self.production_arc(&name) else {
+        let Some(prod) = self.production_by_id(p) else {
             return;
         };
         self.decider.firings += 1;
         *self.decider.firing_counts.entry(p).or_default() += 1;
         if self.settings.trace_level >= 3 {
-            self.out(&format!("\nFiring {name}"));
+            let s = format!("\nFiring {}", self.production_name(p));
+            self.out(&s);
         }
         let goal = crate::support::match_goal(self, p, t);
         let level = goal
@@ -414,7 +414,6 @@ impl Agent {
 
     fn retract(&mut self, inst_id: InstId) {
         let p = self.decider.insts[inst_id as usize].prod;
-        let name = self.production_name(p).to_string();
         let serial = self.decider.insts[inst_id as usize].serial;
         if serial != 0 {
             let o = self.decider.insts[inst_id as usize].o_support;
@@ -427,7 +426,8 @@ impl Agent {
             inst.o_support || inst.prefs.is_empty() || serial != 0
         };
         if self.settings.trace_level >= 3 && !quiet {
-            self.out(&format!("\nRetracting {name}"));
+            let s = format!("\nRetracting {}", self.production_name(p));
+            self.out(&s);
         }
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
