@@ -254,6 +254,8 @@ pub struct Agent {
     pub rete: Rete,
     pub matches: MatchSet,
     productions: IndexMap<String, Loaded>,
+    /// The same rules by network id, for firing without a lookup by name.
+    by_id: Vec<Option<std::sync::Arc<Production>>>,
     pub settings: Settings,
     /// The exploration policy named by `indifferent-selection` (softmax by default, spec §3h).
     pub settings_policy: String,
@@ -296,6 +298,7 @@ impl Agent {
             rete,
             matches,
             productions: IndexMap::new(),
+            by_id: Vec::new(),
             settings: Settings::default(),
             settings_policy: "softmax".to_string(),
             seed: None,
@@ -334,13 +337,14 @@ impl Agent {
                 return Added::Duplicate { of: String::new() };
             }
         };
-        self.productions.insert(
-            p.name.clone(),
-            Loaded {
-                production: std::sync::Arc::new(p),
-                id,
-            },
-        );
+        let production = std::sync::Arc::new(p);
+        let slot = id.0 as usize;
+        if self.by_id.len() <= slot {
+            self.by_id.resize(slot + 1, None);
+        }
+        self.by_id[slot] = Some(production.clone());
+        self.productions
+            .insert(production.name.clone(), Loaded { production, id });
         if replaced {
             Added::Replaced
         } else {
@@ -351,6 +355,7 @@ impl Agent {
     pub fn excise(&mut self, name: &str) -> bool {
         match self.productions.shift_remove(name) {
             Some(l) => {
+                self.by_id[l.id.0 as usize] = None;
                 self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true
             }
@@ -381,6 +386,11 @@ impl Agent {
     /// A rule, shared (for firing it while the agent changes).
     pub fn production_arc(&self, name: &str) -> Option<std::sync::Arc<Production>> {
         self.productions.get(name).map(|l| l.production.clone())
+    }
+
+    /// A rule by its network id, shared.
+    pub fn production_by_id(&self, id: ProdId) -> Option<std::sync::Arc<Production>> {
+        self.by_id.get(id.0 as usize).and_then(|p| p.clone())
     }
 
     pub fn loaded(&self, name: &str) -> Option<&Loaded> {

@@ -303,15 +303,15 @@ impl Agent {
     }
 
     fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
-        let name = self.production_name(p).to_string();
-        let Some(prod) = self.production_arc(&name) else {
+        let Some(prod) = self.production_by_id(p) else {
             return;
         };
         self.decider.firings += 1;
         *self.decider.firing_counts.entry(p).or_default() += 1;
         let traced = self.settings.trace.firings_of(&prod.flags);
         if traced {
-            self.out(&format!("\nFiring {name}\n"));
+            let s = format!("\nFiring {}\n", self.production_name(p));
+            self.out(&s);
             self.trace_match_wmes(p, t);
         }
         let goal = crate::support::match_goal(self, p, t);

@@ -10,6 +10,9 @@ use super::{alloc, AmemId, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
+/// Alpha memories up to this size are scanned rather than looked up by identifier.
+const SMALL_AMEM: u32 = 4;
+
 /// A left-index bucket: holder, key depth, key field, value.
 pub(crate) type TokKey = (NodeId, u32, Field, Sym);
 
@@ -51,40 +54,63 @@ impl Rete {
         }
     }
 
-    /// The WMEs of an alpha memory that node `n` must try with token `t`, newest first: only
-    /// those whose identifier is the token's value at `n`'s key, when it has one.
-    pub(crate) fn amem_candidates(&self, a: AmemId, n: NodeId, t: TokId) -> Vec<WmeId> {
+    /// Pushes onto the scratch stack the WMEs of an alpha memory that node `n` must try
+    /// with token `t`, newest first: only those whose identifier is the token's value at
+    /// `n`'s key, when it has one.
+    pub(crate) fn push_amem_candidates(&mut self, a: AmemId, n: NodeId, t: TokId) {
         let Some((d, f)) = self.nodes[n as usize].hash else {
-            return self.amem_items(a);
+            let mut e = self.amems[a as usize].first;
+            while e != NIL {
+                self.scratch.push(self.rm[e as usize].wme.0);
+                e = self.rm[e as usize].next;
+            }
+            return;
         };
         let Some(id) = self.key_value(t, d, f) else {
-            return Vec::new();
+            return;
         };
-        let mut out = Vec::new();
+        let am = &self.amems[a as usize];
+        if am.count <= SMALL_AMEM {
+            // A few entries: filtering them is cheaper than the hash probe, and gives the
+            // same WMEs in the same (newest first) order.
+            let mut e = am.first;
+            while e != NIL {
+                let entry = &self.rm[e as usize];
+                if entry.id == id {
+                    self.scratch.push(entry.wme.0);
+                }
+                e = entry.next;
+            }
+            return;
+        }
         let mut e = self.amem_by_id.get(&(a, id)).copied().unwrap_or(NIL);
         while e != NIL {
-            out.push(self.rm[e as usize].wme);
-            e = self.rm[e as usize].id_next;
+            let entry = &self.rm[e as usize];
+            self.scratch.push(entry.wme.0);
+            e = entry.id_next;
         }
-        out
     }
 
     // ------------------------------------------------------------------- left index
 
-    /// The tokens of `holder` that node `n` must try with WME `w`, newest first: only those
-    /// whose value at `n`'s key is `w`'s identifier, when it has one.
-    pub(crate) fn token_candidates(&self, holder: NodeId, n: NodeId, w: WmeId) -> Vec<TokId> {
+    /// Pushes onto the scratch stack the tokens of `holder` that node `n` must try with
+    /// WME `w`, newest first: only those whose value at `n`'s key is `w`'s identifier, when
+    /// it has one.
+    pub(crate) fn push_token_candidates(&mut self, holder: NodeId, n: NodeId, w: WmeId) {
         let Some((d, f)) = self.nodes[n as usize].hash else {
-            return self.node_tokens(holder);
+            let mut t = self.nodes[holder as usize].first_token;
+            while t != NIL {
+                self.scratch.push(t);
+                t = self.tokens[t as usize].next_in_node;
+            }
+            return;
         };
         let key = (holder, d, f, self.wme(w).id);
-        let mut out = Vec::new();
         let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
         while e != NIL {
-            out.push(self.hentries[e as usize].tok);
+            self.scratch.push(self.hentries[e as usize].tok);
             e = self.hentries[e as usize].next;
         }
-        out
     }
 
     /// A token's value at an index key, if it has a WME at that depth.

@@ -11,6 +11,7 @@
 //! Lists are head-inserted as in Soar (children, alpha-memory successors and items), which
 //! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
 
+mod activate;
 mod build;
 mod hash;
 pub mod reorder;
@@ -19,7 +20,7 @@ mod tokens;
 
 pub use build::BuildError;
 use rustc_hash::FxHashMap;
-use tests::{relation_holds, Field, JoinTest, Operand};
+use tests::{Field, JoinTest};
 
 use crate::symbols::{Sym, Symbols};
 use crate::wm::WmeId;
@@ -70,6 +71,8 @@ pub(crate) struct Amem {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RmEntry {
     pub wme: WmeId,
+    /// The WME's identifier (read here when a small memory is scanned by identifier).
+    pub id: Sym,
     pub amem: AmemId,
     pub prev: u32,
     pub next: u32,
@@ -84,7 +87,9 @@ pub(crate) struct RWme {
     pub attr: Sym,
     pub value: Sym,
     pub acceptable: bool,
-    pub rm: Vec<u32>,
+    /// Its entries in alpha memories, in insertion order, NIL-padded: a WME is in at most
+    /// four (attribute and value each constant or not), so no heap list is needed.
+    pub rm: [u32; 4],
     /// Tokens whose `wme` is this one (intrusive list through `Token::next_of_wme`).
     pub tokens: u32,
     /// Negative join results naming this WME.
@@ -160,7 +165,7 @@ impl Node {
     }
 }
 
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Copy)]
 pub(crate) struct Token {
     pub node: NodeId,
     pub parent: TokId,
@@ -238,6 +243,8 @@ pub struct Rete {
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
     pub(crate) hentries: Vec<hash::HEntry>,
     free_hentries: Vec<u32>,
+    /// The activations' shared stack of list copies (see `activate.rs`).
+    scratch: Vec<u32>,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -270,6 +277,7 @@ impl Rete {
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
             free_hentries: Vec::new(),
+            scratch: Vec::new(),
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -355,7 +363,7 @@ impl Rete {
             let next = self.rm[e as usize].next;
             let w = self.rm[e as usize].wme;
             if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
-                rw.rm.retain(|x| *x != e);
+                rm_slots_remove(&mut rw.rm, e);
                 let id = rw.id;
                 self.amem_by_id.remove(&(a, id));
             }
@@ -374,6 +382,7 @@ impl Rete {
         let head = self.amems[a as usize].first;
         let entry = RmEntry {
             wme: w,
+            id: self.wme(w).id,
             amem: a,
             prev: NIL,
             next: head,
@@ -388,7 +397,7 @@ impl Rete {
         am.first = e;
         am.count += 1;
         if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
-            rw.rm.push(e);
+            rm_slots_push(&mut rw.rm, e);
             let id = rw.id;
             self.id_index_insert(a, id, e);
         }
@@ -448,12 +457,13 @@ impl Rete {
             attr,
             value,
             acceptable,
-            rm: Vec::new(),
+            rm: [NIL; 4],
             tokens: NIL,
             neg_results: NIL,
         });
         // Up to four alpha memories can hold it: attribute and value constant or not.
-        let mut targets = Vec::with_capacity(4);
+        let mut targets = [NIL; 4];
+        let mut n = 0;
         for (a, v) in [
             (Some(attr), Some(value)),
             (Some(attr), None),
@@ -466,10 +476,11 @@ impl Rete {
                 acceptable,
             };
             if let Some(&am) = self.amem_index.get(&key) {
-                targets.push(am);
+                targets[n] = am;
+                n += 1;
             }
         }
-        for am in targets {
+        for &am in &targets[..n] {
             self.alpha_activation(am, w, syms, sink);
         }
     }
@@ -479,25 +490,16 @@ impl Rete {
         // Doorenbos does): relinking them all first would let a descendant on the same alpha
         // memory see this WME twice.
         self.amem_insert(a, w);
-        let succ: Vec<NodeId> = self.amems[a as usize]
-            .successors
-            .values()
-            .copied()
-            .collect();
-        for n in succ {
-            if !self.nodes[n as usize].alive {
-                continue;
-            }
-            self.right_activation(n, w, syms, sink);
-        }
+        self.right_activate_successors(a, w, syms, sink);
     }
 
     /// Removes a WME: out of its alpha memories, its tokens and its negative join results.
     pub fn remove_wme(&mut self, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
-        let Some(rw) = self.wmes.get(w.0 as usize).and_then(|x| x.clone()) else {
+        let Some(rw) = self.wmes.get_mut(w.0 as usize).and_then(|x| x.as_mut()) else {
             return;
         };
-        for e in rw.rm.iter().copied() {
+        let rm = std::mem::replace(&mut rw.rm, [NIL; 4]);
+        for e in rm.into_iter().take_while(|&e| e != NIL) {
             let amem = self.rm[e as usize].amem;
             self.amem_remove_entry(e);
             if self.amems[amem as usize].count == 0 {
@@ -509,9 +511,6 @@ impl Rete {
                     .collect();
                 self.unlink_left_all(&succ);
             }
-        }
-        if let Some(x) = self.wmes[w.0 as usize].as_mut() {
-            x.rm.clear();
         }
         // Tokens built on this WME go, with their descendants.
         loop {
@@ -550,291 +549,6 @@ impl Rete {
             Field::Attr => rw.attr,
             Field::Value => rw.value,
         }
-    }
-
-    // ------------------------------------------------------------------- activations
-
-    /// Runs every test of a join or negative node on token `t` (the parent's) and WME `w`.
-    /// `new_depth` is the depth of the token that would hold `w`.
-    pub(crate) fn tests_pass(
-        &self,
-        tests: &[JoinTest],
-        t: TokId,
-        w: WmeId,
-        new_depth: u32,
-        syms: &Symbols,
-    ) -> bool {
-        for test in tests {
-            let ok = match test {
-                JoinTest::Compare { field, op, operand } => {
-                    let a = self.field(w, *field);
-                    let b = match operand {
-                        Operand::Const(c) => *c,
-                        Operand::Bound { depth, field } => {
-                            if *depth == new_depth {
-                                self.field(w, *field)
-                            } else {
-                                let wm = self.wme_at_depth(t, *depth);
-                                if wm == NIL_WME {
-                                    return false;
-                                }
-                                self.field(wm, *field)
-                            }
-                        }
-                    };
-                    relation_holds(syms, *op, a, b)
-                }
-                JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
-                JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
-                JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
-            };
-            if !ok {
-                return false;
-            }
-        }
-        true
-    }
-
-    /// The WME of the ancestor token (of `t`, inclusive) at `depth`.
-    pub(crate) fn wme_at_depth(&self, mut t: TokId, depth: u32) -> WmeId {
-        while t != NIL {
-            let tok = &self.tokens[t as usize];
-            if tok.depth == depth {
-                return tok.wme;
-            }
-            if tok.depth < depth {
-                break;
-            }
-            t = tok.parent;
-        }
-        NIL_WME
-    }
-
-    fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
-        self.right_activations += 1;
-        match self.nodes[n as usize].kind.clone() {
-            Kind::Join {
-                tests,
-                left_unlinked,
-                ..
-            } => {
-                let parent = self.nodes[n as usize].parent;
-                if left_unlinked {
-                    self.relink_left(n);
-                }
-                if self.nodes[parent as usize].token_count == 0 {
-                    self.unlink_right(n);
-                    return;
-                }
-                let depth = self.nodes[parent as usize].depth + 1;
-                let blockable = matches!(
-                    self.nodes[parent as usize].kind,
-                    Kind::Negative { .. } | Kind::Ncc { .. }
-                );
-                let toks = self.token_candidates(parent, n, w);
-                for t in toks {
-                    if blockable && self.tokens[t as usize].results != NIL {
-                        continue;
-                    }
-                    if self.tokens[t as usize].alive
-                        && self.wmes[w.0 as usize].is_some()
-                        && self.tests_pass(&tests, t, w, depth, syms)
-                    {
-                        self.activate_children(n, t, w, syms, sink);
-                    }
-                }
-            }
-            Kind::Negative { tests, .. } => {
-                let depth = self.nodes[n as usize].depth + 1;
-                let toks = self.token_candidates(n, n, w);
-                for t in toks {
-                    if !self.tokens[t as usize].alive || self.wmes[w.0 as usize].is_none() {
-                        continue;
-                    }
-                    if self.tests_pass(&tests, t, w, depth, syms) {
-                        if self.tokens[t as usize].results == NIL {
-                            self.delete_descendants(t, syms, sink);
-                        }
-                        self.add_neg_result(t, w);
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-
-    /// Left-activates the linked children of `n` with (parent token `t`, WME `w`), head first.
-    pub(crate) fn activate_children(
-        &mut self,
-        n: NodeId,
-        t: TokId,
-        w: WmeId,
-        syms: &Symbols,
-        sink: &mut dyn MatchSink,
-    ) {
-        let children = self.nodes[n as usize].children.clone();
-        for &c in children.iter().rev() {
-            if !self.nodes[c as usize].alive || !self.tokens[t as usize].alive {
-                continue;
-            }
-            if w != NIL_WME && self.wmes[w.0 as usize].is_none() {
-                return;
-            }
-            self.left_activation(c, t, w, syms, sink);
-        }
-    }
-
-    pub(crate) fn left_activation(
-        &mut self,
-        n: NodeId,
-        t: TokId,
-        w: WmeId,
-        syms: &Symbols,
-        sink: &mut dyn MatchSink,
-    ) {
-        self.left_activations += 1;
-        match self.nodes[n as usize].kind.clone() {
-            Kind::Root => {}
-            Kind::Memory => {
-                let nt = self.new_token(n, t, w);
-                self.activate_children(n, nt, NIL_WME, syms, sink);
-            }
-            Kind::Join {
-                amem,
-                tests,
-                right_unlinked,
-                ..
-            } => {
-                if right_unlinked {
-                    self.relink_right(n);
-                    if self.amems[amem as usize].count == 0 {
-                        self.unlink_left(n);
-                        return;
-                    }
-                }
-                let depth = self.tokens[t as usize].depth + 1;
-                for wm in self.amem_candidates(amem, n, t) {
-                    if self.wmes[wm.0 as usize].is_some()
-                        && self.tokens[t as usize].alive
-                        && self.tests_pass(&tests, t, wm, depth, syms)
-                    {
-                        self.activate_children(n, t, wm, syms, sink);
-                    }
-                }
-            }
-            Kind::Negative {
-                amem,
-                tests,
-                right_unlinked,
-            } => {
-                if right_unlinked {
-                    self.relink_right(n);
-                }
-                let nt = self.new_token(n, t, w);
-                let depth = self.tokens[nt as usize].depth + 1;
-                for wm in self.amem_candidates(amem, n, nt) {
-                    if self.tests_pass(&tests, nt, wm, depth, syms) {
-                        self.add_neg_result(nt, wm);
-                    }
-                }
-                if self.tokens[nt as usize].results == NIL {
-                    self.activate_children(n, nt, NIL_WME, syms, sink);
-                }
-            }
-            Kind::Ncc { partner } => {
-                let nt = self.new_token(n, t, w);
-                // Results the subnetwork found before this token existed (Doorenbos §2.8):
-                // those whose ancestor above the subnetwork is this token's parent.
-                let (buffered, owner_depth) = match &mut self.nodes[partner as usize].kind {
-                    Kind::NccPartner {
-                        buffer,
-                        owner_depth,
-                        ..
-                    } => (std::mem::take(buffer), *owner_depth),
-                    _ => (Vec::new(), 0),
-                };
-                let mut keep = Vec::new();
-                for r in buffered {
-                    if !self.tokens[r as usize].alive {
-                        continue;
-                    }
-                    if self.result_owner_parent(r, owner_depth) == t {
-                        self.add_ncc_result(nt, r);
-                    } else {
-                        keep.push(r);
-                    }
-                }
-                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
-                    buffer.extend(keep);
-                }
-                if self.tokens[nt as usize].results == NIL {
-                    self.activate_children(n, nt, NIL_WME, syms, sink);
-                }
-            }
-            Kind::NccPartner {
-                ncc, owner_depth, ..
-            } => {
-                let r = self.new_token(n, t, w);
-                // The owner is the NCC token whose parent is the result's ancestor above the
-                // subnetwork.
-                let owner_parent = self.result_owner_parent(r, owner_depth);
-                let owner = self.find_ncc_owner(ncc, owner_parent);
-                match owner {
-                    Some(o) => {
-                        let had = self.tokens[o as usize].results != NIL;
-                        self.add_ncc_result(o, r);
-                        if !had {
-                            self.delete_descendants(o, syms, sink);
-                        }
-                    }
-                    None => {
-                        if let Kind::NccPartner { buffer, .. } = &mut self.nodes[n as usize].kind {
-                            buffer.push(r);
-                        }
-                    }
-                }
-            }
-            Kind::Production { prod } => {
-                let nt = self.new_token(n, t, w);
-                sink.matched(prod, nt);
-            }
-        }
-    }
-
-    /// The tokens of a holder that its children see: a negative or NCC node's tokens that
-    /// have results are blocked (Doorenbos §2.7).
-    pub(crate) fn live_tokens(&self, n: NodeId) -> Vec<TokId> {
-        let mut toks = self.node_tokens(n);
-        if matches!(
-            self.nodes[n as usize].kind,
-            Kind::Negative { .. } | Kind::Ncc { .. }
-        ) {
-            toks.retain(|t| self.tokens[*t as usize].results == NIL);
-        }
-        toks
-    }
-
-    fn result_owner_parent(&self, r: TokId, owner_depth: u32) -> TokId {
-        let mut x = r;
-        while x != NIL && self.tokens[x as usize].depth > owner_depth {
-            x = self.tokens[x as usize].parent;
-        }
-        if x != NIL {
-            self.tokens[x as usize].parent
-        } else {
-            NIL
-        }
-    }
-
-    fn find_ncc_owner(&self, ncc: NodeId, owner_parent: TokId) -> Option<TokId> {
-        let mut t = self.nodes[ncc as usize].first_token;
-        while t != NIL {
-            if self.tokens[t as usize].parent == owner_parent {
-                return Some(t);
-            }
-            t = self.tokens[t as usize].next_in_node;
-        }
-        None
     }
 
     // ------------------------------------------------------------------ unlinking
@@ -1137,6 +851,20 @@ pub(crate) fn alloc<T>(items: &mut Vec<T>, free: &mut Vec<u32>, value: T) -> u32
             items.push(value);
             (items.len() - 1) as u32
         }
+    }
+}
+
+fn rm_slots_push(slots: &mut [u32; 4], e: u32) {
+    if let Some(s) = slots.iter_mut().find(|s| **s == NIL) {
+        *s = e;
+    }
+}
+
+/// Removes `e`, keeping the others in order.
+fn rm_slots_remove(slots: &mut [u32; 4], e: u32) {
+    if let Some(i) = slots.iter().position(|&s| s == e) {
+        slots.copy_within(i + 1.., i);
+        slots[3] = NIL;
     }
 }
 

@@ -98,7 +98,7 @@ impl Rete {
         sink: &mut dyn MatchSink,
     ) {
         self.delete_descendants(t, syms, sink);
-        let tok = self.tokens[t as usize].clone();
+        let tok = self.tokens[t as usize];
         let node = tok.node;
         if tok.hfirst != NIL {
             self.unindex_token(t);
@@ -135,8 +135,7 @@ impl Rete {
                 self.tokens[tok.next_sib as usize].prev_sib = tok.prev_sib;
             }
         }
-        let kind = self.nodes[node as usize].kind.clone();
-        match kind {
+        match self.nodes[node as usize].kind {
             Kind::Negative { .. } => {
                 loop {
                     let r = self.tokens[t as usize].results;
@@ -163,8 +162,9 @@ impl Rete {
         }
         if self.nodes[node as usize].token_count == 0 {
             // An empty memory: its joins need no right activations (Rete/UL).
-            let children = self.nodes[node as usize].children.clone();
-            for c in children {
+            // (Unlinking on the right leaves the children list as it is.)
+            for i in 0..self.nodes[node as usize].children.len() {
+                let c = self.nodes[node as usize].children[i];
                 if matches!(self.nodes[c as usize].kind, Kind::Join { .. }) {
                     self.unlink_right(c);
                 }

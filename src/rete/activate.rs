@@ -1,0 +1,380 @@
+//! Activations (Doorenbos §2.3–§2.8): right activations of joins and negative nodes by a new
+//! WME, left activations of every node kind by a new token, and the join tests.
+//!
+//! This is the matcher's hot path, so it allocates nothing once warm: the lists an
+//! activation walks (children, alpha-memory candidates, token candidates) are copied onto
+//! one shared scratch stack (`Rete::scratch`) and each activation pops its part when done.
+//! The copy keeps the old snapshot semantics exactly (a list that changes during the
+//! activation is still walked as it was), which keeps every iteration order as it was.
+
+use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
+use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
+use crate::symbols::Symbols;
+use crate::wm::WmeId;
+
+impl Rete {
+    /// Runs every test of a join or negative node on token `t` (the parent's) and WME `w`.
+    /// `new_depth` is the depth of the token that would hold `w`.
+    pub(crate) fn tests_pass(
+        &self,
+        tests: &[JoinTest],
+        t: TokId,
+        w: WmeId,
+        new_depth: u32,
+        syms: &Symbols,
+    ) -> bool {
+        self.tests_pass_but(tests, None, t, w, new_depth, syms)
+    }
+
+    /// `tests_pass`, leaving out the first identifier equality on `skip`: the pair came
+    /// from the hash index on that key, so it holds.
+    fn tests_pass_but(
+        &self,
+        tests: &[JoinTest],
+        mut skip: Option<(u32, Field)>,
+        t: TokId,
+        w: WmeId,
+        new_depth: u32,
+        syms: &Symbols,
+    ) -> bool {
+        for test in tests {
+            let ok = match test {
+                JoinTest::Compare { field, op, operand } => {
+                    if let (Field::Id, Op::Eq, Operand::Bound { depth, field: bf }) =
+                        (field, op, operand)
+                    {
+                        if skip == Some((*depth, *bf)) {
+                            skip = None;
+                            continue;
+                        }
+                    }
+                    let a = self.field(w, *field);
+                    let b = match operand {
+                        Operand::Const(c) => *c,
+                        Operand::Bound { depth, field } => {
+                            if *depth == new_depth {
+                                self.field(w, *field)
+                            } else {
+                                let wm = self.wme_at_depth(t, *depth);
+                                if wm == NIL_WME {
+                                    return false;
+                                }
+                                self.field(wm, *field)
+                            }
+                        }
+                    };
+                    relation_holds(syms, *op, a, b)
+                }
+                JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
+                JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
+                JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
+            };
+            if !ok {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
+    /// candidate lists gave.
+    fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
+        let node = &self.nodes[n as usize];
+        match &node.kind {
+            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => {
+                self.tests_pass_but(tests, node.hash, t, w, new_depth, s)
+            }
+            _ => true,
+        }
+    }
+
+    /// The WME of the ancestor token (of `t`, inclusive) at `depth`.
+    pub(crate) fn wme_at_depth(&self, mut t: TokId, depth: u32) -> WmeId {
+        while t != NIL {
+            let tok = &self.tokens[t as usize];
+            if tok.depth == depth {
+                return tok.wme;
+            }
+            if tok.depth < depth {
+                break;
+            }
+            t = tok.parent;
+        }
+        NIL_WME
+    }
+
+    /// Right-activates the linked successors of alpha memory `a` with its new WME `w`, in
+    /// their list order (see `link_to_amem`).
+    pub(crate) fn right_activate_successors(
+        &mut self,
+        a: u32,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let base = self.scratch.len();
+        self.scratch
+            .extend(self.amems[a as usize].successors.values().copied());
+        for i in base..self.scratch.len() {
+            let n = self.scratch[i];
+            if self.nodes[n as usize].alive {
+                self.right_activation(n, w, syms, sink);
+            }
+        }
+        self.scratch.truncate(base);
+    }
+
+    fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+        self.right_activations += 1;
+        match self.nodes[n as usize].kind {
+            Kind::Join { left_unlinked, .. } => {
+                let parent = self.nodes[n as usize].parent;
+                if left_unlinked {
+                    self.relink_left(n);
+                }
+                if self.nodes[parent as usize].token_count == 0 {
+                    self.unlink_right(n);
+                    return;
+                }
+                let depth = self.nodes[parent as usize].depth + 1;
+                let blockable = matches!(
+                    self.nodes[parent as usize].kind,
+                    Kind::Negative { .. } | Kind::Ncc { .. }
+                );
+                let base = self.scratch.len();
+                self.push_token_candidates(parent, n, w);
+                for i in base..self.scratch.len() {
+                    let t = self.scratch[i];
+                    if blockable && self.tokens[t as usize].results != NIL {
+                        continue;
+                    }
+                    if self.tokens[t as usize].alive
+                        && self.wmes[w.0 as usize].is_some()
+                        && self.node_tests_pass(n, t, w, depth, syms)
+                    {
+                        self.activate_children(n, t, w, syms, sink);
+                    }
+                }
+                self.scratch.truncate(base);
+            }
+            Kind::Negative { .. } => {
+                let depth = self.nodes[n as usize].depth + 1;
+                let base = self.scratch.len();
+                self.push_token_candidates(n, n, w);
+                for i in base..self.scratch.len() {
+                    let t = self.scratch[i];
+                    if !self.tokens[t as usize].alive || self.wmes[w.0 as usize].is_none() {
+                        continue;
+                    }
+                    if self.node_tests_pass(n, t, w, depth, syms) {
+                        if self.tokens[t as usize].results == NIL {
+                            self.delete_descendants(t, syms, sink);
+                        }
+                        self.add_neg_result(t, w);
+                    }
+                }
+                self.scratch.truncate(base);
+            }
+            _ => {}
+        }
+    }
+
+    /// Left-activates the linked children of `n` with (parent token `t`, WME `w`), head first.
+    pub(crate) fn activate_children(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let children = &self.nodes[n as usize].children;
+        if children.len() == 1 {
+            // The common case needs no copy of the list.
+            let c = children[0];
+            if self.child_may_activate(c, t, w) {
+                self.left_activation(c, t, w, syms, sink);
+            }
+            return;
+        }
+        let base = self.scratch.len();
+        self.scratch.extend(children.iter().rev());
+        for i in base..self.scratch.len() {
+            let c = self.scratch[i];
+            if !self.nodes[c as usize].alive || !self.tokens[t as usize].alive {
+                continue;
+            }
+            if w != NIL_WME && self.wmes[w.0 as usize].is_none() {
+                break;
+            }
+            self.left_activation(c, t, w, syms, sink);
+        }
+        self.scratch.truncate(base);
+    }
+
+    fn child_may_activate(&self, c: NodeId, t: TokId, w: WmeId) -> bool {
+        self.nodes[c as usize].alive
+            && self.tokens[t as usize].alive
+            && (w == NIL_WME || self.wmes[w.0 as usize].is_some())
+    }
+
+    pub(crate) fn left_activation(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        self.left_activations += 1;
+        match self.nodes[n as usize].kind {
+            Kind::Root => {}
+            Kind::Memory => {
+                let nt = self.new_token(n, t, w);
+                self.activate_children(n, nt, NIL_WME, syms, sink);
+            }
+            Kind::Join {
+                amem,
+                right_unlinked,
+                ..
+            } => {
+                if right_unlinked {
+                    self.relink_right(n);
+                    if self.amems[amem as usize].count == 0 {
+                        self.unlink_left(n);
+                        return;
+                    }
+                }
+                let depth = self.tokens[t as usize].depth + 1;
+                let base = self.scratch.len();
+                self.push_amem_candidates(amem, n, t);
+                for i in base..self.scratch.len() {
+                    let wm = WmeId(self.scratch[i]);
+                    if self.wmes[wm.0 as usize].is_some()
+                        && self.tokens[t as usize].alive
+                        && self.node_tests_pass(n, t, wm, depth, syms)
+                    {
+                        self.activate_children(n, t, wm, syms, sink);
+                    }
+                }
+                self.scratch.truncate(base);
+            }
+            Kind::Negative {
+                amem,
+                right_unlinked,
+                ..
+            } => {
+                if right_unlinked {
+                    self.relink_right(n);
+                }
+                let nt = self.new_token(n, t, w);
+                let depth = self.tokens[nt as usize].depth + 1;
+                let base = self.scratch.len();
+                self.push_amem_candidates(amem, n, nt);
+                for i in base..self.scratch.len() {
+                    let wm = WmeId(self.scratch[i]);
+                    if self.node_tests_pass(n, nt, wm, depth, syms) {
+                        self.add_neg_result(nt, wm);
+                    }
+                }
+                self.scratch.truncate(base);
+                if self.tokens[nt as usize].results == NIL {
+                    self.activate_children(n, nt, NIL_WME, syms, sink);
+                }
+            }
+            Kind::Ncc { partner } => {
+                let nt = self.new_token(n, t, w);
+                // Results the subnetwork found before this token existed (Doorenbos §2.8):
+                // those whose ancestor above the subnetwork is this token's parent.
+                let (buffered, owner_depth) = match &mut self.nodes[partner as usize].kind {
+                    Kind::NccPartner {
+                        buffer,
+                        owner_depth,
+                        ..
+                    } => (std::mem::take(buffer), *owner_depth),
+                    _ => (Vec::new(), 0),
+                };
+                let mut keep = Vec::new();
+                for r in buffered {
+                    if !self.tokens[r as usize].alive {
+                        continue;
+                    }
+                    if self.result_owner_parent(r, owner_depth) == t {
+                        self.add_ncc_result(nt, r);
+                    } else {
+                        keep.push(r);
+                    }
+                }
+                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
+                    buffer.extend(keep);
+                }
+                if self.tokens[nt as usize].results == NIL {
+                    self.activate_children(n, nt, NIL_WME, syms, sink);
+                }
+            }
+            Kind::NccPartner {
+                ncc, owner_depth, ..
+            } => {
+                let r = self.new_token(n, t, w);
+                // The owner is the NCC token whose parent is the result's ancestor above the
+                // subnetwork.
+                let owner_parent = self.result_owner_parent(r, owner_depth);
+                let owner = self.find_ncc_owner(ncc, owner_parent);
+                match owner {
+                    Some(o) => {
+                        let had = self.tokens[o as usize].results != NIL;
+                        self.add_ncc_result(o, r);
+                        if !had {
+                            self.delete_descendants(o, syms, sink);
+                        }
+                    }
+                    None => {
+                        if let Kind::NccPartner { buffer, .. } = &mut self.nodes[n as usize].kind {
+                            buffer.push(r);
+                        }
+                    }
+                }
+            }
+            Kind::Production { prod } => {
+                let nt = self.new_token(n, t, w);
+                sink.matched(prod, nt);
+            }
+        }
+    }
+
+    /// The tokens of a holder that its children see: a negative or NCC node's tokens that
+    /// have results are blocked (Doorenbos §2.7).
+    pub(crate) fn live_tokens(&self, n: NodeId) -> Vec<TokId> {
+        let mut toks = self.node_tokens(n);
+        if matches!(
+            self.nodes[n as usize].kind,
+            Kind::Negative { .. } | Kind::Ncc { .. }
+        ) {
+            toks.retain(|t| self.tokens[*t as usize].results == NIL);
+        }
+        toks
+    }
+
+    fn result_owner_parent(&self, r: TokId, owner_depth: u32) -> TokId {
+        let mut x = r;
+        while x != NIL && self.tokens[x as usize].depth > owner_depth {
+            x = self.tokens[x as usize].parent;
+        }
+        if x != NIL {
+            self.tokens[x as usize].parent
+        } else {
+            NIL
+        }
+    }
+
+    fn find_ncc_owner(&self, ncc: NodeId, owner_parent: TokId) -> Option<TokId> {
+        let mut t = self.nodes[ncc as usize].first_token;
+        while t != NIL {
+            if self.tokens[t as usize].parent == owner_parent {
+                return Some(t);
+            }
+            t = self.tokens[t as usize].next_in_node;
+        }
+        None
+    }
+}
