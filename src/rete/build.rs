@@ -189,12 +189,16 @@ impl Rete {
         }
     }
 
-    fn join_children(&self, m: NodeId) -> usize {
+    /// Whether `m` has exactly one join child (counting stops at two: a memory shared by
+    /// thousands of rules is not walked for each new one).
+    fn has_one_join_child(&self, m: NodeId) -> bool {
         self.nodes[m as usize]
             .all_children
             .iter()
             .filter(|&&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
+            .take(2)
             .count()
+            == 1
     }
 
     /// Links `child` under `parent`: at the head of the children (activated first), or at
@@ -296,7 +300,7 @@ impl Rete {
         }
         let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
         let depth = self.nodes[h as usize].depth;
-        if self.join_children(h) == 1 {
+        if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
         }
         let j = self.new_node(
@@ -470,7 +474,7 @@ impl Rete {
             p.children.retain(|c| *c != n);
             p.all_children.retain(|c| *c != n);
             self.free_node(n);
-            if matches!(kind, Kind::Join { .. }) && self.join_children(parent) == 1 {
+            if matches!(kind, Kind::Join { .. }) && self.has_one_join_child(parent) {
                 self.move_memory_to_head(parent);
             }
             if let Kind::Ncc { partner } = kind {
