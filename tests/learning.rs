@@ -63,3 +63,57 @@ fn learning_off_gives_justifications_that_keep_i_supported_results() {
     assert_eq!(js, "justify3 \njustify1 \n");
     assert_eq!(run(&mut interp, "print --chunks"), "");
 }
+
+/// `chunk` after a run and after `init-soar`, as the official kernel printed it for the
+/// same agent and commands (9.6 resets the counts at `init-soar`).
+#[test]
+fn chunk_summary_counts_since_init_soar() {
+    let mut interp = Interpreter::new();
+    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    run(&mut interp, "source tests/agents/learn-lookahead.soar");
+    run(&mut interp, "run 100");
+    let rows = |s: &str| -> Vec<String> {
+        s.lines()
+            .filter(|l| {
+                l.starts_with("Chunks") || l.starts_with("Justif") || l.starts_with("Substates")
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    let after_run = run(&mut interp, "chunk");
+    assert!(after_run.contains("When Soar will learn rules                       always\n"));
+    assert_eq!(
+        rows(&after_run),
+        [
+            "Chunks learned                                        2",
+            "Justifications learned                                0",
+            "Substates analyzed                                    2"
+        ]
+    );
+    run(&mut interp, "init-soar");
+    run(&mut interp, "run 100");
+    assert!(rows(&run(&mut interp, "chunk"))
+        .iter()
+        .all(|r| r.ends_with(" 0")));
+}
+
+/// `chunk ?` lists the settings with the current learning mode in capitals and the limits'
+/// values right-aligned (text from the official kernel after the same commands).
+#[test]
+fn chunk_settings_listing() {
+    let mut interp = Interpreter::new();
+    run(&mut interp, "chunk always");
+    run(&mut interp, "chunk max-dupes 12");
+    run(&mut interp, "chunk max-chunks 7");
+    let out = run(&mut interp, "chunk ?");
+    assert!(out.contains(
+        "\nALWAYS | never | only | except                        When Soar will learn new rules\n"
+    ));
+    assert!(out.contains(
+        "\nmax-chunks                                  7         Maximum chunks that can be learned (per phase)\n"
+    ));
+    assert!(out.contains(
+        "\nmax-dupes                                  12         Maximum duplicate chunks (per rule, per phase)\n"
+    ));
+    assert!(out.ends_with("For a detailed explanation of these settings:         help chunk\n"));
+}

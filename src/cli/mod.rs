@@ -3,6 +3,7 @@
 //! §6, §6d, §7). The interpreter runs without a terminal; front ends drain its [`Event`]s.
 
 pub mod aliases;
+mod chunk_listing;
 mod files;
 pub mod help;
 mod memory;

@@ -84,10 +84,8 @@ impl Interpreter {
     pub(super) fn cmd_chunk(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let s = &mut self.agent.settings;
         match args.first().map(String::as_str) {
-            None => Ok(format!(
-                "=======================================================\n           Explanation-Based Chunking Summary\n=======================================================\nWhen Soar will learn rules{:>29}\n",
-                s.learn.word()
-            )),
+            None => Ok(super::chunk_listing::summary(&self.agent)),
+            Some("?" | "help") => Ok(super::chunk_listing::settings(&self.agent)),
             Some(w @ ("always" | "never" | "only" | "except" | "on" | "off")) => {
                 // `chunk on` means `only` in 9.6 (spec §4, E:t3).
                 s.learn = match w {
@@ -101,7 +99,25 @@ impl Interpreter {
             }
             Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, CHUNK_INVALID, |n| format!("max-chunks is now {n}\n")),
             Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, CHUNK_INVALID, |n| format!("max-dupes is now {n}\n")),
-            Some(_) => Err(super::not_yet(ctx, "chunk")),
+            Some(
+                "stats"
+                | "bottom-only"
+                | "naming-style"
+                | "interrupt"
+                | "explain-interrupt"
+                | "warning-interrupt"
+                | "singleton"
+                | "automatically-create-singletons"
+                | "add-ltm-links"
+                | "add-osk"
+                | "allow-local-negations"
+                | "allow-opaque",
+            ) => Err(super::not_yet(ctx, "chunk")),
+            Some(_) => Err(Diagnostic::error(
+                "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.",
+            )
+            .at(ctx.arg_span(0))
+            .with_label("not a chunk setting")),
         }
     }
 

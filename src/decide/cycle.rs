@@ -120,6 +120,7 @@ impl Agent {
     fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
         // max-chunks counts per phase (spec §4).
         self.learn.chunks_this_phase = 0;
+        self.learn.dupes_this_phase.clear();
         match phase {
             Phase::Input => {
                 self.trace_phase("\n--- Input Phase --- \n");

@@ -169,6 +169,15 @@ impl Agent {
             LearnMode::Except => !goal.is_some_and(|g| self.learn.dont_learn.contains(&g)),
         };
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
+        self.learn.substates_analyzed += 1;
+        // The rule whose firing made the result: max-dupes counts per rule, per phase.
+        let dupes_of = source.name.clone();
+        let dupes = self
+            .learn
+            .dupes_this_phase
+            .get(&dupes_of)
+            .copied()
+            .unwrap_or(0);
         if want_chunk && !bt.tested_quiescence {
             if self.learn.chunks_this_phase >= self.settings.max_chunks {
                 if self.settings.warnings {
@@ -176,13 +185,20 @@ impl Agent {
                         "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
                     );
                 }
+            } else if dupes >= self.settings.max_dupes {
+                // This rule's results keep giving rules already known: give up on it for
+                // the rest of the phase (its result gets a justification).
             } else {
                 let name = self.chunk_name(source, level);
                 let prod = self.build_learned_rule(&bt, &results, name.clone(), true);
                 match self.add_production(prod) {
-                    Added::Duplicate { .. } => self.learn.duplicates += 1,
+                    Added::Duplicate { .. } => {
+                        self.learn.duplicates += 1;
+                        *self.learn.dupes_this_phase.entry(dupes_of).or_default() += 1;
+                    }
                     _ => {
                         self.learn.chunks_learned += 1;
+                        self.learn.chunks_since_init += 1;
                         self.learn.learned_this_run += 1;
                         self.learn.chunks_this_phase += 1;
                         if let (Some(l), Some(p)) = (self.loaded(&name), self.production_arc(&name))
@@ -446,6 +462,7 @@ impl Agent {
         }
         if named {
             self.learn.justifications_learned += 1;
+            self.learn.justifications_since_init += 1;
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
             if self.settings.learning_trace >= 2 {
                 self.output.push_str(&format!(

@@ -89,7 +89,15 @@ pub struct LearnState {
     pub learned_this_run: u64,
     /// Chunks learned in the current phase (max-chunks is per phase, spec §4).
     pub chunks_this_phase: i64,
+    /// Duplicate chunks learned in the current phase, by the rule whose firing made the
+    /// result (max-dupes is per rule, per phase, spec §4).
+    pub dupes_this_phase: FxHashMap<String, i64>,
     pub duplicates: u64,
+    /// `chunk`'s counts since the last `init-soar` (9.6 resets them there): chunks,
+    /// justifications, and learning episodes that got as far as building either.
+    pub chunks_since_init: u64,
+    pub justifications_since_init: u64,
+    pub substates_analyzed: u64,
     /// `init-soar` calls so far (chunk names after one carry the count).
     pub init_count: u64,
     /// States marked by `force-learn` / `dont-learn` (for `chunk only` / `except`).
@@ -112,6 +120,10 @@ impl LearnState {
         self.force_learn.clear();
         self.dont_learn.clear();
         self.chunks_this_phase = 0;
+        self.dupes_this_phase.clear();
+        self.chunks_since_init = 0;
+        self.justifications_since_init = 0;
+        self.substates_analyzed = 0;
     }
 
     /// Fresh identities for `n` variables: the first of them.
