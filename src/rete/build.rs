@@ -50,7 +50,21 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
             }
         }
     }
-    let mut out = format!("{:?}", p.flags);
+    // The flags as one digit each (a rule's support and kind are part of what it does).
+    let f = &p.flags;
+    let mut out: String = [
+        f.o_support,
+        f.i_support,
+        f.chunk,
+        f.default,
+        f.template,
+        f.interrupt,
+        f.explain,
+        f.justification,
+    ]
+    .iter()
+    .map(|&b| if b { '1' } else { '0' })
+    .collect();
     let mut fresh = Vec::new();
     for a in &p.actions {
         out.push('|');

@@ -204,6 +204,13 @@ pub(super) struct Required {
 }
 
 fn requirements(conds: &[Condition], outside: &Bound) -> Required {
+    if conds.iter().all(|c| matches!(c, Condition::Positive(_))) {
+        // Nothing to require: the common case, without building the bound set.
+        return Required {
+            vars: vec![Vec::new(); conds.len()],
+            inner: vec![None; conds.len()],
+        };
+    }
     let mut bound = outside.clone();
     for c in conds {
         bound.extend(bound_by(c).into_iter().map(str::to_string));

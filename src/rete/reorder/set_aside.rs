@@ -168,6 +168,10 @@ fn restore_field(field: &mut Test, bound: &Bound, saved: &mut SetAside) {
 /// Puts the set-aside tests back on the first reordered condition that can test them;
 /// tests whose referent is never bound are dropped (compile has already warned).
 pub(super) fn restore(conds: &mut [Condition], outside: &Bound, mut saved: SetAside) {
+    if saved.tests.is_empty() && saved.goals.is_empty() {
+        return;
+    }
+    let only_goals = saved.tests.is_empty();
     let mut bound = outside.clone();
     for c in conds.iter_mut() {
         let Condition::Positive(p) = c else { continue };
@@ -175,6 +179,9 @@ pub(super) fn restore(conds: &mut [Condition], outside: &Bound, mut saved: SetAs
             if let Some(h) = saved.goals.remove(v) {
                 p.goal = h;
             }
+        }
+        if only_goals {
+            continue;
         }
         for field in [&mut p.id, &mut p.attr, &mut p.value] {
             restore_field(field, &bound, &mut saved);
