@@ -107,7 +107,13 @@ fn rhs_id_text(t: &RhsTerm) -> String {
 }
 
 pub fn call_text(f: &FuncCall) -> String {
-    let mut s = format!("({}", f.name);
+    // 9.6 prints the function names `+`, `-` and `*` bare but `/` in bars (observed).
+    let name = if f.name == "/" {
+        "|/|"
+    } else {
+        f.name.as_str()
+    };
+    let mut s = format!("({name}");
     for a in &f.args {
         s.push(' ');
         s.push_str(&rhs_term_text(a));
@@ -157,12 +163,26 @@ pub fn make_text(m: &Make) -> String {
 
 /// Appends `items` after `head`, wrapping before an item that would reach column 80.
 fn wrap_items(out: &mut String, head: &str, items: &[String], indent: usize, close: &str) {
+    wrap_items_at(out, head, items, indent, close, 80, false);
+}
+
+/// As [`wrap_items`], wrapping where the line would reach `limit`; with `wrap_first` even
+/// the first item goes to a new line when it does not fit after the head.
+fn wrap_items_at(
+    out: &mut String,
+    head: &str,
+    items: &[String],
+    indent: usize,
+    close: &str,
+    limit: usize,
+    wrap_first: bool,
+) {
     let mut line = head.to_string();
     let mut first = true;
     for it in items {
         let sep = if first { "" } else { " " };
-        if !first && line.len() + sep.len() + it.len() >= 80 {
-            out.push_str(&line);
+        if (!first || wrap_first) && line.len() + sep.len() + it.len() >= limit {
+            out.push_str(line.trim_end());
             out.push('\n');
             line = " ".repeat(indent);
             line.push_str(it);
@@ -314,9 +334,11 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                     j += 1;
                 }
                 let head = format!("    ({id} ");
-                // Continuation lines of an action start in column 12, whatever the id.
+                // Continuation lines of an action start in column 12, whatever the id; an
+                // action's line wraps one column earlier than a condition's, even before its
+                // first item (observed on soar-sml 9.6.5).
                 let cont = 11;
-                wrap_items(out, &head, &items, cont, ")");
+                wrap_items_at(out, &head, &items, cont, ")", 79, true);
                 out.push('\n');
                 i = j;
             }
