@@ -161,13 +161,9 @@ pub fn make_text(m: &Make) -> String {
     s
 }
 
-/// Appends `items` after `head`, wrapping before an item that would reach column 80.
-fn wrap_items(out: &mut String, head: &str, items: &[String], indent: usize, close: &str) {
-    wrap_items_at(out, head, items, indent, close, 80, false);
-}
-
-/// As [`wrap_items`], wrapping where the line would reach `limit`; with `wrap_first` even
-/// the first item goes to a new line when it does not fit after the head.
+/// Appends `items` after `head`, wrapping before an item that would make the line reach
+/// `limit` columns (79 for conditions and actions alike, observed on soar-sml 9.6.5); with
+/// `wrap_first` even the first item goes to a new line when it does not fit after the head.
 fn wrap_items_at(
     out: &mut String,
     head: &str,
@@ -305,7 +301,7 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
                 head.push(' ');
                 // Continuation lines start 6 past the indent, whatever the id (observed).
                 let cont = indent + 6;
-                wrap_items(out, &head, &texts, cont, ")");
+                wrap_items_at(out, &head, &texts, cont, ")", 79, false);
                 out.push('\n');
             }
         }
@@ -335,8 +331,7 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                 }
                 let head = format!("    ({id} ");
                 // Continuation lines of an action start in column 12, whatever the id; an
-                // action's line wraps one column earlier than a condition's, even before its
-                // first item (observed on soar-sml 9.6.5).
+                // action wraps even before its first item (observed on soar-sml 9.6.5).
                 let cont = 11;
                 wrap_items_at(out, &head, &items, cont, ")", 79, true);
                 out.push('\n');
