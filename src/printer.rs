@@ -308,26 +308,30 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
     }
 }
 
+/// Prints the actions, each make action grouped with every later one on the same id (at the
+/// place of the first, as 9.6 prints them), function calls where they stand.
 fn print_actions(out: &mut String, actions: &[Action]) {
-    let mut i = 0;
-    while i < actions.len() {
+    let mut printed = vec![false; actions.len()];
+    for i in 0..actions.len() {
+        if printed[i] {
+            continue;
+        }
         match &actions[i] {
             Action::Call(f) => {
                 out.push_str("    ");
                 out.push_str(&call_text(f));
                 out.push('\n');
-                i += 1;
             }
             Action::Make(m) => {
                 let id = rhs_id_text(&m.id);
                 let mut items = Vec::new();
-                let mut j = i;
-                while let Some(Action::Make(mm)) = actions.get(j) {
-                    if rhs_id_text(&mm.id) != id {
-                        break;
+                for (j, a) in actions.iter().enumerate().skip(i) {
+                    if let Action::Make(mm) = a {
+                        if !printed[j] && rhs_id_text(&mm.id) == id {
+                            items.push(make_item(mm));
+                            printed[j] = true;
+                        }
                     }
-                    items.push(make_item(mm));
-                    j += 1;
                 }
                 let head = format!("    ({id} ");
                 // Continuation lines of an action start in column 12, whatever the id; an
@@ -335,7 +339,6 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                 let cont = 11;
                 wrap_items_at(out, &head, &items, cont, ")", 79, true);
                 out.push('\n');
-                i = j;
             }
         }
     }

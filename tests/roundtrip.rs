@@ -1115,6 +1115,32 @@ fn strip(p: &Production) -> Production {
 /// positive condition on its id repeats must keep it, in a group of its own,
 /// `(state <x> -^a v)` (the printer does not do this yet: `NEGATED_GOAL_TESTS`). Conjunctive
 /// negations stay in place.
+/// Make actions as the printer groups them: each with every later one on the same id, at
+/// the place of the first (9.6's order); function calls stay where they are.
+fn regroup_actions(actions: &[Action]) -> Vec<Action> {
+    let mut taken = vec![false; actions.len()];
+    let mut out = Vec::new();
+    for i in 0..actions.len() {
+        if taken[i] {
+            continue;
+        }
+        match &actions[i] {
+            Action::Make(m) => {
+                for (j, a) in actions.iter().enumerate().skip(i) {
+                    if let Action::Make(mm) = a {
+                        if !taken[j] && mm.id == m.id {
+                            taken[j] = true;
+                            out.push(a.clone());
+                        }
+                    }
+                }
+            }
+            other => out.push(other.clone()),
+        }
+    }
+    out
+}
+
 fn regroup(conds: &[Condition]) -> Vec<Condition> {
     enum Item {
         /// The id test, the negated goal test it keeps (or `None`), the members.
@@ -1232,6 +1258,7 @@ fn round_trip(src: &str) -> Result<(), String> {
     let (g1, s2) = (strip(&p1), strip(&p2));
     let expected = Production {
         conditions: regroup(&g1.conditions),
+        actions: regroup_actions(&g1.actions),
         ..g1
     };
     if s2 != expected {

@@ -266,8 +266,11 @@ fn reorder_list(
         let cond = match cond {
             // An NCC's own conditions are ordered when it is placed, with what is bound
             // by then counting as bound outside them.
-            Condition::Ncc(inner_conds) => {
+            Condition::Ncc(mut inner_conds) => {
                 let inner_roots = root_variables(&inner_conds, &chooser.bound);
+                // As at the top level, only root ids keep a `state` test: one bound outside
+                // the NCC is already tested there (9.6 prints `-{ (<s> ^operator ...) }`).
+                drop_goal_tests_of_non_roots(&mut inner_conds, &inner_roots);
                 Condition::Ncc(reorder_list(
                     inner_conds,
                     inner.unwrap_or_default(),
