@@ -118,6 +118,28 @@ impl Agent {
     /// Runs a phase; with `one_cycle`, at most one elaboration cycle of the propose or apply
     /// phase, which then resumes where it stopped on the next call.
     fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
+        let start = std::time::Instant::now();
+        self.do_phase_timed(phase, one_cycle);
+        let i = match phase {
+            Phase::Input => 0,
+            Phase::Propose => 1,
+            Phase::Decide => 2,
+            Phase::Apply => 3,
+            Phase::Output => 4,
+        };
+        self.decider.phase_time[i] += start.elapsed();
+    }
+
+    /// A sample of the WM size for `stats` (taken after each elaboration cycle and each
+    /// decision phase).
+    fn sample_wm_size(&mut self) {
+        let n = self.wm.len() as u64;
+        self.decider.wm_size_sum += n;
+        self.decider.wm_size_samples += 1;
+        self.decider.wm_size_max = self.decider.wm_size_max.max(n);
+    }
+
+    fn do_phase_timed(&mut self, phase: Phase, one_cycle: bool) {
         // max-chunks counts per phase (spec §4).
         self.learn.chunks_this_phase = 0;
         self.learn.dupes_this_phase.clear();
@@ -160,6 +182,7 @@ impl Agent {
                 self.classify_new_matches();
                 self.trace_phase("\n--- END Decision Phase ---\n");
                 self.decider.decisions += 1;
+                self.sample_wm_size();
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
             }
@@ -245,6 +268,7 @@ impl Agent {
     fn elaboration_cycle(&mut self, o_support: bool) -> bool {
         self.decider.e_cycles += 1;
         self.decider.e_cycles_this_phase += 1;
+        self.decider.pe_cycles += u64::from(o_support);
         let retractions = std::mem::take(&mut self.matches.retractions);
         // Fire from the head: the newest match first (spec §3i).
         let pending = std::mem::take(&mut self.matches.assertions);
@@ -300,6 +324,7 @@ impl Agent {
             self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
         self.update_slots();
+        self.sample_wm_size();
         true
     }
 
@@ -1120,7 +1145,9 @@ impl Agent {
 
     fn run_input_callbacks(&mut self) {
         if let Some(mut cb) = self.input_callback.take() {
+            let start = std::time::Instant::now();
             cb(self);
+            self.decider.input_fn_time += start.elapsed();
             if self.input_callback.is_none() {
                 self.input_callback = Some(cb);
             }
@@ -1129,7 +1156,9 @@ impl Agent {
 
     fn run_output_callbacks(&mut self) {
         if let Some(mut cb) = self.output_callback.take() {
+            let start = std::time::Instant::now();
             cb(self);
+            self.decider.output_fn_time += start.elapsed();
             if self.output_callback.is_none() {
                 self.output_callback = Some(cb);
             }
@@ -1152,6 +1181,7 @@ impl Agent {
         self.matches.retractions.clear();
         self.matches.support.clear();
         self.decider = crate::decide::state::DecideState::new();
+        self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
