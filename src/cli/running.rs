@@ -156,8 +156,7 @@ impl Interpreter {
     /// `stats`: 9.6's report (spec §6a): the production counts, the phase timing table,
     /// the single timers, then the counts. The timings are rusoar's own (wall-clock time
     /// per phase, `std::time::Instant`); the first line names rusoar, the host and the
-    /// time. WM size is sampled after every elaboration cycle and decision phase (9.6's
-    /// sampling points are not reproduced: its mean and maximum can differ).
+    /// time. WM size is sampled at the end of every phase, as 9.6 samples it.
     pub(super) fn cmd_stats(&mut self) -> CmdResult {
         let (mut defaults, mut chunks) = (0, 0);
         for p in self.agent.productions() {

@@ -128,10 +128,14 @@ impl Agent {
             Phase::Output => 4,
         };
         self.decider.phase_time[i] += start.elapsed();
+        // 9.6 samples the WM size once per phase, at its end (a phase left mid-way by
+        // `run -e` is sampled when it ends).
+        if self.decider.phase != Some(phase) {
+            self.sample_wm_size();
+        }
     }
 
-    /// A sample of the WM size for `stats` (taken after each elaboration cycle and each
-    /// decision phase).
+    /// A sample of the WM size for `stats`, taken at the end of each phase.
     fn sample_wm_size(&mut self) {
         let n = self.wm.len() as u64;
         self.decider.wm_size_sum += n;
@@ -182,7 +186,6 @@ impl Agent {
                 self.classify_new_matches();
                 self.trace_phase("\n--- END Decision Phase ---\n");
                 self.decider.decisions += 1;
-                self.sample_wm_size();
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
             }
@@ -324,7 +327,6 @@ impl Agent {
             self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
         self.update_slots();
-        self.sample_wm_size();
         true
     }
 
