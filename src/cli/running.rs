@@ -285,8 +285,8 @@ pub(crate) fn stats_report(
         ratio(c.e_cycles, c.decisions),
         per(c.e_cycles, ms)
     ));
-    // 9.6 counts the cycles of its per-goal waterfall here; rusoar's elaboration cycles
-    // are not split by goal level, so both counts are the same.
+    // 9.6's inner count equals its elaboration cycles on every agent but learn-lookahead
+    // (21 vs 19; what the two extra are is not known): rusoar prints its elaboration cycles.
     s.push_str(&format!("{} inner elaboration cycles\n", c.e_cycles));
     s.push_str(&format!(
         "{} p-elaboration cycles ({:.3} pe's per dc, {:.3} msec/pe)\n",
