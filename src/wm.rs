@@ -25,6 +25,7 @@ pub struct WorkingMemory {
     by_id: FxHashMap<Sym, Vec<WmeId>>,
     by_timetag: FxHashMap<u64, WmeId>,
     count: usize,
+    additions: u64,
     removals: u64,
     /// The WMEs that point at a symbol (as value, then as attribute), for garbage
     /// collection's upward search; `link_pos` is each WME's place in those lists.
@@ -47,6 +48,7 @@ impl WorkingMemory {
             by_id: FxHashMap::default(),
             by_timetag: FxHashMap::default(),
             count: 0,
+            additions: 0,
             removals: 0,
             parents: FxHashMap::default(),
             link_pos: Vec::new(),
@@ -77,6 +79,7 @@ impl WorkingMemory {
         self.by_id.entry(id).or_default().push(w);
         self.by_timetag.insert(timetag, w);
         self.count += 1;
+        self.additions += 1;
         if self.link_pos.len() <= w.0 as usize {
             self.link_pos.resize(w.0 as usize + 1, [u32::MAX; 2]);
         }
@@ -155,6 +158,11 @@ impl WorkingMemory {
     /// How many WMEs have been removed so far (a cheap change counter).
     pub fn removals(&self) -> u64 {
         self.removals
+    }
+
+    /// How many WMEs have been added so far (timetags restart at init-soar; this does not).
+    pub fn additions(&self) -> u64 {
+        self.additions
     }
 
     /// The identifiers that have WMEs.

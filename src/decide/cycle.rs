@@ -118,6 +118,32 @@ impl Agent {
     /// Runs a phase; with `one_cycle`, at most one elaboration cycle of the propose or apply
     /// phase, which then resumes where it stopped on the next call.
     fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
+        let start = std::time::Instant::now();
+        self.do_phase_timed(phase, one_cycle);
+        let i = match phase {
+            Phase::Input => 0,
+            Phase::Propose => 1,
+            Phase::Decide => 2,
+            Phase::Apply => 3,
+            Phase::Output => 4,
+        };
+        self.decider.phase_time[i] += start.elapsed();
+        // 9.6 samples the WM size once per phase, at its end (a phase left mid-way by
+        // `run -e` is sampled when it ends).
+        if self.decider.phase != Some(phase) {
+            self.sample_wm_size();
+        }
+    }
+
+    /// A sample of the WM size for `stats`, taken at the end of each phase.
+    fn sample_wm_size(&mut self) {
+        let n = self.wm.len() as u64;
+        self.decider.wm_size_sum += n;
+        self.decider.wm_size_samples += 1;
+        self.decider.wm_size_max = self.decider.wm_size_max.max(n);
+    }
+
+    fn do_phase_timed(&mut self, phase: Phase, one_cycle: bool) {
         // max-chunks counts per phase (spec §4).
         self.learn.chunks_this_phase = 0;
         self.learn.dupes_this_phase.clear();
@@ -245,6 +271,7 @@ impl Agent {
     fn elaboration_cycle(&mut self, o_support: bool) -> bool {
         self.decider.e_cycles += 1;
         self.decider.e_cycles_this_phase += 1;
+        self.decider.pe_cycles += u64::from(o_support);
         let retractions = std::mem::take(&mut self.matches.retractions);
         // Fire from the head: the newest match first (spec §3i).
         let pending = std::mem::take(&mut self.matches.assertions);
@@ -1120,7 +1147,9 @@ impl Agent {
 
     fn run_input_callbacks(&mut self) {
         if let Some(mut cb) = self.input_callback.take() {
+            let start = std::time::Instant::now();
             cb(self);
+            self.decider.input_fn_time += start.elapsed();
             if self.input_callback.is_none() {
                 self.input_callback = Some(cb);
             }
@@ -1129,7 +1158,9 @@ impl Agent {
 
     fn run_output_callbacks(&mut self) {
         if let Some(mut cb) = self.output_callback.take() {
+            let start = std::time::Instant::now();
             cb(self);
+            self.decider.output_fn_time += start.elapsed();
             if self.output_callback.is_none() {
                 self.output_callback = Some(cb);
             }
@@ -1152,6 +1183,7 @@ impl Agent {
         self.matches.retractions.clear();
         self.matches.support.clear();
         self.decider = crate::decide::state::DecideState::new();
+        self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();

@@ -121,6 +121,20 @@ pub struct DecideState {
     /// The top goal's operator slot changed since the last decision, per goal.
     pub context_changed: bool,
     pub wme_changes: u64,
+    /// Statistics for `stats` (spec §6a): elaboration cycles that fired o-supported rules
+    /// (9.6's p-elaboration cycles), the WM additions and removals counted before this
+    /// decider started (`WorkingMemory` counts from agent creation; init-soar restarts
+    /// the count, and the new top state's 13 WMEs count again), WM size samples, and
+    /// the time spent in each phase (Input, Propose, Decide, Apply, Output) and in the
+    /// input and output callbacks.
+    pub pe_cycles: u64,
+    pub wm_base: (u64, u64),
+    pub wm_size_sum: u64,
+    pub wm_size_samples: u64,
+    pub wm_size_max: u64,
+    pub phase_time: [std::time::Duration; 5],
+    pub input_fn_time: std::time::Duration,
+    pub output_fn_time: std::time::Duration,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it (§3f).
