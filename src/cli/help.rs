@@ -13,7 +13,7 @@ const USAGE: &[(&str, &str)] = &[
     ("cd", "cd [directory]\n\nChanges the working directory (no argument: the starting one)."),
     (
         "chunk",
-        "chunk [always|never|only|except]\nchunk max-chunks [n]\nchunk max-dupes [n]\n\nShows or sets when Soar learns rules, and the learning limits.",
+        "chunk [always|never|only|except]\nchunk ?\nchunk max-chunks [n]\nchunk max-dupes [n]\n\nShows or sets when Soar learns rules, and the learning limits; `chunk` alone prints the summary, `chunk ?` every setting.",
     ),
     ("debug", "debug allocate|internal-symbols|port|time ...\n\nKernel debugging aids."),
     (

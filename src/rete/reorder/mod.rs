@@ -58,7 +58,7 @@ pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
 /// Interns the name and the constants of a rule in the order 9.6's parser creates them: the
 /// name, then the conditions, then the actions, left to right.
 pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbols) {
-    use crate::production::{Action, RhsTerm};
+    use crate::production::{Action, FuncCall, RhsTerm};
     fn test(t: &Test, syms: &mut Symbols) {
         match t {
             Test::Equal(Term::Const(c)) | Test::Relational(_, Term::Const(c)) => {
@@ -86,12 +86,13 @@ pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbol
             RhsTerm::Const(c) => {
                 syms.constant(c);
             }
-            RhsTerm::Call(f) => {
-                syms.str(&f.name);
-                f.args.iter().for_each(|a| rhs(a, syms));
-            }
+            RhsTerm::Call(f) => call(f, syms),
             RhsTerm::Var(_) => {}
         }
+    }
+    fn call(f: &FuncCall, syms: &mut Symbols) {
+        syms.str(&f.name);
+        f.args.iter().for_each(|a| rhs(a, syms));
     }
     syms.str(&p.name);
     p.conditions.iter().for_each(|c| cond(c, syms));
@@ -105,7 +106,7 @@ pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbol
                     rhs(r, syms);
                 }
             }
-            Action::Call(f) => rhs(&RhsTerm::Call(f.clone()), syms),
+            Action::Call(f) => call(f, syms),
         }
     }
 }
