@@ -618,6 +618,7 @@ impl Agent {
         }
         // Operators whose proposal went are removed before the `+` WMEs change (9.6's
         // REMOVING lines come first, and its removals are buffered in that order).
+        let goals_before = self.decider.goals.len();
         for &key in &context {
             if let Some(w) = self.check_operator_consistency(key) {
                 removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
@@ -673,6 +674,16 @@ impl Agent {
         }
         for &w in &added {
             self.gds_for_new_wme(w);
+        }
+        // A substate removed just above may still get this wave's WMEs (9.6 adds them too,
+        // removing the goal only at its next consistency check): with the goal gone they
+        // are unlinked, and go with the garbage below instead of staying for good.
+        if self.decider.goals.len() < goals_before {
+            for &w in &added {
+                if let Some(wme) = self.wm.get(w) {
+                    self.decider.gc_candidates.push(wme.id);
+                }
+            }
         }
         if self.settings.trace.wmes {
             self.removed_wmes = Some(Vec::new());
