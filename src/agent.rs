@@ -242,6 +242,8 @@ pub struct TopState {
     pub io: Sym,
     pub input_link: Sym,
     pub output_link: Sym,
+    /// The `operator` attribute (a predefined symbol), looked up once.
+    pub operator: Sym,
 }
 
 /// A program's hook at the input or output phase (spec §2 I/O link).
@@ -271,6 +273,8 @@ pub struct Agent {
     /// Whether the print stream stood at the start of a line when `output` was last taken
     /// (9.6 starts some trace lines on a fresh line only).
     pub output_line_start: bool,
+    /// The newest output-link timetag [`Agent::new_output_commands`] has reported.
+    pub(crate) output_reported: u64,
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
@@ -307,6 +311,7 @@ impl Agent {
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
             output_line_start: false,
+            output_reported: 0,
             removed_wmes: None,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
@@ -504,5 +509,6 @@ pub(crate) fn create_top_state(
         io,
         input_link,
         output_link,
+        operator: symbols.str("operator"),
     }
 }

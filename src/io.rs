@@ -109,10 +109,30 @@ impl Agent {
 
     /// Commands on the output-link: each `(I3 ^name <obj>)` object with its parameters.
     pub fn output_commands(&self) -> Vec<OutputCommand> {
+        self.output_commands_after(0)
+    }
+
+    /// The commands put on the output-link since the last call (or since `init-soar`), as
+    /// SML reports new output commands: each once, however long it stays there.
+    pub fn new_output_commands(&mut self) -> Vec<OutputCommand> {
+        let after = self.output_reported;
+        if let Some(tt) = self
+            .wm
+            .of_id(self.top.output_link)
+            .iter()
+            .filter_map(|&w| self.wm.get(w).map(|x| x.timetag))
+            .max()
+        {
+            self.output_reported = self.output_reported.max(tt);
+        }
+        self.output_commands_after(after)
+    }
+
+    fn output_commands_after(&self, after: u64) -> Vec<OutputCommand> {
         let mut out = Vec::new();
         for &w in self.wm.of_id(self.top.output_link) {
             let Some(wme) = self.wm.get(w) else { continue };
-            if !self.symbols.is_id(wme.value) {
+            if wme.timetag <= after || !self.symbols.is_id(wme.value) {
                 continue;
             }
             let name = self.symbols.plain(wme.attr);
@@ -174,5 +194,26 @@ mod tests {
         assert_eq!(cmds.len(), 1);
         assert_eq!(cmds[0].name, "move");
         assert_eq!(a.number(cmds[0].params[0].1), Some(300.0));
+    }
+
+    #[test]
+    fn new_output_commands_are_reported_once() {
+        let mut a = Agent::new("t");
+        let ol = a.output_link();
+        let (_, c1) = a.add_input_object(ol, "move");
+        a.add_input(c1, "param1", 300i64);
+        let first = a.new_output_commands();
+        assert_eq!(first.len(), 1);
+        assert_eq!(first[0].name, "move");
+        assert!(a.new_output_commands().is_empty());
+        let (_, c2) = a.add_input_object(ol, "turn");
+        a.add_input(c2, "param1", 40i64);
+        let second = a.new_output_commands();
+        assert_eq!(second.len(), 1);
+        assert_eq!(second[0].name, "turn");
+        // Both are still on the output-link.
+        assert_eq!(a.output_commands().len(), 2);
+        a.init_soar();
+        assert!(a.new_output_commands().is_empty());
     }
 }

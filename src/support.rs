@@ -4,23 +4,23 @@
 //! at fire time.
 
 use crate::agent::Agent;
+use crate::decide::compiled::CompiledRule;
 use crate::production::{Action, RhsTerm};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 
 /// The lowest goal among the identifiers of a match's WMEs.
-pub fn match_goal(agent: &Agent, p: ProdId, t: TokId) -> Option<Sym> {
-    goal_of(agent, &agent.rete.match_wmes(p, t))
+pub fn match_goal(agent: &Agent, _p: ProdId, t: TokId) -> Option<Sym> {
+    goal_of(agent, agent.rete.chain_wmes(t))
 }
 
-fn goal_of(agent: &Agent, wmes: &[crate::wm::WmeId]) -> Option<Sym> {
+fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
     let mut best: Option<(u32, Sym)> = None;
-    for &w in wmes {
+    for w in wmes {
         let Some(wme) = agent.wm.get(w) else { continue };
-        if agent.symbols.is_goal(wme.id) {
-            let level = agent.symbols.id_data(wme.id).map_or(0, |d| d.level);
-            if best.is_none_or(|(l, _)| level > l) {
-                best = Some((level, wme.id));
+        if let Some(d) = agent.symbols.id_data(wme.id).filter(|d| d.is_goal) {
+            if best.is_none_or(|(l, _)| d.level > l) {
+                best = Some((d.level, wme.id));
             }
         }
     }
@@ -45,6 +45,9 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
         o_support: false,
         mixed: false,
     };
+    if let Some(Some(rule)) = agent.decider.compiled.get(p.0 as usize) {
+        return compiled_support(agent, rule, t);
+    }
     let name = agent.production_name(p);
     let Some(prod) = agent.production(name) else {
         return i_support;
@@ -69,7 +72,7 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
         return i_support;
     }
     let wmes = agent.rete.match_wmes(p, t);
-    let Some(goal) = goal_of(agent, &wmes) else {
+    let Some(goal) = goal_of(agent, wmes.iter().copied()) else {
         return i_support;
     };
     let operator = agent.symbols.find_str("operator");
@@ -87,6 +90,51 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
             RhsTerm::Var(v) => agent.rete.binding(p, t, v) == Some(op),
             _ => false,
         };
+        if on_operator {
+            elaborates = true;
+        } else {
+            applies = true;
+        }
+    }
+    let mixed = elaborates && applies;
+    MatchSupport {
+        o_support: applies && !(mixed && agent.settings.warnings),
+        mixed,
+    }
+}
+
+/// [`match_support`] for a rule whose actions are compiled: the same test without names.
+fn compiled_support(agent: &Agent, rule: &CompiledRule, t: TokId) -> MatchSupport {
+    let i_support = MatchSupport {
+        o_support: false,
+        mixed: false,
+    };
+    if rule.o_support {
+        return MatchSupport {
+            o_support: true,
+            mixed: false,
+        };
+    }
+    if rule.i_support || rule.proposes {
+        return i_support;
+    }
+    let Some(goal) = goal_of(agent, agent.rete.chain_wmes(t)) else {
+        return i_support;
+    };
+    let operator = agent.top.operator;
+    let selected = agent.rete.chain_wmes(t).find_map(|w| {
+        let wme = agent.wm.get(w)?;
+        (wme.id == goal && wme.attr == operator && !wme.acceptable).then_some(wme.value)
+    });
+    let Some(op) = selected else {
+        return i_support;
+    };
+    let (mut elaborates, mut applies) = (false, false);
+    for b in &rule.make_ids {
+        let on_operator = b.is_some_and(|(depth, field)| {
+            let w = agent.rete.wme_at_depth(t, depth);
+            w != crate::rete::NIL_WME && agent.rete.field(w, field) == op
+        });
         if on_operator {
             elaborates = true;
         } else {

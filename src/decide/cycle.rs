@@ -4,14 +4,16 @@
 //! follows the spec where noted; goal dependency sets, results' justifications and the
 //! per-goal "waterfall" are not modelled yet (see README).
 
+use super::compiled::{self, Act, CompiledRule, Term};
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
 use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference, Slot};
 use crate::agent::Agent;
-use crate::production::{Action, PrefKind, RhsTerm};
+use crate::production::Production;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::Arc;
 
 /// How far `run` goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,29 +24,13 @@ pub enum RunUnit {
     Forever,
 }
 
-fn pref_type(k: PrefKind) -> PrefType {
-    match k {
-        PrefKind::Acceptable => PrefType::Acceptable,
-        PrefKind::Reject => PrefType::Reject,
-        PrefKind::Require => PrefType::Require,
-        PrefKind::Prohibit => PrefType::Prohibit,
-        PrefKind::Best => PrefType::Best,
-        PrefKind::Worst => PrefType::Worst,
-        PrefKind::Indifferent => PrefType::UnaryIndifferent,
-        PrefKind::Better => PrefType::Better,
-        PrefKind::Worse => PrefType::Worse,
-        PrefKind::BinaryIndifferent => PrefType::BinaryIndifferent,
-        PrefKind::NumericIndifferent => PrefType::NumericIndifferent,
-    }
-}
-
 impl Agent {
     fn out(&mut self, s: &str) {
         self.output.push_str(s);
     }
 
-    fn operator_sym(&mut self) -> Sym {
-        self.symbols.str("operator")
+    fn operator_sym(&self) -> Sym {
+        self.top.operator
     }
 
     /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
@@ -255,6 +241,9 @@ impl Agent {
             if self.matches.support.contains_key(&key) {
                 continue;
             }
+            if let Some(prod) = self.production_by_id(key.0) {
+                self.compiled_rule(key.0, &prod);
+            }
             let s = crate::support::match_support(self, key.0, key.1);
             if s.mixed && self.settings.warnings {
                 let name = self.production_name(key.0).to_string();
@@ -360,27 +349,36 @@ impl Agent {
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
-        let mut new_ids: FxHashMap<String, Sym> = FxHashMap::default();
+        let rule = self.compiled_rule(p, &prod);
+        let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
+        self.rete.token_wmes(t, &mut wmes);
+        let mut new_ids: Vec<Option<Sym>> = vec![None; rule.new_vars.len()];
         // Substate firings are recorded for backtracing: each preference with its action.
         let mut made: Vec<(PrefId, usize)> = Vec::new();
-        for (action_index, action) in prod.actions.iter().enumerate() {
+        for (action_index, action) in rule.actions.iter().enumerate() {
             match action {
-                Action::Call(f) => {
+                Act::Call(f) => {
                     let args: Option<Vec<Sym>> = f
                         .args
                         .iter()
-                        .map(|a| self.rhs_value(p, t, a, level, &mut new_ids))
+                        .map(|a| self.term_value(&rule, &wmes, a, level, &mut new_ids))
                         .collect();
                     if let Some(args) = args {
                         let _ = self.call_rhs(&f.name, &args);
                     }
                 }
-                Action::Make(m) => {
-                    let id = self.rhs_value(p, t, &m.id, level, &mut new_ids);
-                    let attr = self.rhs_value(p, t, &m.attr, level, &mut new_ids);
-                    let value = self.rhs_value(p, t, &m.value, level, &mut new_ids);
-                    let referent = match &m.referent {
-                        Some(r) => match self.rhs_value(p, t, r, level, &mut new_ids) {
+                Act::Make {
+                    id,
+                    attr,
+                    value,
+                    referent,
+                    kind,
+                } => {
+                    let id = self.term_value(&rule, &wmes, id, level, &mut new_ids);
+                    let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids);
+                    let value = self.term_value(&rule, &wmes, value, level, &mut new_ids);
+                    let referent = match referent {
+                        Some(r) => match self.term_value(&rule, &wmes, r, level, &mut new_ids) {
                             Some(x) => Some(x),
                             None => continue,
                         },
@@ -392,10 +390,10 @@ impl Agent {
                     if !self.symbols.is_id(id) {
                         continue;
                     }
-                    let kind = pref_type(m.pref);
-                    let number = match (kind, referent.map(|r| self.symbols.get(r).clone())) {
-                        (PrefType::NumericIndifferent, Some(SymData::Int(i))) => Some(i as f64),
-                        (PrefType::NumericIndifferent, Some(SymData::Float(f))) => Some(f),
+                    let kind = *kind;
+                    let number = match (kind, referent.map(|r| self.symbols.get(r))) {
+                        (PrefType::NumericIndifferent, Some(&SymData::Int(i))) => Some(i as f64),
+                        (PrefType::NumericIndifferent, Some(&SymData::Float(f))) => Some(f),
                         _ => None,
                     };
                     let pref = Preference {
@@ -419,6 +417,7 @@ impl Agent {
                 }
             }
         }
+        self.decider.rhs_wmes = wmes;
         self.decider.inst_by_token.insert((p, t), inst_id);
         let own_prefs = inst.prefs.clone();
         self.decider.insts[inst_id as usize] = inst;
@@ -428,6 +427,12 @@ impl Agent {
         // Results of a substate firing are learned from at once (spec §4): a justification
         // or a chunk takes them over.
         if level >= 2 {
+            let new_ids: FxHashMap<String, Sym> = rule
+                .new_vars
+                .iter()
+                .zip(&new_ids)
+                .filter_map(|((name, _), s)| Some((name.clone(), (*s)?)))
+                .collect();
             if let Some(trace) = self.record_firing(p, t, &prod, level, &new_ids, &made) {
                 let results = self.find_results(&own_prefs, level);
                 if !results.is_empty() {
@@ -437,40 +442,53 @@ impl Agent {
         }
     }
 
+    /// A rule's compiled actions (compiled at its first firing).
+    pub(crate) fn compiled_rule(&mut self, p: ProdId, prod: &Production) -> Arc<CompiledRule> {
+        let i = p.0 as usize;
+        if let Some(Some(r)) = self.decider.compiled.get(i) {
+            return Arc::clone(r);
+        }
+        let rule = match self.rete.production(p) {
+            Some(info) => Arc::new(compiled::compile(prod, info, &mut self.symbols)),
+            None => Arc::new(compiled::compile(
+                prod,
+                &crate::rete::ProdInfo::default(),
+                &mut self.symbols,
+            )),
+        };
+        if self.decider.compiled.len() <= i {
+            self.decider.compiled.resize(i + 1, None);
+        }
+        self.decider.compiled[i] = Some(Arc::clone(&rule));
+        rule
+    }
+
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
-    /// identifier, shared by all its uses (spec §1e: its letter, `S` read as `I`).
-    fn rhs_value(
+    /// identifier at its first use, shared by all its uses (spec §1e: its letter, `S` read
+    /// as `I`).
+    fn term_value(
         &mut self,
-        p: ProdId,
-        t: TokId,
-        term: &RhsTerm,
+        rule: &CompiledRule,
+        wmes: &[WmeId],
+        term: &Term,
         level: u32,
-        new_ids: &mut FxHashMap<String, Sym>,
+        new_ids: &mut [Option<Sym>],
     ) -> Option<Sym> {
         match term {
-            RhsTerm::Const(c) => Some(self.symbols.constant(c)),
-            RhsTerm::Var(v) => {
-                if let Some(s) = self.rete.binding(p, t, v) {
+            Term::Sym(s) => Some(*s),
+            Term::Bound(depth, field) => self.rete.field_at(wmes, *depth, *field),
+            Term::New(slot) => {
+                if let Some(s) = new_ids[*slot] {
                     return Some(s);
                 }
-                if let Some(s) = new_ids.get(v) {
-                    return Some(*s);
-                }
-                let letter = v
-                    .chars()
-                    .nth(1)
-                    .filter(|c| c.is_ascii_alphabetic())
-                    .map(|c| c.to_ascii_uppercase())
-                    .unwrap_or('I');
-                let letter = if letter == 'S' { 'I' } else { letter };
-                let s = self.symbols.new_id(letter, level);
-                new_ids.insert(v.clone(), s);
+                let s = self.symbols.new_id(rule.new_vars[*slot].1, level);
+                new_ids[*slot] = Some(s);
                 Some(s)
             }
-            RhsTerm::Call(f) => {
+            Term::Call(f) => {
                 let mut args = Vec::with_capacity(f.args.len());
                 for a in &f.args {
-                    args.push(self.rhs_value(p, t, a, level, new_ids)?);
+                    args.push(self.term_value(rule, wmes, a, level, new_ids)?);
                 }
                 match self.call_rhs(&f.name, &args) {
                     Ok(Some(s)) => Some(s),
@@ -1198,6 +1216,7 @@ impl Agent {
         self.learn.reset_for_init();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
+        self.output_reported = 0;
         self.top = crate::agent::create_top_state(
             &mut self.symbols,
             &mut self.wm,

@@ -146,6 +146,10 @@ pub struct DecideState {
     pub free_prefs: Vec<PrefId>,
     /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
     pub justification_retractions: Vec<(InstId, u64)>,
+    /// Rules' actions compiled for firing, by rule id (built at a rule's first firing).
+    pub(crate) compiled: Vec<Option<std::sync::Arc<super::compiled::CompiledRule>>>,
+    /// Scratch for firing: the WMEs of the match, by token depth.
+    pub(crate) rhs_wmes: Vec<WmeId>,
 }
 
 impl DecideState {

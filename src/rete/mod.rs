@@ -200,7 +200,7 @@ pub(crate) struct NegResult {
 }
 
 /// What the network knows of a production.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 pub struct ProdInfo {
     pub name: String,
     pub(crate) pnode: NodeId,
@@ -769,6 +769,43 @@ impl Rete {
             }
         }
         out
+    }
+
+    /// The WMEs of a token and its ancestors, by token depth (`NIL_WME` where a depth has
+    /// none), for reading many bindings of one match.
+    pub(crate) fn token_wmes(&self, token: TokId, out: &mut Vec<WmeId>) {
+        out.clear();
+        if token == NIL {
+            return;
+        }
+        out.resize(self.tokens[token as usize].depth as usize + 1, NIL_WME);
+        let mut t = token;
+        while t != NIL {
+            let tok = &self.tokens[t as usize];
+            out[tok.depth as usize] = tok.wme;
+            t = tok.parent;
+        }
+    }
+
+    /// The WMEs of a token and its ancestors, newest first.
+    pub(crate) fn chain_wmes(&self, token: TokId) -> impl Iterator<Item = WmeId> + '_ {
+        let mut t = token;
+        std::iter::from_fn(move || {
+            while t != NIL {
+                let tok = &self.tokens[t as usize];
+                t = tok.parent;
+                if tok.wme != NIL_WME {
+                    return Some(tok.wme);
+                }
+            }
+            None
+        })
+    }
+
+    /// A binding read off [`Rete::token_wmes`]: the field of the WME at `depth`.
+    pub(crate) fn field_at(&self, wmes: &[WmeId], depth: u32, field: Field) -> Option<Sym> {
+        let w = *wmes.get(depth as usize)?;
+        (w != NIL_WME).then(|| self.field(w, field))
     }
 
     /// The value of a variable in a complete match.

@@ -530,7 +530,7 @@ impl Env {
 
     /// The output phase: carry out each new command once and mark it done.
     fn output(&mut self, agent: &mut Agent) {
-        for cmd in agent.output_commands() {
+        for cmd in agent.new_output_commands() {
             if cmd.params.iter().any(|(a, _)| a == "status") {
                 continue;
             }
