@@ -515,10 +515,9 @@ impl Agent {
                 continue;
             }
             let key = (pref.id, pref.attr);
+            let value = pref.value;
             if let Some(slot) = self.decider.slots.get_mut(&key) {
-                if let Some(pos) = slot.prefs.iter().rposition(|x| *x == pid) {
-                    slot.prefs.remove(pos);
-                }
+                slot.remove(pid, value);
                 self.decider.drop_slot_if_empty(key);
             }
             self.decider.free_pref(pid);
@@ -528,7 +527,7 @@ impl Agent {
     }
 
     fn mark_changed(&mut self, key: (Sym, Sym)) {
-        if !self.decider.changed.contains(&key) {
+        if self.decider.changed_set.insert(key) {
             self.decider.changed.push(key);
         }
         let op = self.operator_sym();
@@ -546,19 +545,13 @@ impl Agent {
             self.trace_new_preferences(&new_prefs);
         }
         for &pid in &new_prefs {
-            let p = self.decider.prefs[pid as usize].clone();
-            if p.kind == PrefType::Reject && p.o_support {
-                let key = (p.id, p.attr);
-                let mut removed = Vec::new();
-                if let Some(slot) = self.decider.slots.get_mut(&key) {
-                    slot.prefs.retain(|x| {
-                        let keep = self.decider.prefs[*x as usize].value != p.value;
-                        if !keep {
-                            removed.push(*x);
-                        }
-                        keep
-                    });
-                }
+            let p = &self.decider.prefs[pid as usize];
+            let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
+            if kind == PrefType::Reject && o_support {
+                let removed = match self.decider.slots.get_mut(&key) {
+                    Some(slot) => slot.remove_value(value),
+                    None => Vec::new(),
+                };
                 for r in removed {
                     self.decider.free_pref(r);
                 }
@@ -572,7 +565,8 @@ impl Agent {
                 continue;
             }
             let key = (p.id, p.attr);
-            self.decider.slots.entry(key).or_default().prefs.push(pid);
+            let value = p.value;
+            self.decider.slots.entry(key).or_default().push(pid, value);
             self.mark_changed(key);
         }
     }
@@ -590,6 +584,7 @@ impl Agent {
         // the reverse of marking order: the first action of the first firing gets the lowest
         // timetag (spec §3i, E:t6).
         let mut changed = std::mem::take(&mut self.decider.changed);
+        self.decider.changed_set.clear();
         changed.reverse();
         let mut adds: Vec<(Sym, Sym, Sym, bool)> = Vec::new();
         // Removals are buffered with their timetags (handles are reused).

@@ -4,7 +4,7 @@ use super::procedure::PrefType;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 pub type InstId = u32;
 pub type PrefId = u32;
@@ -48,9 +48,52 @@ pub struct Preference {
 /// WMEs they support.
 #[derive(Debug, Clone, Default)]
 pub struct Slot {
+    /// Change it only through [`Slot::push`], [`Slot::remove`] and [`Slot::remove_value`],
+    /// which keep `by_value` in step.
     pub prefs: Vec<PrefId>,
     /// Value (and acceptable flag) to the WME that shows it.
     pub wmes: FxHashMap<(Sym, bool), WmeId>,
+    /// The same preferences by value, each list oldest first: one slot can hold thousands
+    /// of values, and the questions about one WME concern only its value's preferences.
+    by_value: FxHashMap<Sym, Vec<PrefId>>,
+}
+
+impl Slot {
+    pub fn push(&mut self, pid: PrefId, value: Sym) {
+        self.prefs.push(pid);
+        self.by_value.entry(value).or_default().push(pid);
+    }
+
+    /// Takes one preference out (the newest occurrence); false if it was not there.
+    pub fn remove(&mut self, pid: PrefId, value: Sym) -> bool {
+        let Some(pos) = self.prefs.iter().rposition(|x| *x == pid) else {
+            return false;
+        };
+        self.prefs.remove(pos);
+        if let Some(list) = self.by_value.get_mut(&value) {
+            if let Some(i) = list.iter().rposition(|x| *x == pid) {
+                list.remove(i);
+            }
+            if list.is_empty() {
+                self.by_value.remove(&value);
+            }
+        }
+        true
+    }
+
+    /// Takes out every preference for `value`, returning them oldest first.
+    pub fn remove_value(&mut self, value: Sym) -> Vec<PrefId> {
+        let gone = self.by_value.remove(&value).unwrap_or_default();
+        if !gone.is_empty() {
+            self.prefs.retain(|x| !gone.contains(x));
+        }
+        gone
+    }
+
+    /// The preferences for one value, oldest first (the order of `prefs`).
+    pub fn prefs_for(&self, value: Sym) -> &[PrefId] {
+        self.by_value.get(&value).map_or(&[], Vec::as_slice)
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -106,6 +149,8 @@ pub struct DecideState {
     pub slots: FxHashMap<(Sym, Sym), Slot>,
     /// Slots whose preferences changed in this elaboration cycle, in order of change.
     pub changed: Vec<(Sym, Sym)>,
+    /// The same slots as a set, for a constant-time "already marked?".
+    pub changed_set: FxHashSet<(Sym, Sym)>,
     pub goals: Vec<Goal>,
     pub phase: Option<Phase>,
     /// The propose phase has begun (its elaboration count is reset once, at its start).

@@ -144,7 +144,7 @@ impl Agent {
     /// operator proposal) preference for its value that was recorded.
     fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        slot.prefs.iter().find_map(|&pid| {
+        slot.prefs_for(wme.value).iter().find_map(|&pid| {
             let p = &self.decider.prefs[pid as usize];
             let kind_ok = match p.kind {
                 PrefType::Acceptable => true,
