@@ -2,7 +2,8 @@
 //! file given, `repeat` fresh interpreters each run `srand 1`, `watch 0`, `source FILE`,
 //! then `run 1000` under the clock; prints `NAME decisions firings median_seconds`.
 //!
-//! usage: cargo run --release --example time_run -- REPEAT FILE...
+//! usage: cargo run --release --example time_run -- REPEAT [--run N] FILE...
+//! (`--run N`: time `run N` instead of `run 1000`)
 
 use rusoar::cli::Interpreter;
 use std::time::Instant;
@@ -11,16 +12,26 @@ use std::time::Instant;
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
+/// The count of a `stats` line such as `512 decisions (0.020 msec/decision)`.
 fn count(stats: &str, what: &str) -> u64 {
     stats
         .lines()
-        .find_map(|l| l.strip_suffix(what)?.trim().parse().ok())
+        .find_map(|l| {
+            let (n, rest) = l.split_once(' ')?;
+            rest.starts_with(what.trim()).then(|| n.parse().ok())?
+        })
         .unwrap_or(0)
 }
 
 fn main() {
-    let mut args = std::env::args().skip(1);
+    let mut args = std::env::args().skip(1).peekable();
     let repeat: usize = args.next().and_then(|r| r.parse().ok()).unwrap_or(5).max(1);
+    let mut decisions = 1000u64;
+    if args.peek().map(String::as_str) == Some("--run") {
+        args.next();
+        decisions = args.next().and_then(|n| n.parse().ok()).unwrap_or(1000);
+    }
+    let run = format!("run {decisions}");
     for file in args {
         let mut times = Vec::with_capacity(repeat);
         let mut stats = String::new();
@@ -32,7 +43,7 @@ fn main() {
                 std::process::exit(1);
             }
             let start = Instant::now();
-            let _ = interp.run_text("<time_run>", "run 1000");
+            let _ = interp.run_text("<time_run>", &run);
             times.push(start.elapsed().as_secs_f64());
             let _ = interp.take_output();
             let _ = interp.run_text("<time_run>", "stats");

@@ -210,15 +210,39 @@ pub struct MatchSet {
     pub retractions: Vec<(ProdId, TokId)>,
     /// Each pending assertion's support, decided once at match time (spec §3c).
     pub support: rustc_hash::FxHashMap<(ProdId, TokId), bool>,
+    /// The same matches as `assertions`, as a set: most retracted matches have fired, and
+    /// finding that out must not mean a scan of the queue. Whoever takes a match off
+    /// `assertions` calls [`MatchSet::taken`].
+    pending: rustc_hash::FxHashSet<(ProdId, TokId)>,
+}
+
+impl MatchSet {
+    /// A match left the queue (it fired or was taken over).
+    pub fn taken(&mut self, p: ProdId, t: TokId) {
+        self.pending.remove(&(p, t));
+    }
+
+    /// Empties the queue and the retractions (`init-soar`).
+    pub fn clear(&mut self) {
+        self.assertions.clear();
+        self.retractions.clear();
+        self.support.clear();
+        self.pending.clear();
+    }
 }
 
 impl MatchSink for MatchSet {
     fn matched(&mut self, p: ProdId, t: TokId) {
         self.assertions.push((p, t));
+        self.pending.insert((p, t));
     }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         // A match that goes before it fired simply leaves the queue.
-        if let Some(i) = self.assertions.iter().rposition(|x| *x == (p, t)) {
+        let queued = self.pending.remove(&(p, t));
+        if let Some(i) = queued
+            .then(|| self.assertions.iter().rposition(|x| *x == (p, t)))
+            .flatten()
+        {
             self.assertions.remove(i);
             self.support.remove(&(p, t));
         } else {

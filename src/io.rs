@@ -102,6 +102,31 @@ impl Agent {
         self.add_wme(old.id, old.attr, new, false)
     }
 
+    /// Replaces several input values at once (each as [`Agent::update_input`] does): every
+    /// changed WME is removed first, then the new ones are added in the order given. Rules
+    /// that join several of them (a pose's X, Y and heading) then re-match once, not once
+    /// per value. Returns, for each change, the WME that now holds the value.
+    pub fn update_inputs(&mut self, changes: &[(WmeId, Value)]) -> Vec<WmeId> {
+        let mut result: Vec<WmeId> = changes.iter().map(|(w, _)| *w).collect();
+        let mut adds = Vec::new();
+        for (i, (w, v)) in changes.iter().enumerate() {
+            let Some(old) = self.wm.get(*w).copied() else {
+                continue;
+            };
+            let new = self.value_sym(v);
+            if new != old.value {
+                adds.push((i, old.id, old.attr, new));
+            }
+        }
+        for &(i, ..) in &adds {
+            self.remove_wme(changes[i].0);
+        }
+        for (i, id, attr, value) in adds {
+            result[i] = self.add_wme(id, attr, value, false);
+        }
+        result
+    }
+
     /// Removes an input WME and, with the next garbage collection, what hangs below it.
     pub fn remove_input(&mut self, w: WmeId) {
         self.remove_wme(w);
@@ -119,8 +144,7 @@ impl Agent {
         if let Some(tt) = self
             .wm
             .of_id(self.top.output_link)
-            .iter()
-            .filter_map(|&w| self.wm.get(w).map(|x| x.timetag))
+            .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
             .max()
         {
             self.output_reported = self.output_reported.max(tt);
@@ -130,7 +154,7 @@ impl Agent {
 
     fn output_commands_after(&self, after: u64) -> Vec<OutputCommand> {
         let mut out = Vec::new();
-        for &w in self.wm.of_id(self.top.output_link) {
+        for w in self.wm.of_id(self.top.output_link) {
             let Some(wme) = self.wm.get(w) else { continue };
             if wme.timetag <= after || !self.symbols.is_id(wme.value) {
                 continue;
@@ -139,8 +163,7 @@ impl Agent {
             let params = self
                 .wm
                 .of_id(wme.value)
-                .iter()
-                .filter_map(|x| self.wm.get(*x))
+                .filter_map(|x| self.wm.get(x))
                 .map(|x| (self.symbols.plain(x.attr), x.value))
                 .collect();
             out.push(OutputCommand {
@@ -215,5 +238,21 @@ mod tests {
         assert_eq!(a.output_commands().len(), 2);
         a.init_soar();
         assert!(a.new_output_commands().is_empty());
+    }
+
+    #[test]
+    fn update_inputs_changes_only_what_differs() {
+        let mut a = Agent::new("t");
+        let il = a.input_link();
+        let (_, data) = a.add_input_object(il, "pose");
+        let x = a.add_input(data, "X", 1i64);
+        let y = a.add_input(data, "Y", 2i64);
+        let tt_y = a.wm.get(y).map(|w| w.timetag);
+        let now = a.update_inputs(&[(x, Value::Int(5)), (y, Value::Int(2))]);
+        assert_eq!(now[1], y, "an equal value is left alone");
+        assert_eq!(a.wm.get(now[1]).map(|w| w.timetag), tt_y);
+        let text = |a: &Agent, w: WmeId| a.wm.get(w).map(|w| a.symbols.text(w.value));
+        assert_eq!(text(&a, now[0]), Some("5".into()));
+        assert_eq!(a.wm.of_id(data).count(), 2);
     }
 }

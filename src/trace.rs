@@ -26,8 +26,7 @@ pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
     let mut ws: Vec<Wme> = agent
         .wm
         .of_id(id)
-        .iter()
-        .filter_map(|w| agent.wm.get(*w).copied())
+        .filter_map(|w| agent.wm.get(w).copied())
         .collect();
     ws.reverse();
     ws.sort_by(|a, b| {

@@ -17,12 +17,25 @@ pub struct Wme {
     pub timetag: u64,
 }
 
+/// An identifier's WMEs, oldest first; a removed WME leaves a gap (`GONE`) until gaps are
+/// the majority, so that removal keeps the order and costs constant time however many
+/// WMEs one identifier has.
+#[derive(Debug, Default)]
+struct IdList {
+    items: Vec<WmeId>,
+    live: u32,
+}
+
+const GONE: WmeId = WmeId(u32::MAX);
+
 #[derive(Debug)]
 pub struct WorkingMemory {
     wmes: Vec<Option<Wme>>,
     free: Vec<u32>,
     next_timetag: u64,
-    by_id: FxHashMap<Sym, Vec<WmeId>>,
+    by_id: FxHashMap<Sym, IdList>,
+    /// Each WME's place in its identifier's list.
+    id_pos: Vec<u32>,
     by_timetag: FxHashMap<u64, WmeId>,
     count: usize,
     additions: u64,
@@ -46,6 +59,7 @@ impl WorkingMemory {
             free: Vec::new(),
             next_timetag: 1,
             by_id: FxHashMap::default(),
+            id_pos: Vec::new(),
             by_timetag: FxHashMap::default(),
             count: 0,
             additions: 0,
@@ -76,7 +90,13 @@ impl WorkingMemory {
                 WmeId((self.wmes.len() - 1) as u32)
             }
         };
-        self.by_id.entry(id).or_default().push(w);
+        let list = self.by_id.entry(id).or_default();
+        if self.id_pos.len() <= w.0 as usize {
+            self.id_pos.resize(w.0 as usize + 1, 0);
+        }
+        self.id_pos[w.0 as usize] = list.items.len() as u32;
+        list.items.push(w);
+        list.live += 1;
         self.by_timetag.insert(timetag, w);
         self.count += 1;
         self.additions += 1;
@@ -116,11 +136,19 @@ impl WorkingMemory {
     pub fn remove(&mut self, w: WmeId) -> Option<Wme> {
         let wme = self.wmes.get_mut(w.0 as usize)?.take()?;
         if let Some(list) = self.by_id.get_mut(&wme.id) {
-            if let Some(pos) = list.iter().rposition(|x| *x == w) {
-                list.remove(pos);
+            let pos = self.id_pos[w.0 as usize] as usize;
+            if list.items.get(pos) == Some(&w) {
+                list.items[pos] = GONE;
+                list.live -= 1;
             }
-            if list.is_empty() {
+            if list.live == 0 {
                 self.by_id.remove(&wme.id);
+            } else if list.items.len() > 8 && list.items.len() > 2 * list.live as usize {
+                // Mostly gaps: close them (amortised constant time per removal).
+                list.items.retain(|x| *x != GONE);
+                for (i, x) in list.items.iter().enumerate() {
+                    self.id_pos[x.0 as usize] = i as u32;
+                }
             }
         }
         self.unlink(w, 0, wme.value);
@@ -141,8 +169,18 @@ impl WorkingMemory {
     }
 
     /// The WMEs whose id is `id`, oldest first.
-    pub fn of_id(&self, id: Sym) -> &[WmeId] {
-        self.by_id.get(&id).map(Vec::as_slice).unwrap_or(&[])
+    pub fn of_id(&self, id: Sym) -> impl Iterator<Item = WmeId> + '_ {
+        self.by_id
+            .get(&id)
+            .map_or(&[][..], |l| l.items.as_slice())
+            .iter()
+            .copied()
+            .filter(|w| *w != GONE)
+    }
+
+    /// Whether `id` has any WMEs.
+    pub fn has_wmes(&self, id: Sym) -> bool {
+        self.by_id.contains_key(&id)
     }
 
     /// Every live WME, in timetag order.
@@ -185,5 +223,36 @@ impl WorkingMemory {
 
     pub fn next_timetag(&self) -> u64 {
         self.next_timetag
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn removing_wmes_of_one_id_keeps_the_order_of_the_rest() {
+        let mut wm = WorkingMemory::new();
+        let (id, attr) = (Sym(1), Sym(2));
+        let ws: Vec<WmeId> = (0..40)
+            .map(|i| wm.add(id, attr, Sym(100 + i), false))
+            .collect();
+        // Remove three in four, out of order: the gaps are closed on the way.
+        for (i, w) in ws.iter().enumerate().rev() {
+            if i % 4 != 0 {
+                wm.remove(*w);
+            }
+        }
+        let left: Vec<WmeId> = wm.of_id(id).collect();
+        let want: Vec<WmeId> = ws.iter().copied().step_by(4).collect();
+        assert_eq!(left, want);
+        // New WMEs go after the old ones, and reused handles are found again.
+        let w = wm.add(id, attr, Sym(999), false);
+        assert_eq!(wm.of_id(id).last(), Some(w));
+        for w in wm.of_id(id).collect::<Vec<_>>() {
+            wm.remove(w);
+        }
+        assert!(!wm.has_wmes(id));
+        assert_eq!(wm.of_id(id).count(), 0);
     }
 }

@@ -86,8 +86,7 @@ impl Interpreter {
             let has_wme = agent
                 .wm
                 .of_id(id)
-                .iter()
-                .filter_map(|w| agent.wm.get(*w))
+                .filter_map(|w| agent.wm.get(w))
                 .any(|w| w.attr == attr);
             if has_wme {
                 return Ok(

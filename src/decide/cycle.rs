@@ -270,6 +270,7 @@ impl Agent {
             let o = self.is_o_supported(p, t);
             if o == o_support {
                 self.matches.support.remove(&(p, t));
+                self.matches.taken(p, t);
                 to_fire.push((p, t));
             } else {
                 keep.push((p, t));
@@ -881,8 +882,7 @@ impl Agent {
         };
         self.wm
             .of_id(o)
-            .iter()
-            .filter_map(|w| self.wm.get(*w))
+            .filter_map(|w| self.wm.get(w))
             .filter(|w| w.attr == name && !w.acceptable)
             .map(|w| self.symbols.text(w.value))
             .collect()
@@ -1079,8 +1079,7 @@ impl Agent {
         let mut dead: FxHashSet<Sym> = FxHashSet::default();
         let mut garbage: Vec<WmeId> = Vec::new();
         for c in candidates {
-            if dead.contains(&c) || self.wm.of_id(c).is_empty() || self.linked(c, &roots, &mut memo)
-            {
+            if dead.contains(&c) || !self.wm.has_wmes(c) || self.linked(c, &roots, &mut memo) {
                 continue;
             }
             let mut stack = vec![c];
@@ -1088,7 +1087,7 @@ impl Agent {
                 if !dead.insert(x) {
                     continue;
                 }
-                for &w in self.wm.of_id(x) {
+                for w in self.wm.of_id(x) {
                     garbage.push(w);
                     let Some(wme) = self.wm.get(w).copied() else {
                         continue;
@@ -1203,9 +1202,7 @@ impl Agent {
         for w in all.into_iter().rev() {
             self.remove_wme(w);
         }
-        self.matches.assertions.clear();
-        self.matches.retractions.clear();
-        self.matches.support.clear();
+        self.matches.clear();
         self.decider = crate::decide::state::DecideState::new();
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();

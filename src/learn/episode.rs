@@ -124,7 +124,7 @@ impl Agent {
                 _ => continue,
             }
             moved.push(y);
-            for &w in self.wm.of_id(y) {
+            for w in self.wm.of_id(y) {
                 if let Some(wme) = self.wm.get(w) {
                     if self.symbols.is_id(wme.value) {
                         stack.push(wme.value);
@@ -389,6 +389,7 @@ impl Agent {
         })?;
         let (p, t) = self.matches.assertions.remove(pos);
         self.matches.support.remove(&(p, t));
+        self.matches.taken(p, t);
         Some(t)
     }
 

@@ -8,7 +8,7 @@
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
 use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
-use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
+use super::{Kind, MatchSink, NodeId, Rete, Succ, TokId, NIL, NIL_WME};
 use crate::symbols::Symbols;
 use crate::wm::WmeId;
 
@@ -76,6 +76,35 @@ impl Rete {
         true
     }
 
+    /// The tests of node `n` that read only the new WME (constants, disjunctions, goal and
+    /// impasse tests, fields of the WME itself): when one fails, no token can pair with the
+    /// WME, so a right activation ends before it looks for tokens.
+    fn wme_tests_pass(&self, n: NodeId, w: WmeId, new_depth: u32, syms: &Symbols) -> bool {
+        let (Kind::Join { tests, .. } | Kind::Negative { tests, .. }) =
+            &self.nodes[n as usize].kind
+        else {
+            return true;
+        };
+        tests.iter().all(|test| match test {
+            JoinTest::Compare {
+                field,
+                op,
+                operand: Operand::Const(c),
+            } => relation_holds(syms, *op, self.field(w, *field), *c),
+            JoinTest::Compare {
+                field,
+                op,
+                operand: Operand::Bound { depth, field: bf },
+            } if *depth == new_depth => {
+                relation_holds(syms, *op, self.field(w, *field), self.field(w, *bf))
+            }
+            JoinTest::Compare { .. } => true,
+            JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
+            JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
+            JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
+        })
+    }
+
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
     /// candidate lists gave.
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
@@ -112,16 +141,28 @@ impl Rete {
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
-        let base = self.scratch.len();
-        self.scratch
+        let base = self.succ_scratch.len();
+        self.succ_scratch
             .extend(self.amems[a as usize].successors.values().copied());
-        for i in base..self.scratch.len() {
-            let n = self.scratch[i];
+        for i in base..self.succ_scratch.len() {
+            let Succ {
+                node: n,
+                pre,
+                left_unlinked,
+            } = self.succ_scratch[i];
+            if let (Some((field, op, c)), false) = (pre, left_unlinked) {
+                // The node's test on the WME alone fails: no token can pair with it. A
+                // linked join's right activation would change nothing else (its parent
+                // has tokens while it is linked on both sides), so it is skipped.
+                if !relation_holds(syms, op, self.field(w, field), c) {
+                    continue;
+                }
+            }
             if self.nodes[n as usize].alive {
                 self.right_activation(n, w, syms, sink);
             }
         }
-        self.scratch.truncate(base);
+        self.succ_scratch.truncate(base);
     }
 
     fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
@@ -137,6 +178,9 @@ impl Rete {
                     return;
                 }
                 let depth = self.nodes[parent as usize].depth + 1;
+                if !self.wme_tests_pass(n, w, depth, syms) {
+                    return;
+                }
                 let blockable = matches!(
                     self.nodes[parent as usize].kind,
                     Kind::Negative { .. } | Kind::Ncc { .. }
@@ -159,6 +203,9 @@ impl Rete {
             }
             Kind::Negative { .. } => {
                 let depth = self.nodes[n as usize].depth + 1;
+                if !self.wme_tests_pass(n, w, depth, syms) {
+                    return;
+                }
                 let base = self.scratch.len();
                 self.push_token_candidates(n, n, w);
                 for i in base..self.scratch.len() {

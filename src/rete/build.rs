@@ -426,6 +426,7 @@ impl Rete {
         if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
             *left_unlinked = true;
         }
+        self.mirror_left_unlinked(n, true);
         self.nodes[parent as usize].children.retain(|c| *c != n);
     }
 

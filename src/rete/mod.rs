@@ -63,8 +63,21 @@ pub(crate) struct Amem {
     pub count: u32,
     /// Linked successors in activation order, keyed by their `amem_key`; ordered and keyed
     /// so that unlinking one of thousands is cheap.
-    pub successors: std::collections::BTreeMap<u64, NodeId>,
+    pub successors: std::collections::BTreeMap<u64, Succ>,
     pub refs: u32,
+}
+
+/// A linked successor of an alpha memory, with the first of its tests that reads the new
+/// WME alone (against a constant), copied here so that the right activations a WME cannot
+/// pass end without touching the node: an alpha memory can have thousands of successors
+/// that test one attribute against their own constants (issue 3's counter rules).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Succ {
+    pub node: NodeId,
+    pub pre: Option<(tests::Field, tests::Op, Sym)>,
+    /// The node's `left_unlinked`, mirrored: a left-unlinked join must relink on every
+    /// right activation (Rete/UL), so only a linked one may be skipped.
+    pub left_unlinked: bool,
 }
 
 /// One WME's membership in one alpha memory.
@@ -245,6 +258,8 @@ pub struct Rete {
     free_hentries: Vec<u32>,
     /// The activations' shared stack of list copies (see `activate.rs`).
     scratch: Vec<u32>,
+    /// The same for alpha-memory successors.
+    succ_scratch: Vec<Succ>,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -278,6 +293,7 @@ impl Rete {
             hentries: Vec::new(),
             free_hentries: Vec::new(),
             scratch: Vec::new(),
+            succ_scratch: Vec::new(),
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -507,7 +523,7 @@ impl Rete {
                 let succ: Vec<NodeId> = self.amems[amem as usize]
                     .successors
                     .values()
-                    .copied()
+                    .map(|s| s.node)
                     .collect();
                 self.unlink_left_all(&succ);
             }
@@ -563,9 +579,24 @@ impl Rete {
                 ..
             } if !*left_unlinked && !*right_unlinked => {
                 *left_unlinked = true;
+                self.mirror_left_unlinked(n, true);
                 true
             }
             _ => false,
+        }
+    }
+
+    /// Keeps [`Succ::left_unlinked`] in step with the node's flag.
+    pub(crate) fn mirror_left_unlinked(&mut self, n: NodeId, unlinked: bool) {
+        let node = &self.nodes[n as usize];
+        let (Kind::Join { amem, .. } | Kind::Negative { amem, .. }) = node.kind else {
+            return;
+        };
+        let key = node.amem_key;
+        if let Some(s) = self.amems[amem as usize].successors.get_mut(&key) {
+            if s.node == n {
+                s.left_unlinked = unlinked;
+            }
         }
     }
 
@@ -603,6 +634,7 @@ impl Rete {
         } else {
             return;
         }
+        self.mirror_left_unlinked(n, false);
         self.nodes[parent as usize].children.push(n);
     }
 
@@ -688,12 +720,45 @@ impl Rete {
             }
         };
         self.nodes[n as usize].amem_key = key;
-        self.amems[amem as usize].successors.insert(key, n);
+        let pre = self.prefilter(n);
+        let left_unlinked = matches!(
+            self.nodes[n as usize].kind,
+            Kind::Join {
+                left_unlinked: true,
+                ..
+            }
+        );
+        self.amems[amem as usize].successors.insert(
+            key,
+            Succ {
+                node: n,
+                pre,
+                left_unlinked,
+            },
+        );
+    }
+
+    /// The first test of join or negative node `n` on a field of the new WME against a
+    /// constant, if it has one (see [`Succ`]).
+    fn prefilter(&self, n: NodeId) -> Option<(tests::Field, tests::Op, Sym)> {
+        let (Kind::Join { tests, .. } | Kind::Negative { tests, .. }) =
+            &self.nodes[n as usize].kind
+        else {
+            return None;
+        };
+        tests.iter().find_map(|t| match t {
+            JoinTest::Compare {
+                field,
+                op,
+                operand: tests::Operand::Const(c),
+            } => Some((*field, *op, *c)),
+            _ => None,
+        })
     }
 
     /// Spreads an alpha memory's successor keys out again, keeping their order.
     fn respace_successors(&mut self, amem: AmemId) {
-        let nodes: Vec<NodeId> = self.amems[amem as usize]
+        let nodes: Vec<Succ> = self.amems[amem as usize]
             .successors
             .values()
             .copied()
@@ -701,7 +766,7 @@ impl Rete {
         let mut fresh = std::collections::BTreeMap::new();
         for (i, n) in nodes.into_iter().enumerate() {
             let key = (i as u64 + 1) << 20;
-            self.nodes[n as usize].amem_key = key;
+            self.nodes[n.node as usize].amem_key = key;
             fresh.insert(key, n);
         }
         self.amems[amem as usize].successors = fresh;

@@ -846,8 +846,6 @@ fn size_sum_product_and_sets_as_the_official_kernel() {
     let only_data = |id: Sym| -> (Vec<WmeId>, Vec<WmeId>) {
         let v =
             k.wm.of_id(id)
-                .iter()
-                .copied()
                 .filter(|w| k.wm.get(*w).is_some_and(|x| x.attr == data))
                 .collect();
         (v, Vec::new())

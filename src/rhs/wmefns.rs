@@ -28,7 +28,7 @@ fn default_order(ctx: &RhsContext, id: Sym) -> Vec<WmeId> {
     // (attribute, oldest timetag, (timetag, WME) of each WME)
     type Slot = (Sym, u64, Vec<(u64, WmeId)>);
     let mut slots: Vec<Slot> = Vec::new();
-    for &w in ctx.wm.of_id(id) {
+    for w in ctx.wm.of_id(id) {
         let Some(x) = ctx.wm.get(w) else { continue };
         if x.acceptable {
             continue;

@@ -386,8 +386,7 @@ mod tests {
         let a = &interp.agent;
         let value = |attr: &str| -> String {
             a.wm.of_id(a.top.state)
-                .iter()
-                .filter_map(|w| a.wm.get(*w))
+                .filter_map(|w| a.wm.get(w))
                 .find(|w| a.symbols.plain(w.attr) == attr)
                 .map(|w| a.symbols.plain(w.value))
                 .unwrap_or_default()

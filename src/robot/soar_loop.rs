@@ -49,6 +49,7 @@ use std::time::{Duration, Instant};
 use crate::agent::Agent;
 use crate::cli::Interpreter;
 use crate::decide::cycle::RunUnit;
+use crate::io::Value;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
@@ -436,12 +437,18 @@ impl Env {
                 });
             }
             Some(io) => {
-                io.x = agent.update_input(io.x, x);
-                io.y = agent.update_input(io.y, y);
-                io.th = agent.update_input(io.th, th);
-                for (i, w) in io.ranges.iter_mut().enumerate() {
-                    *w = agent.update_input(*w, range_int(s.ranges_mm[i]));
+                // One batch: the rules that join X, Y and Th re-match once per step.
+                let mut changes = vec![
+                    (io.x, Value::Int(x)),
+                    (io.y, Value::Int(y)),
+                    (io.th, Value::Int(th)),
+                ];
+                for (i, w) in io.ranges.iter().enumerate() {
+                    changes.push((*w, Value::Int(range_int(s.ranges_mm[i]))));
                 }
+                let now = agent.update_inputs(&changes);
+                (io.x, io.y, io.th) = (now[0], now[1], now[2]);
+                io.ranges.copy_from_slice(&now[3..]);
             }
         }
         self.tidy_input_walls(agent);
@@ -483,8 +490,7 @@ impl Env {
                 agent
                     .wm
                     .of_id(w.id)
-                    .iter()
-                    .any(|x| agent.wm.get(*x).is_some_and(|m| m.attr == a))
+                    .any(|x| agent.wm.get(x).is_some_and(|m| m.attr == a))
             });
             if copied {
                 agent.remove_input(w.wme);
@@ -868,8 +874,7 @@ impl SoarRobot {
         };
         let a = &self.interp.agent;
         a.wm.of_id(wd)
-            .iter()
-            .filter_map(|w| a.wm.get(*w))
+            .filter_map(|w| a.wm.get(w))
             .filter(|w| w.attr == wall && !w.acceptable)
             .count()
     }
@@ -897,8 +902,7 @@ impl SoarRobot {
             return Vec::new();
         };
         a.wm.of_id(wd)
-            .iter()
-            .filter_map(|w| a.wm.get(*w))
+            .filter_map(|w| a.wm.get(w))
             .filter(|w| w.attr == wall && !w.acceptable && a.symbols.is_id(w.value))
             .map(|w| MemoryWall {
                 r: num(w.value, "R"),
@@ -915,8 +919,7 @@ impl SoarRobot {
 /// The first non-acceptable value of `(id ^attr ...)`.
 fn child(a: &Agent, id: Sym, attr: Sym) -> Option<Sym> {
     a.wm.of_id(id)
-        .iter()
-        .filter_map(|w| a.wm.get(*w))
+        .filter_map(|w| a.wm.get(w))
         .find(|w| w.attr == attr && !w.acceptable)
         .map(|w| w.value)
 }
