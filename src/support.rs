@@ -109,13 +109,13 @@ fn compiled_support(agent: &Agent, rule: &CompiledRule, t: TokId) -> MatchSuppor
         o_support: false,
         mixed: false,
     };
-    if rule.o_support {
+    if rule.flags.o_support {
         return MatchSupport {
             o_support: true,
             mixed: false,
         };
     }
-    if rule.i_support || rule.proposes {
+    if rule.flags.i_support || rule.proposes {
         return i_support;
     }
     let Some(goal) = goal_of(agent, agent.rete.chain_wmes(t)) else {

@@ -5,7 +5,7 @@
 //! simply never asked for again).
 
 use crate::decide::procedure::PrefType;
-use crate::production::{Action, PrefKind, Production, RhsTerm};
+use crate::production::{Action, Flags, PrefKind, Production, RhsTerm};
 use crate::rete::tests::Field;
 use crate::rete::ProdInfo;
 use crate::symbols::{Sym, Symbols};
@@ -49,9 +49,8 @@ pub(crate) struct CompiledRule {
     pub new_vars: Vec<(String, char)>,
     /// It makes an acceptable preference for `^operator` (spec §3c: proposals are I).
     pub proposes: bool,
-    /// Declared support (`:o-support`, `:i-support`).
-    pub o_support: bool,
-    pub i_support: bool,
+    /// The rule's flags (declared support, its kind for tracing).
+    pub flags: Flags,
     /// For each make action: the binding of its id when that is a variable the conditions
     /// bind (for the §3c test of actions on the selected operator).
     pub make_ids: Vec<Option<(u32, Field)>>,
@@ -152,8 +151,7 @@ pub(crate) fn compile(prod: &Production, info: &ProdInfo, symbols: &mut Symbols)
         actions,
         new_vars: b.new_vars,
         proposes,
-        o_support: prod.flags.o_support,
-        i_support: prod.flags.i_support,
+        flags: prod.flags.clone(),
         make_ids,
     }
 }

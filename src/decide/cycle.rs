@@ -8,12 +8,11 @@ use super::compiled::{self, Act, CompiledRule, Term};
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
 use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference, Slot};
 use crate::agent::Agent;
-use crate::production::Production;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::sync::Arc;
+use std::rc::Rc;
 
 /// How far `run` goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -241,9 +240,7 @@ impl Agent {
             if self.matches.support.contains_key(&key) {
                 continue;
             }
-            if let Some(prod) = self.production_by_id(key.0) {
-                self.compiled_rule(key.0, &prod);
-            }
+            self.compiled_rule(key.0);
             let s = crate::support::match_support(self, key.0, key.1);
             if s.mixed && self.settings.warnings {
                 let name = self.production_name(key.0).to_string();
@@ -321,12 +318,16 @@ impl Agent {
     }
 
     fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
-        let Some(prod) = self.production_by_id(p) else {
+        let Some(rule) = self.compiled_rule(p) else {
             return;
         };
         self.decider.firings += 1;
-        *self.decider.firing_counts.entry(p).or_default() += 1;
-        let traced = self.settings.trace.firings_of(&prod.flags);
+        let counts = &mut self.decider.firing_counts;
+        if counts.len() <= p.0 as usize {
+            counts.resize(p.0 as usize + 1, 0);
+        }
+        counts[p.0 as usize] += 1;
+        let traced = self.settings.trace.firings_of(&rule.flags);
         if traced {
             let s = format!("\nFiring {}\n", self.production_name(p));
             self.out(&s);
@@ -340,17 +341,16 @@ impl Agent {
             prod: p,
             token: t,
             goal,
-            o_support: o_support || prod.flags.o_support,
+            o_support: o_support || rule.flags.o_support,
             prefs: Vec::new(),
             alive: true,
             serial: 0,
         };
-        if prod.flags.i_support {
+        if rule.flags.i_support {
             inst.o_support = false;
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
-        let rule = self.compiled_rule(p, &prod);
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         self.rete.token_wmes(t, &mut wmes);
         let mut new_ids: Vec<Option<Sym>> = vec![None; rule.new_vars.len()];
@@ -434,7 +434,11 @@ impl Agent {
                 .zip(&new_ids)
                 .filter_map(|((name, _), s)| Some((name.clone(), (*s)?)))
                 .collect();
-            if let Some(trace) = self.record_firing(p, t, &prod, level, &new_ids, &made) {
+            let recorded = match self.production_by_id(p) {
+                Some(prod) => self.record_firing(p, t, &prod, level, &new_ids, &made),
+                None => None,
+            };
+            if let Some(trace) = recorded {
                 let results = self.find_results(&own_prefs, level);
                 if !results.is_empty() {
                     self.learn_from_results(results, level, &trace, new_prefs);
@@ -443,25 +447,21 @@ impl Agent {
         }
     }
 
-    /// A rule's compiled actions (compiled at its first firing).
-    pub(crate) fn compiled_rule(&mut self, p: ProdId, prod: &Production) -> Arc<CompiledRule> {
+    /// A rule's compiled actions (compiled at its first firing); `None` for a rule that
+    /// is gone.
+    pub(crate) fn compiled_rule(&mut self, p: ProdId) -> Option<Rc<CompiledRule>> {
         let i = p.0 as usize;
         if let Some(Some(r)) = self.decider.compiled.get(i) {
-            return Arc::clone(r);
+            return Some(Rc::clone(r));
         }
-        let rule = match self.rete.production(p) {
-            Some(info) => Arc::new(compiled::compile(prod, info, &mut self.symbols)),
-            None => Arc::new(compiled::compile(
-                prod,
-                &crate::rete::ProdInfo::default(),
-                &mut self.symbols,
-            )),
-        };
+        let prod = self.production_by_id(p)?;
+        let info = self.rete.production(p)?;
+        let rule = Rc::new(compiled::compile(&prod, info, &mut self.symbols));
         if self.decider.compiled.len() <= i {
             self.decider.compiled.resize(i + 1, None);
         }
-        self.decider.compiled[i] = Some(Arc::clone(&rule));
-        rule
+        self.decider.compiled[i] = Some(Rc::clone(&rule));
+        Some(rule)
     }
 
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
@@ -1219,6 +1219,10 @@ impl Agent {
 
     /// How many times each rule has fired (`firing-counts`).
     pub fn firing_count(&self, p: ProdId) -> u64 {
-        self.decider.firing_counts.get(&p).copied().unwrap_or(0)
+        self.decider
+            .firing_counts
+            .get(p.0 as usize)
+            .copied()
+            .unwrap_or(0)
     }
 }

@@ -160,7 +160,8 @@ pub struct DecideState {
     pub e_cycles: u64,
     pub e_cycles_this_phase: u64,
     pub firings: u64,
-    pub firing_counts: FxHashMap<ProdId, u64>,
+    /// Firings per rule, by rule id.
+    pub firing_counts: Vec<u64>,
     pub halted: bool,
     pub stop_requested: bool,
     /// The top goal's operator slot changed since the last decision, per goal.
@@ -192,7 +193,7 @@ pub struct DecideState {
     /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
     pub justification_retractions: Vec<(InstId, u64)>,
     /// Rules' actions compiled for firing, by rule id (built at a rule's first firing).
-    pub(crate) compiled: Vec<Option<std::sync::Arc<super::compiled::CompiledRule>>>,
+    pub(crate) compiled: Vec<Option<std::rc::Rc<super::compiled::CompiledRule>>>,
     /// Scratch for firing: the WMEs of the match, by token depth.
     pub(crate) rhs_wmes: Vec<WmeId>,
 }
