@@ -567,7 +567,7 @@ impl Agent {
             }
             let key = (p.id, p.attr);
             let value = p.value;
-            self.decider.slots.entry(key).or_default().push(pid, value);
+            self.decider.slots.entry(key).push(pid, value);
             self.mark_changed(key);
         }
     }
@@ -722,7 +722,6 @@ impl Agent {
         self.decider
             .slots
             .entry((id, attr))
-            .or_default()
             .wmes
             .insert((value, acceptable), w);
         w
@@ -1042,13 +1041,7 @@ impl Agent {
                 d.is_goal = false;
             }
             // Preferences made for the substate's own objects go with it.
-            let gone: Vec<(Sym, Sym)> = self
-                .decider
-                .slots
-                .keys()
-                .filter(|k| k.0 == g.state)
-                .copied()
-                .collect();
+            let gone = self.decider.slots.keys_of(g.state);
             for k in gone {
                 if let Some(slot) = self.decider.slots.remove(&k) {
                     for pid in slot.prefs {

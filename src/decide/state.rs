@@ -96,6 +96,53 @@ impl Slot {
     }
 }
 
+/// The slots by (id, attribute), and each identifier's attributes that have one, so that
+/// the slots of one identifier are found without a scan of them all (a substate's slots
+/// when it goes, a result's objects when they move up).
+#[derive(Debug, Default)]
+pub struct Slots {
+    map: FxHashMap<(Sym, Sym), Slot>,
+    attrs: FxHashMap<Sym, Vec<Sym>>,
+}
+
+impl Slots {
+    pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
+        self.map.get(key)
+    }
+
+    pub fn get_mut(&mut self, key: &(Sym, Sym)) -> Option<&mut Slot> {
+        self.map.get_mut(key)
+    }
+
+    /// The slot, made empty if there was none.
+    pub fn entry(&mut self, key: (Sym, Sym)) -> &mut Slot {
+        self.map.entry(key).or_insert_with(|| {
+            self.attrs.entry(key.0).or_default().push(key.1);
+            Slot::default()
+        })
+    }
+
+    pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
+        let slot = self.map.remove(key)?;
+        if let Some(list) = self.attrs.get_mut(&key.0) {
+            if let Some(i) = list.iter().position(|a| *a == key.1) {
+                list.remove(i);
+            }
+            if list.is_empty() {
+                self.attrs.remove(&key.0);
+            }
+        }
+        Some(slot)
+    }
+
+    /// The keys of `id`'s slots, in the order they were made.
+    pub fn keys_of(&self, id: Sym) -> Vec<(Sym, Sym)> {
+        self.attrs
+            .get(&id)
+            .map_or_else(Vec::new, |l| l.iter().map(|&a| (id, a)).collect())
+    }
+}
+
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ImpasseKind {
     Tie,
@@ -146,7 +193,7 @@ pub struct DecideState {
     pub insts: Vec<Instantiation>,
     pub inst_by_token: FxHashMap<(ProdId, TokId), InstId>,
     pub prefs: Vec<Preference>,
-    pub slots: FxHashMap<(Sym, Sym), Slot>,
+    pub slots: Slots,
     /// Slots whose preferences changed in this elaboration cycle, in order of change.
     pub changed: Vec<(Sym, Sym)>,
     /// The same slots as a set, for a constant-time "already marked?".

@@ -95,13 +95,7 @@ impl Agent {
                             .copied()
                             .filter(|&q| self.decider.prefs[q as usize].id == y),
                     );
-                    let mut on_y: Vec<(Sym, Sym)> = self
-                        .decider
-                        .slots
-                        .keys()
-                        .filter(|k| k.0 == y)
-                        .copied()
-                        .collect();
+                    let mut on_y = self.decider.slots.keys_of(y);
                     on_y.sort();
                     for k in on_y {
                         if let Some(slot) = self.decider.slots.get(&k) {
