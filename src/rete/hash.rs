@@ -66,7 +66,15 @@ impl Rete {
             }
             return;
         };
-        let Some(id) = self.key_value(t, d, f) else {
+        // The token was usually indexed on this very key when it was made (see
+        // `index_token`): the walk up its ancestors is not repeated.
+        let memo = self.key_memo;
+        let id = if memo.0 == t && memo.1 == d && memo.2 == f {
+            memo.3
+        } else {
+            self.key_value(t, d, f)
+        };
+        let Some(id) = id else {
             return;
         };
         let am = &self.amems[a as usize];
@@ -157,7 +165,9 @@ impl Rete {
     pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
         for i in 0..self.nodes[holder as usize].left_keys.len() {
             let (d, f, _) = self.nodes[holder as usize].left_keys[i];
-            if let Some(v) = self.key_value(t, d, f) {
+            let v = self.key_value(t, d, f);
+            self.key_memo = (t, d, f, v);
+            if let Some(v) = v {
                 self.hentry_insert((holder, d, f, v), t);
             }
         }

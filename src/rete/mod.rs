@@ -260,6 +260,8 @@ pub struct Rete {
     scratch: Vec<u32>,
     /// The same for alpha-memory successors.
     succ_scratch: Vec<Succ>,
+    /// The last index key computed for a new token: (token, depth, field, value).
+    pub(crate) key_memo: (TokId, u32, tests::Field, Option<Sym>),
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -294,6 +296,7 @@ impl Rete {
             free_hentries: Vec::new(),
             scratch: Vec::new(),
             succ_scratch: Vec::new(),
+            key_memo: (NIL, 0, tests::Field::Id, None),
             root: 0,
             root_token: 0,
             right_activations: 0,

@@ -34,6 +34,10 @@ impl Rete {
             alive: true,
         };
         let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
+        if self.key_memo.0 == t {
+            // A reused id: what was remembered of the old token is not true of this one.
+            self.key_memo.0 = NIL;
+        }
         if head != NIL {
             self.tokens[head as usize].prev_in_node = t;
         }
