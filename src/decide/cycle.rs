@@ -179,7 +179,7 @@ impl Agent {
                     self.trace_phase("\n--- Application Phase ---\n");
                     self.decider.phase_started = true;
                 }
-                while self.has_pending(true) && !self.decider.halted {
+                while self.has_pending_in_apply() && !self.decider.halted {
                     // IE before PE: i-supported firings reach quiescence first (spec §3a).
                     let pe = !self.has_pending(false);
                     if !self.elaboration_cycle(pe) {
@@ -219,9 +219,30 @@ impl Agent {
         false
     }
 
+    /// `has_pending(true)` for the apply phase: retractions of instantiations whose goal
+    /// has gone (a substate removed in this phase) do not keep it going; 9.6 processes
+    /// them in the next propose phase, with no active goal.
+    fn has_pending_in_apply(&self) -> bool {
+        if !self.matches.assertions.is_empty() || !self.decider.justification_retractions.is_empty()
+        {
+            return true;
+        }
+        self.matches.retractions.iter().any(|k| {
+            let Some(&i) = self.decider.inst_by_token.get(k) else {
+                return true;
+            };
+            self.decider.insts[i as usize]
+                .goal
+                .is_none_or(|g| self.symbols.is_goal(g))
+        })
+    }
+
     /// Is there an assertion (of i-support only, unless `any`) or a retraction to process?
     fn has_pending(&self, any: bool) -> bool {
-        if !self.matches.retractions.is_empty() {
+        // Justifications that lost a WME retract like rules (spec §4).
+        if !self.matches.retractions.is_empty()
+            || !self.decider.justification_retractions.is_empty()
+        {
             return true;
         }
         self.matches
@@ -638,7 +659,7 @@ impl Agent {
                 removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
             }
         }
-        for key in context {
+        for &key in &context {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             let mut want: Vec<Sym> = Vec::new();
@@ -713,6 +734,14 @@ impl Agent {
         self.collect_garbage();
         self.trace_removed_wmes();
         self.classify_new_matches();
+        // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
+        // minor quiescence, spec §3b): a result that ends a tie removes the tie's substate
+        // before the phase ends.
+        if !context.is_empty() && !self.has_pending(false) {
+            for key in context {
+                self.check_impasse_consistency(key);
+            }
+        }
     }
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
@@ -770,6 +799,50 @@ impl Agent {
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
         Some(w)
+    }
+
+    /// A goal without an operator whose impasse the preferences no longer give (another
+    /// impasse, other items, or a choice) loses its substates at once, as 9.6's
+    /// consistency check removes them; the next decision decides the slot again
+    /// (spec §3b).
+    fn check_impasse_consistency(&mut self, key: (Sym, Sym)) {
+        let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
+            return;
+        };
+        if self.decider.goals[gi].operator.is_some() {
+            return;
+        }
+        let Some(sub) = self.decider.goals.get(gi + 1) else {
+            return;
+        };
+        let Some((kind, on_operator)) = sub.impasse else {
+            return;
+        };
+        let same_items = |items: &[Sym]| {
+            items.len() == sub.items.len() && items.iter().all(|i| sub.items.contains(i))
+        };
+        let consistent = match procedure::candidates(&self.slot_prefs(key)) {
+            Ok(_) => false,
+            Err(Outcome::NoCandidates) => kind == ImpasseKind::NoChange && !on_operator,
+            Err(Outcome::Tie(items)) => kind == ImpasseKind::Tie && same_items(&items),
+            Err(Outcome::Conflict(items)) => kind == ImpasseKind::Conflict && same_items(&items),
+            Err(Outcome::ConstraintFailure(items)) => {
+                kind == ImpasseKind::ConstraintFailure && same_items(&items)
+            }
+            Err(Outcome::Winner(_)) => false,
+        };
+        if consistent {
+            return;
+        }
+        if self.settings.trace.consistency {
+            let goal = self.symbols.text(key.0);
+            let s = format!(
+                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n\n       REMOVING CONTEXT SLOT: Slot Identifier [{goal}] and attribute [operator]\n\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
+            );
+            self.out(&s);
+        }
+        self.remove_goals_below(gi);
+        self.decider.goals[gi].slot_changed = true;
     }
 
     fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
