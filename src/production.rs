@@ -227,7 +227,9 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
     for a in &p.actions {
         compile_action(a, &mut ph, &mut actions, out, &p.name)?;
     }
-    let prod = Production {
+    // Kept for the rule's lifetime: no spare capacity (the reorderer sizes the conditions).
+    actions.shrink_to_fit();
+    let mut prod = Production {
         name: p.name.clone(),
         doc: p.doc.clone(),
         flags,
@@ -235,7 +237,6 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
         actions,
         span: p.span,
     };
-    let mut prod = prod;
     drop_unbound_relational(&mut prod.conditions, &FxHashSet::default(), &prod.name)?;
     check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
@@ -556,13 +557,15 @@ fn compile_attr_value_tests(
             .unwrap_or_else(|| attr.clone()),
         other => other.clone(),
     };
-    let values: Vec<ast::ValueTest> = if avt.values.is_empty() {
-        vec![ast::ValueTest::Test {
+    let implicit;
+    let values: &[ast::ValueTest] = if avt.values.is_empty() {
+        implicit = [ast::ValueTest::Test {
             test: ast::Test::Equal(ast::Atom::Var(ph.fresh(letter)), avt.span),
             acceptable: false,
-        }]
+        }];
+        &implicit
     } else {
-        avt.values.clone()
+        &avt.values
     };
     for (k, v) in values.iter().enumerate() {
         let attr = if k == 0 {
@@ -613,7 +616,7 @@ fn compile_attr_value_tests(
         // `-^a v1 v2` negates each value; `-^a.b v` negates the chain as a whole.
         if n == 1
             && local.iter().all(|c| matches!(c, Condition::Positive(_)))
-            && !has_structured(&values)
+            && !has_structured(values)
         {
             for c in local {
                 dest.extend(negate(vec![c]));
@@ -670,10 +673,11 @@ fn compile_action(
                     matches!(&attr, RhsTerm::Const(Constant::Str(s)) if s == "operator");
                 for vm in &am.values {
                     let value = rhs_term(&vm.value, out, rule)?;
-                    let prefs: Vec<&Pref> = if vm.prefs.is_empty() {
-                        vec![&Pref::Acceptable]
+                    const ACCEPTABLE: &[Pref] = &[Pref::Acceptable];
+                    let prefs: &[Pref] = if vm.prefs.is_empty() {
+                        ACCEPTABLE
                     } else {
-                        vm.prefs.iter().collect()
+                        &vm.prefs
                     };
                     // Non-operator attributes keep only `-` (one reject per `-`), else one
                     // acceptable; other unary preferences warn each time (spec §1e; the
@@ -995,9 +999,9 @@ pub fn bound_variables(p: &Production) -> FxHashSet<String> {
     bound
 }
 
-fn term_vars(t: &RhsTerm, in_call: bool, acc: &mut Vec<(String, bool)>) {
+fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) {
     match t {
-        RhsTerm::Var(v) => acc.push((v.clone(), in_call)),
+        RhsTerm::Var(v) => acc.push((v, in_call)),
         RhsTerm::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, acc)),
         RhsTerm::Const(_) => {}
     }
@@ -1022,22 +1026,27 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
     let ok = |v: &str| bound.contains(v) || new_ids.contains(v);
     let mut bad: Vec<(String, Span)> = Vec::new();
     let mut seen: FxHashSet<String> = FxHashSet::default();
+    let mut vars = Vec::new();
     for a in &p.actions {
-        let mut vars = Vec::new();
-        let (text, span) = match a {
+        vars.clear();
+        match a {
             Action::Make(m) => {
                 term_vars(&m.id, true, &mut vars);
                 for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
                     term_vars(t, false, &mut vars);
                 }
-                (crate::printer::make_text(m), m.span)
             }
-            Action::Call(f) => {
-                term_vars(&RhsTerm::Call(f.clone()), false, &mut vars);
-                (crate::printer::call_text(f), f.span)
-            }
+            Action::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, &mut vars)),
+        }
+        if !vars.iter().any(|(v, must)| *must && !ok(v)) {
+            continue;
+        }
+        // The text only for the message: printing every action of every rule costs.
+        let (text, span) = match a {
+            Action::Make(m) => (crate::printer::make_text(m), m.span),
+            Action::Call(f) => (crate::printer::call_text(f), f.span),
         };
-        if vars.iter().any(|(v, must)| *must && !ok(v)) && seen.insert(text.clone()) {
+        if seen.insert(text.clone()) {
             bad.push((text, span));
         }
     }

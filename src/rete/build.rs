@@ -4,7 +4,9 @@
 //! fires at once where it should).
 
 use super::tests::{Field, JoinTest, Op, Operand};
-use super::{AlphaKey, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, NIL, NIL_WME};
+use super::{
+    AlphaKey, AmemId, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, Shared, NIL, NIL_WME,
+};
 use crate::ast::Head;
 use crate::production::{Cond, Condition, Production, Term, Test};
 use crate::symbols::{Sym, Symbols};
@@ -305,14 +307,61 @@ impl Rete {
         cur
     }
 
+    /// The join or negative node under `parent` on `amem` with these tests, if built.
+    fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
+        let nodes = self.share.get(&(parent, kind, amem))?;
+        nodes
+            .as_slice()
+            .iter()
+            .copied()
+            .find(|&n| match &self.nodes[n as usize].kind {
+                Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => **t == *tests,
+                _ => false,
+            })
+    }
+
+    fn add_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        use std::collections::hash_map::Entry;
+        match self.share.entry((parent, kind, amem)) {
+            Entry::Vacant(e) => {
+                e.insert(Shared::One(n));
+            }
+            Entry::Occupied(mut e) => {
+                let s = e.get_mut();
+                match s {
+                    Shared::One(m) => *s = Shared::Many(vec![*m, n]),
+                    Shared::Many(v) => v.push(n),
+                }
+            }
+        }
+    }
+
+    fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        let key = (parent, kind, amem);
+        let Some(s) = self.share.get_mut(&key) else {
+            return;
+        };
+        match s {
+            Shared::One(m) if *m == n => {
+                self.share.remove(&key);
+            }
+            Shared::One(_) => {}
+            Shared::Many(v) => {
+                v.retain(|&m| m != n);
+                if let [one] = v.as_slice() {
+                    *s = Shared::One(*one);
+                }
+            }
+        }
+    }
+
     fn share_or_build_join(&mut self, h: NodeId, key: AlphaKey, tests: Vec<JoinTest>) -> NodeId {
         let amem = self.amem_for(key);
-        let skey = (h, 0u8, amem, tests);
-        if let Some(&c) = self.share.get(&skey) {
+        if let Some(c) = self.shared(h, 0, amem, &tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
+        let tests: std::sync::Arc<[JoinTest]> = tests.into();
         let depth = self.nodes[h as usize].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
@@ -328,7 +377,7 @@ impl Rete {
             depth,
         );
         self.attach(h, j, true);
-        self.share.insert(skey, j);
+        self.add_shared(h, 0, amem, j);
         if let Some((d, f)) = hash_key(&self.nodes[j as usize].kind, depth + 1) {
             self.nodes[j as usize].hash = Some((d, f));
             self.add_left_key(h, d, f);
@@ -355,12 +404,11 @@ impl Rete {
         syms: &Symbols,
     ) -> NodeId {
         let amem = self.amem_for(key);
-        let skey = (parent, 1u8, amem, tests);
-        if let Some(&c) = self.share.get(&skey) {
+        if let Some(c) = self.shared(parent, 1, amem, &tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
+        let tests: std::sync::Arc<[JoinTest]> = tests.into();
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -371,7 +419,7 @@ impl Rete {
             depth,
         );
         self.attach(parent, n, true);
-        self.share.insert(skey, n);
+        self.add_shared(parent, 1, amem, n);
         if let Some((d, f)) = hash_key(&self.nodes[n as usize].kind, depth + 1) {
             self.nodes[n as usize].hash = Some((d, f));
             self.add_left_key(n, d, f);
@@ -465,12 +513,8 @@ impl Rete {
                 self.release_left_key(parent_of, d, f);
             }
             match &kind {
-                Kind::Join { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 0u8, *amem, tests.to_vec()));
-                }
-                Kind::Negative { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 1u8, *amem, tests.to_vec()));
-                }
+                Kind::Join { amem, .. } => self.remove_shared(parent_of, 0, *amem, n),
+                Kind::Negative { amem, .. } => self.remove_shared(parent_of, 1, *amem, n),
                 _ => {}
             }
             match kind {

@@ -199,6 +199,22 @@ pub(crate) struct NegResult {
     pub prev_wme: u32,
 }
 
+/// The nodes under one share key: nearly always one, so that one needs no list.
+#[derive(Debug, Clone)]
+pub(crate) enum Shared {
+    One(NodeId),
+    Many(Vec<NodeId>),
+}
+
+impl Shared {
+    fn as_slice(&self) -> &[NodeId] {
+        match self {
+            Shared::One(n) => std::slice::from_ref(n),
+            Shared::Many(v) => v,
+        }
+    }
+}
+
 /// What the network knows of a production.
 #[derive(Debug, Clone)]
 pub struct ProdInfo {
@@ -232,8 +248,9 @@ pub struct Rete {
     pub(crate) neg: Vec<NegResult>,
     free_neg: Vec<u32>,
     pub(crate) prods: Vec<Option<ProdInfo>>,
-    /// Join and negative nodes by (parent, kind, alpha memory, tests), for sharing.
-    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, Vec<JoinTest>), NodeId>,
+    /// Join and negative nodes by (parent, kind, alpha memory), for sharing; their tests,
+    /// kept only in the nodes, tell the candidates apart.
+    pub(crate) share: FxHashMap<(NodeId, u8, AmemId), Shared>,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).

@@ -36,10 +36,14 @@ type Bound = FxHashSet<String>;
 /// Reorders a rule's conditions as 9.6 does. `syms` must already hold every constant of the
 /// rule (see [`intern_in_text_order`]); an unknown constant ranks as a variable.
 pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
+    reorder_owned(conds.to_vec(), syms)
+}
+
+/// [`reorder`], taking the conditions (no copy of them is made).
+pub fn reorder_owned(mut conds: Vec<Condition>, syms: &Symbols) -> Vec<Condition> {
     let rank = |c: &Constant| syms.find_constant(c).map_or(0, |s| s.0 as u64 + 1);
     let outside = Bound::default();
-    let mut roots = root_variables(conds, &outside);
-    let mut conds = conds.to_vec();
+    let mut roots = root_variables(&conds, &outside);
     if !roots.is_empty() {
         drop_goal_tests_of_non_roots(&mut conds, &roots);
     } else if let Some(v) = conds.iter().find_map(|c| match c {
@@ -261,8 +265,10 @@ fn reorder_list(
             inner: inner.get_mut(k).and_then(Option::take),
         })
         .collect();
+    let n = pending.len();
     let mut chooser = Chooser::new(pending, outside, roots, rank);
-    let mut out = Vec::new();
+    // Exactly sized: the list is kept for the rule's lifetime.
+    let mut out = Vec::with_capacity(n);
     while let Some(Pending { cond, inner, .. }) = chooser.next() {
         let cond = match cond {
             // An NCC's own conditions are ordered when it is placed, with what is bound
