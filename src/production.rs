@@ -145,23 +145,23 @@ pub struct CompileOutput {
 
 /// Placeholder variables `<s*1>` named after the attribute's first letter, counted per letter.
 #[derive(Default)]
-struct Placeholders {
+struct Placeholders<'a> {
     counters: FxHashMap<char, u32>,
-    used: FxHashSet<String>,
+    /// The variables the rule itself names.
+    used: FxHashSet<&'a str>,
     /// The placeholders made so far. Soar names them `<#a*1>` while parsing, so a letter taken
     /// from one is `#`, which is not a letter: the next placeholder is named after `v`.
     generated: FxHashSet<String>,
 }
 
-impl Placeholders {
+impl Placeholders<'_> {
     fn fresh(&mut self, letter: char) -> String {
         let letter = letter.to_ascii_lowercase();
         loop {
             let n = self.counters.entry(letter).or_insert(0);
             *n += 1;
             let name = format!("<{letter}*{n}>");
-            if !self.used.contains(&name) {
-                self.used.insert(name.clone());
+            if !self.used.contains(name.as_str()) && !self.generated.contains(&name) {
                 self.generated.insert(name.clone());
                 return name;
             }
@@ -186,10 +186,18 @@ impl Placeholders {
     }
 
     fn letter_of_term(&self, term: &Term) -> char {
-        let c = match term {
-            Term::Var(v) if self.generated.contains(v) => None,
-            Term::Var(v) => v.chars().nth(1),
-            Term::Const(c) => letter_of_constant(c),
+        match term {
+            Term::Var(v) => self.letter_of_var(v),
+            Term::Const(c) => letter_of_constant(c)
+                .filter(char::is_ascii_alphabetic)
+                .unwrap_or('v'),
+        }
+    }
+
+    fn letter_of_var(&self, v: &str) -> char {
+        let c = match v {
+            v if self.generated.contains(v) => None,
+            v => v.chars().nth(1),
         };
         c.filter(char::is_ascii_alphabetic).unwrap_or('v')
     }
@@ -197,7 +205,7 @@ impl Placeholders {
     /// `first_letter_from_rhs_value`: as for tests; a function call gives `v`.
     fn letter_of_rhs(&self, t: &RhsTerm) -> char {
         match t {
-            RhsTerm::Var(v) => self.letter_of_term(&Term::Var(v.clone())),
+            RhsTerm::Var(v) => self.letter_of_var(v),
             RhsTerm::Const(c) => letter_of_constant(c)
                 .filter(char::is_ascii_alphabetic)
                 .unwrap_or('v'),
@@ -273,18 +281,18 @@ fn compile_flags(p: &ast::Production) -> Result<Flags, Diagnostic> {
     Ok(f)
 }
 
-fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
-    fn test(t: &ast::Test, used: &mut FxHashSet<String>) {
+fn collect_vars_ast<'a>(p: &'a ast::Production, used: &mut FxHashSet<&'a str>) {
+    fn test<'a>(t: &'a ast::Test, used: &mut FxHashSet<&'a str>) {
         match t {
             ast::Test::Equal(ast::Atom::Var(v), _)
             | ast::Test::Relational(_, ast::Atom::Var(v), _) => {
-                used.insert(v.clone());
+                used.insert(v);
             }
             ast::Test::Conjunction(ts, _) => ts.iter().for_each(|t| test(t, used)),
             _ => {}
         }
     }
-    fn avt(a: &ast::AttrValueTests, used: &mut FxHashSet<String>) {
+    fn avt<'a>(a: &'a ast::AttrValueTests, used: &mut FxHashSet<&'a str>) {
         a.path.iter().for_each(|t| test(t, used));
         for v in &a.values {
             match v {
@@ -293,7 +301,7 @@ fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
             }
         }
     }
-    fn cond(c: &ast::Condition, used: &mut FxHashSet<String>) {
+    fn cond<'a>(c: &'a ast::Condition, used: &mut FxHashSet<&'a str>) {
         match c {
             ast::Condition::Positive(c) | ast::Condition::Negative(c) => {
                 if let Some(t) = &c.id_test {
@@ -304,10 +312,10 @@ fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
             ast::Condition::Ncc(cs, _) => cs.iter().for_each(|c| cond(c, used)),
         }
     }
-    fn rhs(v: &ast::RhsValue, used: &mut FxHashSet<String>) {
+    fn rhs<'a>(v: &'a ast::RhsValue, used: &mut FxHashSet<&'a str>) {
         match v {
             ast::RhsValue::Var(name, _) => {
-                used.insert(name.clone());
+                used.insert(name);
             }
             ast::RhsValue::Call(f) => f.args.iter().for_each(|a| rhs(a, used)),
             ast::RhsValue::Const(..) => {}
@@ -395,26 +403,17 @@ pub fn term_text(t: &Term) -> String {
     }
 }
 
-/// The equality variable of a test, adding a placeholder when the test binds nothing.
-fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> (Test, Option<Term>) {
+/// A test with an equality test: a placeholder variable is added when it binds nothing.
+fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> Test {
     match t {
-        Test::Equal(term) => (Test::Equal(term.clone()), Some(term)),
+        Test::Equal(_) => t,
         Test::Conjunction(mut ts) => {
-            if let Some(Test::Equal(term)) = ts.last() {
-                let term = term.clone();
-                return (Test::Conjunction(ts), Some(term));
+            if !matches!(ts.last(), Some(Test::Equal(_))) {
+                ts.push(Test::Equal(Term::Var(ph.fresh(letter))));
             }
-            let v = Term::Var(ph.fresh(letter));
-            ts.push(Test::Equal(v.clone()));
-            (Test::Conjunction(ts), Some(v))
+            Test::Conjunction(ts)
         }
-        other => {
-            let v = Term::Var(ph.fresh(letter));
-            (
-                Test::Conjunction(vec![other, Test::Equal(v.clone())]),
-                Some(v),
-            )
-        }
+        other => Test::Conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter)))]),
     }
 }
 
@@ -483,7 +482,7 @@ fn compile_cond_for_one_id(
                 .at(t.span())
                 .with_label("identifiers are matched by variables, never by constants"));
             }
-            ensure_equality(test, ph, 's').0
+            ensure_equality(test, ph, 's')
         }
         // A condition with no id test gets a placeholder named after `s` (parse_cond).
         None => Test::Equal(Term::Var(ph.fresh('s'))),
@@ -531,7 +530,7 @@ fn compile_attr_value_tests(
     // An attribute test with no equality test gets a placeholder `<a*N>`
     // (parse_attr_value_tests); each path step then links through a placeholder named
     // after the step's attribute.
-    let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a').0;
+    let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a');
     for step in &avt.path[1..] {
         let v = Term::Var(ph.fresh(ph.letter_of(&attr)));
         local.push(Condition::Positive(Cond {
@@ -544,19 +543,9 @@ fn compile_attr_value_tests(
         }));
         cur_id = Test::Equal(v);
         goal = Head::None;
-        attr = ensure_equality(compile_test(step, out), ph, 'a').0;
+        attr = ensure_equality(compile_test(step, out), ph, 'a');
     }
     let letter = ph.letter_of(&attr);
-    // The whole attribute test goes on the first condition, its equality test on the
-    // others (fill_in_attr_tests).
-    let attr_eq = match &attr {
-        Test::Conjunction(ts) => ts
-            .iter()
-            .find(|t| matches!(t, Test::Equal(_)))
-            .cloned()
-            .unwrap_or_else(|| attr.clone()),
-        other => other.clone(),
-    };
     let implicit;
     let values: &[ast::ValueTest] = if avt.values.is_empty() {
         implicit = [ast::ValueTest::Test {
@@ -567,18 +556,33 @@ fn compile_attr_value_tests(
     } else {
         &avt.values
     };
+    // The whole attribute test goes on the first condition, its equality test on the
+    // others (fill_in_attr_tests).
+    // (Not needed, so not copied, when there is one value.)
+    let attr_eq = match &attr {
+        _ if values.len() == 1 => Test::Conjunction(Vec::new()),
+        Test::Conjunction(ts) => ts
+            .iter()
+            .find(|t| matches!(t, Test::Equal(_)))
+            .cloned()
+            .unwrap_or_else(|| attr.clone()),
+        other => other.clone(),
+    };
+    let mut first_attr = Some(attr);
     for (k, v) in values.iter().enumerate() {
-        let attr = if k == 0 {
-            attr.clone()
+        let attr = first_attr.take().unwrap_or_else(|| attr_eq.clone());
+        // The last condition takes the id test itself.
+        let id = if k + 1 == values.len() {
+            std::mem::replace(&mut cur_id, Test::Conjunction(Vec::new()))
         } else {
-            attr_eq.clone()
+            cur_id.clone()
         };
         match v {
             ast::ValueTest::Test { test, acceptable } => {
                 // A value test that binds nothing gets a placeholder, as Soar prints it.
-                let (value, _) = ensure_equality(compile_test(test, out), ph, letter);
+                let value = ensure_equality(compile_test(test, out), ph, letter);
                 local.push(Condition::Positive(Cond {
-                    id: cur_id.clone(),
+                    id,
                     attr,
                     value,
                     acceptable: *acceptable,
@@ -591,7 +595,7 @@ fn compile_attr_value_tests(
             } => {
                 let pv = Term::Var(ph.fresh(letter));
                 local.push(Condition::Positive(Cond {
-                    id: cur_id.clone(),
+                    id,
                     attr,
                     value: Test::Equal(pv.clone()),
                     acceptable: *acceptable,
@@ -938,6 +942,23 @@ fn drop_unbound_relational(
     outside: &FxHashSet<String>,
     name: &str,
 ) -> Result<(), Diagnostic> {
+    // Most lists have no relational test on a variable: nothing to check, no set to build.
+    let relational = |t: &Test| match t {
+        Test::Relational(_, Term::Var(_)) => true,
+        Test::Conjunction(ts) => ts
+            .iter()
+            .any(|m| matches!(m, Test::Relational(_, Term::Var(_)))),
+        _ => false,
+    };
+    let anything = conds.iter().any(|c| match c {
+        Condition::Positive(c) | Condition::Negative(c) => {
+            relational(&c.id) || relational(&c.attr) || relational(&c.value)
+        }
+        Condition::Ncc(_) => true,
+    });
+    if !anything {
+        return Ok(());
+    }
     let mut bound = outside.clone();
     for c in conds.iter() {
         if let Condition::Positive(c) = c {
@@ -986,12 +1007,16 @@ fn drop_unbound_relational(
 
 /// Variables bound by an equality test in a positive, non-negated condition.
 pub fn bound_variables(p: &Production) -> FxHashSet<String> {
+    bound_names(p).into_iter().map(str::to_string).collect()
+}
+
+fn bound_names(p: &Production) -> FxHashSet<&str> {
     let mut bound = FxHashSet::default();
     for c in &p.conditions {
         if let Condition::Positive(c) = c {
             for t in [&c.id, &c.attr, &c.value] {
                 if let Some(v) = equality_var(t) {
-                    bound.insert(v.to_string());
+                    bound.insert(v);
                 }
             }
         }
@@ -1010,14 +1035,14 @@ fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) 
 /// Spec §1g: RHS action ids and function arguments must be bound on the LHS or be new
 /// identifiers made by this rule (an unbound variable in value position).
 fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
-    let bound = bound_variables(p);
-    let mut new_ids: FxHashSet<String> = FxHashSet::default();
+    let bound = bound_names(p);
+    let mut new_ids: FxHashSet<&str> = FxHashSet::default();
     for a in &p.actions {
         if let Action::Make(m) = a {
             for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
                 if let RhsTerm::Var(v) = t {
-                    if !bound.contains(v) {
-                        new_ids.insert(v.clone());
+                    if !bound.contains(v.as_str()) {
+                        new_ids.insert(v);
                     }
                 }
             }

@@ -111,8 +111,8 @@ impl Rete {
         let pid = ProdId(self.prods.len() as u32);
         let mut bindings = Bindings::default();
         let mut cond_nodes = vec![NIL; p.conditions.len()];
-        let mut positive_order = Vec::new();
-        let mut build_order = Vec::new();
+        let mut positive_order = Vec::with_capacity(p.conditions.len());
+        let mut build_order = Vec::with_capacity(p.conditions.len());
         let cur = self.build_conditions(
             &p.conditions,
             Cur::Holder(self.root),
@@ -145,7 +145,7 @@ impl Rete {
             name: p.name.clone(),
             pnode,
             positive_order,
-            bindings,
+            bindings: bindings.into(),
             cond_nodes,
             build_order,
             action_key,

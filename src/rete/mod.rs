@@ -215,6 +215,41 @@ impl Shared {
     }
 }
 
+/// Variables and where they are bound, sorted by name: kept for every rule, where a hash
+/// map would cost several times the memory.
+#[derive(Debug, Clone, Default)]
+pub struct VarBindings(Vec<(String, (u32, Field))>);
+
+impl VarBindings {
+    pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
+        self.0
+            .binary_search_by(|(k, _)| k.as_str().cmp(var))
+            .ok()
+            .map(|i| &self.0[i].1)
+    }
+
+    /// The variable names, in sorted order.
+    pub fn keys(&self) -> impl Iterator<Item = &String> {
+        self.0.iter().map(|(k, _)| k)
+    }
+
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+impl From<FxHashMap<String, (u32, Field)>> for VarBindings {
+    fn from(map: FxHashMap<String, (u32, Field)>) -> Self {
+        let mut v: Vec<_> = map.into_iter().collect();
+        v.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        VarBindings(v)
+    }
+}
+
 /// What the network knows of a production.
 #[derive(Debug, Clone)]
 pub struct ProdInfo {
@@ -224,7 +259,7 @@ pub struct ProdInfo {
     /// production's top-level condition list.
     pub positive_order: Vec<usize>,
     /// Where each variable of the positive conditions is first bound: token depth and field.
-    pub bindings: FxHashMap<String, (u32, Field)>,
+    pub bindings: VarBindings,
     /// The beta node of each top-level condition (for `matches <rule>` counts).
     pub(crate) cond_nodes: Vec<NodeId>,
     /// Top-level conditions in the order the network joins them.

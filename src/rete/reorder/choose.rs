@@ -2,10 +2,14 @@
 //! 9.6's tie rules. Costs are kept per condition and recomputed only for the conditions
 //! that test a variable the last choice bound, so a rule of thousands of conditions orders
 //! in about quadratic time, as in 9.6, not worse.
+//!
+//! The chooser borrows the conditions and numbers their variables once, so that choosing
+//! works on flags and indexes rather than on sets of names (every rule is ordered when it
+//! is loaded).
 
-use super::{bound_by, equality_term, Bound};
+use super::{equality_term, Bound};
 use crate::ast::Constant;
-use crate::production::{Cond, Condition, Term, Test};
+use crate::production::{Condition, Term, Test};
 use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
 use std::collections::BTreeSet;
@@ -15,58 +19,13 @@ const MAX_COST: u64 = 10_000_005;
 /// Branching factor for an unbound attribute or value.
 const BRANCHING: u64 = 8;
 
-/// One condition waiting to be placed.
-pub(super) struct Pending {
-    pub cond: Condition,
-    /// For a negation or NCC: the variables positive conditions must bind first.
-    pub required: Vec<String>,
-    /// For an NCC: what its inner conditions require.
-    pub inner: Option<super::Required>,
-}
-
-fn covered(t: &Test, bound: &Bound, roots: &[String]) -> bool {
-    match equality_term(t) {
-        Some(Term::Const(_)) => true,
-        Some(Term::Var(v)) => bound.contains(v) || roots.iter().any(|r| r == v),
-        None => false,
-    }
-}
-
-fn cost_of_positive(p: &Cond, bound: &Bound, roots: &[String]) -> u64 {
-    if !covered(&p.id, bound, roots) {
-        return MAX_COST;
-    }
-    let mut cost = if covered(&p.attr, bound, roots) {
-        1
-    } else {
-        BRANCHING
-    };
-    if !covered(&p.value, bound, roots) {
-        cost *= BRANCHING;
-    }
-    cost
-}
-
-fn cost(p: &Pending, bound: &Bound, roots: &[String]) -> u64 {
-    match &p.cond {
-        Condition::Positive(c) => cost_of_positive(c, bound, roots),
-        _ if p.required.iter().all(|v| bound.contains(v)) => 1,
-        _ => MAX_COST,
-    }
-}
-
-/// The variables whose binding can change a condition's cost.
-fn cost_vars(p: &Pending) -> Vec<&str> {
-    match &p.cond {
-        Condition::Positive(c) => [&c.id, &c.attr, &c.value]
-            .into_iter()
-            .filter_map(|t| match equality_term(t) {
-                Some(Term::Var(v)) => Some(v.as_str()),
-                _ => None,
-            })
-            .collect(),
-        _ => p.required.iter().map(String::as_str).collect(),
-    }
+/// A field of a positive condition by its equality test: a constant, a variable (by number),
+/// or no equality test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Field {
+    Const,
+    Var(u32),
+    Untested,
 }
 
 /// The canonical order key: creation ranks of a condition's constant attribute and value
@@ -89,46 +48,107 @@ fn canonical(c: &Condition, rank: &dyn Fn(&Constant) -> u64) -> (u64, u64) {
 type Key = (u64, bool, Reverse<(u64, u64)>, Reverse<usize>);
 
 /// The conditions of one list, with their current costs.
-pub(super) struct Chooser {
-    pending: Vec<Option<Pending>>,
+pub(super) struct Chooser<'a> {
+    /// The variables' names, by number.
+    names: Vec<&'a str>,
+    /// Per condition: its id, attribute and value fields (positive conditions), or the
+    /// numbers of the variables it requires bound (negations and NCCs), in `vars`.
+    fields: Vec<[Field; 3]>,
+    positive: Vec<bool>,
+    required: Vec<std::ops::Range<usize>>,
+    vars: Vec<u32>,
+    /// Per variable: the conditions whose cost its binding can change, in `user_list`.
+    users: Vec<std::ops::Range<usize>>,
+    user_list: Vec<u32>,
+    bound: Vec<bool>,
+    root: Vec<bool>,
+    placed: Vec<bool>,
     queue: BTreeSet<Key>,
     costs: Vec<u64>,
     canon: Vec<(u64, u64)>,
-    by_var: FxHashMap<String, Vec<usize>>,
-    pub bound: Bound,
-    roots: Vec<String>,
     /// Marks for the look-ahead (a generation number per condition).
     marks: Vec<u32>,
     generation: u32,
 }
 
-impl Chooser {
+impl<'a> Chooser<'a> {
+    /// `required[i]`: the variables negation or NCC `i` needs bound first (see
+    /// `Required`); missing entries need none.
     pub fn new(
-        pending: Vec<Pending>,
+        conds: &'a [Condition],
+        required: &'a [Vec<String>],
         outside: &Bound,
-        roots: Vec<String>,
+        roots: &[String],
         rank: &dyn Fn(&Constant) -> u64,
     ) -> Self {
-        let mut by_var: FxHashMap<String, Vec<usize>> = FxHashMap::default();
-        for (i, p) in pending.iter().enumerate() {
-            for v in cost_vars(p) {
-                by_var.entry(v.to_string()).or_default().push(i);
+        let n = conds.len();
+        let mut index: FxHashMap<&'a str, u32> = FxHashMap::default();
+        let mut names: Vec<&'a str> = Vec::new();
+        let mut number = |v: &'a str| {
+            *index.entry(v).or_insert_with(|| {
+                names.push(v);
+                (names.len() - 1) as u32
+            })
+        };
+        let mut fields = Vec::with_capacity(n);
+        let mut positive = Vec::with_capacity(n);
+        let mut req = Vec::with_capacity(n);
+        let mut vars = Vec::new();
+        for (i, c) in conds.iter().enumerate() {
+            let start = vars.len();
+            match c {
+                Condition::Positive(p) => {
+                    let mut f = [Field::Untested; 3];
+                    for (slot, t) in f.iter_mut().zip([&p.id, &p.attr, &p.value]) {
+                        *slot = match equality_term(t) {
+                            Some(Term::Const(_)) => Field::Const,
+                            Some(Term::Var(v)) => Field::Var(number(v)),
+                            None => Field::Untested,
+                        };
+                    }
+                    fields.push(f);
+                    positive.push(true);
+                }
+                _ => {
+                    for v in required.get(i).map(Vec::as_slice).unwrap_or(&[]) {
+                        vars.push(number(v));
+                    }
+                    fields.push([Field::Untested; 3]);
+                    positive.push(false);
+                }
+            }
+            req.push(start..vars.len());
+        }
+        let nv = names.len();
+        let bound: Vec<bool> = names.iter().map(|v| outside.contains(*v)).collect();
+        let mut root = vec![false; nv];
+        for r in roots {
+            if let Some(&k) = index.get(r.as_str()) {
+                root[k as usize] = true;
             }
         }
-        let costs: Vec<u64> = pending.iter().map(|p| cost(p, outside, &roots)).collect();
-        let canon = pending.iter().map(|p| canonical(&p.cond, rank)).collect();
-        let n = pending.len();
         let mut c = Chooser {
-            pending: pending.into_iter().map(Some).collect(),
+            names,
+            fields,
+            positive,
+            required: req,
+            vars,
+            users: Vec::new(),
+            user_list: Vec::new(),
+            bound,
+            root,
+            placed: vec![false; n],
             queue: BTreeSet::new(),
-            costs,
-            canon,
-            by_var,
-            bound: outside.clone(),
-            roots,
+            costs: Vec::with_capacity(n),
+            canon: conds.iter().map(|c| canonical(c, rank)).collect(),
             marks: vec![0; n],
             generation: 0,
         };
+        c.index_users(nv);
+        for i in 0..n {
+            let k = c.cost(i);
+            c.costs.push(k);
+        }
         for i in 0..n {
             let k = c.key(i);
             c.queue.insert(k);
@@ -136,35 +156,98 @@ impl Chooser {
         c
     }
 
-    fn positive(&self, i: usize) -> bool {
-        matches!(
-            self.pending[i].as_ref().map(|p| &p.cond),
-            Some(Condition::Positive(_))
-        )
+    /// The variables whose binding can change condition `i`'s cost.
+    fn cost_vars(&self, i: usize) -> impl Iterator<Item = u32> + '_ {
+        let from_fields = self.fields[i].iter().filter_map(|f| match f {
+            Field::Var(v) => Some(*v),
+            _ => None,
+        });
+        let required = self.vars[self.required[i].clone()].iter().copied();
+        from_fields.chain(required)
+    }
+
+    fn index_users(&mut self, nv: usize) {
+        let n = self.fields.len();
+        let mut count = vec![0usize; nv + 1];
+        for i in 0..n {
+            for v in self.cost_vars(i) {
+                count[v as usize + 1] += 1;
+            }
+        }
+        for k in 0..nv {
+            count[k + 1] += count[k];
+        }
+        let mut next = count.clone();
+        let mut list = vec![0u32; count[nv]];
+        for i in 0..n {
+            for v in self.cost_vars(i) {
+                list[next[v as usize]] = i as u32;
+                next[v as usize] += 1;
+            }
+        }
+        self.users = (0..nv).map(|k| count[k]..count[k + 1]).collect();
+        self.user_list = list;
+    }
+
+    fn covered(&self, f: Field) -> bool {
+        match f {
+            Field::Const => true,
+            Field::Var(v) => self.bound[v as usize] || self.root[v as usize],
+            Field::Untested => false,
+        }
+    }
+
+    fn cost(&self, i: usize) -> u64 {
+        if !self.positive[i] {
+            let all = self.vars[self.required[i].clone()]
+                .iter()
+                .all(|&v| self.bound[v as usize]);
+            return if all { 1 } else { MAX_COST };
+        }
+        let [id, attr, value] = self.fields[i];
+        if !self.covered(id) {
+            return MAX_COST;
+        }
+        let mut cost = if self.covered(attr) { 1 } else { BRANCHING };
+        if !self.covered(value) {
+            cost *= BRANCHING;
+        }
+        cost
     }
 
     fn key(&self, i: usize) -> Key {
-        let positive = self.positive(i);
+        let positive = self.positive[i];
         let canon = if positive { self.canon[i] } else { (0, 0) };
         (self.costs[i], positive, Reverse(canon), Reverse(i))
     }
 
+    /// The variables a positive condition binds that are not bound yet.
+    fn newly_bound(&self, i: usize) -> [Option<u32>; 3] {
+        let mut out = [None; 3];
+        if self.positive[i] {
+            for (slot, f) in out.iter_mut().zip(self.fields[i]) {
+                if let Field::Var(v) = f {
+                    if !self.bound[v as usize] {
+                        *slot = Some(v);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// The cheapest next condition after `i` were placed (9.6's one-step look-ahead).
     fn lookahead(&mut self, i: usize) -> u64 {
-        let Some(p) = self.pending[i].as_ref() else {
+        if self.placed[i] {
             return MAX_COST + 1;
-        };
-        let new: Vec<String> = bound_by(&p.cond)
-            .into_iter()
-            .filter(|v| !self.bound.contains(*v))
-            .map(str::to_string)
-            .collect();
+        }
+        let new = self.newly_bound(i);
         self.generation += 1;
         let g = self.generation;
-        let mut with = self.bound.clone();
-        for v in &new {
-            with.insert(v.clone());
-            for &j in self.by_var.get(v).map(Vec::as_slice).unwrap_or(&[]) {
+        for v in new.into_iter().flatten() {
+            self.bound[v as usize] = true;
+            for k in self.users[v as usize].clone() {
+                let j = self.user_list[k] as usize;
                 self.marks[j] = g;
             }
         }
@@ -174,13 +257,14 @@ impl Chooser {
                 continue;
             }
             let k = if self.marks[j] == g {
-                self.pending[j]
-                    .as_ref()
-                    .map_or(MAX_COST, |p| cost(p, &with, &self.roots))
+                self.cost(j)
             } else {
                 cached
             };
             min = min.min(k);
+        }
+        for v in new.into_iter().flatten() {
+            self.bound[v as usize] = false;
         }
         min
     }
@@ -211,51 +295,56 @@ impl Chooser {
             if k < best {
                 best = k;
                 chosen = i;
-            } else if k == best && self.positive(i) && self.canon[chosen] < self.canon[i] {
+            } else if k == best && self.positive[i] && self.canon[chosen] < self.canon[i] {
                 chosen = i;
             }
         }
         Some(chosen)
     }
 
-    /// Takes the next condition out; the caller places it and then calls [`Self::bind`].
-    pub fn next(&mut self) -> Option<Pending> {
+    /// The next condition to place (its index); the caller then calls [`Self::bind`].
+    pub fn next(&mut self) -> Option<usize> {
         let i = self.pick()?;
         let k = self.key(i);
         self.queue.remove(&k);
-        self.pending[i].take()
+        self.placed[i] = true;
+        Some(i)
     }
 
-    /// Records what a placed condition binds, updating the costs that depend on it.
-    pub fn bind(&mut self, placed: &Condition) {
-        let new: Vec<String> = bound_by(placed)
-            .into_iter()
-            .filter(|v| !self.bound.contains(*v))
-            .map(str::to_string)
-            .collect();
-        for v in &new {
-            self.bound.insert(v.clone());
+    /// Records what placed condition `i` binds, updating the costs that depend on it.
+    pub fn bind(&mut self, i: usize) {
+        let new = self.newly_bound(i);
+        for v in new.into_iter().flatten() {
+            self.bound[v as usize] = true;
         }
-        for v in &new {
-            let users = self.by_var.get(v).cloned().unwrap_or_default();
-            for j in users {
-                let Some(p) = self.pending[j].as_ref() else {
+        for v in new.into_iter().flatten() {
+            for k in self.users[v as usize].clone() {
+                let j = self.user_list[k] as usize;
+                if self.placed[j] {
                     continue;
-                };
-                let k = cost(p, &self.bound, &self.roots);
-                if k != self.costs[j] {
+                }
+                let c = self.cost(j);
+                if c != self.costs[j] {
                     let old = self.key(j);
                     self.queue.remove(&old);
-                    self.costs[j] = k;
+                    self.costs[j] = c;
                     let new_key = self.key(j);
                     self.queue.insert(new_key);
                 }
             }
         }
-        // Once every root is bound the roots no longer count (nothing changes: they are
-        // bound), as in 9.6.
-        if self.roots.iter().all(|r| self.bound.contains(r)) {
-            self.roots.clear();
+        // Once every root is bound the roots no longer count; they are bound then, so
+        // `covered` is unchanged and nothing needs clearing.
+    }
+
+    /// Everything bound now, by name: `outside` and what the placed conditions bound.
+    pub fn bound_names(&self, outside: &Bound) -> Bound {
+        let mut b = outside.clone();
+        for (k, name) in self.names.iter().enumerate() {
+            if self.bound[k] {
+                b.insert(name.to_string());
+            }
         }
+        b
     }
 }
