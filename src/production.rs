@@ -917,6 +917,9 @@ fn root_variables<'a>(
             );
         }
     }
+    if !conds.iter().any(|c| matches!(c, Condition::Ncc(_))) {
+        return roots;
+    }
     let mut bound = outside.clone();
     for c in &positives {
         for t in [&c.id, &c.attr, &c.value] {

@@ -24,33 +24,34 @@ pub enum BuildError {
 /// The actions and flags of a rule with each variable replaced by where the conditions bind
 /// it (or by its order of appearance, for variables the actions create).
 fn action_key(p: &Production, bindings: &Bindings) -> String {
-    use crate::production::{Action, RhsTerm};
+    use crate::production::{Action, FuncCall, RhsTerm};
     use std::fmt::Write;
-    fn term(t: &RhsTerm, b: &Bindings, fresh: &mut Vec<String>, out: &mut String) {
+    fn term<'a>(t: &'a RhsTerm, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
         match t {
-            RhsTerm::Var(v) => match b.get(v) {
+            RhsTerm::Var(v) => match b.get(v.as_str()) {
                 Some((d, f)) => {
                     let _ = write!(out, "@{d}.{f:?}");
                 }
                 None => {
                     let k = fresh.iter().position(|x| x == v).unwrap_or_else(|| {
-                        fresh.push(v.clone());
+                        fresh.push(v);
                         fresh.len() - 1
                     });
                     let _ = write!(out, "#{k}");
                 }
             },
             RhsTerm::Const(c) => out.push_str(&crate::printer::constant_text(c)),
-            RhsTerm::Call(f) => {
-                out.push('(');
-                out.push_str(&f.name);
-                for a in &f.args {
-                    out.push(' ');
-                    term(a, b, fresh, out);
-                }
-                out.push(')');
-            }
+            RhsTerm::Call(f) => call(f, b, fresh, out),
         }
+    }
+    fn call<'a>(f: &'a FuncCall, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
+        out.push('(');
+        out.push_str(&f.name);
+        for a in &f.args {
+            out.push(' ');
+            term(a, b, fresh, out);
+        }
+        out.push(')');
     }
     // The flags as one digit each (a rule's support and kind are part of what it does).
     let f = &p.flags;
@@ -81,7 +82,7 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
                     term(r, bindings, &mut fresh, &mut out);
                 }
             }
-            Action::Call(f) => term(&RhsTerm::Call(f.clone()), bindings, &mut fresh, &mut out),
+            Action::Call(f) => call(f, bindings, &mut fresh, &mut out),
         }
     }
     out
@@ -95,7 +96,8 @@ enum Cur {
     Join(NodeId),
 }
 
-type Bindings = FxHashMap<String, (u32, Field)>;
+/// Where each variable is first bound, by name borrowed from the rule being built.
+type Bindings<'a> = FxHashMap<&'a str, (u32, Field)>;
 
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
@@ -229,11 +231,11 @@ impl Rete {
         }
     }
 
-    fn build_conditions(
+    fn build_conditions<'a>(
         &mut self,
-        conds: &[Condition],
+        conds: &'a [Condition],
         mut cur: Cur,
-        bindings: &mut Bindings,
+        bindings: &mut Bindings<'a>,
         syms: &mut Symbols,
         mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>, &mut Vec<usize>)>,
     ) -> Cur {
@@ -580,10 +582,10 @@ fn cur_node(cur: Cur) -> NodeId {
 
 /// The alpha-memory key and join tests of one condition whose WME will sit at `depth`.
 /// Variables first met here are bound at (`depth`, field).
-fn cond_tests(
-    c: &Cond,
+fn cond_tests<'a>(
+    c: &'a Cond,
     depth: u32,
-    bindings: &mut Bindings,
+    bindings: &mut Bindings<'a>,
     syms: &mut Symbols,
 ) -> (AlphaKey, Vec<JoinTest>) {
     let mut key = AlphaKey {
@@ -602,66 +604,82 @@ fn cond_tests(
         (Field::Attr, &c.attr),
         (Field::Value, &c.value),
     ] {
-        let mut simple: Vec<&Test> = Vec::new();
-        flatten(test, &mut simple);
-        // Equality tests first, so that a variable bound here is usable by the others.
-        simple.sort_by_key(|t| !matches!(t, Test::Equal(_)));
-        for t in simple {
-            match t {
-                Test::Equal(Term::Const(k)) => {
-                    let s = syms.constant(k);
-                    match field {
-                        Field::Attr if key.attr.is_none() => key.attr = Some(s),
-                        Field::Value if key.value.is_none() => key.value = Some(s),
-                        _ => tests.push(JoinTest::Compare {
-                            field,
-                            op: Op::Eq,
-                            operand: Operand::Const(s),
-                        }),
-                    }
+        // Equality tests first, so that a variable bound here is usable by the others (two
+        // passes over the field keep each kind in its written order).
+        for equality in [true, false] {
+            for_each_simple(test, &mut |t| {
+                if matches!(t, Test::Equal(_)) == equality {
+                    add_test(t, field, depth, &mut key, &mut tests, bindings, syms);
                 }
-                Test::Equal(Term::Var(v)) => match bindings.get(v) {
-                    Some(&(d, f)) => tests.push(JoinTest::Compare {
-                        field,
-                        op: Op::Eq,
-                        operand: Operand::Bound { depth: d, field: f },
-                    }),
-                    None => {
-                        bindings.insert(v.clone(), (depth, field));
-                    }
-                },
-                Test::Relational(r, Term::Var(v)) => {
-                    // A relational test on a variable bound nowhere is dropped (spec §1g).
-                    if let Some(&(d, f)) = bindings.get(v) {
-                        tests.push(JoinTest::Compare {
-                            field,
-                            op: Op::Rel(*r),
-                            operand: Operand::Bound { depth: d, field: f },
-                        });
-                    }
-                }
-                Test::Relational(r, Term::Const(k)) => {
-                    let s = syms.constant(k);
-                    tests.push(JoinTest::Compare {
-                        field,
-                        op: Op::Rel(*r),
-                        operand: Operand::Const(s),
-                    });
-                }
-                Test::Disjunction(items) => {
-                    let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
-                    tests.push(JoinTest::Disjunction { field, items });
-                }
-                Test::Conjunction(_) => {}
-            }
+            });
         }
     }
     (key, tests)
 }
 
-fn flatten<'a>(t: &'a Test, out: &mut Vec<&'a Test>) {
+/// One simple test of a condition's field, as an alpha-memory constant or a join test.
+fn add_test<'a>(
+    t: &'a Test,
+    field: Field,
+    depth: u32,
+    key: &mut AlphaKey,
+    tests: &mut Vec<JoinTest>,
+    bindings: &mut Bindings<'a>,
+    syms: &mut Symbols,
+) {
     match t {
-        Test::Conjunction(ts) => ts.iter().for_each(|t| flatten(t, out)),
-        other => out.push(other),
+        Test::Equal(Term::Const(k)) => {
+            let s = syms.constant(k);
+            match field {
+                Field::Attr if key.attr.is_none() => key.attr = Some(s),
+                Field::Value if key.value.is_none() => key.value = Some(s),
+                _ => tests.push(JoinTest::Compare {
+                    field,
+                    op: Op::Eq,
+                    operand: Operand::Const(s),
+                }),
+            }
+        }
+        Test::Equal(Term::Var(v)) => match bindings.get(v.as_str()) {
+            Some(&(d, f)) => tests.push(JoinTest::Compare {
+                field,
+                op: Op::Eq,
+                operand: Operand::Bound { depth: d, field: f },
+            }),
+            None => {
+                bindings.insert(v, (depth, field));
+            }
+        },
+        Test::Relational(r, Term::Var(v)) => {
+            // A relational test on a variable bound nowhere is dropped (spec §1g).
+            if let Some(&(d, f)) = bindings.get(v.as_str()) {
+                tests.push(JoinTest::Compare {
+                    field,
+                    op: Op::Rel(*r),
+                    operand: Operand::Bound { depth: d, field: f },
+                });
+            }
+        }
+        Test::Relational(r, Term::Const(k)) => {
+            let s = syms.constant(k);
+            tests.push(JoinTest::Compare {
+                field,
+                op: Op::Rel(*r),
+                operand: Operand::Const(s),
+            });
+        }
+        Test::Disjunction(items) => {
+            let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
+            tests.push(JoinTest::Disjunction { field, items });
+        }
+        Test::Conjunction(_) => {}
+    }
+}
+
+/// The simple (non-conjunctive) tests of a field, in order.
+fn for_each_simple<'a>(t: &'a Test, f: &mut dyn FnMut(&'a Test)) {
+    match t {
+        Test::Conjunction(ts) => ts.iter().for_each(|t| for_each_simple(t, f)),
+        other => f(other),
     }
 }

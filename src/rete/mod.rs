@@ -242,11 +242,11 @@ impl VarBindings {
     }
 }
 
-impl From<FxHashMap<String, (u32, Field)>> for VarBindings {
-    fn from(map: FxHashMap<String, (u32, Field)>) -> Self {
+impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
+    fn from(map: FxHashMap<&str, (u32, Field)>) -> Self {
         let mut v: Vec<_> = map.into_iter().collect();
-        v.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-        VarBindings(v)
+        v.sort_unstable_by(|a, b| a.0.cmp(b.0));
+        VarBindings(v.into_iter().map(|(k, b)| (k.to_string(), b)).collect())
     }
 }
 

@@ -47,27 +47,36 @@ fn canonical(c: &Condition, rank: &dyn Fn(&Constant) -> u64) -> (u64, u64) {
 /// equal cost are the tied set that the look-ahead decides between.
 type Key = (u64, bool, Reverse<(u64, u64)>, Reverse<usize>);
 
+/// One condition of the list.
+struct Cond {
+    /// Its id, attribute and value fields (positive conditions).
+    fields: [Field; 3],
+    positive: bool,
+    /// Negations and NCCs: the variables it requires bound, in `Chooser::vars`.
+    required: std::ops::Range<u32>,
+    cost: u64,
+    canon: (u64, u64),
+    placed: bool,
+    /// Mark for the look-ahead (a generation number).
+    mark: u32,
+}
+
+/// One variable of the list.
+struct Var<'a> {
+    name: &'a str,
+    bound: bool,
+    root: bool,
+    /// The conditions whose cost its binding can change, in `Chooser::users`.
+    users: std::ops::Range<u32>,
+}
+
 /// The conditions of one list, with their current costs.
 pub(super) struct Chooser<'a> {
-    /// The variables' names, by number.
-    names: Vec<&'a str>,
-    /// Per condition: its id, attribute and value fields (positive conditions), or the
-    /// numbers of the variables it requires bound (negations and NCCs), in `vars`.
-    fields: Vec<[Field; 3]>,
-    positive: Vec<bool>,
-    required: Vec<std::ops::Range<usize>>,
-    vars: Vec<u32>,
-    /// Per variable: the conditions whose cost its binding can change, in `user_list`.
-    users: Vec<std::ops::Range<usize>>,
-    user_list: Vec<u32>,
-    bound: Vec<bool>,
-    root: Vec<bool>,
-    placed: Vec<bool>,
+    conds: Vec<Cond>,
+    vars: Vec<Var<'a>>,
+    required: Vec<u32>,
+    users: Vec<u32>,
     queue: BTreeSet<Key>,
-    costs: Vec<u64>,
-    canon: Vec<(u64, u64)>,
-    /// Marks for the look-ahead (a generation number per condition).
-    marks: Vec<u32>,
     generation: u32,
 }
 
@@ -82,72 +91,83 @@ impl<'a> Chooser<'a> {
         rank: &dyn Fn(&Constant) -> u64,
     ) -> Self {
         let n = conds.len();
+        let mut vars: Vec<Var<'a>> = Vec::new();
+        // A linear search numbers the few variables of a list; past a few dozen, a map.
         let mut index: FxHashMap<&'a str, u32> = FxHashMap::default();
-        let mut names: Vec<&'a str> = Vec::new();
-        let mut number = |v: &'a str| {
-            *index.entry(v).or_insert_with(|| {
-                names.push(v);
-                (names.len() - 1) as u32
-            })
+        let mut number = |v: &'a str, vars: &mut Vec<Var<'a>>| -> u32 {
+            if vars.len() < 32 {
+                if let Some(k) = vars.iter().position(|x| x.name == v) {
+                    return k as u32;
+                }
+            } else {
+                if index.is_empty() {
+                    for (k, x) in vars.iter().enumerate() {
+                        index.insert(x.name, k as u32);
+                    }
+                }
+                if let Some(&k) = index.get(v) {
+                    return k;
+                }
+                index.insert(v, vars.len() as u32);
+            }
+            vars.push(Var {
+                name: v,
+                bound: outside.contains(v),
+                root: false,
+                users: 0..0,
+            });
+            (vars.len() - 1) as u32
         };
-        let mut fields = Vec::with_capacity(n);
-        let mut positive = Vec::with_capacity(n);
-        let mut req = Vec::with_capacity(n);
-        let mut vars = Vec::new();
+        let mut cs = Vec::with_capacity(n);
+        let mut req = Vec::new();
         for (i, c) in conds.iter().enumerate() {
-            let start = vars.len();
-            match c {
+            let start = req.len() as u32;
+            let mut fields = [Field::Untested; 3];
+            let positive = match c {
                 Condition::Positive(p) => {
-                    let mut f = [Field::Untested; 3];
-                    for (slot, t) in f.iter_mut().zip([&p.id, &p.attr, &p.value]) {
+                    for (slot, t) in fields.iter_mut().zip([&p.id, &p.attr, &p.value]) {
                         *slot = match equality_term(t) {
                             Some(Term::Const(_)) => Field::Const,
-                            Some(Term::Var(v)) => Field::Var(number(v)),
+                            Some(Term::Var(v)) => Field::Var(number(v, &mut vars)),
                             None => Field::Untested,
                         };
                     }
-                    fields.push(f);
-                    positive.push(true);
+                    true
                 }
                 _ => {
                     for v in required.get(i).map(Vec::as_slice).unwrap_or(&[]) {
-                        vars.push(number(v));
+                        let k = number(v, &mut vars);
+                        req.push(k);
                     }
-                    fields.push([Field::Untested; 3]);
-                    positive.push(false);
+                    false
                 }
-            }
-            req.push(start..vars.len());
+            };
+            cs.push(Cond {
+                fields,
+                positive,
+                required: start..req.len() as u32,
+                cost: 0,
+                canon: canonical(c, rank),
+                placed: false,
+                mark: 0,
+            });
         }
-        let nv = names.len();
-        let bound: Vec<bool> = names.iter().map(|v| outside.contains(*v)).collect();
-        let mut root = vec![false; nv];
         for r in roots {
-            if let Some(&k) = index.get(r.as_str()) {
-                root[k as usize] = true;
+            if let Some(v) = vars.iter_mut().find(|v| v.name == r.as_str()) {
+                v.root = true;
             }
         }
         let mut c = Chooser {
-            names,
-            fields,
-            positive,
-            required: req,
+            conds: cs,
             vars,
+            required: req,
             users: Vec::new(),
-            user_list: Vec::new(),
-            bound,
-            root,
-            placed: vec![false; n],
             queue: BTreeSet::new(),
-            costs: Vec::with_capacity(n),
-            canon: conds.iter().map(|c| canonical(c, rank)).collect(),
-            marks: vec![0; n],
             generation: 0,
         };
-        c.index_users(nv);
+        c.index_users();
         for i in 0..n {
-            let k = c.cost(i);
-            c.costs.push(k);
+            c.conds[i].cost = c.cost(i);
         }
         for i in 0..n {
             let k = c.key(i);
@@ -158,53 +178,67 @@ impl<'a> Chooser<'a> {
 
     /// The variables whose binding can change condition `i`'s cost.
     fn cost_vars(&self, i: usize) -> impl Iterator<Item = u32> + '_ {
-        let from_fields = self.fields[i].iter().filter_map(|f| match f {
+        let c = &self.conds[i];
+        let from_fields = c.fields.iter().filter_map(|f| match f {
             Field::Var(v) => Some(*v),
             _ => None,
         });
-        let required = self.vars[self.required[i].clone()].iter().copied();
-        from_fields.chain(required)
+        let r = c.required.start as usize..c.required.end as usize;
+        from_fields.chain(self.required[r].iter().copied())
     }
 
-    fn index_users(&mut self, nv: usize) {
-        let n = self.fields.len();
-        let mut count = vec![0usize; nv + 1];
+    fn index_users(&mut self) {
+        let (n, nv) = (self.conds.len(), self.vars.len());
+        // Counting sort of (variable, condition) pairs: each variable's users in a row.
+        let mut start = vec![0u32; nv + 1];
         for i in 0..n {
             for v in self.cost_vars(i) {
-                count[v as usize + 1] += 1;
+                start[v as usize + 1] += 1;
             }
         }
         for k in 0..nv {
-            count[k + 1] += count[k];
+            start[k + 1] += start[k];
         }
-        let mut next = count.clone();
-        let mut list = vec![0u32; count[nv]];
+        let mut users = vec![0u32; start[nv] as usize];
+        let mut next = start.clone();
         for i in 0..n {
             for v in self.cost_vars(i) {
-                list[next[v as usize]] = i as u32;
+                users[next[v as usize] as usize] = i as u32;
                 next[v as usize] += 1;
             }
         }
-        self.users = (0..nv).map(|k| count[k]..count[k + 1]).collect();
-        self.user_list = list;
+        for (k, v) in self.vars.iter_mut().enumerate() {
+            v.users = start[k]..start[k + 1];
+        }
+        self.users = users;
+    }
+
+    fn users_of(&self, v: u32) -> std::ops::Range<usize> {
+        let r = &self.vars[v as usize].users;
+        r.start as usize..r.end as usize
     }
 
     fn covered(&self, f: Field) -> bool {
         match f {
             Field::Const => true,
-            Field::Var(v) => self.bound[v as usize] || self.root[v as usize],
+            Field::Var(v) => {
+                let v = &self.vars[v as usize];
+                v.bound || v.root
+            }
             Field::Untested => false,
         }
     }
 
     fn cost(&self, i: usize) -> u64 {
-        if !self.positive[i] {
-            let all = self.vars[self.required[i].clone()]
+        let c = &self.conds[i];
+        if !c.positive {
+            let r = c.required.start as usize..c.required.end as usize;
+            let all = self.required[r]
                 .iter()
-                .all(|&v| self.bound[v as usize]);
+                .all(|&v| self.vars[v as usize].bound);
             return if all { 1 } else { MAX_COST };
         }
-        let [id, attr, value] = self.fields[i];
+        let [id, attr, value] = c.fields;
         if !self.covered(id) {
             return MAX_COST;
         }
@@ -216,18 +250,19 @@ impl<'a> Chooser<'a> {
     }
 
     fn key(&self, i: usize) -> Key {
-        let positive = self.positive[i];
-        let canon = if positive { self.canon[i] } else { (0, 0) };
-        (self.costs[i], positive, Reverse(canon), Reverse(i))
+        let c = &self.conds[i];
+        let canon = if c.positive { c.canon } else { (0, 0) };
+        (c.cost, c.positive, Reverse(canon), Reverse(i))
     }
 
     /// The variables a positive condition binds that are not bound yet.
     fn newly_bound(&self, i: usize) -> [Option<u32>; 3] {
         let mut out = [None; 3];
-        if self.positive[i] {
-            for (slot, f) in out.iter_mut().zip(self.fields[i]) {
+        let c = &self.conds[i];
+        if c.positive {
+            for (slot, f) in out.iter_mut().zip(c.fields) {
                 if let Field::Var(v) = f {
-                    if !self.bound[v as usize] {
+                    if !self.vars[v as usize].bound {
                         *slot = Some(v);
                     }
                 }
@@ -238,17 +273,17 @@ impl<'a> Chooser<'a> {
 
     /// The cheapest next condition after `i` were placed (9.6's one-step look-ahead).
     fn lookahead(&mut self, i: usize) -> u64 {
-        if self.placed[i] {
+        if self.conds[i].placed {
             return MAX_COST + 1;
         }
         let new = self.newly_bound(i);
         self.generation += 1;
         let g = self.generation;
         for v in new.into_iter().flatten() {
-            self.bound[v as usize] = true;
-            for k in self.users[v as usize].clone() {
-                let j = self.user_list[k] as usize;
-                self.marks[j] = g;
+            self.vars[v as usize].bound = true;
+            for k in self.users_of(v) {
+                let j = self.users[k] as usize;
+                self.conds[j].mark = g;
             }
         }
         let mut min = MAX_COST + 1;
@@ -256,7 +291,7 @@ impl<'a> Chooser<'a> {
             if j == i {
                 continue;
             }
-            let k = if self.marks[j] == g {
+            let k = if self.conds[j].mark == g {
                 self.cost(j)
             } else {
                 cached
@@ -264,7 +299,7 @@ impl<'a> Chooser<'a> {
             min = min.min(k);
         }
         for v in new.into_iter().flatten() {
-            self.bound[v as usize] = false;
+            self.vars[v as usize].bound = false;
         }
         min
     }
@@ -295,7 +330,10 @@ impl<'a> Chooser<'a> {
             if k < best {
                 best = k;
                 chosen = i;
-            } else if k == best && self.positive[i] && self.canon[chosen] < self.canon[i] {
+            } else if k == best
+                && self.conds[i].positive
+                && self.conds[chosen].canon < self.conds[i].canon
+            {
                 chosen = i;
             }
         }
@@ -307,7 +345,7 @@ impl<'a> Chooser<'a> {
         let i = self.pick()?;
         let k = self.key(i);
         self.queue.remove(&k);
-        self.placed[i] = true;
+        self.conds[i].placed = true;
         Some(i)
     }
 
@@ -315,19 +353,19 @@ impl<'a> Chooser<'a> {
     pub fn bind(&mut self, i: usize) {
         let new = self.newly_bound(i);
         for v in new.into_iter().flatten() {
-            self.bound[v as usize] = true;
+            self.vars[v as usize].bound = true;
         }
         for v in new.into_iter().flatten() {
-            for k in self.users[v as usize].clone() {
-                let j = self.user_list[k] as usize;
-                if self.placed[j] {
+            for k in self.users_of(v) {
+                let j = self.users[k] as usize;
+                if self.conds[j].placed {
                     continue;
                 }
                 let c = self.cost(j);
-                if c != self.costs[j] {
+                if c != self.conds[j].cost {
                     let old = self.key(j);
                     self.queue.remove(&old);
-                    self.costs[j] = c;
+                    self.conds[j].cost = c;
                     let new_key = self.key(j);
                     self.queue.insert(new_key);
                 }
@@ -340,9 +378,9 @@ impl<'a> Chooser<'a> {
     /// Everything bound now, by name: `outside` and what the placed conditions bound.
     pub fn bound_names(&self, outside: &Bound) -> Bound {
         let mut b = outside.clone();
-        for (k, name) in self.names.iter().enumerate() {
-            if self.bound[k] {
-                b.insert(name.to_string());
+        for v in &self.vars {
+            if v.bound {
+                b.insert(v.name.to_string());
             }
         }
         b

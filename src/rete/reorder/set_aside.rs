@@ -14,7 +14,8 @@ pub(super) struct SetAside {
     tests: Vec<Option<(Term, Test)>>,
     /// `state`/`impasse` tests by the id variable they were on: restored to the first
     /// condition on that id (copies are one test, as 9.6 adds a test only once).
-    goals: FxHashMap<String, Head>,
+    /// (A list: a rule tests one or two states.)
+    goals: Vec<(String, Head)>,
     by_term: FxHashMap<String, Vec<usize>>,
 }
 
@@ -83,7 +84,9 @@ pub(super) fn simplify(conds: &mut [Condition], dummies: &mut usize) -> SetAside
             simplify_field(&mut p.id, &mut saved, dummies);
             if p.goal != Head::None {
                 if let Some(v) = equality_var(&p.id) {
-                    saved.goals.entry(v.to_string()).or_insert(p.goal);
+                    if !saved.goals.iter().any(|(g, _)| g == v) {
+                        saved.goals.push((v.to_string(), p.goal));
+                    }
                 }
                 p.goal = Head::None;
             }
@@ -178,8 +181,8 @@ pub(super) fn restore(conds: &mut [Condition], outside: &Bound, mut saved: SetAs
     for c in conds.iter_mut() {
         let Condition::Positive(p) = c else { continue };
         if let Some(v) = equality_var(&p.id) {
-            if let Some(h) = saved.goals.remove(v) {
-                p.goal = h;
+            if let Some(k) = saved.goals.iter().position(|(g, _)| g == v) {
+                p.goal = saved.goals.swap_remove(k).1;
             }
         }
         if only_goals {
