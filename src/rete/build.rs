@@ -385,14 +385,19 @@ impl Rete {
             self.add_left_key(h, d, f);
         }
         self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
-        self.link_to_amem(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
-        // successors (the first WME there would unlink each of them in turn).
+        // successors (the first WME there would unlink each of them in turn). Unlinked on
+        // the right, it is not linked first: relinking finds its place afresh.
         if self.nodes[h as usize].token_count == 0 {
-            self.unlink_right(j);
-        } else if self.amems[amem as usize].count == 0 {
-            self.unlink_left_pub(j);
+            if let Kind::Join { right_unlinked, .. } = &mut self.nodes[j as usize].kind {
+                *right_unlinked = true;
+            }
+        } else {
+            self.link_to_amem(j, amem);
+            if self.amems[amem as usize].count == 0 {
+                self.unlink_left_pub(j);
+            }
         }
         j
     }
