@@ -126,7 +126,8 @@ pub struct Make {
 pub enum RhsTerm {
     Var(String),
     Const(Constant),
-    Call(FuncCall),
+    /// (Boxed: a call is rare, and inline it would double the size of every action.)
+    Call(Box<FuncCall>),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -764,7 +765,7 @@ fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<Rh
     Ok(match v {
         ast::RhsValue::Var(name, _) => RhsTerm::Var(name.clone()),
         ast::RhsValue::Const(c, _) => RhsTerm::Const(c.clone()),
-        ast::RhsValue::Call(f) => RhsTerm::Call(compile_call(f, false, out, rule)?),
+        ast::RhsValue::Call(f) => RhsTerm::Call(Box::new(compile_call(f, false, out, rule)?)),
     })
 }
 
