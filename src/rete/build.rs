@@ -126,10 +126,9 @@ impl Rete {
         // A rule whose conditions share every node with another rule, and whose actions are
         // the same up to variable names, is a duplicate (spec §1c).
         let action_key = action_key(p, &bindings);
-        let twin = self.nodes[parent as usize]
-            .all_children
-            .iter()
-            .find_map(|&c| match self.nodes[c as usize].kind {
+        let twin = self
+            .all_children(parent)
+            .find_map(|c| match self.nodes[c as usize].kind {
                 Kind::Production { prod } => self
                     .production(prod)
                     .filter(|i| i.action_key == action_key)
@@ -170,14 +169,10 @@ impl Rete {
         match cur {
             Cur::Holder(h) => h,
             Cur::Join(j) => {
-                let existing = self.nodes[j as usize]
-                    .all_children
-                    .iter()
-                    .copied()
-                    .find(|&c| {
-                        self.nodes[c as usize].kind == Kind::Memory
-                            && self.nodes[c as usize].hash == key
-                    });
+                let existing = self.all_children(j).find(|&c| {
+                    self.nodes[c as usize].kind == Kind::Memory
+                        && self.nodes[c as usize].hash == key
+                });
                 if let Some(m) = existing {
                     return m;
                 }
@@ -210,20 +205,50 @@ impl Rete {
     /// Whether `m` has exactly one join child (counting stops at two: a memory shared by
     /// thousands of rules is not walked for each new one).
     fn has_one_join_child(&self, m: NodeId) -> bool {
-        self.nodes[m as usize]
-            .all_children
-            .iter()
-            .filter(|&&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
+        self.all_children(m)
+            .filter(|&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
             .take(2)
             .count()
             == 1
     }
 
+    /// Every child of `n`, linked or not.
+    fn all_children(&self, n: NodeId) -> impl Iterator<Item = NodeId> + '_ {
+        let mut c = self.nodes[n as usize].first_child;
+        std::iter::from_fn(move || {
+            let this = c;
+            (this != NIL).then(|| {
+                c = self.nodes[this as usize].next_sibling;
+                this
+            })
+        })
+    }
+
+    /// Takes `child` out of its parent's list of all children.
+    fn remove_from_all_children(&mut self, parent: NodeId, child: NodeId) {
+        let next = self.nodes[child as usize].next_sibling;
+        if self.nodes[parent as usize].first_child == child {
+            self.nodes[parent as usize].first_child = next;
+            return;
+        }
+        let mut c = self.nodes[parent as usize].first_child;
+        while c != NIL {
+            let after = self.nodes[c as usize].next_sibling;
+            if after == child {
+                self.nodes[c as usize].next_sibling = next;
+                return;
+            }
+            c = after;
+        }
+    }
+
     /// Links `child` under `parent`: at the head of the children (activated first), or at
     /// the tail when `head` is false.
     fn attach(&mut self, parent: NodeId, child: NodeId, head: bool) {
+        let first = self.nodes[parent as usize].first_child;
+        self.nodes[child as usize].next_sibling = first;
         let p = &mut self.nodes[parent as usize];
-        p.all_children.push(child);
+        p.first_child = child;
         if head {
             p.children.push(child);
         } else {
@@ -502,7 +527,7 @@ impl Rete {
         loop {
             if n == self.root
                 || !self.nodes[n as usize].alive
-                || !self.nodes[n as usize].all_children.is_empty()
+                || self.nodes[n as usize].first_child != NIL
             {
                 return;
             }
@@ -535,9 +560,8 @@ impl Rete {
                 _ => {}
             }
             let parent = self.nodes[n as usize].parent;
-            let p = &mut self.nodes[parent as usize];
-            p.children.retain(|c| *c != n);
-            p.all_children.retain(|c| *c != n);
+            self.nodes[parent as usize].children.retain(|c| *c != n);
+            self.remove_from_all_children(parent, n);
             self.free_node(n);
             if matches!(kind, Kind::Join { .. }) && self.has_one_join_child(parent) {
                 self.move_memory_to_head(parent);

@@ -130,8 +130,10 @@ pub(crate) struct Node {
     pub parent: NodeId,
     /// Linked children; the last element is the head.
     pub children: Vec<NodeId>,
-    /// Every child, linked or unlinked (for sharing and excising).
-    pub all_children: Vec<NodeId>,
+    /// Every child, linked or unlinked (for sharing and excising), as a list through
+    /// `next_sibling` (newest first; its order means nothing): no heap list per node.
+    pub first_child: NodeId,
+    pub next_sibling: NodeId,
     /// Token holders: head of the intrusive list of tokens in this node.
     pub first_token: u32,
     pub token_count: u32,
@@ -345,7 +347,8 @@ impl Rete {
             kind,
             parent,
             children: Vec::new(),
-            all_children: Vec::new(),
+            first_child: NIL,
+            next_sibling: NIL,
             first_token: NIL,
             token_count: 0,
             depth,
@@ -362,7 +365,8 @@ impl Rete {
         let node = &mut self.nodes[n as usize];
         node.alive = false;
         node.children = Vec::new();
-        node.all_children = Vec::new();
+        node.first_child = NIL;
+        node.next_sibling = NIL;
         node.kind = Kind::Memory;
         node.hash = None;
         node.left_keys = Vec::new();
