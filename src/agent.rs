@@ -350,7 +350,8 @@ impl Agent {
         // 9.6 creates a rule's constants as it parses it, then reorders its conditions
         // (spec §3i); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
-        p.conditions = crate::rete::reorder::reorder(&p.conditions, &self.symbols);
+        let conds = std::mem::take(&mut p.conditions);
+        p.conditions = crate::rete::reorder::reorder_owned(conds, &self.symbols);
         let replaced = self.excise(&p.name);
         let id = match self
             .rete

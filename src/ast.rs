@@ -145,7 +145,8 @@ pub struct ValueMake {
 pub enum RhsValue {
     Var(String, Span),
     Const(Constant, Span),
-    Call(FuncCall),
+    /// (Boxed: inline, a call would triple the size of every value.)
+    Call(Box<FuncCall>),
 }
 
 impl RhsValue {

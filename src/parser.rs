@@ -30,7 +30,7 @@ pub fn parse_production(
             .with_label("the production body is empty"));
     }
     let parser = grammar::ProductionParser::new();
-    parser.parse(file, tokens).map_err(|e| {
+    parser.parse(file, tokens).map(|p| *p).map_err(|e| {
         // Only on the error path: the tokens before the error, to tell which side of
         // `-->` and how deep in parentheses it happened.
         let location = match &e {

@@ -126,7 +126,8 @@ pub struct Make {
 pub enum RhsTerm {
     Var(String),
     Const(Constant),
-    Call(FuncCall),
+    /// (Boxed: a call is rare, and inline it would double the size of every action.)
+    Call(Box<FuncCall>),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -145,23 +146,23 @@ pub struct CompileOutput {
 
 /// Placeholder variables `<s*1>` named after the attribute's first letter, counted per letter.
 #[derive(Default)]
-struct Placeholders {
+struct Placeholders<'a> {
     counters: FxHashMap<char, u32>,
-    used: FxHashSet<String>,
+    /// The variables the rule itself names.
+    used: FxHashSet<&'a str>,
     /// The placeholders made so far. Soar names them `<#a*1>` while parsing, so a letter taken
     /// from one is `#`, which is not a letter: the next placeholder is named after `v`.
     generated: FxHashSet<String>,
 }
 
-impl Placeholders {
+impl Placeholders<'_> {
     fn fresh(&mut self, letter: char) -> String {
         let letter = letter.to_ascii_lowercase();
         loop {
             let n = self.counters.entry(letter).or_insert(0);
             *n += 1;
             let name = format!("<{letter}*{n}>");
-            if !self.used.contains(&name) {
-                self.used.insert(name.clone());
+            if !self.used.contains(name.as_str()) && !self.generated.contains(&name) {
                 self.generated.insert(name.clone());
                 return name;
             }
@@ -186,10 +187,18 @@ impl Placeholders {
     }
 
     fn letter_of_term(&self, term: &Term) -> char {
-        let c = match term {
-            Term::Var(v) if self.generated.contains(v) => None,
-            Term::Var(v) => v.chars().nth(1),
-            Term::Const(c) => letter_of_constant(c),
+        match term {
+            Term::Var(v) => self.letter_of_var(v),
+            Term::Const(c) => letter_of_constant(c)
+                .filter(char::is_ascii_alphabetic)
+                .unwrap_or('v'),
+        }
+    }
+
+    fn letter_of_var(&self, v: &str) -> char {
+        let c = match v {
+            v if self.generated.contains(v) => None,
+            v => v.chars().nth(1),
         };
         c.filter(char::is_ascii_alphabetic).unwrap_or('v')
     }
@@ -197,7 +206,7 @@ impl Placeholders {
     /// `first_letter_from_rhs_value`: as for tests; a function call gives `v`.
     fn letter_of_rhs(&self, t: &RhsTerm) -> char {
         match t {
-            RhsTerm::Var(v) => self.letter_of_term(&Term::Var(v.clone())),
+            RhsTerm::Var(v) => self.letter_of_var(v),
             RhsTerm::Const(c) => letter_of_constant(c)
                 .filter(char::is_ascii_alphabetic)
                 .unwrap_or('v'),
@@ -227,7 +236,9 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
     for a in &p.actions {
         compile_action(a, &mut ph, &mut actions, out, &p.name)?;
     }
-    let prod = Production {
+    // Kept for the rule's lifetime: no spare capacity (the reorderer sizes the conditions).
+    actions.shrink_to_fit();
+    let mut prod = Production {
         name: p.name.clone(),
         doc: p.doc.clone(),
         flags,
@@ -235,7 +246,6 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
         actions,
         span: p.span,
     };
-    let mut prod = prod;
     drop_unbound_relational(&mut prod.conditions, &FxHashSet::default(), &prod.name)?;
     check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
@@ -272,18 +282,18 @@ fn compile_flags(p: &ast::Production) -> Result<Flags, Diagnostic> {
     Ok(f)
 }
 
-fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
-    fn test(t: &ast::Test, used: &mut FxHashSet<String>) {
+fn collect_vars_ast<'a>(p: &'a ast::Production, used: &mut FxHashSet<&'a str>) {
+    fn test<'a>(t: &'a ast::Test, used: &mut FxHashSet<&'a str>) {
         match t {
             ast::Test::Equal(ast::Atom::Var(v), _)
             | ast::Test::Relational(_, ast::Atom::Var(v), _) => {
-                used.insert(v.clone());
+                used.insert(v);
             }
             ast::Test::Conjunction(ts, _) => ts.iter().for_each(|t| test(t, used)),
             _ => {}
         }
     }
-    fn avt(a: &ast::AttrValueTests, used: &mut FxHashSet<String>) {
+    fn avt<'a>(a: &'a ast::AttrValueTests, used: &mut FxHashSet<&'a str>) {
         a.path.iter().for_each(|t| test(t, used));
         for v in &a.values {
             match v {
@@ -292,7 +302,7 @@ fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
             }
         }
     }
-    fn cond(c: &ast::Condition, used: &mut FxHashSet<String>) {
+    fn cond<'a>(c: &'a ast::Condition, used: &mut FxHashSet<&'a str>) {
         match c {
             ast::Condition::Positive(c) | ast::Condition::Negative(c) => {
                 if let Some(t) = &c.id_test {
@@ -303,10 +313,10 @@ fn collect_vars_ast(p: &ast::Production, used: &mut FxHashSet<String>) {
             ast::Condition::Ncc(cs, _) => cs.iter().for_each(|c| cond(c, used)),
         }
     }
-    fn rhs(v: &ast::RhsValue, used: &mut FxHashSet<String>) {
+    fn rhs<'a>(v: &'a ast::RhsValue, used: &mut FxHashSet<&'a str>) {
         match v {
             ast::RhsValue::Var(name, _) => {
-                used.insert(name.clone());
+                used.insert(name);
             }
             ast::RhsValue::Call(f) => f.args.iter().for_each(|a| rhs(a, used)),
             ast::RhsValue::Const(..) => {}
@@ -394,26 +404,17 @@ pub fn term_text(t: &Term) -> String {
     }
 }
 
-/// The equality variable of a test, adding a placeholder when the test binds nothing.
-fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> (Test, Option<Term>) {
+/// A test with an equality test: a placeholder variable is added when it binds nothing.
+fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> Test {
     match t {
-        Test::Equal(term) => (Test::Equal(term.clone()), Some(term)),
+        Test::Equal(_) => t,
         Test::Conjunction(mut ts) => {
-            if let Some(Test::Equal(term)) = ts.last() {
-                let term = term.clone();
-                return (Test::Conjunction(ts), Some(term));
+            if !matches!(ts.last(), Some(Test::Equal(_))) {
+                ts.push(Test::Equal(Term::Var(ph.fresh(letter))));
             }
-            let v = Term::Var(ph.fresh(letter));
-            ts.push(Test::Equal(v.clone()));
-            (Test::Conjunction(ts), Some(v))
+            Test::Conjunction(ts)
         }
-        other => {
-            let v = Term::Var(ph.fresh(letter));
-            (
-                Test::Conjunction(vec![other, Test::Equal(v.clone())]),
-                Some(v),
-            )
-        }
+        other => Test::Conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter)))]),
     }
 }
 
@@ -482,7 +483,7 @@ fn compile_cond_for_one_id(
                 .at(t.span())
                 .with_label("identifiers are matched by variables, never by constants"));
             }
-            ensure_equality(test, ph, 's').0
+            ensure_equality(test, ph, 's')
         }
         // A condition with no id test gets a placeholder named after `s` (parse_cond).
         None => Test::Equal(Term::Var(ph.fresh('s'))),
@@ -530,7 +531,7 @@ fn compile_attr_value_tests(
     // An attribute test with no equality test gets a placeholder `<a*N>`
     // (parse_attr_value_tests); each path step then links through a placeholder named
     // after the step's attribute.
-    let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a').0;
+    let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a');
     for step in &avt.path[1..] {
         let v = Term::Var(ph.fresh(ph.letter_of(&attr)));
         local.push(Condition::Positive(Cond {
@@ -543,12 +544,24 @@ fn compile_attr_value_tests(
         }));
         cur_id = Test::Equal(v);
         goal = Head::None;
-        attr = ensure_equality(compile_test(step, out), ph, 'a').0;
+        attr = ensure_equality(compile_test(step, out), ph, 'a');
     }
     let letter = ph.letter_of(&attr);
+    let implicit;
+    let values: &[ast::ValueTest] = if avt.values.is_empty() {
+        implicit = [ast::ValueTest::Test {
+            test: ast::Test::Equal(ast::Atom::Var(ph.fresh(letter)), avt.span),
+            acceptable: false,
+        }];
+        &implicit
+    } else {
+        &avt.values
+    };
     // The whole attribute test goes on the first condition, its equality test on the
     // others (fill_in_attr_tests).
+    // (Not needed, so not copied, when there is one value.)
     let attr_eq = match &attr {
+        _ if values.len() == 1 => Test::Conjunction(Vec::new()),
         Test::Conjunction(ts) => ts
             .iter()
             .find(|t| matches!(t, Test::Equal(_)))
@@ -556,26 +569,21 @@ fn compile_attr_value_tests(
             .unwrap_or_else(|| attr.clone()),
         other => other.clone(),
     };
-    let values: Vec<ast::ValueTest> = if avt.values.is_empty() {
-        vec![ast::ValueTest::Test {
-            test: ast::Test::Equal(ast::Atom::Var(ph.fresh(letter)), avt.span),
-            acceptable: false,
-        }]
-    } else {
-        avt.values.clone()
-    };
+    let mut first_attr = Some(attr);
     for (k, v) in values.iter().enumerate() {
-        let attr = if k == 0 {
-            attr.clone()
+        let attr = first_attr.take().unwrap_or_else(|| attr_eq.clone());
+        // The last condition takes the id test itself.
+        let id = if k + 1 == values.len() {
+            std::mem::replace(&mut cur_id, Test::Conjunction(Vec::new()))
         } else {
-            attr_eq.clone()
+            cur_id.clone()
         };
         match v {
             ast::ValueTest::Test { test, acceptable } => {
                 // A value test that binds nothing gets a placeholder, as Soar prints it.
-                let (value, _) = ensure_equality(compile_test(test, out), ph, letter);
+                let value = ensure_equality(compile_test(test, out), ph, letter);
                 local.push(Condition::Positive(Cond {
-                    id: cur_id.clone(),
+                    id,
                     attr,
                     value,
                     acceptable: *acceptable,
@@ -588,7 +596,7 @@ fn compile_attr_value_tests(
             } => {
                 let pv = Term::Var(ph.fresh(letter));
                 local.push(Condition::Positive(Cond {
-                    id: cur_id.clone(),
+                    id,
                     attr,
                     value: Test::Equal(pv.clone()),
                     acceptable: *acceptable,
@@ -613,7 +621,7 @@ fn compile_attr_value_tests(
         // `-^a v1 v2` negates each value; `-^a.b v` negates the chain as a whole.
         if n == 1
             && local.iter().all(|c| matches!(c, Condition::Positive(_)))
-            && !has_structured(&values)
+            && !has_structured(values)
         {
             for c in local {
                 dest.extend(negate(vec![c]));
@@ -670,10 +678,11 @@ fn compile_action(
                     matches!(&attr, RhsTerm::Const(Constant::Str(s)) if s == "operator");
                 for vm in &am.values {
                     let value = rhs_term(&vm.value, out, rule)?;
-                    let prefs: Vec<&Pref> = if vm.prefs.is_empty() {
-                        vec![&Pref::Acceptable]
+                    const ACCEPTABLE: &[Pref] = &[Pref::Acceptable];
+                    let prefs: &[Pref] = if vm.prefs.is_empty() {
+                        ACCEPTABLE
                     } else {
-                        vm.prefs.iter().collect()
+                        &vm.prefs
                     };
                     // Non-operator attributes keep only `-` (one reject per `-`), else one
                     // acceptable; other unary preferences warn each time (spec §1e; the
@@ -756,7 +765,7 @@ fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<Rh
     Ok(match v {
         ast::RhsValue::Var(name, _) => RhsTerm::Var(name.clone()),
         ast::RhsValue::Const(c, _) => RhsTerm::Const(c.clone()),
-        ast::RhsValue::Call(f) => RhsTerm::Call(compile_call(f, false, out, rule)?),
+        ast::RhsValue::Call(f) => RhsTerm::Call(Box::new(compile_call(f, false, out, rule)?)),
     })
 }
 
@@ -909,6 +918,9 @@ fn root_variables<'a>(
             );
         }
     }
+    if !conds.iter().any(|c| matches!(c, Condition::Ncc(_))) {
+        return roots;
+    }
     let mut bound = outside.clone();
     for c in &positives {
         for t in [&c.id, &c.attr, &c.value] {
@@ -934,6 +946,23 @@ fn drop_unbound_relational(
     outside: &FxHashSet<String>,
     name: &str,
 ) -> Result<(), Diagnostic> {
+    // Most lists have no relational test on a variable: nothing to check, no set to build.
+    let relational = |t: &Test| match t {
+        Test::Relational(_, Term::Var(_)) => true,
+        Test::Conjunction(ts) => ts
+            .iter()
+            .any(|m| matches!(m, Test::Relational(_, Term::Var(_)))),
+        _ => false,
+    };
+    let anything = conds.iter().any(|c| match c {
+        Condition::Positive(c) | Condition::Negative(c) => {
+            relational(&c.id) || relational(&c.attr) || relational(&c.value)
+        }
+        Condition::Ncc(_) => true,
+    });
+    if !anything {
+        return Ok(());
+    }
     let mut bound = outside.clone();
     for c in conds.iter() {
         if let Condition::Positive(c) = c {
@@ -982,12 +1011,16 @@ fn drop_unbound_relational(
 
 /// Variables bound by an equality test in a positive, non-negated condition.
 pub fn bound_variables(p: &Production) -> FxHashSet<String> {
+    bound_names(p).into_iter().map(str::to_string).collect()
+}
+
+fn bound_names(p: &Production) -> FxHashSet<&str> {
     let mut bound = FxHashSet::default();
     for c in &p.conditions {
         if let Condition::Positive(c) = c {
             for t in [&c.id, &c.attr, &c.value] {
                 if let Some(v) = equality_var(t) {
-                    bound.insert(v.to_string());
+                    bound.insert(v);
                 }
             }
         }
@@ -995,9 +1028,9 @@ pub fn bound_variables(p: &Production) -> FxHashSet<String> {
     bound
 }
 
-fn term_vars(t: &RhsTerm, in_call: bool, acc: &mut Vec<(String, bool)>) {
+fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) {
     match t {
-        RhsTerm::Var(v) => acc.push((v.clone(), in_call)),
+        RhsTerm::Var(v) => acc.push((v, in_call)),
         RhsTerm::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, acc)),
         RhsTerm::Const(_) => {}
     }
@@ -1006,14 +1039,14 @@ fn term_vars(t: &RhsTerm, in_call: bool, acc: &mut Vec<(String, bool)>) {
 /// Spec §1g: RHS action ids and function arguments must be bound on the LHS or be new
 /// identifiers made by this rule (an unbound variable in value position).
 fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
-    let bound = bound_variables(p);
-    let mut new_ids: FxHashSet<String> = FxHashSet::default();
+    let bound = bound_names(p);
+    let mut new_ids: FxHashSet<&str> = FxHashSet::default();
     for a in &p.actions {
         if let Action::Make(m) = a {
             for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
                 if let RhsTerm::Var(v) = t {
-                    if !bound.contains(v) {
-                        new_ids.insert(v.clone());
+                    if !bound.contains(v.as_str()) {
+                        new_ids.insert(v);
                     }
                 }
             }
@@ -1022,22 +1055,27 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
     let ok = |v: &str| bound.contains(v) || new_ids.contains(v);
     let mut bad: Vec<(String, Span)> = Vec::new();
     let mut seen: FxHashSet<String> = FxHashSet::default();
+    let mut vars = Vec::new();
     for a in &p.actions {
-        let mut vars = Vec::new();
-        let (text, span) = match a {
+        vars.clear();
+        match a {
             Action::Make(m) => {
                 term_vars(&m.id, true, &mut vars);
                 for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
                     term_vars(t, false, &mut vars);
                 }
-                (crate::printer::make_text(m), m.span)
             }
-            Action::Call(f) => {
-                term_vars(&RhsTerm::Call(f.clone()), false, &mut vars);
-                (crate::printer::call_text(f), f.span)
-            }
+            Action::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, &mut vars)),
+        }
+        if !vars.iter().any(|(v, must)| *must && !ok(v)) {
+            continue;
+        }
+        // The text only for the message: printing every action of every rule costs.
+        let (text, span) = match a {
+            Action::Make(m) => (crate::printer::make_text(m), m.span),
+            Action::Call(f) => (crate::printer::call_text(f), f.span),
         };
-        if vars.iter().any(|(v, must)| *must && !ok(v)) && seen.insert(text.clone()) {
+        if seen.insert(text.clone()) {
             bad.push((text, span));
         }
     }

@@ -30,10 +30,20 @@ impl Span {
     }
 }
 
+/// A registered text, shared (running a file's commands needs it while the map grows).
+#[derive(Clone, Default)]
+struct Text(std::sync::Arc<String>);
+
+impl AsRef<str> for Text {
+    fn as_ref(&self) -> &str {
+        &self.0
+    }
+}
+
 /// All text the kernel has read: sourced files, `-c` commands, REPL lines.
 #[derive(Default)]
 pub struct SourceMap {
-    files: SimpleFiles<String, String>,
+    files: SimpleFiles<String, Text>,
 }
 
 impl SourceMap {
@@ -42,13 +52,21 @@ impl SourceMap {
     }
     /// Registers a text under a display name and returns its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
-        self.files.add(name.into(), text.into())
+        self.files
+            .add(name.into(), Text(std::sync::Arc::new(text.into())))
     }
     pub fn text(&self, file: FileId) -> &str {
         self.files
             .get(file)
-            .map(|f| f.source().as_str())
+            .map(|f| f.source().as_ref())
             .unwrap_or("")
+    }
+    /// The text itself, shared, not copied.
+    pub fn shared_text(&self, file: FileId) -> std::sync::Arc<String> {
+        self.files
+            .get(file)
+            .map(|f| f.source().0.clone())
+            .unwrap_or_default()
     }
     pub fn name(&self, file: FileId) -> &str {
         self.files

@@ -34,7 +34,10 @@ pub struct IdData {
 #[derive(Debug, Default)]
 pub struct Symbols {
     table: Vec<SymData>,
-    strs: FxHashMap<Box<str>, Sym>,
+    /// String symbols by a hash of their text, so the text is stored once (in `table`).
+    strs: FxHashMap<u64, Sym>,
+    /// The rare strings whose hash an earlier string already has, by their text.
+    str_clashes: FxHashMap<Box<str>, Sym>,
     ints: FxHashMap<i64, Sym>,
     floats: FxHashMap<u64, Sym>,
     ids: FxHashMap<(u8, u64), Sym>,
@@ -68,12 +71,27 @@ impl Symbols {
     }
 
     pub fn str(&mut self, s: &str) -> Sym {
-        if let Some(&x) = self.strs.get(s) {
-            return x;
+        let h = str_hash(s);
+        match self.strs.get(&h) {
+            None => {
+                let x = self.push(SymData::Str(s.into()));
+                self.strs.insert(h, x);
+                x
+            }
+            Some(&x) if self.is_str(x, s) => x,
+            Some(_) => {
+                if let Some(&x) = self.str_clashes.get(s) {
+                    return x;
+                }
+                let x = self.push(SymData::Str(s.into()));
+                self.str_clashes.insert(s.into(), x);
+                x
+            }
         }
-        let x = self.push(SymData::Str(s.into()));
-        self.strs.insert(s.into(), x);
-        x
+    }
+
+    fn is_str(&self, x: Sym, s: &str) -> bool {
+        matches!(&self.table[x.0 as usize], SymData::Str(t) if **t == *s)
     }
 
     pub fn int(&mut self, i: i64) -> Sym {
@@ -107,7 +125,7 @@ impl Symbols {
     /// Looks a parsed constant up without creating it.
     pub fn find_constant(&self, c: &crate::ast::Constant) -> Option<Sym> {
         match c {
-            crate::ast::Constant::Str(s) => self.strs.get(s.as_str()).copied(),
+            crate::ast::Constant::Str(s) => self.find_str(s),
             crate::ast::Constant::Int(i) => self.ints.get(i).copied(),
             crate::ast::Constant::Float(f) => self.floats.get(&f.to_bits()).copied(),
         }
@@ -115,7 +133,11 @@ impl Symbols {
 
     /// Looks a string constant up without creating it.
     pub fn find_str(&self, s: &str) -> Option<Sym> {
-        self.strs.get(s).copied()
+        match self.strs.get(&str_hash(s)) {
+            None => None,
+            Some(&x) if self.is_str(x, s) => Some(x),
+            Some(_) => self.str_clashes.get(s).copied(),
+        }
     }
 
     /// A new identifier with the next number for `letter` (upper-cased; non-letters use `I`).
@@ -233,6 +255,13 @@ impl Symbols {
     }
 }
 
+fn str_hash(s: &str) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    s.hash(&mut h);
+    h.finish()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,6 +274,20 @@ mod tests {
         let (one, two, two_f) = (s.int(1), s.int(2), s.float(2.0));
         assert!(s.same_type(one, two));
         assert!(!s.same_type(one, two_f));
+    }
+
+    #[test]
+    fn strings_with_the_same_hash_stay_apart() {
+        let mut s = Symbols::new();
+        let a = s.str("clash-a");
+        // Force a clash: "clash-b" finds the slot of its hash taken by "clash-a".
+        s.strs.insert(str_hash("clash-b"), a);
+        let b = s.str("clash-b");
+        assert_ne!(a, b);
+        assert_eq!(s.str("clash-b"), b);
+        assert_eq!(s.find_str("clash-b"), Some(b));
+        assert_eq!(s.find_str("clash-a"), Some(a));
+        assert_eq!(s.plain(b), "clash-b");
     }
 
     #[test]

@@ -100,7 +100,8 @@ impl Interpreter {
                 .with_label(format!("{e}"))
                 .with_note(format!("looked for {}", path.display()))
         })?;
-        let text = String::from_utf8_lossy(&bytes).into_owned();
+        let text = String::from_utf8(bytes)
+            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
         let shown = path.display().to_string();
         let file = self.sources.add(shown, text);
         // `source dir/f` runs in `dir` (spec §6a): push it now, pop it afterwards, even on error.

@@ -288,7 +288,7 @@ impl Interpreter {
     /// Runs a registered text; a failure also gives the span of the command that failed in
     /// this text (for `source`'s "while sourcing FILE:LINE" trail).
     fn run_file_id_at(&mut self, file: usize) -> Result<(), (Diagnostic, Span)> {
-        let text = self.sources.text(file).to_string();
+        let text = self.sources.shared_text(file);
         for cmd in Tokenizer::new(&text, file) {
             let cmd = match cmd {
                 Ok(c) => c,
@@ -346,6 +346,12 @@ impl Interpreter {
 
     /// Executes one tokenized command.
     pub fn execute(&mut self, cmd: &Command) -> CmdResult {
+        // `sp` reads its body from the command itself, so a rule file's commands are not
+        // copied word by word (unless `sp` is an alias).
+        let w0 = &cmd.words[0];
+        if w0.text == "sp" && (w0.kind != WordKind::Bare || self.aliases.get("sp").is_none()) {
+            return self.cmd_sp(&Ctx { cmd, alias: None });
+        }
         let mut words: Vec<String> = cmd.words.iter().map(|w| w.text.clone()).collect();
         let first = cmd.words.first().map(|w| w.span).unwrap_or(cmd.span);
         // Alias expansion: only the first word, by exact match (spec §1a).

@@ -54,15 +54,14 @@ impl Interpreter {
         if p.flags.explain {
             self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
         }
-        let file_path = self.source_stack.last().cloned();
         match self.agent.add_production(p) {
             Added::New => {
-                self.count_loaded(file_path);
+                self.count_loaded();
                 Ok("*".into())
             }
             Added::Replaced => {
                 self.report.excised += 1;
-                self.count_loaded(file_path);
+                self.count_loaded();
                 Ok("#*".into())
             }
             Added::Duplicate { of } => {
@@ -93,10 +92,16 @@ impl Interpreter {
             .with_note("Production addition failed.")
     }
 
-    fn count_loaded(&mut self, file: Option<std::path::PathBuf>) {
+    /// Counts a rule for the file being sourced.
+    fn count_loaded(&mut self) {
         self.report.added += 1;
-        if let Some(f) = file {
-            *self.report.per_file.entry(f).or_insert(0) += 1;
+        if let Some(f) = self.source_stack.last() {
+            match self.report.per_file.get_mut(f) {
+                Some(n) => *n += 1,
+                None => {
+                    self.report.per_file.insert(f.clone(), 1);
+                }
+            }
         }
     }
 

@@ -254,7 +254,7 @@ impl Builder<'_> {
     ) -> RhsTerm {
         if let (Some(trace), Some(RhsTerm::Call(f)), true) = (trace, orig, self.namer.variablize) {
             if let Some(call) = self.call(trace, f) {
-                return RhsTerm::Call(call);
+                return RhsTerm::Call(Box::new(call));
             }
         }
         match self.term(sym, ident, under) {
@@ -272,7 +272,7 @@ impl Builder<'_> {
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 RhsTerm::Const(c) => RhsTerm::Const(c.clone()),
-                RhsTerm::Call(g) => RhsTerm::Call(self.call(trace, g)?),
+                RhsTerm::Call(g) => RhsTerm::Call(Box::new(self.call(trace, g)?)),
             });
         }
         Some(FuncCall {

@@ -4,7 +4,9 @@
 //! fires at once where it should).
 
 use super::tests::{Field, JoinTest, Op, Operand};
-use super::{AlphaKey, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, NIL, NIL_WME};
+use super::{
+    AlphaKey, AmemId, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, Shared, NIL, NIL_WME,
+};
 use crate::ast::Head;
 use crate::production::{Cond, Condition, Production, Term, Test};
 use crate::symbols::{Sym, Symbols};
@@ -22,33 +24,34 @@ pub enum BuildError {
 /// The actions and flags of a rule with each variable replaced by where the conditions bind
 /// it (or by its order of appearance, for variables the actions create).
 fn action_key(p: &Production, bindings: &Bindings) -> String {
-    use crate::production::{Action, RhsTerm};
+    use crate::production::{Action, FuncCall, RhsTerm};
     use std::fmt::Write;
-    fn term(t: &RhsTerm, b: &Bindings, fresh: &mut Vec<String>, out: &mut String) {
+    fn term<'a>(t: &'a RhsTerm, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
         match t {
-            RhsTerm::Var(v) => match b.get(v) {
+            RhsTerm::Var(v) => match b.get(v.as_str()) {
                 Some((d, f)) => {
                     let _ = write!(out, "@{d}.{f:?}");
                 }
                 None => {
                     let k = fresh.iter().position(|x| x == v).unwrap_or_else(|| {
-                        fresh.push(v.clone());
+                        fresh.push(v);
                         fresh.len() - 1
                     });
                     let _ = write!(out, "#{k}");
                 }
             },
             RhsTerm::Const(c) => out.push_str(&crate::printer::constant_text(c)),
-            RhsTerm::Call(f) => {
-                out.push('(');
-                out.push_str(&f.name);
-                for a in &f.args {
-                    out.push(' ');
-                    term(a, b, fresh, out);
-                }
-                out.push(')');
-            }
+            RhsTerm::Call(f) => call(f, b, fresh, out),
         }
+    }
+    fn call<'a>(f: &'a FuncCall, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
+        out.push('(');
+        out.push_str(&f.name);
+        for a in &f.args {
+            out.push(' ');
+            term(a, b, fresh, out);
+        }
+        out.push(')');
     }
     // The flags as one digit each (a rule's support and kind are part of what it does).
     let f = &p.flags;
@@ -79,7 +82,7 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
                     term(r, bindings, &mut fresh, &mut out);
                 }
             }
-            Action::Call(f) => term(&RhsTerm::Call(f.clone()), bindings, &mut fresh, &mut out),
+            Action::Call(f) => call(f, bindings, &mut fresh, &mut out),
         }
     }
     out
@@ -93,7 +96,8 @@ enum Cur {
     Join(NodeId),
 }
 
-type Bindings = FxHashMap<String, (u32, Field)>;
+/// Where each variable is first bound, by name borrowed from the rule being built.
+type Bindings<'a> = FxHashMap<&'a str, (u32, Field)>;
 
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
@@ -109,8 +113,8 @@ impl Rete {
         let pid = ProdId(self.prods.len() as u32);
         let mut bindings = Bindings::default();
         let mut cond_nodes = vec![NIL; p.conditions.len()];
-        let mut positive_order = Vec::new();
-        let mut build_order = Vec::new();
+        let mut positive_order = Vec::with_capacity(p.conditions.len());
+        let mut build_order = Vec::with_capacity(p.conditions.len());
         let cur = self.build_conditions(
             &p.conditions,
             Cur::Holder(self.root),
@@ -122,10 +126,9 @@ impl Rete {
         // A rule whose conditions share every node with another rule, and whose actions are
         // the same up to variable names, is a duplicate (spec §1c).
         let action_key = action_key(p, &bindings);
-        let twin = self.nodes[parent as usize]
-            .all_children
-            .iter()
-            .find_map(|&c| match self.nodes[c as usize].kind {
+        let twin = self
+            .all_children(parent)
+            .find_map(|c| match self.nodes[c as usize].kind {
                 Kind::Production { prod } => self
                     .production(prod)
                     .filter(|i| i.action_key == action_key)
@@ -143,7 +146,7 @@ impl Rete {
             name: p.name.clone(),
             pnode,
             positive_order,
-            bindings,
+            bindings: bindings.into(),
             cond_nodes,
             build_order,
             action_key,
@@ -166,14 +169,10 @@ impl Rete {
         match cur {
             Cur::Holder(h) => h,
             Cur::Join(j) => {
-                let existing = self.nodes[j as usize]
-                    .all_children
-                    .iter()
-                    .copied()
-                    .find(|&c| {
-                        self.nodes[c as usize].kind == Kind::Memory
-                            && self.nodes[c as usize].hash == key
-                    });
+                let existing = self.all_children(j).find(|&c| {
+                    self.nodes[c as usize].kind == Kind::Memory
+                        && self.nodes[c as usize].hash == key
+                });
                 if let Some(m) = existing {
                     return m;
                 }
@@ -206,20 +205,50 @@ impl Rete {
     /// Whether `m` has exactly one join child (counting stops at two: a memory shared by
     /// thousands of rules is not walked for each new one).
     fn has_one_join_child(&self, m: NodeId) -> bool {
-        self.nodes[m as usize]
-            .all_children
-            .iter()
-            .filter(|&&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
+        self.all_children(m)
+            .filter(|&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
             .take(2)
             .count()
             == 1
     }
 
+    /// Every child of `n`, linked or not.
+    fn all_children(&self, n: NodeId) -> impl Iterator<Item = NodeId> + '_ {
+        let mut c = self.nodes[n as usize].first_child;
+        std::iter::from_fn(move || {
+            let this = c;
+            (this != NIL).then(|| {
+                c = self.nodes[this as usize].next_sibling;
+                this
+            })
+        })
+    }
+
+    /// Takes `child` out of its parent's list of all children.
+    fn remove_from_all_children(&mut self, parent: NodeId, child: NodeId) {
+        let next = self.nodes[child as usize].next_sibling;
+        if self.nodes[parent as usize].first_child == child {
+            self.nodes[parent as usize].first_child = next;
+            return;
+        }
+        let mut c = self.nodes[parent as usize].first_child;
+        while c != NIL {
+            let after = self.nodes[c as usize].next_sibling;
+            if after == child {
+                self.nodes[c as usize].next_sibling = next;
+                return;
+            }
+            c = after;
+        }
+    }
+
     /// Links `child` under `parent`: at the head of the children (activated first), or at
     /// the tail when `head` is false.
     fn attach(&mut self, parent: NodeId, child: NodeId, head: bool) {
+        let first = self.nodes[parent as usize].first_child;
+        self.nodes[child as usize].next_sibling = first;
         let p = &mut self.nodes[parent as usize];
-        p.all_children.push(child);
+        p.first_child = child;
         if head {
             p.children.push(child);
         } else {
@@ -227,11 +256,11 @@ impl Rete {
         }
     }
 
-    fn build_conditions(
+    fn build_conditions<'a>(
         &mut self,
-        conds: &[Condition],
+        conds: &'a [Condition],
         mut cur: Cur,
-        bindings: &mut Bindings,
+        bindings: &mut Bindings<'a>,
         syms: &mut Symbols,
         mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>, &mut Vec<usize>)>,
     ) -> Cur {
@@ -305,14 +334,61 @@ impl Rete {
         cur
     }
 
+    /// The join or negative node under `parent` on `amem` with these tests, if built.
+    fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
+        let nodes = self.share.get(&(parent, kind, amem))?;
+        nodes
+            .as_slice()
+            .iter()
+            .copied()
+            .find(|&n| match &self.nodes[n as usize].kind {
+                Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => **t == *tests,
+                _ => false,
+            })
+    }
+
+    fn add_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        use std::collections::hash_map::Entry;
+        match self.share.entry((parent, kind, amem)) {
+            Entry::Vacant(e) => {
+                e.insert(Shared::One(n));
+            }
+            Entry::Occupied(mut e) => {
+                let s = e.get_mut();
+                match s {
+                    Shared::One(m) => *s = Shared::Many(vec![*m, n]),
+                    Shared::Many(v) => v.push(n),
+                }
+            }
+        }
+    }
+
+    fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        let key = (parent, kind, amem);
+        let Some(s) = self.share.get_mut(&key) else {
+            return;
+        };
+        match s {
+            Shared::One(m) if *m == n => {
+                self.share.remove(&key);
+            }
+            Shared::One(_) => {}
+            Shared::Many(v) => {
+                v.retain(|&m| m != n);
+                if let [one] = v.as_slice() {
+                    *s = Shared::One(*one);
+                }
+            }
+        }
+    }
+
     fn share_or_build_join(&mut self, h: NodeId, key: AlphaKey, tests: Vec<JoinTest>) -> NodeId {
         let amem = self.amem_for(key);
-        let skey = (h, 0u8, amem, tests);
-        if let Some(&c) = self.share.get(&skey) {
+        if let Some(c) = self.shared(h, 0, amem, &tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
+        let tests: std::sync::Arc<[JoinTest]> = tests.into();
         let depth = self.nodes[h as usize].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
@@ -328,20 +404,25 @@ impl Rete {
             depth,
         );
         self.attach(h, j, true);
-        self.share.insert(skey, j);
+        self.add_shared(h, 0, amem, j);
         if let Some((d, f)) = hash_key(&self.nodes[j as usize].kind, depth + 1) {
             self.nodes[j as usize].hash = Some((d, f));
             self.add_left_key(h, d, f);
         }
         self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
-        self.link_to_amem(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
-        // successors (the first WME there would unlink each of them in turn).
+        // successors (the first WME there would unlink each of them in turn). Unlinked on
+        // the right, it is not linked first: relinking finds its place afresh.
         if self.nodes[h as usize].token_count == 0 {
-            self.unlink_right(j);
-        } else if self.amems[amem as usize].count == 0 {
-            self.unlink_left_pub(j);
+            if let Kind::Join { right_unlinked, .. } = &mut self.nodes[j as usize].kind {
+                *right_unlinked = true;
+            }
+        } else {
+            self.link_to_amem(j, amem);
+            if self.amems[amem as usize].count == 0 {
+                self.unlink_left_pub(j);
+            }
         }
         j
     }
@@ -355,12 +436,11 @@ impl Rete {
         syms: &Symbols,
     ) -> NodeId {
         let amem = self.amem_for(key);
-        let skey = (parent, 1u8, amem, tests);
-        if let Some(&c) = self.share.get(&skey) {
+        if let Some(c) = self.shared(parent, 1, amem, &tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = skey.3.clone().into();
+        let tests: std::sync::Arc<[JoinTest]> = tests.into();
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -371,7 +451,7 @@ impl Rete {
             depth,
         );
         self.attach(parent, n, true);
-        self.share.insert(skey, n);
+        self.add_shared(parent, 1, amem, n);
         if let Some((d, f)) = hash_key(&self.nodes[n as usize].kind, depth + 1) {
             self.nodes[n as usize].hash = Some((d, f));
             self.add_left_key(n, d, f);
@@ -448,7 +528,7 @@ impl Rete {
         loop {
             if n == self.root
                 || !self.nodes[n as usize].alive
-                || !self.nodes[n as usize].all_children.is_empty()
+                || self.nodes[n as usize].first_child != NIL
             {
                 return;
             }
@@ -466,12 +546,8 @@ impl Rete {
                 self.release_left_key(parent_of, d, f);
             }
             match &kind {
-                Kind::Join { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 0u8, *amem, tests.to_vec()));
-                }
-                Kind::Negative { amem, tests, .. } => {
-                    self.share.remove(&(parent_of, 1u8, *amem, tests.to_vec()));
-                }
+                Kind::Join { amem, .. } => self.remove_shared(parent_of, 0, *amem, n),
+                Kind::Negative { amem, .. } => self.remove_shared(parent_of, 1, *amem, n),
                 _ => {}
             }
             match kind {
@@ -485,9 +561,8 @@ impl Rete {
                 _ => {}
             }
             let parent = self.nodes[n as usize].parent;
-            let p = &mut self.nodes[parent as usize];
-            p.children.retain(|c| *c != n);
-            p.all_children.retain(|c| *c != n);
+            self.nodes[parent as usize].children.retain(|c| *c != n);
+            self.remove_from_all_children(parent, n);
             self.free_node(n);
             if matches!(kind, Kind::Join { .. }) && self.has_one_join_child(parent) {
                 self.move_memory_to_head(parent);
@@ -537,10 +612,10 @@ fn cur_node(cur: Cur) -> NodeId {
 
 /// The alpha-memory key and join tests of one condition whose WME will sit at `depth`.
 /// Variables first met here are bound at (`depth`, field).
-fn cond_tests(
-    c: &Cond,
+fn cond_tests<'a>(
+    c: &'a Cond,
     depth: u32,
-    bindings: &mut Bindings,
+    bindings: &mut Bindings<'a>,
     syms: &mut Symbols,
 ) -> (AlphaKey, Vec<JoinTest>) {
     let mut key = AlphaKey {
@@ -559,66 +634,82 @@ fn cond_tests(
         (Field::Attr, &c.attr),
         (Field::Value, &c.value),
     ] {
-        let mut simple: Vec<&Test> = Vec::new();
-        flatten(test, &mut simple);
-        // Equality tests first, so that a variable bound here is usable by the others.
-        simple.sort_by_key(|t| !matches!(t, Test::Equal(_)));
-        for t in simple {
-            match t {
-                Test::Equal(Term::Const(k)) => {
-                    let s = syms.constant(k);
-                    match field {
-                        Field::Attr if key.attr.is_none() => key.attr = Some(s),
-                        Field::Value if key.value.is_none() => key.value = Some(s),
-                        _ => tests.push(JoinTest::Compare {
-                            field,
-                            op: Op::Eq,
-                            operand: Operand::Const(s),
-                        }),
-                    }
+        // Equality tests first, so that a variable bound here is usable by the others (two
+        // passes over the field keep each kind in its written order).
+        for equality in [true, false] {
+            for_each_simple(test, &mut |t| {
+                if matches!(t, Test::Equal(_)) == equality {
+                    add_test(t, field, depth, &mut key, &mut tests, bindings, syms);
                 }
-                Test::Equal(Term::Var(v)) => match bindings.get(v) {
-                    Some(&(d, f)) => tests.push(JoinTest::Compare {
-                        field,
-                        op: Op::Eq,
-                        operand: Operand::Bound { depth: d, field: f },
-                    }),
-                    None => {
-                        bindings.insert(v.clone(), (depth, field));
-                    }
-                },
-                Test::Relational(r, Term::Var(v)) => {
-                    // A relational test on a variable bound nowhere is dropped (spec §1g).
-                    if let Some(&(d, f)) = bindings.get(v) {
-                        tests.push(JoinTest::Compare {
-                            field,
-                            op: Op::Rel(*r),
-                            operand: Operand::Bound { depth: d, field: f },
-                        });
-                    }
-                }
-                Test::Relational(r, Term::Const(k)) => {
-                    let s = syms.constant(k);
-                    tests.push(JoinTest::Compare {
-                        field,
-                        op: Op::Rel(*r),
-                        operand: Operand::Const(s),
-                    });
-                }
-                Test::Disjunction(items) => {
-                    let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
-                    tests.push(JoinTest::Disjunction { field, items });
-                }
-                Test::Conjunction(_) => {}
-            }
+            });
         }
     }
     (key, tests)
 }
 
-fn flatten<'a>(t: &'a Test, out: &mut Vec<&'a Test>) {
+/// One simple test of a condition's field, as an alpha-memory constant or a join test.
+fn add_test<'a>(
+    t: &'a Test,
+    field: Field,
+    depth: u32,
+    key: &mut AlphaKey,
+    tests: &mut Vec<JoinTest>,
+    bindings: &mut Bindings<'a>,
+    syms: &mut Symbols,
+) {
     match t {
-        Test::Conjunction(ts) => ts.iter().for_each(|t| flatten(t, out)),
-        other => out.push(other),
+        Test::Equal(Term::Const(k)) => {
+            let s = syms.constant(k);
+            match field {
+                Field::Attr if key.attr.is_none() => key.attr = Some(s),
+                Field::Value if key.value.is_none() => key.value = Some(s),
+                _ => tests.push(JoinTest::Compare {
+                    field,
+                    op: Op::Eq,
+                    operand: Operand::Const(s),
+                }),
+            }
+        }
+        Test::Equal(Term::Var(v)) => match bindings.get(v.as_str()) {
+            Some(&(d, f)) => tests.push(JoinTest::Compare {
+                field,
+                op: Op::Eq,
+                operand: Operand::Bound { depth: d, field: f },
+            }),
+            None => {
+                bindings.insert(v, (depth, field));
+            }
+        },
+        Test::Relational(r, Term::Var(v)) => {
+            // A relational test on a variable bound nowhere is dropped (spec §1g).
+            if let Some(&(d, f)) = bindings.get(v.as_str()) {
+                tests.push(JoinTest::Compare {
+                    field,
+                    op: Op::Rel(*r),
+                    operand: Operand::Bound { depth: d, field: f },
+                });
+            }
+        }
+        Test::Relational(r, Term::Const(k)) => {
+            let s = syms.constant(k);
+            tests.push(JoinTest::Compare {
+                field,
+                op: Op::Rel(*r),
+                operand: Operand::Const(s),
+            });
+        }
+        Test::Disjunction(items) => {
+            let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
+            tests.push(JoinTest::Disjunction { field, items });
+        }
+        Test::Conjunction(_) => {}
+    }
+}
+
+/// The simple (non-conjunctive) tests of a field, in order.
+fn for_each_simple<'a>(t: &'a Test, f: &mut dyn FnMut(&'a Test)) {
+    match t {
+        Test::Conjunction(ts) => ts.iter().for_each(|t| for_each_simple(t, f)),
+        other => f(other),
     }
 }

@@ -143,8 +143,10 @@ pub(crate) struct Node {
     pub parent: NodeId,
     /// Linked children; the last element is the head.
     pub children: Vec<NodeId>,
-    /// Every child, linked or unlinked (for sharing and excising).
-    pub all_children: Vec<NodeId>,
+    /// Every child, linked or unlinked (for sharing and excising), as a list through
+    /// `next_sibling` (newest first; its order means nothing): no heap list per node.
+    pub first_child: NodeId,
+    pub next_sibling: NodeId,
     /// Token holders: head of the intrusive list of tokens in this node.
     pub first_token: u32,
     pub token_count: u32,
@@ -212,6 +214,57 @@ pub(crate) struct NegResult {
     pub prev_wme: u32,
 }
 
+/// The nodes under one share key: nearly always one, so that one needs no list.
+#[derive(Debug, Clone)]
+pub(crate) enum Shared {
+    One(NodeId),
+    Many(Vec<NodeId>),
+}
+
+impl Shared {
+    fn as_slice(&self) -> &[NodeId] {
+        match self {
+            Shared::One(n) => std::slice::from_ref(n),
+            Shared::Many(v) => v,
+        }
+    }
+}
+
+/// Variables and where they are bound, sorted by name: kept for every rule, where a hash
+/// map would cost several times the memory.
+#[derive(Debug, Clone, Default)]
+pub struct VarBindings(Vec<(String, (u32, Field))>);
+
+impl VarBindings {
+    pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
+        self.0
+            .binary_search_by(|(k, _)| k.as_str().cmp(var))
+            .ok()
+            .map(|i| &self.0[i].1)
+    }
+
+    /// The variable names, in sorted order.
+    pub fn keys(&self) -> impl Iterator<Item = &String> {
+        self.0.iter().map(|(k, _)| k)
+    }
+
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+}
+
+impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
+    fn from(map: FxHashMap<&str, (u32, Field)>) -> Self {
+        let mut v: Vec<_> = map.into_iter().collect();
+        v.sort_unstable_by(|a, b| a.0.cmp(b.0));
+        VarBindings(v.into_iter().map(|(k, b)| (k.to_string(), b)).collect())
+    }
+}
+
 /// What the network knows of a production.
 #[derive(Debug, Clone, Default)]
 pub struct ProdInfo {
@@ -221,7 +274,7 @@ pub struct ProdInfo {
     /// production's top-level condition list.
     pub positive_order: Vec<usize>,
     /// Where each variable of the positive conditions is first bound: token depth and field.
-    pub bindings: FxHashMap<String, (u32, Field)>,
+    pub bindings: VarBindings,
     /// The beta node of each top-level condition (for `matches <rule>` counts).
     pub(crate) cond_nodes: Vec<NodeId>,
     /// Top-level conditions in the order the network joins them.
@@ -245,8 +298,9 @@ pub struct Rete {
     pub(crate) neg: Vec<NegResult>,
     free_neg: Vec<u32>,
     pub(crate) prods: Vec<Option<ProdInfo>>,
-    /// Join and negative nodes by (parent, kind, alpha memory, tests), for sharing.
-    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, Vec<JoinTest>), NodeId>,
+    /// Join and negative nodes by (parent, kind, alpha memory), for sharing; their tests,
+    /// kept only in the nodes, tell the candidates apart.
+    pub(crate) share: FxHashMap<(NodeId, u8, AmemId), Shared>,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -312,7 +366,8 @@ impl Rete {
             kind,
             parent,
             children: Vec::new(),
-            all_children: Vec::new(),
+            first_child: NIL,
+            next_sibling: NIL,
             first_token: NIL,
             token_count: 0,
             depth,
@@ -329,7 +384,8 @@ impl Rete {
         let node = &mut self.nodes[n as usize];
         node.alive = false;
         node.children = Vec::new();
-        node.all_children = Vec::new();
+        node.first_child = NIL;
+        node.next_sibling = NIL;
         node.kind = Kind::Memory;
         node.hash = None;
         node.left_keys = Vec::new();

@@ -2,10 +2,14 @@
 //! 9.6's tie rules. Costs are kept per condition and recomputed only for the conditions
 //! that test a variable the last choice bound, so a rule of thousands of conditions orders
 //! in about quadratic time, as in 9.6, not worse.
+//!
+//! The chooser borrows the conditions and numbers their variables once, so that choosing
+//! works on flags and indexes rather than on sets of names (every rule is ordered when it
+//! is loaded).
 
-use super::{bound_by, equality_term, Bound};
+use super::{equality_term, Bound};
 use crate::ast::Constant;
-use crate::production::{Cond, Condition, Term, Test};
+use crate::production::{Condition, Term, Test};
 use rustc_hash::FxHashMap;
 use std::cmp::Reverse;
 use std::collections::BTreeSet;
@@ -15,58 +19,13 @@ const MAX_COST: u64 = 10_000_005;
 /// Branching factor for an unbound attribute or value.
 const BRANCHING: u64 = 8;
 
-/// One condition waiting to be placed.
-pub(super) struct Pending {
-    pub cond: Condition,
-    /// For a negation or NCC: the variables positive conditions must bind first.
-    pub required: Vec<String>,
-    /// For an NCC: what its inner conditions require.
-    pub inner: Option<super::Required>,
-}
-
-fn covered(t: &Test, bound: &Bound, roots: &[String]) -> bool {
-    match equality_term(t) {
-        Some(Term::Const(_)) => true,
-        Some(Term::Var(v)) => bound.contains(v) || roots.iter().any(|r| r == v),
-        None => false,
-    }
-}
-
-fn cost_of_positive(p: &Cond, bound: &Bound, roots: &[String]) -> u64 {
-    if !covered(&p.id, bound, roots) {
-        return MAX_COST;
-    }
-    let mut cost = if covered(&p.attr, bound, roots) {
-        1
-    } else {
-        BRANCHING
-    };
-    if !covered(&p.value, bound, roots) {
-        cost *= BRANCHING;
-    }
-    cost
-}
-
-fn cost(p: &Pending, bound: &Bound, roots: &[String]) -> u64 {
-    match &p.cond {
-        Condition::Positive(c) => cost_of_positive(c, bound, roots),
-        _ if p.required.iter().all(|v| bound.contains(v)) => 1,
-        _ => MAX_COST,
-    }
-}
-
-/// The variables whose binding can change a condition's cost.
-fn cost_vars(p: &Pending) -> Vec<&str> {
-    match &p.cond {
-        Condition::Positive(c) => [&c.id, &c.attr, &c.value]
-            .into_iter()
-            .filter_map(|t| match equality_term(t) {
-                Some(Term::Var(v)) => Some(v.as_str()),
-                _ => None,
-            })
-            .collect(),
-        _ => p.required.iter().map(String::as_str).collect(),
-    }
+/// A field of a positive condition by its equality test: a constant, a variable (by number),
+/// or no equality test.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Field {
+    Const,
+    Var(u32),
+    Untested,
 }
 
 /// The canonical order key: creation ranks of a condition's constant attribute and value
@@ -88,47 +47,128 @@ fn canonical(c: &Condition, rank: &dyn Fn(&Constant) -> u64) -> (u64, u64) {
 /// equal cost are the tied set that the look-ahead decides between.
 type Key = (u64, bool, Reverse<(u64, u64)>, Reverse<usize>);
 
+/// One condition of the list.
+struct Cond {
+    /// Its id, attribute and value fields (positive conditions).
+    fields: [Field; 3],
+    positive: bool,
+    /// Negations and NCCs: the variables it requires bound, in `Chooser::vars`.
+    required: std::ops::Range<u32>,
+    cost: u64,
+    canon: (u64, u64),
+    placed: bool,
+    /// Mark for the look-ahead (a generation number).
+    mark: u32,
+}
+
+/// One variable of the list.
+struct Var<'a> {
+    name: &'a str,
+    bound: bool,
+    root: bool,
+    /// The conditions whose cost its binding can change, in `Chooser::users`.
+    users: std::ops::Range<u32>,
+}
+
 /// The conditions of one list, with their current costs.
-pub(super) struct Chooser {
-    pending: Vec<Option<Pending>>,
+pub(super) struct Chooser<'a> {
+    conds: Vec<Cond>,
+    vars: Vec<Var<'a>>,
+    required: Vec<u32>,
+    users: Vec<u32>,
     queue: BTreeSet<Key>,
-    costs: Vec<u64>,
-    canon: Vec<(u64, u64)>,
-    by_var: FxHashMap<String, Vec<usize>>,
-    pub bound: Bound,
-    roots: Vec<String>,
-    /// Marks for the look-ahead (a generation number per condition).
-    marks: Vec<u32>,
     generation: u32,
 }
 
-impl Chooser {
+impl<'a> Chooser<'a> {
+    /// `required[i]`: the variables negation or NCC `i` needs bound first (see
+    /// `Required`); missing entries need none.
     pub fn new(
-        pending: Vec<Pending>,
+        conds: &'a [Condition],
+        required: &'a [Vec<String>],
         outside: &Bound,
-        roots: Vec<String>,
+        roots: &[String],
         rank: &dyn Fn(&Constant) -> u64,
     ) -> Self {
-        let mut by_var: FxHashMap<String, Vec<usize>> = FxHashMap::default();
-        for (i, p) in pending.iter().enumerate() {
-            for v in cost_vars(p) {
-                by_var.entry(v.to_string()).or_default().push(i);
+        let n = conds.len();
+        let mut vars: Vec<Var<'a>> = Vec::new();
+        // A linear search numbers the few variables of a list; past a few dozen, a map.
+        let mut index: FxHashMap<&'a str, u32> = FxHashMap::default();
+        let mut number = |v: &'a str, vars: &mut Vec<Var<'a>>| -> u32 {
+            if vars.len() < 32 {
+                if let Some(k) = vars.iter().position(|x| x.name == v) {
+                    return k as u32;
+                }
+            } else {
+                if index.is_empty() {
+                    for (k, x) in vars.iter().enumerate() {
+                        index.insert(x.name, k as u32);
+                    }
+                }
+                if let Some(&k) = index.get(v) {
+                    return k;
+                }
+                index.insert(v, vars.len() as u32);
+            }
+            vars.push(Var {
+                name: v,
+                bound: outside.contains(v),
+                root: false,
+                users: 0..0,
+            });
+            (vars.len() - 1) as u32
+        };
+        let mut cs = Vec::with_capacity(n);
+        let mut req = Vec::new();
+        for (i, c) in conds.iter().enumerate() {
+            let start = req.len() as u32;
+            let mut fields = [Field::Untested; 3];
+            let positive = match c {
+                Condition::Positive(p) => {
+                    for (slot, t) in fields.iter_mut().zip([&p.id, &p.attr, &p.value]) {
+                        *slot = match equality_term(t) {
+                            Some(Term::Const(_)) => Field::Const,
+                            Some(Term::Var(v)) => Field::Var(number(v, &mut vars)),
+                            None => Field::Untested,
+                        };
+                    }
+                    true
+                }
+                _ => {
+                    for v in required.get(i).map(Vec::as_slice).unwrap_or(&[]) {
+                        let k = number(v, &mut vars);
+                        req.push(k);
+                    }
+                    false
+                }
+            };
+            cs.push(Cond {
+                fields,
+                positive,
+                required: start..req.len() as u32,
+                cost: 0,
+                canon: canonical(c, rank),
+                placed: false,
+                mark: 0,
+            });
+        }
+        for r in roots {
+            if let Some(v) = vars.iter_mut().find(|v| v.name == r.as_str()) {
+                v.root = true;
             }
         }
-        let costs: Vec<u64> = pending.iter().map(|p| cost(p, outside, &roots)).collect();
-        let canon = pending.iter().map(|p| canonical(&p.cond, rank)).collect();
-        let n = pending.len();
         let mut c = Chooser {
-            pending: pending.into_iter().map(Some).collect(),
+            conds: cs,
+            vars,
+            required: req,
+            users: Vec::new(),
             queue: BTreeSet::new(),
-            costs,
-            canon,
-            by_var,
-            bound: outside.clone(),
-            roots,
-            marks: vec![0; n],
             generation: 0,
         };
+        c.index_users();
+        for i in 0..n {
+            c.conds[i].cost = c.cost(i);
+        }
         for i in 0..n {
             let k = c.key(i);
             c.queue.insert(k);
@@ -136,36 +176,114 @@ impl Chooser {
         c
     }
 
-    fn positive(&self, i: usize) -> bool {
-        matches!(
-            self.pending[i].as_ref().map(|p| &p.cond),
-            Some(Condition::Positive(_))
-        )
+    /// The variables whose binding can change condition `i`'s cost.
+    fn cost_vars(&self, i: usize) -> impl Iterator<Item = u32> + '_ {
+        let c = &self.conds[i];
+        let from_fields = c.fields.iter().filter_map(|f| match f {
+            Field::Var(v) => Some(*v),
+            _ => None,
+        });
+        let r = c.required.start as usize..c.required.end as usize;
+        from_fields.chain(self.required[r].iter().copied())
+    }
+
+    fn index_users(&mut self) {
+        let (n, nv) = (self.conds.len(), self.vars.len());
+        // Counting sort of (variable, condition) pairs: each variable's users in a row.
+        let mut start = vec![0u32; nv + 1];
+        for i in 0..n {
+            for v in self.cost_vars(i) {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for k in 0..nv {
+            start[k + 1] += start[k];
+        }
+        let mut users = vec![0u32; start[nv] as usize];
+        let mut next = start.clone();
+        for i in 0..n {
+            for v in self.cost_vars(i) {
+                users[next[v as usize] as usize] = i as u32;
+                next[v as usize] += 1;
+            }
+        }
+        for (k, v) in self.vars.iter_mut().enumerate() {
+            v.users = start[k]..start[k + 1];
+        }
+        self.users = users;
+    }
+
+    fn users_of(&self, v: u32) -> std::ops::Range<usize> {
+        let r = &self.vars[v as usize].users;
+        r.start as usize..r.end as usize
+    }
+
+    fn covered(&self, f: Field) -> bool {
+        match f {
+            Field::Const => true,
+            Field::Var(v) => {
+                let v = &self.vars[v as usize];
+                v.bound || v.root
+            }
+            Field::Untested => false,
+        }
+    }
+
+    fn cost(&self, i: usize) -> u64 {
+        let c = &self.conds[i];
+        if !c.positive {
+            let r = c.required.start as usize..c.required.end as usize;
+            let all = self.required[r]
+                .iter()
+                .all(|&v| self.vars[v as usize].bound);
+            return if all { 1 } else { MAX_COST };
+        }
+        let [id, attr, value] = c.fields;
+        if !self.covered(id) {
+            return MAX_COST;
+        }
+        let mut cost = if self.covered(attr) { 1 } else { BRANCHING };
+        if !self.covered(value) {
+            cost *= BRANCHING;
+        }
+        cost
     }
 
     fn key(&self, i: usize) -> Key {
-        let positive = self.positive(i);
-        let canon = if positive { self.canon[i] } else { (0, 0) };
-        (self.costs[i], positive, Reverse(canon), Reverse(i))
+        let c = &self.conds[i];
+        let canon = if c.positive { c.canon } else { (0, 0) };
+        (c.cost, c.positive, Reverse(canon), Reverse(i))
+    }
+
+    /// The variables a positive condition binds that are not bound yet.
+    fn newly_bound(&self, i: usize) -> [Option<u32>; 3] {
+        let mut out = [None; 3];
+        let c = &self.conds[i];
+        if c.positive {
+            for (slot, f) in out.iter_mut().zip(c.fields) {
+                if let Field::Var(v) = f {
+                    if !self.vars[v as usize].bound {
+                        *slot = Some(v);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The cheapest next condition after `i` were placed (9.6's one-step look-ahead).
     fn lookahead(&mut self, i: usize) -> u64 {
-        let Some(p) = self.pending[i].as_ref() else {
+        if self.conds[i].placed {
             return MAX_COST + 1;
-        };
-        let new: Vec<String> = bound_by(&p.cond)
-            .into_iter()
-            .filter(|v| !self.bound.contains(*v))
-            .map(str::to_string)
-            .collect();
+        }
+        let new = self.newly_bound(i);
         self.generation += 1;
         let g = self.generation;
-        let mut with = self.bound.clone();
-        for v in &new {
-            with.insert(v.clone());
-            for &j in self.by_var.get(v).map(Vec::as_slice).unwrap_or(&[]) {
-                self.marks[j] = g;
+        for v in new.into_iter().flatten() {
+            self.vars[v as usize].bound = true;
+            for k in self.users_of(v) {
+                let j = self.users[k] as usize;
+                self.conds[j].mark = g;
             }
         }
         let mut min = MAX_COST + 1;
@@ -173,14 +291,15 @@ impl Chooser {
             if j == i {
                 continue;
             }
-            let k = if self.marks[j] == g {
-                self.pending[j]
-                    .as_ref()
-                    .map_or(MAX_COST, |p| cost(p, &with, &self.roots))
+            let k = if self.conds[j].mark == g {
+                self.cost(j)
             } else {
                 cached
             };
             min = min.min(k);
+        }
+        for v in new.into_iter().flatten() {
+            self.vars[v as usize].bound = false;
         }
         min
     }
@@ -211,51 +330,59 @@ impl Chooser {
             if k < best {
                 best = k;
                 chosen = i;
-            } else if k == best && self.positive(i) && self.canon[chosen] < self.canon[i] {
+            } else if k == best
+                && self.conds[i].positive
+                && self.conds[chosen].canon < self.conds[i].canon
+            {
                 chosen = i;
             }
         }
         Some(chosen)
     }
 
-    /// Takes the next condition out; the caller places it and then calls [`Self::bind`].
-    pub fn next(&mut self) -> Option<Pending> {
+    /// The next condition to place (its index); the caller then calls [`Self::bind`].
+    pub fn next(&mut self) -> Option<usize> {
         let i = self.pick()?;
         let k = self.key(i);
         self.queue.remove(&k);
-        self.pending[i].take()
+        self.conds[i].placed = true;
+        Some(i)
     }
 
-    /// Records what a placed condition binds, updating the costs that depend on it.
-    pub fn bind(&mut self, placed: &Condition) {
-        let new: Vec<String> = bound_by(placed)
-            .into_iter()
-            .filter(|v| !self.bound.contains(*v))
-            .map(str::to_string)
-            .collect();
-        for v in &new {
-            self.bound.insert(v.clone());
+    /// Records what placed condition `i` binds, updating the costs that depend on it.
+    pub fn bind(&mut self, i: usize) {
+        let new = self.newly_bound(i);
+        for v in new.into_iter().flatten() {
+            self.vars[v as usize].bound = true;
         }
-        for v in &new {
-            let users = self.by_var.get(v).cloned().unwrap_or_default();
-            for j in users {
-                let Some(p) = self.pending[j].as_ref() else {
+        for v in new.into_iter().flatten() {
+            for k in self.users_of(v) {
+                let j = self.users[k] as usize;
+                if self.conds[j].placed {
                     continue;
-                };
-                let k = cost(p, &self.bound, &self.roots);
-                if k != self.costs[j] {
+                }
+                let c = self.cost(j);
+                if c != self.conds[j].cost {
                     let old = self.key(j);
                     self.queue.remove(&old);
-                    self.costs[j] = k;
+                    self.conds[j].cost = c;
                     let new_key = self.key(j);
                     self.queue.insert(new_key);
                 }
             }
         }
-        // Once every root is bound the roots no longer count (nothing changes: they are
-        // bound), as in 9.6.
-        if self.roots.iter().all(|r| self.bound.contains(r)) {
-            self.roots.clear();
+        // Once every root is bound the roots no longer count; they are bound then, so
+        // `covered` is unchanged and nothing needs clearing.
+    }
+
+    /// Everything bound now, by name: `outside` and what the placed conditions bound.
+    pub fn bound_names(&self, outside: &Bound) -> Bound {
+        let mut b = outside.clone();
+        for v in &self.vars {
+            if v.bound {
+                b.insert(v.name.to_string());
+            }
         }
+        b
     }
 }

@@ -28,7 +28,7 @@ mod set_aside;
 use crate::ast::{Constant, Head};
 use crate::production::{Condition, Term, Test};
 use crate::symbols::Symbols;
-use choose::{Chooser, Pending};
+use choose::Chooser;
 use rustc_hash::FxHashSet;
 
 type Bound = FxHashSet<String>;
@@ -36,10 +36,14 @@ type Bound = FxHashSet<String>;
 /// Reorders a rule's conditions as 9.6 does. `syms` must already hold every constant of the
 /// rule (see [`intern_in_text_order`]); an unknown constant ranks as a variable.
 pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
+    reorder_owned(conds.to_vec(), syms)
+}
+
+/// [`reorder`], taking the conditions (no copy of them is made).
+pub fn reorder_owned(mut conds: Vec<Condition>, syms: &Symbols) -> Vec<Condition> {
     let rank = |c: &Constant| syms.find_constant(c).map_or(0, |s| s.0 as u64 + 1);
     let outside = Bound::default();
-    let mut roots = root_variables(conds, &outside);
-    let mut conds = conds.to_vec();
+    let mut roots = root_variables(&conds, &outside);
     if !roots.is_empty() {
         drop_goal_tests_of_non_roots(&mut conds, &roots);
     } else if let Some(v) = conds.iter().find_map(|c| match c {
@@ -206,11 +210,9 @@ pub(super) struct Required {
 
 fn requirements(conds: &[Condition], outside: &Bound) -> Required {
     if conds.iter().all(|c| matches!(c, Condition::Positive(_))) {
-        // Nothing to require: the common case, without building the bound set.
-        return Required {
-            vars: vec![Vec::new(); conds.len()],
-            inner: vec![None; conds.len()],
-        };
+        // Nothing to require: the common case, without building the bound set (empty
+        // lists stand for "nothing" at every index).
+        return Required::default();
     }
     let mut bound = outside.clone();
     for c in conds {
@@ -248,42 +250,46 @@ fn reorder_list(
     dummies: &mut usize,
 ) -> Vec<Condition> {
     let saved = set_aside::simplify(&mut conds, dummies);
-    let Required {
-        mut vars,
-        mut inner,
-    } = required;
-    let pending: Vec<Pending> = conds
-        .into_iter()
-        .enumerate()
-        .map(|(k, cond)| Pending {
-            cond,
-            required: vars.get_mut(k).map(std::mem::take).unwrap_or_default(),
-            inner: inner.get_mut(k).and_then(Option::take),
-        })
-        .collect();
-    let mut chooser = Chooser::new(pending, outside, roots, rank);
-    let mut out = Vec::new();
-    while let Some(Pending { cond, inner, .. }) = chooser.next() {
-        let cond = match cond {
+    let Required { vars, mut inner } = required;
+    // The order first, with the conditions borrowed; an NCC keeps what was bound when it
+    // was placed, to order its own conditions with.
+    let mut order = Vec::with_capacity(conds.len());
+    let mut bound_at_ncc = Vec::new();
+    {
+        let mut chooser = Chooser::new(&conds, &vars, outside, &roots, rank);
+        while let Some(i) = chooser.next() {
+            if matches!(conds[i], Condition::Ncc(_)) {
+                bound_at_ncc.push(chooser.bound_names(outside));
+            }
+            chooser.bind(i);
+            order.push(i);
+        }
+    }
+    // Exactly sized: the list is kept for the rule's lifetime.
+    let mut out = Vec::with_capacity(conds.len());
+    let mut bound_at_ncc = bound_at_ncc.into_iter();
+    for i in order {
+        // (An empty NCC is a placeholder that costs no allocation.)
+        let cond = match std::mem::replace(&mut conds[i], Condition::Ncc(Vec::new())) {
             // An NCC's own conditions are ordered when it is placed, with what is bound
             // by then counting as bound outside them.
             Condition::Ncc(mut inner_conds) => {
-                let inner_roots = root_variables(&inner_conds, &chooser.bound);
+                let bound = bound_at_ncc.next().unwrap_or_default();
+                let inner_roots = root_variables(&inner_conds, &bound);
                 // As at the top level, only root ids keep a `state` test: one bound outside
                 // the NCC is already tested there (9.6 prints `-{ (<s> ^operator ...) }`).
                 drop_goal_tests_of_non_roots(&mut inner_conds, &inner_roots);
                 Condition::Ncc(reorder_list(
                     inner_conds,
-                    inner.unwrap_or_default(),
+                    inner.get_mut(i).and_then(Option::take).unwrap_or_default(),
                     inner_roots,
-                    &chooser.bound.clone(),
+                    &bound,
                     rank,
                     dummies,
                 ))
             }
             other => other,
         };
-        chooser.bind(&cond);
         out.push(cond);
     }
     set_aside::restore(&mut out, outside, saved);

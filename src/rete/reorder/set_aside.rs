@@ -14,7 +14,8 @@ pub(super) struct SetAside {
     tests: Vec<Option<(Term, Test)>>,
     /// `state`/`impasse` tests by the id variable they were on: restored to the first
     /// condition on that id (copies are one test, as 9.6 adds a test only once).
-    goals: FxHashMap<String, Head>,
+    /// (A list: a rule tests one or two states.)
+    goals: Vec<(String, Head)>,
     by_term: FxHashMap<String, Vec<usize>>,
 }
 
@@ -48,11 +49,13 @@ impl SetAside {
 /// Splits a field's test into its equality test and the tests set aside. A field with no
 /// equality test (compile always gives one; generated rules may not) gets a dummy variable,
 /// as 9.6 does, so that its tests can move to where their referents are bound.
-fn simplify_field(t: &Test, saved: &mut SetAside, dummies: &mut usize) -> Test {
-    let parts: Vec<Test> = match t {
-        Test::Equal(_) => return t.clone(),
-        Test::Conjunction(parts) => parts.clone(),
-        other => vec![other.clone()],
+fn simplify_field(field: &mut Test, saved: &mut SetAside, dummies: &mut usize) {
+    if matches!(field, Test::Equal(_)) {
+        return;
+    }
+    let parts: Vec<Test> = match std::mem::replace(field, Test::Conjunction(Vec::new())) {
+        Test::Conjunction(parts) => parts,
+        other => vec![other],
     };
     let eq = parts
         .iter()
@@ -70,7 +73,7 @@ fn simplify_field(t: &Test, saved: &mut SetAside, dummies: &mut usize) -> Test {
             saved.push(eq.clone(), p);
         }
     }
-    Test::Equal(eq)
+    *field = Test::Equal(eq);
 }
 
 /// Leaves each positive condition with its equality tests only.
@@ -78,15 +81,17 @@ pub(super) fn simplify(conds: &mut [Condition], dummies: &mut usize) -> SetAside
     let mut saved = SetAside::default();
     for c in conds.iter_mut() {
         if let Condition::Positive(p) = c {
-            p.id = simplify_field(&p.id, &mut saved, dummies);
+            simplify_field(&mut p.id, &mut saved, dummies);
             if p.goal != Head::None {
                 if let Some(v) = equality_var(&p.id) {
-                    saved.goals.entry(v.to_string()).or_insert(p.goal);
+                    if !saved.goals.iter().any(|(g, _)| g == v) {
+                        saved.goals.push((v.to_string(), p.goal));
+                    }
                 }
                 p.goal = Head::None;
             }
-            p.attr = simplify_field(&p.attr, &mut saved, dummies);
-            p.value = simplify_field(&p.value, &mut saved, dummies);
+            simplify_field(&mut p.attr, &mut saved, dummies);
+            simplify_field(&mut p.value, &mut saved, dummies);
         }
     }
     saved.finish();
@@ -176,8 +181,8 @@ pub(super) fn restore(conds: &mut [Condition], outside: &Bound, mut saved: SetAs
     for c in conds.iter_mut() {
         let Condition::Positive(p) = c else { continue };
         if let Some(v) = equality_var(&p.id) {
-            if let Some(h) = saved.goals.remove(v) {
-                p.goal = h;
+            if let Some(k) = saved.goals.iter().position(|(g, _)| g == v) {
+                p.goal = saved.goals.swap_remove(k).1;
             }
         }
         if only_goals {
