@@ -457,7 +457,8 @@ impl Agent {
 
     /// Adds a WME now (as `wm add` and the input phase do) and matches it.
     pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        let w = self.wm.add(id, attr, value, acceptable);
+        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let w = self.wm.add_typed(id, attr, value, acceptable, links);
         self.rete.add_wme(
             w,
             (id, attr, value),

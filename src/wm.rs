@@ -28,6 +28,9 @@ struct IdList {
 
 const GONE: WmeId = WmeId(u32::MAX);
 
+/// `link_pos` of a WME not in a `parents` list (its value or attribute is a constant).
+const NOT_LINKED: u32 = u32::MAX;
+
 #[derive(Debug)]
 pub struct WorkingMemory {
     wmes: Vec<Option<Wme>>,
@@ -71,6 +74,20 @@ impl WorkingMemory {
 
     /// Adds a WME with the next timetag (one global counter, spec §2).
     pub fn add(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
+        self.add_typed(id, attr, value, acceptable, [true, true])
+    }
+
+    /// [`WorkingMemory::add`], told whether the value and the attribute are identifiers:
+    /// only identifiers are searched upward by garbage collection, so a constant needs no
+    /// list of the WMEs that point at it (most WMEs have constant values and attributes).
+    pub fn add_typed(
+        &mut self,
+        id: Sym,
+        attr: Sym,
+        value: Sym,
+        acceptable: bool,
+        [value_is_id, attr_is_id]: [bool; 2],
+    ) -> WmeId {
         let timetag = self.next_timetag;
         self.next_timetag += 1;
         let wme = Wme {
@@ -103,7 +120,11 @@ impl WorkingMemory {
         if self.link_pos.len() <= w.0 as usize {
             self.link_pos.resize(w.0 as usize + 1, [u32::MAX; 2]);
         }
-        for (slot, target) in [(0, value), (1, attr)] {
+        for (slot, target, link) in [(0, value, value_is_id), (1, attr, attr_is_id)] {
+            if !link {
+                self.link_pos[w.0 as usize][slot] = NOT_LINKED;
+                continue;
+            }
             let list = self.parents.entry(target).or_default();
             self.link_pos[w.0 as usize][slot] = list.len() as u32;
             list.push((w, slot == 1));
@@ -112,7 +133,11 @@ impl WorkingMemory {
     }
 
     fn unlink(&mut self, w: WmeId, slot: usize, target: Sym) {
-        let pos = self.link_pos[w.0 as usize][slot] as usize;
+        let pos = self.link_pos[w.0 as usize][slot];
+        if pos == NOT_LINKED {
+            return;
+        }
+        let pos = pos as usize;
         let Some(list) = self.parents.get_mut(&target) else {
             return;
         };
@@ -125,7 +150,8 @@ impl WorkingMemory {
         }
     }
 
-    /// The WMEs whose value or attribute is `x` (any order).
+    /// The WMEs whose value or attribute is the identifier `x` (any order; a constant has
+    /// none listed when its WMEs were added with [`WorkingMemory::add_typed`]).
     pub fn parents_of(&self, x: Sym) -> impl Iterator<Item = WmeId> + '_ {
         self.parents
             .get(&x)

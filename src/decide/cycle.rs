@@ -746,7 +746,8 @@ impl Agent {
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
     fn add_slot_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        let w = self.wm.add(id, attr, value, acceptable);
+        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let w = self.wm.add_typed(id, attr, value, acceptable, links);
         self.decider.wme_changes += 1;
         self.decider
             .slots
