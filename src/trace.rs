@@ -387,7 +387,24 @@ impl Agent {
             .goals
             .iter()
             .find(|g| g.level == level)
-            .map_or(self.top.state, |g| g.state);
+            .map_or_else(
+                || self.symbols.text(self.top.state),
+                |g| self.symbols.text(g.state),
+            );
+        // Only retractions of matches whose goal has gone (a substate removed in the last
+        // phase): 9.6 has no active goal then.
+        let orphans = to_fire.is_empty()
+            && !retracted.is_empty()
+            && retracted.iter().all(|&i| {
+                self.decider.insts[i as usize]
+                    .goal
+                    .is_some_and(|g| !self.symbols.is_goal(g))
+            });
+        let (level, goal) = if orphans {
+            (0, "#".to_string())
+        } else {
+            (level, goal)
+        };
         if apply && self.settings.trace.phases {
             let kind = if o_support { "PE" } else { "IE" };
             self.output.push_str(&format!(
@@ -395,10 +412,8 @@ impl Agent {
             ));
         }
         if self.settings.trace.waterfall {
-            let s = format!(
-                "\n--- Inner Elaboration Phase, active level {level} goal {} ---\n",
-                self.symbols.text(goal)
-            );
+            let s =
+                format!("\n--- Inner Elaboration Phase, active level {level} goal {goal} ---\n");
             self.output.push_str(&s);
         }
     }

@@ -842,8 +842,56 @@ impl Agent {
             );
             self.out(&s);
         }
+        if self.settings.trace.wmes {
+            self.trace_substate_wmes_removed(gi);
+        }
         self.remove_goals_below(gi);
         self.decider.goals[gi].slot_changed = true;
+    }
+
+    /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
+    /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
+    /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
+    /// WMEs (each group oldest first; seen on 9.6).
+    fn trace_substate_wmes_removed(&mut self, gi: usize) {
+        let mut lines: Vec<(u8, u64, crate::wm::Wme)> = Vec::new();
+        for g in &self.decider.goals[gi + 1..] {
+            let of = |attr: &str| {
+                let a = self.symbols.find_str(attr);
+                g.wmes
+                    .iter()
+                    .filter_map(|&w| self.wm.get(w))
+                    .find(|w| Some(w.attr) == a && w.id == g.state)
+                    .map(|w| w.value)
+            };
+            let (smem, epmem) = (of("smem"), of("epmem"));
+            for &w in &g.wmes {
+                let Some(wme) = self.wm.get(w).copied() else {
+                    continue;
+                };
+                let attr = self.symbols.text(wme.attr);
+                let group = if Some(wme.id) == smem {
+                    0
+                } else if Some(wme.id) == epmem {
+                    1
+                } else if matches!(attr.as_str(), "reward-link" | "epmem" | "smem") {
+                    2
+                } else if attr.starts_with("non-numeric") {
+                    4
+                } else if attr.starts_with("item") {
+                    5
+                } else {
+                    3
+                };
+                // Counts go after the values they count.
+                let count = u64::from(attr.ends_with("-count"));
+                lines.push((group, count << 63 | wme.timetag, wme));
+            }
+        }
+        lines.sort_by_key(|(g, k, _)| (*g, *k));
+        for (_, _, wme) in lines {
+            self.trace_wme("<=WM: ", &wme);
+        }
     }
 
     fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
