@@ -5,7 +5,6 @@ use crate::agent::Agent;
 use crate::symbols::Sym;
 
 pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
-    let agent_name = agent.name.clone();
     let trace_level = agent.settings.trace.level_number();
     let mut ctx = crate::rhs::RhsContext::new(
         &mut agent.symbols,
@@ -13,7 +12,7 @@ pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, 
         &mut agent.rng,
         &mut agent.rhs_registry,
         &mut agent.output,
-        &agent_name,
+        &agent.name,
     );
     ctx.decision_count = agent.decider.d_cycle_count;
     ctx.trace_flags = crate::rhs::trace_flags_for_level(trace_level);

@@ -467,7 +467,10 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         return ctx.str_sym("error_expected_rhs_function_to_return_value_but_it_did_NOT");
     };
     let function = ctx.value_text(f);
-    let argument: String = rest.iter().map(|a| ctx.value_text(*a)).collect();
+    let mut argument = String::new();
+    for a in rest {
+        text::push_value_text(ctx.symbols, *a, &mut argument);
+    }
     let result = ctx
         .registry
         .call(&function, ctx.agent_name, &argument)

@@ -26,6 +26,24 @@ pub fn value_text(symbols: &Symbols, s: Sym) -> String {
     }
 }
 
+/// [`value_text`] appended to `out` (no string of its own: `exec` joins many).
+pub fn push_value_text(symbols: &Symbols, s: Sym, out: &mut String) {
+    use std::fmt::Write;
+    match symbols.get(s) {
+        SymData::Str(x) => out.push_str(x),
+        SymData::Int(i) => {
+            let _ = write!(out, "{i}");
+        }
+        SymData::Float(f) if f.is_finite() => {
+            let _ = write!(out, "{f:.6}");
+        }
+        SymData::Float(f) => out.push_str(&c_fixed(*f, 6)),
+        SymData::Id(d) => {
+            let _ = write!(out, "{}{}", d.letter as char, d.number);
+        }
+    }
+}
+
 /// 9.6's `%y`: rereadable (strings get bars when they would read back as something else).
 pub(super) fn rereadable_text(symbols: &Symbols, s: Sym) -> String {
     match symbols.get(s) {
