@@ -83,14 +83,22 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
     let Some(op) = selected else {
         return i_support;
     };
-    let (mut elaborates, mut applies) = (false, false);
-    for a in &prod.actions {
-        let Action::Make(m) = a else { continue };
-        let on_operator = match &m.id {
+    let on_operator = prod.actions.iter().filter_map(|a| match a {
+        Action::Make(m) => Some(match &m.id {
             RhsTerm::Var(v) => agent.rete.binding(p, t, v) == Some(op),
             _ => false,
-        };
-        if on_operator {
+        }),
+        Action::Call(_) => None,
+    });
+    support_of_actions(agent, on_operator)
+}
+
+/// Spec §3c's last step, given for each make action whether it is on the selected
+/// operator: applications are O, operator elaborations I, both I (with 9.6's warning).
+fn support_of_actions(agent: &Agent, on_operator: impl Iterator<Item = bool>) -> MatchSupport {
+    let (mut elaborates, mut applies) = (false, false);
+    for on in on_operator {
+        if on {
             elaborates = true;
         } else {
             applies = true;
@@ -129,21 +137,11 @@ fn compiled_support(agent: &Agent, rule: &CompiledRule, t: TokId) -> MatchSuppor
     let Some(op) = selected else {
         return i_support;
     };
-    let (mut elaborates, mut applies) = (false, false);
-    for b in &rule.make_ids {
-        let on_operator = b.is_some_and(|(depth, field)| {
+    let on_operator = rule.make_ids.iter().map(|b| {
+        b.is_some_and(|(depth, field)| {
             let w = agent.rete.wme_at_depth(t, depth);
             w != crate::rete::NIL_WME && agent.rete.field(w, field) == op
-        });
-        if on_operator {
-            elaborates = true;
-        } else {
-            applies = true;
-        }
-    }
-    let mixed = elaborates && applies;
-    MatchSupport {
-        o_support: applies && !(mixed && agent.settings.warnings),
-        mixed,
-    }
+        })
+    });
+    support_of_actions(agent, on_operator)
 }
