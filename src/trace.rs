@@ -289,15 +289,29 @@ pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> S
         out.push_str("  :O ");
     }
     out.push(')');
-    let level = s.id_data(p.id).map_or(1, |d| d.level);
+    // 9.6 prints the level of the instantiation's goal (a result made in a substate says
+    // `[level 2]` though its id is on the top state).
+    let goal_level = p
+        .inst
+        .and_then(|i| agent.decider.insts[i as usize].goal)
+        .and_then(|g| s.id_data(g))
+        .map(|d| d.level);
+    let level = goal_level.unwrap_or_else(|| s.id_data(p.id).map_or(1, |d| d.level));
     if level > 1 {
         out.push_str(&format!(" [level {level}]"));
     }
+    let justification = p
+        .inst
+        .map(|i| agent.decider.insts[i as usize].serial)
+        .filter(|&serial| serial != 0)
+        .and_then(|serial| agent.learn.justification_names.get(&serial));
     let rule = p
         .inst
         .map(|i| agent.decider.insts[i as usize].prod)
         .or(p.rule);
-    if let Some(prod) = rule {
+    if let Some(name) = justification {
+        out.push_str(&format!(" ({name})"));
+    } else if let Some(prod) = rule {
         out.push_str(&format!(" ({})", agent.production_name(prod)));
     }
     out

@@ -456,6 +456,9 @@ impl Agent {
             }
         }
         if named {
+            self.learn
+                .justification_names
+                .insert(serial, name.to_string());
             self.learn.justifications_learned += 1;
             self.learn.justifications_since_init += 1;
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
@@ -504,6 +507,7 @@ impl Agent {
     /// (9.6 keeps it while its preferences live).
     pub(crate) fn forget_justification(&mut self, serial: u64, o_support: bool) {
         if !o_support {
+            self.learn.justification_names.remove(&serial);
             self.learn.justifications.retain(|j| j.serial != serial);
         }
     }

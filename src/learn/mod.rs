@@ -76,6 +76,9 @@ pub struct Justification {
 /// Learning's counters and state that survive `init-soar` (chunks do) and those that do not.
 #[derive(Debug, Default)]
 pub struct LearnState {
+    /// Justifications' names by serial, for the traces that name the instantiation behind
+    /// a preference (`+ (S1 ^operator B1 >) (justify1)`).
+    pub justification_names: rustc_hash::FxHashMap<u64, String>,
     pub next_ident: Ident,
     /// Chunks learned over the agent's life (names and `stats`).
     pub chunks_learned: u64,
@@ -116,6 +119,7 @@ impl LearnState {
         self.init_count += 1;
         self.justification_counter = 0;
         self.justifications.clear();
+        self.justification_names.clear();
         self.justified_by_wme.clear();
         self.force_learn.clear();
         self.dont_learn.clear();
