@@ -5,6 +5,9 @@
 //! table, the single timers and before `msec/`) is masked as `#.###`; all counts and
 //! ratios are compared.
 
+mod common;
+
+use common::mask_decimals;
 use rusoar::cli::Interpreter;
 use std::path::PathBuf;
 
@@ -45,26 +48,7 @@ fn mask(text: &str) -> String {
     text.split('\n')
         .map(|line| {
             let table = line.contains('|') || line.contains("CPU Time:");
-            let mut out = String::new();
-            let mut rest = line;
-            while let Some(i) = rest.find(|c: char| c.is_ascii_digit()) {
-                out.push_str(&rest[..i]);
-                let tail = &rest[i..];
-                let int = tail.bytes().take_while(u8::is_ascii_digit).count();
-                let frac = tail[int..]
-                    .strip_prefix('.')
-                    .map_or(0, |f| f.bytes().take_while(u8::is_ascii_digit).count());
-                let len = if frac > 0 { int + 1 + frac } else { int };
-                let after = &tail[len..];
-                if frac == 3 && (table || after.starts_with(" msec/")) {
-                    out.push_str("#.###");
-                } else {
-                    out.push_str(&tail[..len]);
-                }
-                rest = after;
-            }
-            out.push_str(rest);
-            out
+            mask_decimals(line, |after| table || after.starts_with(" msec/"))
         })
         .collect::<Vec<_>>()
         .join("\n")
