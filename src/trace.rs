@@ -518,7 +518,7 @@ impl Agent {
             .decider
             .slots
             .get(&key)
-            .and_then(|s| s.wmes.get(&(op, true)).copied())
+            .and_then(|s| s.wmes.get(&(op, true)))
             .and_then(|w| self.wm.get(w).copied());
         let text = w.map(|w| wme_internal(self, &w)).unwrap_or_default();
         self.output.push_str(&format!(

@@ -281,10 +281,10 @@ impl Agent {
         self.decider.pe_cycles += u64::from(o_support);
         let retractions = std::mem::take(&mut self.matches.retractions);
         // Fire from the head: the newest match first (spec §3i).
-        let pending = std::mem::take(&mut self.matches.assertions);
-        let mut keep = Vec::new();
-        let mut to_fire = Vec::new();
-        for (p, t) in pending.into_iter().rev() {
+        let mut pending = std::mem::take(&mut self.matches.assertions);
+        let mut sc = std::mem::take(&mut self.decider.cycle_scratch);
+        let (mut keep, mut to_fire) = (sc.keep, sc.to_fire);
+        for (p, t) in pending.drain(..).rev() {
             let o = self.is_o_supported(p, t);
             if o == o_support {
                 self.matches.support.remove(&(p, t));
@@ -295,13 +295,22 @@ impl Agent {
             }
         }
         keep.reverse();
+        // The emptied queue's room serves the next cycle's `keep`.
+        sc.keep = pending;
         self.matches.assertions = keep;
         // Token ids are reused: resolve retractions to their instantiations before new
         // matches (possibly on a reused id) fire.
-        let mut retracted: Vec<InstId> = retractions
-            .iter()
-            .filter_map(|k| self.decider.inst_by_token.remove(k))
-            .collect();
+        let mut retracted = std::mem::take(&mut sc.retracted);
+        retracted.extend(
+            retractions
+                .iter()
+                .filter_map(|k| self.decider.inst_by_token.remove(k)),
+        );
+        let mut retractions = retractions;
+        retractions.clear();
+        if self.matches.retractions.is_empty() {
+            self.matches.retractions = retractions;
+        }
         // Justifications that lost a WME retract with them (spec §4).
         for (i, serial) in std::mem::take(&mut self.decider.justification_retractions) {
             let inst = &self.decider.insts[i as usize];
@@ -313,27 +322,34 @@ impl Agent {
         if self.settings.trace.phases || self.settings.trace.waterfall {
             self.trace_elaboration_header(&to_fire, &retracted, apply, o_support);
         }
-        let mut new_prefs = Vec::new();
-        for (p, t) in to_fire {
+        let mut new_prefs = std::mem::take(&mut sc.new_prefs);
+        for &(p, t) in &to_fire {
             // A halt ends the run after this elaboration cycle: the rest of it still fires.
             self.fire(p, t, o_support, &mut new_prefs);
         }
         // New preferences go in before the retractions are processed (9.6 prints the `+`
         // lines before `Retracting`), which sets the order slots change in (spec §3i).
-        self.assert_preferences(new_prefs);
+        self.assert_preferences(&new_prefs);
         // 9.6 lists the retractions newest first; they are processed oldest first here.
         if self.settings.trace.preferences || self.settings.trace.any_firings() {
             for &inst in retracted.iter().rev() {
                 self.trace_retraction(inst);
             }
         }
-        for inst in retracted {
+        for &inst in &retracted {
             self.retract(inst);
         }
-        if apply {
+        if apply && self.settings.trace.phases {
             let kind = if o_support { "PE" } else { "IE" };
             self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
+        to_fire.clear();
+        retracted.clear();
+        new_prefs.clear();
+        sc.to_fire = to_fire;
+        sc.retracted = retracted;
+        sc.new_prefs = new_prefs;
+        self.decider.cycle_scratch = sc;
         self.update_slots();
         true
     }
@@ -363,7 +379,7 @@ impl Agent {
             token: t,
             goal,
             o_support: o_support || rule.flags.o_support,
-            prefs: Vec::new(),
+            prefs: self.decider.spare_pref_lists.pop().unwrap_or_default(),
             alive: true,
             serial: 0,
         };
@@ -374,7 +390,9 @@ impl Agent {
         let inst_id = self.decider.alloc_inst(inst.clone());
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         self.rete.token_wmes(t, &mut wmes);
-        let mut new_ids: Vec<Option<Sym>> = vec![None; rule.new_vars.len()];
+        let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
+        new_ids.clear();
+        new_ids.resize(rule.new_vars.len(), None);
         // Substate firings are recorded for backtracing: each preference with its action.
         let mut made: Vec<(PrefId, usize)> = Vec::new();
         for (action_index, action) in rule.actions.iter().enumerate() {
@@ -435,13 +453,19 @@ impl Agent {
                     let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);
                     new_prefs.push(pid);
-                    made.push((pid, action_index));
+                    if level >= 2 {
+                        made.push((pid, action_index));
+                    }
                 }
             }
         }
         self.decider.rhs_wmes = wmes;
         self.decider.inst_by_token.insert((p, t), inst_id);
-        let own_prefs = inst.prefs.clone();
+        let own_prefs = if traced || level >= 2 {
+            inst.prefs.clone()
+        } else {
+            Vec::new()
+        };
         self.decider.insts[inst_id as usize] = inst;
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
@@ -466,6 +490,7 @@ impl Agent {
                 }
             }
         }
+        self.decider.rhs_new_ids = new_ids;
     }
 
     /// A rule's compiled actions (compiled at its first firing); `None` for a rule that
@@ -528,8 +553,8 @@ impl Agent {
         }
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
-        let prefs = std::mem::take(&mut inst.prefs);
-        for pid in prefs {
+        let mut prefs = std::mem::take(&mut inst.prefs);
+        for &pid in &prefs {
             let pref = &mut self.decider.prefs[pid as usize];
             pref.inst = None;
             // O-supported preferences outlive their instantiation (spec §3a).
@@ -545,6 +570,8 @@ impl Agent {
             self.decider.free_pref(pid);
             self.mark_changed(key);
         }
+        prefs.clear();
+        self.decider.insts[inst_id as usize].prefs = prefs;
         self.decider.free_inst(inst_id);
     }
 
@@ -562,11 +589,11 @@ impl Agent {
 
     /// O-supported rejects remove every preference for their value first; the other new
     /// preferences join their slots, newest at the head (spec §3a).
-    fn assert_preferences(&mut self, new_prefs: Vec<PrefId>) {
+    fn assert_preferences(&mut self, new_prefs: &[PrefId]) {
         if self.settings.trace.preferences {
-            self.trace_new_preferences(&new_prefs);
+            self.trace_new_preferences(new_prefs);
         }
-        for &pid in &new_prefs {
+        for &pid in new_prefs {
             let p = &self.decider.prefs[pid as usize];
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
             if kind == PrefType::Reject && o_support {
@@ -581,7 +608,7 @@ impl Agent {
                 self.mark_changed(key);
             }
         }
-        for pid in new_prefs.into_iter().rev() {
+        for &pid in new_prefs.iter().rev() {
             let p = &self.decider.prefs[pid as usize];
             if !p.alive {
                 continue;
@@ -608,11 +635,13 @@ impl Agent {
         let mut changed = std::mem::take(&mut self.decider.changed);
         self.decider.changed_set.clear();
         changed.reverse();
-        let mut adds: Vec<(Sym, Sym, Sym, bool)> = Vec::new();
+        let mut sc = std::mem::take(&mut self.decider.slot_scratch);
+        let mut adds = std::mem::take(&mut sc.adds);
         // Removals are buffered with their timetags (handles are reused).
-        let mut removes: Vec<(WmeId, u64)> = Vec::new();
-        let mut context = Vec::new();
-        for key in changed {
+        let mut removes = std::mem::take(&mut sc.removes);
+        let mut context = std::mem::take(&mut sc.context);
+        let mut want = std::mem::take(&mut sc.want);
+        for &key in &changed {
             if self.is_context_slot(key) {
                 context.push(key);
                 continue;
@@ -620,32 +649,14 @@ impl Agent {
             let Some(slot) = self.decider.slots.get(&key) else {
                 continue;
             };
-            // Linear in the slot: one slot can hold thousands of values.
-            let prefs = &self.decider.prefs;
-            let rejected: FxHashSet<Sym> = slot
-                .prefs
-                .iter()
-                .map(|&q| &prefs[q as usize])
-                .filter(|q| q.kind == PrefType::Reject)
-                .map(|q| q.value)
-                .collect();
-            let mut want: Vec<Sym> = Vec::new();
-            let mut wanted: FxHashSet<Sym> = FxHashSet::default();
-            for &pid in slot.prefs.iter() {
-                let p = &prefs[pid as usize];
-                if p.kind == PrefType::Acceptable
-                    && !rejected.contains(&p.value)
-                    && wanted.insert(p.value)
-                {
-                    want.push(p.value);
-                }
-            }
-            for (&(v, acc), &w) in &slot.wmes {
-                if !acc && !wanted.contains(&v) {
+            let want = wanted_values(slot, &self.decider.prefs, &mut want);
+            // Newest first, as 9.6 walks its slot's list.
+            for (v, acc, w) in slot.wmes.iter().rev() {
+                if !acc && !want.contains(v) {
                     removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
                 }
             }
-            for v in want {
+            for &v in want.list() {
                 if !slot.wmes.contains_key(&(v, false)) {
                     adds.push((key.0, key.1, v, false));
                 }
@@ -673,7 +684,7 @@ impl Agent {
                     }
                 }
             }
-            for (&(v, acc), &w) in &slot.wmes {
+            for (v, acc, w) in slot.wmes.iter().rev() {
                 if acc && !want.contains(&v) {
                     removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
                 }
@@ -691,8 +702,12 @@ impl Agent {
         // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher
         // before removals, which go in the reverse of the order they were found (9.6
         // head-inserts both buffers).
-        let mut added = Vec::with_capacity(adds.len());
-        for (id, attr, value, acc) in adds {
+        changed.clear();
+        if self.decider.changed.is_empty() {
+            self.decider.changed = changed;
+        }
+        let mut added = std::mem::take(&mut sc.added);
+        for &(id, attr, value, acc) in &adds {
             added.push(self.add_slot_wme(id, attr, value, acc));
         }
         for &w in added.iter().rev() {
@@ -723,7 +738,7 @@ impl Agent {
         if self.settings.trace.wmes {
             self.removed_wmes = Some(Vec::new());
         }
-        for (w, tt) in removes.into_iter().rev() {
+        for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
             if self.wm.get(w).is_some_and(|x| x.timetag == tt) {
@@ -738,10 +753,17 @@ impl Agent {
         // minor quiescence, spec §3b): a result that ends a tie removes the tie's substate
         // before the phase ends.
         if !context.is_empty() && !self.has_pending(false) {
-            for key in context {
+            for &key in &context {
                 self.check_impasse_consistency(key);
             }
         }
+        adds.clear();
+        removes.clear();
+        context.clear();
+        added.clear();
+        (sc.adds, sc.removes, sc.context, sc.added, sc.want) =
+            (adds, removes, context, added, want);
+        self.decider.slot_scratch = sc;
     }
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
@@ -1166,12 +1188,13 @@ impl Agent {
             let gone = self.decider.slots.keys_of(g.state);
             for k in gone {
                 if let Some(slot) = self.decider.slots.remove(&k) {
-                    for pid in slot.prefs {
+                    for &pid in &slot.prefs {
                         self.decider.free_pref(pid);
                     }
-                    for w in slot.wmes.values() {
-                        self.remove_wme(*w);
+                    for w in slot.wmes.values().rev() {
+                        self.remove_wme(w);
                     }
+                    self.decider.slots.recycle(slot);
                 }
             }
             self.decider.gc_candidates.push(g.state);
@@ -1188,18 +1211,18 @@ impl Agent {
             return;
         }
         let candidates = std::mem::take(&mut self.decider.gc_candidates);
-        let mut roots: FxHashSet<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
-        roots.insert(self.top.state);
-        let mut memo: FxHashMap<Sym, bool> = FxHashMap::default();
-        let mut dead: FxHashSet<Sym> = FxHashSet::default();
+        // The sets live between calls (emptied), so that a collection allocates nothing.
+        let mut gc = std::mem::take(&mut self.decider.gc_scratch);
+        gc.roots.extend(self.decider.goals.iter().map(|g| g.state));
+        gc.roots.insert(self.top.state);
         let mut garbage: Vec<WmeId> = Vec::new();
-        for c in candidates {
-            if dead.contains(&c) || !self.wm.has_wmes(c) || self.linked(c, &roots, &mut memo) {
+        for &c in &candidates {
+            if gc.dead.contains(&c) || !self.wm.has_wmes(c) || self.linked(c, &mut gc) {
                 continue;
             }
-            let mut stack = vec![c];
-            while let Some(x) = stack.pop() {
-                if !dead.insert(x) {
+            gc.stack.push(c);
+            while let Some(x) = gc.stack.pop() {
+                if !gc.dead.insert(x) {
                     continue;
                 }
                 for w in self.wm.of_id(x) {
@@ -1209,15 +1232,19 @@ impl Agent {
                     };
                     for v in [wme.value, wme.attr] {
                         if self.symbols.is_id(v)
-                            && !dead.contains(&v)
-                            && !self.linked(v, &roots, &mut memo)
+                            && !gc.dead.contains(&v)
+                            && !self.linked(v, &mut gc)
                         {
-                            stack.push(v);
+                            gc.stack.push(v);
                         }
                     }
                 }
             }
         }
+        gc.clear();
+        self.decider.gc_scratch = gc;
+        self.decider.gc_candidates = candidates;
+        self.decider.gc_candidates.clear();
         if garbage.is_empty() {
             return;
         }
@@ -1229,14 +1256,15 @@ impl Agent {
                 continue;
             };
             if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
-                for pid in slot.prefs {
+                for &pid in &slot.prefs {
                     self.decider.free_pref(pid);
                 }
-                for sw in slot.wmes.values() {
-                    if *sw != w {
-                        self.remove_wme(*sw);
+                for sw in slot.wmes.values().rev() {
+                    if sw != w {
+                        self.remove_wme(sw);
                     }
                 }
+                self.decider.slots.recycle(slot);
             }
             if self.wm.get(w).is_some() {
                 removed_lines.push(wme);
@@ -1252,32 +1280,43 @@ impl Agent {
 
     /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a
     /// search that finds no goal proves everything it visited unlinked.
-    fn linked(&self, x: Sym, roots: &FxHashSet<Sym>, memo: &mut FxHashMap<Sym, bool>) -> bool {
-        if let Some(&b) = memo.get(&x) {
+    fn linked(&self, x: Sym, gc: &mut GcScratch) -> bool {
+        if let Some(&b) = gc.memo.get(&x) {
             return b;
         }
-        let mut visited: FxHashSet<Sym> = FxHashSet::default();
-        visited.insert(x);
-        let mut queue = vec![x];
+        // Most identifiers hang straight off a goal: no search needed.
+        let direct = self.wm.parents_of(x).any(|w| {
+            self.wm.get(w).is_some_and(|wme| {
+                gc.roots.contains(&wme.id) || gc.memo.get(&wme.id) == Some(&true)
+            })
+        });
+        if direct || gc.roots.contains(&x) {
+            gc.memo.insert(x, true);
+            return true;
+        }
+        gc.visited.clear();
+        gc.queue.clear();
+        gc.visited.insert(x);
+        gc.queue.push(x);
         let mut found = false;
-        while let Some(y) = queue.pop() {
-            if roots.contains(&y) || memo.get(&y) == Some(&true) {
+        while let Some(y) = gc.queue.pop() {
+            if gc.roots.contains(&y) || gc.memo.get(&y) == Some(&true) {
                 found = true;
                 break;
             }
             for w in self.wm.parents_of(y) {
                 if let Some(p) = self.wm.get(w).map(|wme| wme.id) {
-                    if visited.insert(p) {
-                        queue.push(p);
+                    if gc.visited.insert(p) {
+                        gc.queue.push(p);
                     }
                 }
             }
         }
         if found {
-            memo.insert(x, true);
+            gc.memo.insert(x, true);
         } else {
-            for v in visited {
-                memo.insert(v, false);
+            for &v in &gc.visited {
+                gc.memo.insert(v, false);
             }
         }
         found
@@ -1340,4 +1379,119 @@ impl Agent {
             .copied()
             .unwrap_or(0)
     }
+}
+
+/// The values a non-context slot's WMEs should show: each acceptable value not rejected,
+/// oldest preference first. Linear in the slot, with sets only for large slots (one slot can
+/// hold thousands of values, most hold one).
+fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> &'a Wanted {
+    out.clear();
+    let large = slot.prefs.len() > 16;
+    let rejected = |v: Sym, rejects: &FxHashSet<Sym>| {
+        if large {
+            rejects.contains(&v)
+        } else {
+            slot.prefs.iter().any(|&q| {
+                let q = &prefs[q as usize];
+                q.kind == PrefType::Reject && q.value == v
+            })
+        }
+    };
+    let rejects: FxHashSet<Sym> = if large {
+        slot.prefs
+            .iter()
+            .map(|&q| &prefs[q as usize])
+            .filter(|q| q.kind == PrefType::Reject)
+            .map(|q| q.value)
+            .collect()
+    } else {
+        FxHashSet::default()
+    };
+    for &pid in &slot.prefs {
+        let p = &prefs[pid as usize];
+        if p.kind == PrefType::Acceptable && !rejected(p.value, &rejects) {
+            out.insert(p.value, large);
+        }
+    }
+    out
+}
+
+/// Distinct values in first-seen order; a set beside the list once it is large.
+#[derive(Debug, Default)]
+struct Wanted {
+    list: Vec<Sym>,
+    set: FxHashSet<Sym>,
+}
+
+impl Wanted {
+    fn clear(&mut self) {
+        self.list.clear();
+        if !self.set.is_empty() {
+            self.set = FxHashSet::default();
+        }
+    }
+
+    fn insert(&mut self, v: Sym, large: bool) {
+        let new = if large {
+            self.set.insert(v)
+        } else {
+            !self.list.contains(&v)
+        };
+        if new {
+            self.list.push(v);
+        }
+    }
+
+    fn contains(&self, v: Sym) -> bool {
+        if self.set.is_empty() {
+            self.list.contains(&v)
+        } else {
+            self.set.contains(&v)
+        }
+    }
+
+    fn list(&self) -> &[Sym] {
+        &self.list
+    }
+}
+
+/// The working sets of one garbage collection, kept between collections for their room.
+#[derive(Debug, Default)]
+pub(crate) struct GcScratch {
+    roots: FxHashSet<Sym>,
+    memo: FxHashMap<Sym, bool>,
+    dead: FxHashSet<Sym>,
+    visited: FxHashSet<Sym>,
+    queue: Vec<Sym>,
+    stack: Vec<Sym>,
+}
+
+impl GcScratch {
+    fn clear(&mut self) {
+        self.roots.clear();
+        self.memo.clear();
+        self.dead.clear();
+        self.visited.clear();
+        self.queue.clear();
+        self.stack.clear();
+    }
+}
+
+/// The buffers of one elaboration cycle, kept between cycles for their room.
+#[derive(Debug, Default)]
+pub(crate) struct CycleScratch {
+    keep: Vec<(ProdId, TokId)>,
+    to_fire: Vec<(ProdId, TokId)>,
+    retracted: Vec<InstId>,
+    new_prefs: Vec<PrefId>,
+}
+
+/// The buffers of one working-memory phase, kept between phases for their room.
+#[derive(Debug, Default)]
+pub(crate) struct SlotScratch {
+    adds: Vec<(Sym, Sym, Sym, bool)>,
+    removes: Vec<(WmeId, u64)>,
+    context: Vec<(Sym, Sym)>,
+    added: Vec<WmeId>,
+    want: Wanted,
 }

@@ -24,7 +24,7 @@ impl Agent {
         // other WME on its slot's acceptable preferences.
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         let mut found = None;
-        for &pid in slot.prefs_for(wme.value) {
+        for pid in slot.prefs_for(wme.value) {
             let p = &self.decider.prefs[pid as usize];
             if !p.alive || p.kind != PrefType::Acceptable || p.value != wme.value {
                 continue;
@@ -48,7 +48,7 @@ impl Agent {
         let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
             return;
         };
-        let inst = slot.prefs_for(wme.value).iter().find_map(|&pid| {
+        let inst = slot.prefs_for(wme.value).find_map(|pid| {
             let p = &self.decider.prefs[pid as usize];
             (p.alive && p.o_support && p.kind == PrefType::Acceptable && p.value == wme.value)
                 .then_some(p.inst)

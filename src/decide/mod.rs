@@ -6,4 +6,5 @@ pub mod cycle;
 pub mod functions;
 mod gds;
 pub mod procedure;
+mod slot;
 pub mod state;

@@ -1,6 +1,7 @@
 //! The decider's memory (spec §3): instantiations, preferences, slots and the goal stack.
 
 use super::procedure::PrefType;
+pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
@@ -42,105 +43,6 @@ pub struct Preference {
     /// For a preference made in a substate: the firing and identities that made it, for
     /// backtracing (spec §4).
     pub origin: Option<std::sync::Arc<crate::learn::PrefOrigin>>,
-}
-
-/// All preferences for one (id, attr), oldest first (Soar's list read from its tail), and the
-/// WMEs they support.
-#[derive(Debug, Clone, Default)]
-pub struct Slot {
-    /// Change it only through [`Slot::push`], [`Slot::remove`] and [`Slot::remove_value`],
-    /// which keep `by_value` in step.
-    pub prefs: Vec<PrefId>,
-    /// Value (and acceptable flag) to the WME that shows it.
-    pub wmes: FxHashMap<(Sym, bool), WmeId>,
-    /// The same preferences by value, each list oldest first: one slot can hold thousands
-    /// of values, and the questions about one WME concern only its value's preferences.
-    by_value: FxHashMap<Sym, Vec<PrefId>>,
-}
-
-impl Slot {
-    pub fn push(&mut self, pid: PrefId, value: Sym) {
-        self.prefs.push(pid);
-        self.by_value.entry(value).or_default().push(pid);
-    }
-
-    /// Takes one preference out (the newest occurrence); false if it was not there.
-    pub fn remove(&mut self, pid: PrefId, value: Sym) -> bool {
-        let Some(pos) = self.prefs.iter().rposition(|x| *x == pid) else {
-            return false;
-        };
-        self.prefs.remove(pos);
-        if let Some(list) = self.by_value.get_mut(&value) {
-            if let Some(i) = list.iter().rposition(|x| *x == pid) {
-                list.remove(i);
-            }
-            if list.is_empty() {
-                self.by_value.remove(&value);
-            }
-        }
-        true
-    }
-
-    /// Takes out every preference for `value`, returning them oldest first.
-    pub fn remove_value(&mut self, value: Sym) -> Vec<PrefId> {
-        let gone = self.by_value.remove(&value).unwrap_or_default();
-        if !gone.is_empty() {
-            self.prefs.retain(|x| !gone.contains(x));
-        }
-        gone
-    }
-
-    /// The preferences for one value, oldest first (the order of `prefs`).
-    pub fn prefs_for(&self, value: Sym) -> &[PrefId] {
-        self.by_value.get(&value).map_or(&[], Vec::as_slice)
-    }
-}
-
-/// The slots by (id, attribute), and each identifier's attributes that have one, so that
-/// the slots of one identifier are found without a scan of them all (a substate's slots
-/// when it goes, a result's objects when they move up).
-#[derive(Debug, Default)]
-pub struct Slots {
-    map: FxHashMap<(Sym, Sym), Slot>,
-    attrs: FxHashMap<Sym, Vec<Sym>>,
-}
-
-impl Slots {
-    pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
-        self.map.get(key)
-    }
-
-    pub fn get_mut(&mut self, key: &(Sym, Sym)) -> Option<&mut Slot> {
-        self.map.get_mut(key)
-    }
-
-    /// The slot, made empty if there was none.
-    pub fn entry(&mut self, key: (Sym, Sym)) -> &mut Slot {
-        self.map.entry(key).or_insert_with(|| {
-            self.attrs.entry(key.0).or_default().push(key.1);
-            Slot::default()
-        })
-    }
-
-    pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
-        let slot = self.map.remove(key)?;
-        if let Some(list) = self.attrs.get_mut(&key.0) {
-            if let Some(i) = list.iter().position(|a| *a == key.1) {
-                list.remove(i);
-            }
-            if list.is_empty() {
-                self.attrs.remove(&key.0);
-            }
-        }
-        Some(slot)
-    }
-
-    /// The keys of `id`'s slots, in the order they were made.
-    pub fn keys_of(&self, id: Sym) -> Vec<(Sym, Sym)> {
-        self.attrs
-            .get(&id)
-            .map_or_else(Vec::new, |l| l.iter().map(|&a| (id, a)).collect())
-    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -230,6 +132,13 @@ pub struct DecideState {
     pub output_fn_time: std::time::Duration,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
+    pub(crate) gc_scratch: super::cycle::GcScratch,
+    pub(crate) cycle_scratch: super::cycle::CycleScratch,
+    pub(crate) slot_scratch: super::cycle::SlotScratch,
+    /// Emptied preference lists of freed instantiations, for the next firings.
+    pub spare_pref_lists: Vec<Vec<PrefId>>,
+    /// The identifiers a firing's actions make, by new-variable slot (scratch).
+    pub rhs_new_ids: Vec<Option<Sym>>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it (§3f).
     pub gds: FxHashMap<WmeId, Sym>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
@@ -283,12 +192,10 @@ impl DecideState {
     /// A slot with no preferences and no WMEs is forgotten (new identifiers keep coming;
     /// their slots must not pile up).
     pub fn drop_slot_if_empty(&mut self, key: (Sym, Sym)) {
-        if self
-            .slots
-            .get(&key)
-            .is_some_and(|s| s.prefs.is_empty() && s.wmes.is_empty())
-        {
-            self.slots.remove(&key);
+        if self.slots.get(&key).is_some_and(|s| s.is_empty()) {
+            if let Some(slot) = self.slots.remove(&key) {
+                self.slots.recycle(slot);
+            }
         }
     }
 
@@ -296,9 +203,13 @@ impl DecideState {
     pub fn free_inst(&mut self, i: InstId) {
         let inst = &mut self.insts[i as usize];
         inst.alive = false;
-        inst.prefs = Vec::new();
+        let mut list = std::mem::take(&mut inst.prefs);
         inst.serial = 0;
         self.free_insts.push(i);
+        if self.spare_pref_lists.len() < 1024 && list.capacity() > 0 {
+            list.clear();
+            self.spare_pref_lists.push(list);
+        }
     }
 
     /// Frees a preference already out of its slot: it leaves its instantiation's list too.

@@ -137,14 +137,14 @@ impl Agent {
         let above = self.decider.goals.get(gi.checked_sub(1)?)?.state;
         let op = self.symbols.find_str("operator")?;
         let slot = self.decider.slots.get(&(above, op))?;
-        slot.wmes.get(&(wme.value, true)).copied()
+        slot.wmes.get(&(wme.value, true))
     }
 
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
     /// operator proposal) preference for its value that was recorded.
     fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        slot.prefs_for(wme.value).iter().find_map(|&pid| {
+        slot.prefs_for(wme.value).find_map(|pid| {
             let p = &self.decider.prefs[pid as usize];
             let kind_ok = match p.kind {
                 PrefType::Acceptable => true,
