@@ -47,7 +47,13 @@ pub struct WorkingMemory {
     /// collection's upward search; `link_pos` is each WME's place in those lists.
     parents: FxHashMap<Sym, Vec<(WmeId, bool)>>,
     link_pos: Vec<[u32; 2]>,
+    /// Emptied lists, kept for their room: identifiers come and go with every firing.
+    spare_id_lists: Vec<Vec<WmeId>>,
+    spare_parent_lists: Vec<Vec<(WmeId, bool)>>,
 }
+
+/// At most this many emptied lists of each kind are kept.
+const SPARE_LISTS: usize = 4096;
 
 impl Default for WorkingMemory {
     fn default() -> Self {
@@ -69,6 +75,8 @@ impl WorkingMemory {
             removals: 0,
             parents: FxHashMap::default(),
             link_pos: Vec::new(),
+            spare_id_lists: Vec::new(),
+            spare_parent_lists: Vec::new(),
         }
     }
 
@@ -107,7 +115,11 @@ impl WorkingMemory {
                 WmeId((self.wmes.len() - 1) as u32)
             }
         };
-        let list = self.by_id.entry(id).or_default();
+        let spare = &mut self.spare_id_lists;
+        let list = self.by_id.entry(id).or_insert_with(|| IdList {
+            items: spare.pop().unwrap_or_default(),
+            live: 0,
+        });
         if self.id_pos.len() <= w.0 as usize {
             self.id_pos.resize(w.0 as usize + 1, 0);
         }
@@ -125,7 +137,11 @@ impl WorkingMemory {
                 self.link_pos[w.0 as usize][slot] = NOT_LINKED;
                 continue;
             }
-            let list = self.parents.entry(target).or_default();
+            let spare = &mut self.spare_parent_lists;
+            let list = self
+                .parents
+                .entry(target)
+                .or_insert_with(|| spare.pop().unwrap_or_default());
             self.link_pos[w.0 as usize][slot] = list.len() as u32;
             list.push((w, slot == 1));
         }
@@ -146,7 +162,11 @@ impl WorkingMemory {
             self.link_pos[moved.0 as usize][usize::from(as_attr)] = pos as u32;
         }
         if list.is_empty() {
-            self.parents.remove(&target);
+            if let Some(list) = self.parents.remove(&target) {
+                if self.spare_parent_lists.len() < SPARE_LISTS {
+                    self.spare_parent_lists.push(list);
+                }
+            }
         }
     }
 
@@ -168,7 +188,12 @@ impl WorkingMemory {
                 list.live -= 1;
             }
             if list.live == 0 {
-                self.by_id.remove(&wme.id);
+                if let Some(mut list) = self.by_id.remove(&wme.id) {
+                    if self.spare_id_lists.len() < SPARE_LISTS {
+                        list.items.clear();
+                        self.spare_id_lists.push(list.items);
+                    }
+                }
             } else if list.items.len() > 8 && list.items.len() > 2 * list.live as usize {
                 // Mostly gaps: close them (amortised constant time per removal).
                 list.items.retain(|x| *x != GONE);

@@ -593,15 +593,16 @@ impl Agent {
         if self.settings.trace.preferences {
             self.trace_new_preferences(new_prefs);
         }
+        let mut removed = Vec::new();
         for &pid in new_prefs {
             let p = &self.decider.prefs[pid as usize];
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
             if kind == PrefType::Reject && o_support {
-                let removed = match self.decider.slots.get_mut(&key) {
-                    Some(slot) => slot.remove_value(value),
-                    None => Vec::new(),
-                };
-                for r in removed {
+                removed.clear();
+                if let Some(slot) = self.decider.slots.get_mut(&key) {
+                    slot.remove_value(value, &mut removed);
+                }
+                for &r in &removed {
                     self.decider.free_pref(r);
                 }
                 self.decider.free_pref(pid);
@@ -673,23 +674,24 @@ impl Agent {
         for &key in &context {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
-            let mut want: Vec<Sym> = Vec::new();
+            want.clear();
+            let large = slot.prefs.len() > 16;
             // Require preferences show as `+` WMEs too, before the acceptable ones, each
             // kind oldest first: that sets their timetags (checked on 9.6).
             for kind in [PrefType::Require, PrefType::Acceptable] {
                 for &pid in slot.prefs.iter().rev() {
                     let p = &self.decider.prefs[pid as usize];
-                    if p.kind == kind && !want.contains(&p.value) {
-                        want.push(p.value);
+                    if p.kind == kind {
+                        want.insert(p.value, large);
                     }
                 }
             }
             for (v, acc, w) in slot.wmes.iter().rev() {
-                if acc && !want.contains(&v) {
+                if acc && !want.contains(v) {
                     removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
                 }
             }
-            for v in want {
+            for &v in want.list() {
                 if !slot.wmes.contains_key(&(v, true)) {
                     adds.push((key.0, key.1, v, true));
                 }

@@ -11,7 +11,7 @@ use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
 
 /// Above this many entries a slot's lists get a by-value index.
-const SMALL: usize = 8;
+const SMALL: usize = 32;
 
 /// All preferences for one (id, attr), oldest first (Soar's list read from its tail), and the
 /// WMEs they support.
@@ -65,18 +65,18 @@ impl Slot {
         true
     }
 
-    /// Takes out every preference for `value`, returning them oldest first.
-    pub fn remove_value(&mut self, value: Sym) -> Vec<PrefId> {
-        let gone: Vec<PrefId> = match &mut self.by_value {
-            Some(index) => index.remove(&value).unwrap_or_default(),
-            None => self.prefs_for(value).collect(),
-        };
-        if !gone.is_empty() {
+    /// Takes out every preference for `value`, appending them to `gone` oldest first.
+    pub fn remove_value(&mut self, value: Sym, gone: &mut Vec<PrefId>) {
+        let before = gone.len();
+        match &mut self.by_value {
+            Some(index) => gone.extend(index.remove(&value).unwrap_or_default()),
+            None => gone.extend(self.prefs_for(value)),
+        }
+        if gone.len() > before {
             let mut keep = self.values.iter().map(|v| *v != value);
             self.prefs.retain(|_| keep.next().unwrap_or(true));
             self.values.retain(|v| *v != value);
         }
-        gone
     }
 
     /// The preferences for one value, oldest first (the order of `prefs`).
@@ -226,8 +226,9 @@ impl SlotWmes {
 pub struct Slots {
     map: FxHashMap<(Sym, Sym), Slot>,
     attrs: FxHashMap<Sym, Vec<Sym>>,
-    /// Emptied slots, kept for their vectors.
+    /// Emptied slots and attribute lists, kept for their room.
     spare: Vec<Slot>,
+    spare_attrs: Vec<Vec<Sym>>,
 }
 
 impl Slots {
@@ -242,8 +243,12 @@ impl Slots {
     /// The slot, made empty if there was none.
     pub fn entry(&mut self, key: (Sym, Sym)) -> &mut Slot {
         let (attrs, spare) = (&mut self.attrs, &mut self.spare);
+        let spare_attrs = &mut self.spare_attrs;
         self.map.entry(key).or_insert_with(|| {
-            attrs.entry(key.0).or_default().push(key.1);
+            attrs
+                .entry(key.0)
+                .or_insert_with(|| spare_attrs.pop().unwrap_or_default())
+                .push(key.1);
             spare.pop().unwrap_or_default()
         })
     }
@@ -256,7 +261,11 @@ impl Slots {
                 list.remove(i);
             }
             if list.is_empty() {
-                self.attrs.remove(&key.0);
+                if let Some(list) = self.attrs.remove(&key.0) {
+                    if self.spare_attrs.len() < 4096 {
+                        self.spare_attrs.push(list);
+                    }
+                }
             }
         }
         Some(slot)
@@ -264,8 +273,10 @@ impl Slots {
 
     /// Keeps a removed slot's room for a later one.
     pub fn recycle(&mut self, mut slot: Slot) {
-        slot.clear();
-        self.spare.push(slot);
+        if self.spare.len() < 4096 {
+            slot.clear();
+            self.spare.push(slot);
+        }
     }
 
     /// The keys of `id`'s slots, in the order they were made.

@@ -312,6 +312,8 @@ pub struct Rete {
     free_hentries: Vec<u32>,
     /// The activations' shared stack of list copies (see `activate.rs`).
     scratch: Vec<u32>,
+    /// The successors of an alpha memory that just emptied (reused buffer).
+    emptied_succ: Vec<NodeId>,
     /// The same for alpha-memory successors.
     succ_scratch: Vec<Succ>,
     /// The last index key computed for a new token: (token, depth, field, value).
@@ -350,6 +352,7 @@ impl Rete {
             free_hentries: Vec::new(),
             scratch: Vec::new(),
             succ_scratch: Vec::new(),
+            emptied_succ: Vec::new(),
             key_memo: (NIL, 0, tests::Field::Id, None),
             root: 0,
             root_token: 0,
@@ -579,12 +582,16 @@ impl Rete {
             self.amem_remove_entry(e);
             if self.amems[amem as usize].count == 0 {
                 // Empty alpha memory: its joins need no left activations (Rete/UL).
-                let succ: Vec<NodeId> = self.amems[amem as usize]
-                    .successors
-                    .values()
-                    .map(|s| s.node)
-                    .collect();
+                let mut succ = std::mem::take(&mut self.emptied_succ);
+                succ.clear();
+                succ.extend(
+                    self.amems[amem as usize]
+                        .successors
+                        .values()
+                        .map(|s| s.node),
+                );
                 self.unlink_left_all(&succ);
+                self.emptied_succ = succ;
             }
         }
         // Tokens built on this WME go, with their descendants.
@@ -669,6 +676,16 @@ impl Rete {
 
     /// `unlink_left` for many joins at once: one pass over each parent's children.
     fn unlink_left_all(&mut self, nodes: &[NodeId]) {
+        if nodes.len() <= 8 {
+            // Few: each leaves its parent's list on its own (no sets to build).
+            for &n in nodes {
+                if self.mark_left_unlinked(n) {
+                    let parent = self.nodes[n as usize].parent;
+                    self.nodes[parent as usize].children.retain(|c| *c != n);
+                }
+            }
+            return;
+        }
         let mut by_parent: FxHashMap<NodeId, rustc_hash::FxHashSet<NodeId>> = FxHashMap::default();
         for &n in nodes {
             if self.mark_left_unlinked(n) {

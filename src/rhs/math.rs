@@ -62,15 +62,16 @@ fn out(ctx: &mut RhsContext, n: Num) -> Sym {
 
 /// `+` and `*`: ints accumulate as ints until the first float; from there on a double.
 fn accumulate(args: &[Sym], ctx: &mut RhsContext, times: bool) -> Result<Sym, String> {
-    let op = if times { '*' } else { '+' };
-    let ns = nums(
-        ctx,
-        args,
-        &format!("Error: non-number ({{}}) passed to {op} function"),
-    )?;
     let mut i: i64 = i64::from(times);
     let mut f: Option<f64> = None;
-    for n in ns {
+    for &a in args {
+        let Some(n) = num(ctx, a) else {
+            let op = if times { '*' } else { '+' };
+            return Err(format!(
+                "Error: non-number ({}) passed to {op} function",
+                ctx.y(a)
+            ));
+        };
         f = match (f, n) {
             (None, Num::I(x)) => {
                 i = if times {

@@ -332,7 +332,10 @@ pub fn call(name: &str, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym
         "deep-copy" => wmefns::deep_copy(args, ctx).map(Some),
         "from-st-xml" => xml::from_st_xml(args, ctx).map(Some),
         "concat" => {
-            let s: String = args.iter().map(|a| ctx.value_text(*a)).collect();
+            let mut s = String::new();
+            for a in args {
+                text::push_value_text(ctx.symbols, *a, &mut s);
+            }
             Ok(Some(ctx.str_sym(&s)))
         }
         "exec" => Ok(Some(exec(args, ctx))),
@@ -347,8 +350,9 @@ pub fn call(name: &str, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym
         }
         "write" => {
             if ctx.agent_writes {
-                let s: String = args.iter().map(|a| ctx.value_text(*a)).collect();
-                ctx.output.push_str(&s);
+                for a in args {
+                    text::push_value_text(ctx.symbols, *a, ctx.output);
+                }
             }
             Ok(None)
         }
