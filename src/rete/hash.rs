@@ -13,6 +13,9 @@ use crate::wm::WmeId;
 /// Alpha memories up to this size are scanned rather than looked up by identifier.
 const SMALL_AMEM: u32 = 4;
 
+/// Token holders up to this many tokens are scanned rather than indexed.
+pub(crate) const SMALL_BETA: u32 = 8;
+
 /// A left-index bucket: holder, key depth, key field, value.
 pub(crate) type TokKey = (NodeId, u32, Field, Sym);
 
@@ -113,7 +116,19 @@ impl Rete {
             }
             return;
         };
-        let key = (holder, d, f, self.wme(w).id);
+        let id = self.wme(w).id;
+        if !self.nodes[holder as usize].indexed {
+            // A small memory: its tokens with that value, newest first, as the index has them.
+            let mut t = self.nodes[holder as usize].first_token;
+            while t != NIL {
+                if self.key_value(t, d, f) == Some(id) {
+                    self.scratch.push(t);
+                }
+                t = self.tokens[t as usize].next_in_node;
+            }
+            return;
+        }
+        let key = (holder, d, f, id);
         let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
         while e != NIL {
             self.scratch.push(self.hentries[e as usize].tok);
@@ -193,11 +208,27 @@ impl Rete {
             return;
         }
         keys.push((d, f, 1));
-        // Oldest first, so that head insertion leaves the newest at the head.
+        if self.nodes[holder as usize].indexed {
+            self.index_tokens_on(holder, d, f);
+        }
+    }
+
+    /// Puts a holder's tokens in the left index under one key, oldest first, so that head
+    /// insertion leaves the newest at the head.
+    fn index_tokens_on(&mut self, holder: NodeId, d: u32, f: Field) {
         for t in self.node_tokens(holder).into_iter().rev() {
             if let Some(v) = self.key_value(t, d, f) {
                 self.hentry_insert((holder, d, f, v), t);
             }
+        }
+    }
+
+    /// Indexes every token of a holder that has outgrown scanning.
+    pub(crate) fn index_holder(&mut self, holder: NodeId) {
+        self.nodes[holder as usize].indexed = true;
+        for i in 0..self.nodes[holder as usize].left_keys.len() {
+            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            self.index_tokens_on(holder, d, f);
         }
     }
 

@@ -159,6 +159,11 @@ pub(crate) struct Node {
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: Vec<(u32, Field, u32)>,
+    /// Token holders with keys: whether their tokens are in the left index. A small memory
+    /// is scanned instead (most hold a few tokens, and indexing each costs more than the
+    /// scan); it is indexed once it grows past [`hash::SMALL_BETA`] tokens, and no longer
+    /// once empty.
+    pub indexed: bool,
     /// Join and negative nodes: the place among their alpha memory's successors (ascending
     /// = activation order), while linked.
     pub amem_key: u64,
@@ -377,6 +382,7 @@ impl Rete {
             alive: true,
             hash: None,
             left_keys: Vec::new(),
+            indexed: false,
             amem_key: 0,
             same_amem_ancestor: NIL,
         };
@@ -392,6 +398,7 @@ impl Rete {
         node.kind = Kind::Memory;
         node.hash = None;
         node.left_keys = Vec::new();
+        node.indexed = false;
         self.free_nodes.push(n);
     }
 

@@ -62,8 +62,13 @@ impl Rete {
                 }
             }
         }
-        if !self.nodes[node as usize].left_keys.is_empty() {
-            self.index_token(node, t);
+        let n = &self.nodes[node as usize];
+        if !n.left_keys.is_empty() {
+            if n.indexed {
+                self.index_token(node, t);
+            } else if n.token_count > super::hash::SMALL_BETA {
+                self.index_holder(node);
+            }
         }
         t
     }
@@ -116,7 +121,12 @@ impl Rete {
         if tok.next_in_node != NIL {
             self.tokens[tok.next_in_node as usize].prev_in_node = tok.prev_in_node;
         }
-        self.nodes[node as usize].token_count -= 1;
+        let n = &mut self.nodes[node as usize];
+        n.token_count -= 1;
+        if n.token_count == 0 {
+            // Its last token took its last index entries with it.
+            n.indexed = false;
+        }
         // Out of its WME's list.
         if tok.wme != NIL_WME {
             if tok.prev_of_wme != NIL {
