@@ -11,7 +11,7 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 
 /// Alpha memories up to this size are scanned rather than looked up by identifier.
-const SMALL_AMEM: u32 = 4;
+pub(crate) const SMALL_AMEM: u32 = 4;
 
 /// Token holders up to this many tokens are scanned rather than indexed.
 pub(crate) const SMALL_BETA: u32 = 8;
@@ -40,6 +40,22 @@ impl Rete {
         self.rm[e as usize].id_prev = NIL;
         if head != NIL {
             self.rm[head as usize].id_prev = e;
+        }
+    }
+
+    /// Indexes every entry of an alpha memory that has outgrown scanning, oldest first (so
+    /// that head insertion leaves the newest at the head).
+    pub(crate) fn index_amem(&mut self, a: AmemId) {
+        self.amems[a as usize].indexed = true;
+        let mut entries = Vec::with_capacity(self.amems[a as usize].count as usize);
+        let mut e = self.amems[a as usize].first;
+        while e != NIL {
+            entries.push(e);
+            e = self.rm[e as usize].next;
+        }
+        for &e in entries.iter().rev() {
+            let id = self.rm[e as usize].id;
+            self.id_index_insert(a, id, e);
         }
     }
 
@@ -81,7 +97,7 @@ impl Rete {
             return;
         };
         let am = &self.amems[a as usize];
-        if am.count <= SMALL_AMEM {
+        if !am.indexed {
             // A few entries: filtering them is cheaper than the hash probe, and gives the
             // same WMEs in the same (newest first) order.
             let mut e = am.first;

@@ -65,6 +65,9 @@ pub(crate) struct Amem {
     /// so that unlinking one of thousands is cheap.
     pub successors: std::collections::BTreeMap<u64, Succ>,
     pub refs: u32,
+    /// Whether its entries are in the by-identifier index: a small memory is scanned
+    /// instead (see `hash::SMALL_AMEM`), indexed once it grows, and no longer once empty.
+    pub indexed: bool,
 }
 
 /// A linked successor of an alpha memory, with the first of its tests that reads the new
@@ -415,6 +418,7 @@ impl Rete {
             count: 0,
             successors: std::collections::BTreeMap::new(),
             refs: 1,
+            indexed: false,
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
         self.amem_index.insert(key, id);
@@ -450,7 +454,9 @@ impl Rete {
             if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
                 rm_slots_remove(&mut rw.rm, e);
                 let id = rw.id;
-                self.amem_by_id.remove(&(a, id));
+                if self.amems[a as usize].indexed {
+                    self.amem_by_id.remove(&(a, id));
+                }
             }
             self.free_rm.push(e);
             e = next;
@@ -481,10 +487,15 @@ impl Rete {
         let am = &mut self.amems[a as usize];
         am.first = e;
         am.count += 1;
+        let (indexed, count) = (am.indexed, am.count);
         if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
             rm_slots_push(&mut rw.rm, e);
             let id = rw.id;
-            self.id_index_insert(a, id, e);
+            if indexed {
+                self.id_index_insert(a, id, e);
+            } else if count > hash::SMALL_AMEM {
+                self.index_amem(a);
+            }
         }
     }
 
@@ -496,8 +507,10 @@ impl Rete {
             wme,
             ..
         } = self.rm[e as usize];
-        if let Some(id) = self.wmes[wme.0 as usize].as_ref().map(|rw| rw.id) {
-            self.id_index_remove(amem, id, e);
+        if self.amems[amem as usize].indexed {
+            if let Some(id) = self.wmes[wme.0 as usize].as_ref().map(|rw| rw.id) {
+                self.id_index_remove(amem, id, e);
+            }
         }
         if prev != NIL {
             self.rm[prev as usize].next = next;
@@ -507,7 +520,11 @@ impl Rete {
         if next != NIL {
             self.rm[next as usize].prev = prev;
         }
-        self.amems[amem as usize].count -= 1;
+        let am = &mut self.amems[amem as usize];
+        am.count -= 1;
+        if am.count == 0 {
+            am.indexed = false;
+        }
         self.free_rm.push(e);
     }
 
