@@ -91,7 +91,10 @@ impl Rete {
         let id = if memo.0 == t && memo.1 == d && memo.2 == f {
             memo.3
         } else {
-            self.key_value(t, d, f)
+            // Remembered for the token's other children on the same key.
+            let v = self.key_value(t, d, f);
+            self.key_memo = (t, d, f, v);
+            v
         };
         let Some(id) = id else {
             return;
