@@ -209,11 +209,11 @@ pub struct MatchSet {
     pub assertions: Vec<(ProdId, TokId)>,
     pub retractions: Vec<(ProdId, TokId)>,
     /// Each pending assertion's support, decided once at match time (spec §3c).
-    pub support: rustc_hash::FxHashMap<(ProdId, TokId), bool>,
+    pub support: crate::decide::by_token::ByToken<bool>,
     /// The same matches as `assertions`, as a set: most retracted matches have fired, and
     /// finding that out must not mean a scan of the queue. Whoever takes a match off
     /// `assertions` calls [`MatchSet::taken`].
-    pending: rustc_hash::FxHashSet<(ProdId, TokId)>,
+    pending: crate::decide::by_token::ByToken<()>,
 }
 
 impl MatchSet {
@@ -234,11 +234,11 @@ impl MatchSet {
 impl MatchSink for MatchSet {
     fn matched(&mut self, p: ProdId, t: TokId) {
         self.assertions.push((p, t));
-        self.pending.insert((p, t));
+        self.pending.insert((p, t), ());
     }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         // A match that goes before it fired simply leaves the queue.
-        let queued = self.pending.remove(&(p, t));
+        let queued = self.pending.remove(&(p, t)).is_some();
         if let Some(i) = queued
             .then(|| self.assertions.iter().rposition(|x| *x == (p, t)))
             .flatten()

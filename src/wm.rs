@@ -39,7 +39,6 @@ pub struct WorkingMemory {
     by_id: FxHashMap<Sym, IdList>,
     /// Each WME's place in its identifier's list.
     id_pos: Vec<u32>,
-    by_timetag: FxHashMap<u64, WmeId>,
     count: usize,
     additions: u64,
     removals: u64,
@@ -69,7 +68,6 @@ impl WorkingMemory {
             next_timetag: 1,
             by_id: FxHashMap::default(),
             id_pos: Vec::new(),
-            by_timetag: FxHashMap::default(),
             count: 0,
             additions: 0,
             removals: 0,
@@ -126,7 +124,6 @@ impl WorkingMemory {
         self.id_pos[w.0 as usize] = list.items.len() as u32;
         list.items.push(w);
         list.live += 1;
-        self.by_timetag.insert(timetag, w);
         self.count += 1;
         self.additions += 1;
         if self.link_pos.len() <= w.0 as usize {
@@ -204,7 +201,6 @@ impl WorkingMemory {
         }
         self.unlink(w, 0, wme.value);
         self.unlink(w, 1, wme.attr);
-        self.by_timetag.remove(&wme.timetag);
         self.free.push(w.0);
         self.count -= 1;
         self.removals += 1;
@@ -215,8 +211,13 @@ impl WorkingMemory {
         self.wmes.get(w.0 as usize).and_then(|x| x.as_ref())
     }
 
+    /// The WME with timetag `tt` (a scan: only commands ask, and keeping an index would
+    /// cost every WME change a hash insert and remove).
     pub fn by_timetag(&self, tt: u64) -> Option<WmeId> {
-        self.by_timetag.get(&tt).copied()
+        self.wmes
+            .iter()
+            .position(|w| w.is_some_and(|w| w.timetag == tt))
+            .map(|i| WmeId(i as u32))
     }
 
     /// The WMEs whose id is `id`, oldest first.

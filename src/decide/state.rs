@@ -93,7 +93,7 @@ pub enum Phase {
 #[derive(Debug, Default)]
 pub struct DecideState {
     pub insts: Vec<Instantiation>,
-    pub inst_by_token: FxHashMap<(ProdId, TokId), InstId>,
+    pub inst_by_token: super::by_token::ByToken<InstId>,
     pub prefs: Vec<Preference>,
     pub slots: Slots,
     /// Slots whose preferences changed in this elaboration cycle, in order of change.
