@@ -119,3 +119,25 @@ fn misuse_gets_9_6_messages() {
         "--> 2 decision cycles executed. No rules fired."
     );
 }
+
+/// Past `max-goal-depth` 9.6 stops the run as interrupted and does not halt: a later run
+/// goes one state deeper, with the same message (observed on soar-sml 9.6.5).
+#[test]
+fn max_goal_depth_interrupts_the_run_without_halting() {
+    let mut i = Interpreter::new();
+    i.set_cwd(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    out(&mut i, "srand 1");
+    out(&mut i, "source tests/agents/max-goal-depth.soar");
+    out(&mut i, "trace 1");
+    let first = out(&mut i, "run 1000");
+    assert!(first.contains(
+        "==>S: S7 (operator no-change)\nSystem halted.\nInterrupt received.Interrupt received.\n\n\
+         --> 12 decision cycles executed. 6 rules fired. \nRun stopped (interrupted)."
+    ));
+    let second = out(&mut i, "run 3");
+    assert!(second.contains("O: O7 (dive)\nGoal stack depth exceeded 6 on a no-change impasse."));
+    assert!(second.contains(
+        "==>S: S8 (operator no-change)\nSystem halted.\nInterrupt received.Interrupt received.\n\n\
+         --> 2 decision cycles executed. 1 rule fired. \nRun stopped (interrupted)."
+    ));
+}

@@ -79,6 +79,17 @@ impl Interpreter {
                 "\nInterrupt received.This Agent halted.".to_string(),
             ));
         }
+        if self.agent.decider.depth_exceeded {
+            // 9.6's two interrupt notices: its scheduler's and its run loop's.
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\nInterrupt received.Interrupt received.".to_string(),
+            ));
+        }
+        if self.agent.decider.rhs_interrupted && !self.agent.decider.halted {
+            self.events
+                .push(super::Event::Text("Interrupt received.".to_string()));
+        }
         if interrupted {
             self.events
                 .push(super::Event::Text("\nInterrupted.".to_string()));
@@ -100,6 +111,8 @@ impl Interpreter {
         };
         let halted = if self.agent.decider.halted {
             "\nAn agent halted during the run."
+        } else if self.agent.decider.depth_exceeded || self.agent.decider.rhs_interrupted {
+            "\nRun stopped (interrupted)."
         } else {
             ""
         };

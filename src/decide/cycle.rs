@@ -54,6 +54,8 @@ impl Agent {
     /// default stop phase does. Returns (decisions executed, rules fired).
     pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
         self.decider.stop_requested = false;
+        self.decider.depth_exceeded = false;
+        self.decider.rhs_interrupted = false;
         self.learn.learned_this_run = 0;
         if self.decider.goals.is_empty() {
             self.decider.goals.push(Goal {
@@ -71,6 +73,8 @@ impl Agent {
         let mut done = 0u64;
         while !self.decider.halted
             && !self.decider.stop_requested
+            && !self.decider.depth_exceeded
+            && !self.decider.rhs_interrupted
             && (unit == RunUnit::Forever || done < n)
         {
             let phase = self.decider.phase.unwrap_or(Phase::Input);
@@ -91,7 +95,7 @@ impl Agent {
                 break;
             }
         }
-        if self.decider.halted && self.decider.phase.is_some() {
+        if (self.decider.halted || self.decider.depth_exceeded) && self.decider.phase.is_some() {
             self.out("\nSystem halted.");
         }
         (
@@ -1130,7 +1134,9 @@ impl Agent {
                 self.settings.max_goal_depth
             );
             self.out(&msg);
-            self.decider.halted = true;
+            // 9.6 stops the run here without halting the agent: a later `run` goes on
+            // deeper, with the same message at each new state (checked on soar-sml 9.6.5).
+            self.decider.depth_exceeded = true;
         }
         self.decider.wme_changes += wmes.len() as u64;
         for &w in wmes.iter().rev() {

@@ -17,11 +17,15 @@ pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, 
     ctx.decision_count = agent.decider.d_cycle_count;
     ctx.trace_flags = crate::rhs::trace_flags_for_level(trace_level);
     let result = crate::rhs::call(name, args, &mut ctx);
-    let halt = ctx.halt || ctx.interrupt;
+    let (halt, interrupt) = (ctx.halt, ctx.interrupt);
     let fresh_line = ctx.error_fresh_line;
     drop(ctx);
     if halt {
         agent.decider.halted = true;
+    }
+    if interrupt {
+        // `(interrupt)` stops the run after this phase; the agent goes on at the next run.
+        agent.decider.rhs_interrupted = true;
     }
     if let Err(msg) = &result {
         if !msg.is_empty() {

@@ -113,6 +113,11 @@ pub struct DecideState {
     pub firing_counts: Vec<u64>,
     pub halted: bool,
     pub stop_requested: bool,
+    /// A no-change went past `max-goal-depth` in this run: the run stops, interrupted, and
+    /// the agent is not halted (spec §3a).
+    pub depth_exceeded: bool,
+    /// A rule called `(interrupt)` in this run: the run stops after the phase.
+    pub rhs_interrupted: bool,
     /// The top goal's operator slot changed since the last decision, per goal.
     pub context_changed: bool,
     pub wme_changes: u64,
