@@ -16,8 +16,36 @@ pub(crate) const SMALL_AMEM: u32 = 4;
 /// Token holders up to this many tokens are scanned rather than indexed.
 pub(crate) const SMALL_BETA: u32 = 8;
 
-/// A left-index bucket: holder, key depth, key field, value.
-pub(crate) type TokKey = (NodeId, u32, Field, Sym);
+/// A left-index bucket: holder, key depth, key field and value, packed into two words (one
+/// hash round each: every token of an indexed memory goes in and out under one).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(crate) struct TokKey {
+    holder_value: u64,
+    depth_field: u32,
+}
+
+impl TokKey {
+    pub(crate) fn new(holder: NodeId, d: u32, f: Field, v: Sym) -> Self {
+        TokKey {
+            holder_value: (u64::from(holder) << 32) | u64::from(v.0),
+            depth_field: depth_field(d, f),
+        }
+    }
+
+    /// Whether this bucket is the holder's on key `(d, f)`.
+    fn is_key_of(&self, holder: NodeId, d: u32, f: Field) -> bool {
+        (self.holder_value >> 32) as u32 == holder && self.depth_field == depth_field(d, f)
+    }
+}
+
+fn depth_field(d: u32, f: Field) -> u32 {
+    (d << 2) | f as u32
+}
+
+/// The right-index key of (alpha memory, identifier), packed into one word.
+pub(crate) fn amem_id_key(a: AmemId, id: Sym) -> u64 {
+    (u64::from(a) << 32) | u64::from(id.0)
+}
 
 /// One token's membership in one left-index bucket.
 #[derive(Debug, Clone, Copy)]
@@ -35,7 +63,7 @@ impl Rete {
 
     /// Puts alpha-memory entry `e` at the head of its identifier's list.
     pub(crate) fn id_index_insert(&mut self, a: AmemId, id: Sym, e: u32) {
-        let head = self.amem_by_id.insert((a, id), e).unwrap_or(NIL);
+        let head = self.amem_by_id.insert(amem_id_key(a, id), e).unwrap_or(NIL);
         self.rm[e as usize].id_next = head;
         self.rm[e as usize].id_prev = NIL;
         if head != NIL {
@@ -64,9 +92,9 @@ impl Rete {
         if prev != NIL {
             self.rm[prev as usize].id_next = next;
         } else if next != NIL {
-            self.amem_by_id.insert((a, id), next);
+            self.amem_by_id.insert(amem_id_key(a, id), next);
         } else {
-            self.amem_by_id.remove(&(a, id));
+            self.amem_by_id.remove(&amem_id_key(a, id));
         }
         if next != NIL {
             self.rm[next as usize].id_prev = prev;
@@ -113,7 +141,11 @@ impl Rete {
             }
             return;
         }
-        let mut e = self.amem_by_id.get(&(a, id)).copied().unwrap_or(NIL);
+        let mut e = self
+            .amem_by_id
+            .get(&amem_id_key(a, id))
+            .copied()
+            .unwrap_or(NIL);
         while e != NIL {
             let entry = &self.rm[e as usize];
             self.scratch.push(entry.wme.0);
@@ -147,7 +179,7 @@ impl Rete {
             }
             return;
         }
-        let key = (holder, d, f, id);
+        let key = TokKey::new(holder, d, f, id);
         let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
         while e != NIL {
             self.scratch.push(self.hentries[e as usize].tok);
@@ -202,7 +234,7 @@ impl Rete {
             let v = self.key_value(t, d, f);
             self.key_memo = (t, d, f, v);
             if let Some(v) = v {
-                self.hentry_insert((holder, d, f, v), t);
+                self.hentry_insert(TokKey::new(holder, d, f, v), t);
             }
         }
     }
@@ -237,7 +269,7 @@ impl Rete {
     fn index_tokens_on(&mut self, holder: NodeId, d: u32, f: Field) {
         for t in self.node_tokens(holder).into_iter().rev() {
             if let Some(v) = self.key_value(t, d, f) {
-                self.hentry_insert((holder, d, f, v), t);
+                self.hentry_insert(TokKey::new(holder, d, f, v), t);
             }
         }
     }
@@ -268,7 +300,7 @@ impl Rete {
             let mut kept = Vec::new();
             while e != NIL {
                 let entry = self.hentries[e as usize];
-                if entry.key.1 == d && entry.key.2 == f && entry.key.0 == holder {
+                if entry.key.is_key_of(holder, d, f) {
                     self.hentry_unlink(e);
                 } else {
                     kept.push(e);

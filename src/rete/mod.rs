@@ -312,7 +312,7 @@ pub struct Rete {
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
-    pub(crate) amem_by_id: FxHashMap<(AmemId, Sym), u32>,
+    pub(crate) amem_by_id: FxHashMap<u64, u32>,
     /// Holders' tokens by their value at one `(depth, field)` key: the head of each list
     /// of index entries (Soar's left hash table).
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
@@ -455,7 +455,7 @@ impl Rete {
                 rm_slots_remove(&mut rw.rm, e);
                 let id = rw.id;
                 if self.amems[a as usize].indexed {
-                    self.amem_by_id.remove(&(a, id));
+                    self.amem_by_id.remove(&hash::amem_id_key(a, id));
                 }
             }
             self.free_rm.push(e);
