@@ -670,7 +670,7 @@ fn add_test<'a>(
                 }),
             }
         }
-        Test::Equal(Term::Var(v)) => match bindings.get(v.as_str()) {
+        Test::Equal(Term::Var(v)) => match bindings.get(&**v) {
             Some(&(d, f)) => tests.push(JoinTest::Compare {
                 field,
                 op: Op::Eq,
@@ -682,7 +682,7 @@ fn add_test<'a>(
         },
         Test::Relational(r, Term::Var(v)) => {
             // A relational test on a variable bound nowhere is dropped (spec §1g).
-            if let Some(&(d, f)) = bindings.get(v.as_str()) {
+            if let Some(&(d, f)) = bindings.get(&**v) {
                 tests.push(JoinTest::Compare {
                     field,
                     op: Op::Rel(*r),
