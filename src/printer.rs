@@ -65,7 +65,7 @@ pub fn constant_text(c: &Constant) -> String {
 
 fn term_text(t: &Term) -> String {
     match t {
-        Term::Var(v) => v.clone(),
+        Term::Var(v) => v.to_string(),
         Term::Const(c) => constant_text(c),
     }
 }

@@ -62,7 +62,9 @@ pub enum Test {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum Term {
-    Var(String),
+    /// (Boxed text, not a `String`: with it a term is 24 bytes, and a rule keeps a few
+    /// dozen of them.)
+    Var(Box<str>),
     Const(Constant),
 }
 
@@ -392,14 +394,14 @@ fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
 
 fn term(a: &ast::Atom) -> Term {
     match a {
-        ast::Atom::Var(v) => Term::Var(v.clone()),
+        ast::Atom::Var(v) => Term::Var(v.as_str().into()),
         ast::Atom::Const(c) => Term::Const(c.clone()),
     }
 }
 
 pub fn term_text(t: &Term) -> String {
     match t {
-        Term::Var(v) => v.clone(),
+        Term::Var(v) => v.to_string(),
         Term::Const(c) => crate::printer::constant_text(c),
     }
 }
@@ -410,11 +412,11 @@ fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> Test {
         Test::Equal(_) => t,
         Test::Conjunction(mut ts) => {
             if !matches!(ts.last(), Some(Test::Equal(_))) {
-                ts.push(Test::Equal(Term::Var(ph.fresh(letter))));
+                ts.push(Test::Equal(Term::Var(ph.fresh(letter).into())));
             }
             Test::Conjunction(ts)
         }
-        other => Test::Conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter)))]),
+        other => Test::Conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter).into()))]),
     }
 }
 
@@ -486,12 +488,12 @@ fn compile_cond_for_one_id(
             ensure_equality(test, ph, 's')
         }
         // A condition with no id test gets a placeholder named after `s` (parse_cond).
-        None => Test::Equal(Term::Var(ph.fresh('s'))),
+        None => Test::Equal(Term::Var(ph.fresh('s').into())),
     };
     if c.attr_value_tests.is_empty() {
         // `(<x>)` tests that <x> has some attribute: `(<x> ^<a*1> <v*1>)`.
-        let attr = Test::Equal(Term::Var(ph.fresh('a')));
-        let value = Test::Equal(Term::Var(ph.fresh('v')));
+        let attr = Test::Equal(Term::Var(ph.fresh('a').into()));
+        let value = Test::Equal(Term::Var(ph.fresh('v').into()));
         dest.push(Condition::Positive(Cond {
             id,
             attr,
@@ -533,7 +535,7 @@ fn compile_attr_value_tests(
     // after the step's attribute.
     let mut attr = ensure_equality(compile_test(&avt.path[0], out), ph, 'a');
     for step in &avt.path[1..] {
-        let v = Term::Var(ph.fresh(ph.letter_of(&attr)));
+        let v = Term::Var(ph.fresh(ph.letter_of(&attr)).into());
         local.push(Condition::Positive(Cond {
             id: cur_id.clone(),
             attr,
@@ -594,7 +596,7 @@ fn compile_attr_value_tests(
             ast::ValueTest::Structured {
                 tests, acceptable, ..
             } => {
-                let pv = Term::Var(ph.fresh(letter));
+                let pv = Term::Var(ph.fresh(letter).into());
                 local.push(Condition::Positive(Cond {
                     id,
                     attr,
@@ -973,7 +975,8 @@ fn drop_unbound_relational(
             }
         }
     }
-    let unbound = |t: &Test| matches!(t, Test::Relational(_, Term::Var(v)) if !bound.contains(v));
+    let unbound =
+        |t: &Test| matches!(t, Test::Relational(_, Term::Var(v)) if !bound.contains(&**v));
     for c in conds.iter_mut() {
         match c {
             Condition::Positive(c) => {

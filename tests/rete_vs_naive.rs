@@ -159,7 +159,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
             Test::Equal(Term::Const(Constant::Str(ATTRS[c.attr].into())))
         };
         Cond {
-            id: Test::Equal(Term::Var(id)),
+            id: Test::Equal(Term::Var(id.into())),
             attr,
             value: value_test(&c.value, bound),
             acceptable: c.acceptable,
@@ -171,12 +171,12 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
         for t in [&c.id, &c.attr, &c.value] {
             match t {
                 Test::Equal(Term::Var(v)) => {
-                    bound.insert(v.clone());
+                    bound.insert(v.to_string());
                 }
                 Test::Conjunction(ts) => {
                     for t in ts {
                         if let Test::Equal(Term::Var(v)) = t {
-                            bound.insert(v.clone());
+                            bound.insert(v.to_string());
                         }
                     }
                 }
@@ -241,17 +241,17 @@ impl Naive<'_> {
     fn test(&self, t: &Test, x: Sym, env: &mut Env) -> bool {
         match t {
             Test::Equal(Term::Const(c)) => self.k(c) == x,
-            Test::Equal(Term::Var(v)) => match env.get(v) {
+            Test::Equal(Term::Var(v)) => match env.get(&**v) {
                 Some(&b) => b == x,
                 None => {
-                    env.insert(v.clone(), x);
+                    env.insert(v.to_string(), x);
                     true
                 }
             },
             Test::Relational(r, term) => {
                 let b = match term {
                     Term::Const(c) => self.k(c),
-                    Term::Var(v) => match env.get(v) {
+                    Term::Var(v) => match env.get(&**v) {
                         Some(&b) => b,
                         None => return true, // bound nowhere: Soar drops the test
                     },

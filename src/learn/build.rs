@@ -90,7 +90,7 @@ impl Builder<'_> {
         if !self.namer.variablize {
             return if is_id {
                 // Justifications print their identifiers bare (`(state S1 ^operator O1)`).
-                Term::Var(self.agent.symbols.text(sym))
+                Term::Var(self.agent.symbols.text(sym).into())
             } else {
                 Term::Const(constant_of(self.agent, sym))
             };
@@ -106,19 +106,19 @@ impl Builder<'_> {
                 return Term::Const(constant_of(self.agent, l));
             }
             if let Some(n) = self.namer.by_ident.get(&root) {
-                return Term::Var(n.clone());
+                return Term::Var(n.as_str().into());
             }
             let n = self.namer.fresh(letter_for(self.agent, sym, under));
             self.namer.by_ident.insert(root, n.clone());
-            return Term::Var(n);
+            return Term::Var(n.into());
         }
         if is_id {
             if let Some(n) = self.namer.by_sym.get(&sym) {
-                return Term::Var(n.clone());
+                return Term::Var(n.as_str().into());
             }
             let n = self.namer.fresh(letter_for(self.agent, sym, under));
             self.namer.by_sym.insert(sym, n.clone());
-            return Term::Var(n);
+            return Term::Var(n.into());
         }
         Term::Const(constant_of(self.agent, sym))
     }
@@ -212,9 +212,9 @@ impl Builder<'_> {
         locals: &mut FxHashMap<String, String>,
     ) -> Option<Test> {
         let term = |b: &mut Self, term: &Term, locals: &mut FxHashMap<String, String>| match term {
-            Term::Var(v) if trace.vars.contains_key(v) => b.var_term(trace, v),
-            Term::Var(v) => Some(Term::Var(match locals.get(v) {
-                Some(n) => n.clone(),
+            Term::Var(v) if trace.vars.contains_key(&**v) => b.var_term(trace, v),
+            Term::Var(v) => Some(Term::Var(match locals.get(&**v) {
+                Some(n) => n.as_str().into(),
                 None => {
                     let letter = v
                         .chars()
@@ -222,8 +222,8 @@ impl Builder<'_> {
                         .filter(char::is_ascii_alphabetic)
                         .unwrap_or('v');
                     let n = b.namer.fresh(letter.to_ascii_lowercase());
-                    locals.insert(v.clone(), n.clone());
-                    n
+                    locals.insert(v.to_string(), n.clone());
+                    n.into()
                 }
             })),
             Term::Const(c) => Some(Term::Const(c.clone())),
@@ -258,7 +258,7 @@ impl Builder<'_> {
             }
         }
         match self.term(sym, ident, under) {
-            Term::Var(v) => RhsTerm::Var(v),
+            Term::Var(v) => RhsTerm::Var(v.into()),
             Term::Const(c) => RhsTerm::Const(c),
         }
     }
@@ -268,7 +268,7 @@ impl Builder<'_> {
         for a in &f.args {
             args.push(match a {
                 RhsTerm::Var(v) => match self.var_term(trace, v)? {
-                    Term::Var(x) => RhsTerm::Var(x),
+                    Term::Var(x) => RhsTerm::Var(x.into()),
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 RhsTerm::Const(c) => RhsTerm::Const(c.clone()),

@@ -35,7 +35,7 @@ impl Agent {
     ) -> Option<Arc<InstTrace>> {
         let mut vars: FxHashMap<String, (Ident, Sym)> = FxHashMap::default();
         if let Some(info) = self.rete.production(p) {
-            let names: Vec<String> = info.bindings.keys().cloned().collect();
+            let names: Vec<String> = info.bindings.keys().map(str::to_string).collect();
             let mut names = names;
             names.sort();
             let first = self.learn.new_idents(names.len() + new_ids.len());

@@ -235,7 +235,7 @@ impl Rete {
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
-        let children = &self.nodes[n as usize].children;
+        let children = self.nodes[n as usize].children.as_slice();
         if children.len() == 1 {
             // The common case needs no copy of the list.
             let c = children[0];
@@ -338,7 +338,7 @@ impl Rete {
                         buffer,
                         owner_depth,
                         ..
-                    } => (std::mem::take(buffer), *owner_depth),
+                    } => (std::mem::take(&mut **buffer), *owner_depth),
                     _ => (Vec::new(), 0),
                 };
                 let mut keep = Vec::new();

@@ -113,14 +113,13 @@ impl Rete {
         let pid = ProdId(self.prods.len() as u32);
         let mut bindings = Bindings::default();
         let mut cond_nodes = vec![NIL; p.conditions.len()];
-        let mut positive_order = Vec::with_capacity(p.conditions.len());
-        let mut build_order = Vec::with_capacity(p.conditions.len());
+        let mut positives = 0;
         let cur = self.build_conditions(
             &p.conditions,
             Cur::Holder(self.root),
             &mut bindings,
             syms,
-            Some((&mut cond_nodes, &mut positive_order, &mut build_order)),
+            Some((&mut cond_nodes, &mut positives)),
         );
         let parent = cur_node(cur);
         // A rule whose conditions share every node with another rule, and whose actions are
@@ -131,7 +130,7 @@ impl Rete {
             .find_map(|c| match self.nodes[c as usize].kind {
                 Kind::Production { prod } => self
                     .production(prod)
-                    .filter(|i| i.action_key == action_key)
+                    .filter(|i| *i.action_key == *action_key)
                     .map(|_| prod),
                 _ => None,
             });
@@ -145,11 +144,10 @@ impl Rete {
         self.prods.push(Some(ProdInfo {
             name: p.name.clone(),
             pnode,
-            positive_order,
+            positives,
             bindings: bindings.into(),
-            cond_nodes,
-            build_order,
-            action_key,
+            cond_nodes: cond_nodes.into(),
+            action_key: action_key.into(),
         }));
         self.fill_new_node(pnode, syms, sink);
         Ok(pid)
@@ -196,7 +194,7 @@ impl Rete {
         }
         let parent = self.nodes[m as usize].parent;
         let children = &mut self.nodes[parent as usize].children;
-        if let Some(pos) = children.iter().position(|&c| c == m) {
+        if let Some(pos) = children.as_slice().iter().position(|&c| c == m) {
             children.remove(pos);
             children.push(m);
         }
@@ -262,7 +260,7 @@ impl Rete {
         mut cur: Cur,
         bindings: &mut Bindings<'a>,
         syms: &mut Symbols,
-        mut record: Option<(&mut Vec<NodeId>, &mut Vec<usize>, &mut Vec<usize>)>,
+        mut record: Option<(&mut Vec<NodeId>, &mut u32)>,
     ) -> Cur {
         // Conditions come in join order: `reorder` put them there (spec §3i).
         for i in 0..conds.len() {
@@ -278,10 +276,9 @@ impl Rete {
                     let h = self.holder_under(cur, hk, syms);
                     let j = self.share_or_build_join(h, key, tests);
                     cur = Cur::Join(j);
-                    if let Some((nodes, order, all)) = record.as_mut() {
+                    if let Some((nodes, positives)) = record.as_mut() {
                         nodes[i] = j;
-                        order.push(i);
-                        all.push(i);
+                        **positives += 1;
                     }
                 }
                 Condition::Negative(c) => {
@@ -291,9 +288,8 @@ impl Rete {
                     let (key, tests) = cond_tests(c, depth + 1, &mut local, syms);
                     let n = self.share_or_build_negative(parent, depth, key, tests, syms);
                     cur = Cur::Holder(n);
-                    if let Some((nodes, _, all)) = record.as_mut() {
+                    if let Some((nodes, _)) = record.as_mut() {
                         nodes[i] = n;
-                        all.push(i);
                     }
                 }
                 Condition::Ncc(inner) => {
@@ -307,7 +303,7 @@ impl Rete {
                         Kind::NccPartner {
                             ncc: NIL,
                             owner_depth,
-                            buffer: Vec::new(),
+                            buffer: Box::default(),
                         },
                         sub_parent,
                         pdepth,
@@ -324,9 +320,8 @@ impl Rete {
                     self.fill_new_node(ncc, syms, &mut super::NullSink);
                     self.fill_new_node(partner, syms, &mut super::NullSink);
                     cur = Cur::Holder(ncc);
-                    if let Some((nodes, _, all)) = record.as_mut() {
+                    if let Some((nodes, _)) = record.as_mut() {
                         nodes[i] = ncc;
-                        all.push(i);
                     }
                 }
             }
@@ -334,20 +329,45 @@ impl Rete {
         cur
     }
 
-    /// The join or negative node under `parent` on `amem` with these tests, if built.
+    /// The join or negative node under `parent` on `amem` with these tests, if built. A
+    /// parent with few children is scanned; a wide one (the memory that thousands of rules
+    /// branch from) has its children in the share index.
     fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
+        let same = |n: NodeId| match &self.nodes[n as usize].kind {
+            Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => **t == *tests,
+            _ => false,
+        };
+        if !self.nodes[parent as usize].wide {
+            return self.all_children(parent).find(|&c| {
+                share_key(&self.nodes[c as usize].kind) == Some((kind, amem)) && same(c)
+            });
+        }
         let nodes = self.share.get(&(parent, kind, amem))?;
-        nodes
-            .as_slice()
-            .iter()
-            .copied()
-            .find(|&n| match &self.nodes[n as usize].kind {
-                Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => **t == *tests,
-                _ => false,
-            })
+        nodes.as_slice().iter().copied().find(|&n| same(n))
     }
 
+    /// Records a new join or negative child `n` of `parent` (already attached) for sharing:
+    /// in the share index once the parent has more than [`NARROW`] children.
     fn add_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        if self.nodes[parent as usize].wide {
+            self.index_shared(parent, kind, amem, n);
+            return;
+        }
+        if self.all_children(parent).take(NARROW + 1).count() <= NARROW {
+            return;
+        }
+        self.nodes[parent as usize].wide = true;
+        // Oldest first, as they would have been indexed one by one.
+        let mut children: Vec<NodeId> = self.all_children(parent).collect();
+        children.reverse();
+        for c in children {
+            if let Some((k, a)) = share_key(&self.nodes[c as usize].kind) {
+                self.index_shared(parent, k, a, c);
+            }
+        }
+    }
+
+    fn index_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
         use std::collections::hash_map::Entry;
         match self.share.entry((parent, kind, amem)) {
             Entry::Vacant(e) => {
@@ -364,6 +384,9 @@ impl Rete {
     }
 
     fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
+        if !self.nodes[parent as usize].wide {
+            return;
+        }
         let key = (parent, kind, amem);
         let Some(s) = self.share.get_mut(&key) else {
             return;
@@ -469,6 +492,14 @@ impl Rete {
     /// (Doorenbos `update-new-node-with-matches-from-above`).
     fn fill_new_node(&mut self, n: NodeId, syms: &Symbols, sink: &mut dyn MatchSink) {
         let parent = self.nodes[n as usize].parent;
+        // Nothing to fill from (the common case while loading): no kind to copy, no lists.
+        let source = match self.nodes[parent as usize].kind {
+            Kind::Join { .. } => self.nodes[parent as usize].parent,
+            _ => parent,
+        };
+        if self.nodes[source as usize].first_token == NIL {
+            return;
+        }
         let pkind = self.nodes[parent as usize].kind.clone();
         match pkind {
             Kind::Root | Kind::Memory => {
@@ -604,6 +635,19 @@ fn hash_key_of(tests: &[JoinTest], new_depth: u32) -> Option<(u32, Field)> {
     })
 }
 
+/// Children a parent may have before they are indexed for sharing: scanning a few costs
+/// less than an index entry for each (most nodes have one child).
+const NARROW: usize = 8;
+
+/// How the share index files a node: join (0) or negative (1), and its alpha memory.
+fn share_key(kind: &Kind) -> Option<(u8, AmemId)> {
+    match kind {
+        Kind::Join { amem, .. } => Some((0, *amem)),
+        Kind::Negative { amem, .. } => Some((1, *amem)),
+        _ => None,
+    }
+}
+
 fn cur_node(cur: Cur) -> NodeId {
     match cur {
         Cur::Holder(h) | Cur::Join(h) => h,
@@ -670,7 +714,7 @@ fn add_test<'a>(
                 }),
             }
         }
-        Test::Equal(Term::Var(v)) => match bindings.get(v.as_str()) {
+        Test::Equal(Term::Var(v)) => match bindings.get(&**v) {
             Some(&(d, f)) => tests.push(JoinTest::Compare {
                 field,
                 op: Op::Eq,
@@ -682,7 +726,7 @@ fn add_test<'a>(
         },
         Test::Relational(r, Term::Var(v)) => {
             // A relational test on a variable bound nowhere is dropped (spec §1g).
-            if let Some(&(d, f)) = bindings.get(v.as_str()) {
+            if let Some(&(d, f)) = bindings.get(&**v) {
                 tests.push(JoinTest::Compare {
                     field,
                     op: Op::Rel(*r),

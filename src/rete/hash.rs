@@ -230,7 +230,7 @@ impl Rete {
     /// Indexes a new token under every key of its holder.
     pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
         for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
             let v = self.key_value(t, d, f);
             self.key_memo = (t, d, f, v);
             if let Some(v) = v {
@@ -254,7 +254,11 @@ impl Rete {
     /// holder is a join's parent, or a negative node itself).
     pub(crate) fn add_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
         let keys = &mut self.nodes[holder as usize].left_keys;
-        if let Some(k) = keys.iter_mut().find(|k| k.0 == d && k.1 == f) {
+        if let Some(k) = keys
+            .as_mut_slice()
+            .iter_mut()
+            .find(|k| k.0 == d && k.1 == f)
+        {
             k.2 += 1;
             return;
         }
@@ -278,7 +282,7 @@ impl Rete {
     pub(crate) fn index_holder(&mut self, holder: NodeId) {
         self.nodes[holder as usize].indexed = true;
         for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys[i];
+            let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
             self.index_tokens_on(holder, d, f);
         }
     }
@@ -286,11 +290,11 @@ impl Rete {
     /// Drops one use of a holder's key; the last use drops its index entries.
     pub(crate) fn release_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
         let keys = &mut self.nodes[holder as usize].left_keys;
-        let Some(pos) = keys.iter().position(|k| k.0 == d && k.1 == f) else {
+        let Some(pos) = keys.as_slice().iter().position(|k| k.0 == d && k.1 == f) else {
             return;
         };
-        keys[pos].2 -= 1;
-        if keys[pos].2 > 0 {
+        keys.as_mut_slice()[pos].2 -= 1;
+        if keys.as_slice()[pos].2 > 0 {
             return;
         }
         keys.remove(pos);

@@ -12,14 +12,18 @@
 //! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
 
 mod activate;
+mod blocks;
 mod build;
 mod hash;
 pub mod reorder;
+mod small_list;
 pub mod tests;
 mod tokens;
 
+use blocks::{Arena, Blocks};
 pub use build::BuildError;
 use rustc_hash::FxHashMap;
+use small_list::SmallList;
 use tests::{Field, JoinTest};
 
 use crate::symbols::{Sym, Symbols};
@@ -133,7 +137,9 @@ pub(crate) enum Kind {
     NccPartner {
         ncc: NodeId,
         owner_depth: u32,
-        buffer: Vec<TokId>,
+        /// (Boxed: partners are rare, and inline it would widen every node.)
+        #[allow(clippy::box_collection)]
+        buffer: Box<Vec<TokId>>,
     },
     Production {
         prod: ProdId,
@@ -145,7 +151,7 @@ pub(crate) struct Node {
     pub kind: Kind,
     pub parent: NodeId,
     /// Linked children; the last element is the head.
-    pub children: Vec<NodeId>,
+    pub children: SmallList<NodeId>,
     /// Every child, linked or unlinked (for sharing and excising), as a list through
     /// `next_sibling` (newest first; its order means nothing): no heap list per node.
     pub first_child: NodeId,
@@ -161,12 +167,14 @@ pub(crate) struct Node {
     pub hash: Option<(u32, Field)>,
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
-    pub left_keys: Vec<(u32, Field, u32)>,
+    pub left_keys: SmallList<(u32, Field, u32)>,
     /// Token holders with keys: whether their tokens are in the left index. A small memory
     /// is scanned instead (most hold a few tokens, and indexing each costs more than the
     /// scan); it is indexed once it grows past [`hash::SMALL_BETA`] tokens, and no longer
     /// once empty.
     pub indexed: bool,
+    /// Whether its join and negative children are in [`Rete::share`] (see `build.rs`).
+    pub wide: bool,
     /// Join and negative nodes: the place among their alpha memory's successors (ascending
     /// = activation order), while linked.
     pub amem_key: u64,
@@ -241,19 +249,22 @@ impl Shared {
 /// Variables and where they are bound, sorted by name: kept for every rule, where a hash
 /// map would cost several times the memory.
 #[derive(Debug, Clone, Default)]
-pub struct VarBindings(Vec<(String, (u32, Field))>);
+pub struct VarBindings(Box<[Binding]>);
+
+/// A variable's name and where it is bound.
+type Binding = (Box<str>, (u32, Field));
 
 impl VarBindings {
     pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
         self.0
-            .binary_search_by(|(k, _)| k.as_str().cmp(var))
+            .binary_search_by(|(k, _)| (**k).cmp(var))
             .ok()
             .map(|i| &self.0[i].1)
     }
 
     /// The variable names, in sorted order.
-    pub fn keys(&self) -> impl Iterator<Item = &String> {
-        self.0.iter().map(|(k, _)| k)
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.0.iter().map(|(k, _)| &**k)
     }
 
     pub fn len(&self) -> usize {
@@ -269,35 +280,34 @@ impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
     fn from(map: FxHashMap<&str, (u32, Field)>) -> Self {
         let mut v: Vec<_> = map.into_iter().collect();
         v.sort_unstable_by(|a, b| a.0.cmp(b.0));
-        VarBindings(v.into_iter().map(|(k, b)| (k.to_string(), b)).collect())
+        VarBindings(v.into_iter().map(|(k, b)| (k.into(), b)).collect())
     }
 }
 
-/// What the network knows of a production.
+/// What the network knows of a production (kept for every rule, so exactly sized). The
+/// network joins the top-level conditions in the order the rule lists them (they come
+/// reordered), so no order is kept.
 #[derive(Debug, Clone, Default)]
 pub struct ProdInfo {
     pub name: String,
     pub(crate) pnode: NodeId,
-    /// Positive conditions in the order the network joins them, as indexes into the
-    /// production's top-level condition list.
-    pub positive_order: Vec<usize>,
+    /// The number of positive top-level conditions.
+    pub(crate) positives: u32,
     /// Where each variable of the positive conditions is first bound: token depth and field.
     pub bindings: VarBindings,
     /// The beta node of each top-level condition (for `matches <rule>` counts).
-    pub(crate) cond_nodes: Vec<NodeId>,
-    /// Top-level conditions in the order the network joins them.
-    pub build_order: Vec<usize>,
+    pub(crate) cond_nodes: Box<[NodeId]>,
     /// The actions with variables as binding places: equal keys under one parent node mean
     /// duplicate rules.
-    pub(crate) action_key: String,
+    pub(crate) action_key: Box<str>,
 }
 
 pub struct Rete {
-    pub(crate) nodes: Vec<Node>,
+    pub(crate) nodes: Blocks<Node>,
     free_nodes: Vec<NodeId>,
     pub(crate) tokens: Vec<Token>,
     free_tokens: Vec<TokId>,
-    pub(crate) amems: Vec<Amem>,
+    pub(crate) amems: Blocks<Amem>,
     free_amems: Vec<AmemId>,
     amem_index: FxHashMap<AlphaKey, AmemId>,
     pub(crate) rm: Vec<RmEntry>,
@@ -305,9 +315,10 @@ pub struct Rete {
     pub(crate) wmes: Vec<Option<RWme>>,
     pub(crate) neg: Vec<NegResult>,
     free_neg: Vec<u32>,
-    pub(crate) prods: Vec<Option<ProdInfo>>,
-    /// Join and negative nodes by (parent, kind, alpha memory), for sharing; their tests,
-    /// kept only in the nodes, tell the candidates apart.
+    pub(crate) prods: Blocks<Option<ProdInfo>>,
+    /// Join and negative nodes by (parent, kind, alpha memory), for sharing, under parents
+    /// with many children (`Node::wide`); their tests, kept only in the nodes, tell the
+    /// candidates apart.
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId), Shared>,
     pub(crate) root: NodeId,
     root_token: TokId,
@@ -340,11 +351,11 @@ impl Default for Rete {
 impl Rete {
     pub fn new() -> Self {
         let mut r = Rete {
-            nodes: Vec::new(),
+            nodes: Blocks::default(),
             free_nodes: Vec::new(),
             tokens: Vec::new(),
             free_tokens: Vec::new(),
-            amems: Vec::new(),
+            amems: Blocks::default(),
             free_amems: Vec::new(),
             amem_index: FxHashMap::default(),
             rm: Vec::new(),
@@ -352,7 +363,7 @@ impl Rete {
             wmes: Vec::new(),
             neg: Vec::new(),
             free_neg: Vec::new(),
-            prods: Vec::new(),
+            prods: Blocks::default(),
             share: FxHashMap::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
@@ -376,7 +387,7 @@ impl Rete {
         let node = Node {
             kind,
             parent,
-            children: Vec::new(),
+            children: SmallList::Empty,
             first_child: NIL,
             next_sibling: NIL,
             first_token: NIL,
@@ -384,8 +395,9 @@ impl Rete {
             depth,
             alive: true,
             hash: None,
-            left_keys: Vec::new(),
+            left_keys: SmallList::Empty,
             indexed: false,
+            wide: false,
             amem_key: 0,
             same_amem_ancestor: NIL,
         };
@@ -395,13 +407,14 @@ impl Rete {
     pub(crate) fn free_node(&mut self, n: NodeId) {
         let node = &mut self.nodes[n as usize];
         node.alive = false;
-        node.children = Vec::new();
+        node.children = SmallList::Empty;
         node.first_child = NIL;
         node.next_sibling = NIL;
         node.kind = Kind::Memory;
         node.hash = None;
-        node.left_keys = Vec::new();
+        node.left_keys = SmallList::Empty;
         node.indexed = false;
+        node.wide = false;
         self.free_nodes.push(n);
     }
 
@@ -927,11 +940,10 @@ impl Rete {
             t = tok.parent;
         }
         chain.reverse();
-        let mut out = vec![NIL_WME; info.positive_order.len()];
-        for (k, &cond) in info.positive_order.iter().enumerate() {
-            if let Some(slot) = out.get_mut(cond_rank(&info.positive_order, cond)) {
-                *slot = chain.get(k).copied().unwrap_or(NIL_WME);
-            }
+        // The positive conditions are joined in the order listed: the k-th WME is the k-th's.
+        let mut out = vec![NIL_WME; info.positives as usize];
+        for (k, slot) in out.iter_mut().enumerate() {
+            *slot = chain.get(k).copied().unwrap_or(NIL_WME);
         }
         out
     }
@@ -998,9 +1010,10 @@ impl Rete {
         let Some(info) = self.production(p) else {
             return Vec::new();
         };
-        info.build_order
+        info.cond_nodes
             .iter()
-            .map(|&i| (i, self.count_matches_at(info.cond_nodes[i], syms)))
+            .enumerate()
+            .map(|(i, &n)| (i, self.count_matches_at(n, syms)))
             .collect()
     }
 
@@ -1035,23 +1048,19 @@ impl Rete {
     }
 }
 
-fn cond_rank(order: &[usize], cond: usize) -> usize {
-    order.iter().filter(|&&c| c < cond).count()
-}
-
 pub(crate) const NIL_WME: WmeId = WmeId(NIL);
 
 /// Puts `value` in a free slot of `items` (or a new one) and returns its index: the arenas
 /// of nodes, tokens, alpha memories and list entries all allocate this way.
-pub(crate) fn alloc<T>(items: &mut Vec<T>, free: &mut Vec<u32>, value: T) -> u32 {
+pub(crate) fn alloc<T>(items: &mut impl Arena<T>, free: &mut Vec<u32>, value: T) -> u32 {
     match free.pop() {
         Some(i) => {
             items[i as usize] = value;
             i
         }
         None => {
-            items.push(value);
-            (items.len() - 1) as u32
+            items.push_item(value);
+            (items.item_count() - 1) as u32
         }
     }
 }

@@ -178,7 +178,7 @@ impl Rete {
             // An empty memory: its joins need no right activations (Rete/UL).
             // (Unlinking on the right leaves the children list as it is.)
             for i in 0..self.nodes[node as usize].children.len() {
-                let c = self.nodes[node as usize].children[i];
+                let c = self.nodes[node as usize].children.as_slice()[i];
                 if matches!(self.nodes[c as usize].kind, Kind::Join { .. }) {
                     self.unlink_right(c);
                 }

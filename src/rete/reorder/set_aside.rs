@@ -21,7 +21,7 @@ pub(super) struct SetAside {
 
 fn key(t: &Term) -> String {
     match t {
-        Term::Var(v) => v.clone(),
+        Term::Var(v) => v.to_string(),
         Term::Const(c) => format!("#{c:?}"),
     }
 }
@@ -66,7 +66,7 @@ fn simplify_field(field: &mut Test, saved: &mut SetAside, dummies: &mut usize) {
         .unwrap_or_else(|| {
             *dummies += 1;
             // Not a name a rule can write: it cannot clash with the rule's variables.
-            Term::Var(format!("<#dummy {dummies}>"))
+            Term::Var(format!("<#dummy {dummies}>").into())
         });
     for p in parts {
         if !matches!(p, Test::Equal(_)) {
@@ -111,7 +111,7 @@ fn reversed(r: Relation) -> Relation {
 fn is_bound(t: &Term, bound: &Bound) -> bool {
     match t {
         Term::Const(_) => true,
-        Term::Var(v) => bound.contains(v),
+        Term::Var(v) => bound.contains(&**v),
     }
 }
 

@@ -1,0 +1,109 @@
+//! A growable array kept in fixed-size blocks, for the network's arenas that grow with the
+//! rules loaded (nodes, alpha memories, productions). A doubling `Vec` copies everything
+//! when it grows and for a moment holds both copies: at 100,000 rules that is most of the
+//! load's page faults. Blocks are never moved, so each item is written once, in place.
+
+use std::ops::{Index, IndexMut};
+
+/// Items per block (a power of two, so an index splits with a shift and a mask).
+const SHIFT: u32 = 12;
+const BLOCK: usize = 1 << SHIFT;
+
+#[derive(Debug, Clone)]
+pub(crate) struct Blocks<T> {
+    blocks: Vec<Vec<T>>,
+    len: usize,
+}
+
+impl<T> Default for Blocks<T> {
+    fn default() -> Self {
+        Blocks {
+            blocks: Vec::new(),
+            len: 0,
+        }
+    }
+}
+
+impl<T> Blocks<T> {
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn push(&mut self, value: T) {
+        if self.len.is_multiple_of(BLOCK) {
+            self.blocks.push(Vec::with_capacity(BLOCK));
+        }
+        if let Some(last) = self.blocks.last_mut() {
+            last.push(value);
+        }
+        self.len += 1;
+    }
+
+    pub fn get(&self, i: usize) -> Option<&T> {
+        self.blocks.get(i >> SHIFT)?.get(i & (BLOCK - 1))
+    }
+
+    pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
+        self.blocks.get_mut(i >> SHIFT)?.get_mut(i & (BLOCK - 1))
+    }
+
+    pub fn iter(&self) -> impl Iterator<Item = &T> + '_ {
+        self.blocks.iter().flatten()
+    }
+}
+
+impl<T> Index<usize> for Blocks<T> {
+    type Output = T;
+    fn index(&self, i: usize) -> &T {
+        &self.blocks[i >> SHIFT][i & (BLOCK - 1)]
+    }
+}
+
+impl<T> IndexMut<usize> for Blocks<T> {
+    fn index_mut(&mut self, i: usize) -> &mut T {
+        &mut self.blocks[i >> SHIFT][i & (BLOCK - 1)]
+    }
+}
+
+/// What [`super::alloc`] needs of an arena.
+pub(crate) trait Arena<T>: IndexMut<usize, Output = T> {
+    fn push_item(&mut self, value: T);
+    fn item_count(&self) -> usize;
+}
+
+impl<T> Arena<T> for Vec<T> {
+    fn push_item(&mut self, value: T) {
+        self.push(value);
+    }
+    fn item_count(&self) -> usize {
+        self.len()
+    }
+}
+
+impl<T> Arena<T> for Blocks<T> {
+    fn push_item(&mut self, value: T) {
+        self.push(value);
+    }
+    fn item_count(&self) -> usize {
+        self.len
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn indexes_across_blocks() {
+        let mut b = Blocks::default();
+        for i in 0..(BLOCK * 2 + 3) {
+            b.push(i);
+        }
+        assert_eq!(b.len(), BLOCK * 2 + 3);
+        assert_eq!(b[BLOCK + 1], BLOCK + 1);
+        b[BLOCK * 2] = 7;
+        assert_eq!(b.get(BLOCK * 2), Some(&7));
+        assert_eq!(b.get(BLOCK * 2 + 3), None);
+        assert_eq!(b.iter().count(), BLOCK * 2 + 3);
+    }
+}
