@@ -63,6 +63,18 @@ pub fn constant_text(c: &Constant) -> String {
     }
 }
 
+/// [`constant_text`] appended to `out`, without a string of its own for the common case.
+pub fn push_constant_text(c: &Constant, out: &mut String) {
+    use std::fmt::Write;
+    match c {
+        Constant::Str(s) if !needs_bars(s) => out.push_str(s),
+        Constant::Int(i) => {
+            let _ = write!(out, "{i}");
+        }
+        _ => out.push_str(&constant_text(c)),
+    }
+}
+
 fn term_text(t: &Term) -> String {
     match t {
         Term::Var(v) => v.to_string(),

@@ -150,8 +150,10 @@ pub struct CompileOutput {
 #[derive(Default)]
 struct Placeholders<'a> {
     counters: FxHashMap<char, u32>,
-    /// The variables the rule itself names.
+    /// The variables the rule itself names, collected from `source` when the first
+    /// placeholder is made (most rules need none).
     used: FxHashSet<&'a str>,
+    source: Option<&'a ast::Production>,
     /// The placeholders made so far. Soar names them `<#a*1>` while parsing, so a letter taken
     /// from one is `#`, which is not a letter: the next placeholder is named after `v`.
     generated: FxHashSet<String>,
@@ -159,6 +161,9 @@ struct Placeholders<'a> {
 
 impl Placeholders<'_> {
     fn fresh(&mut self, letter: char) -> String {
+        if let Some(p) = self.source.take() {
+            collect_vars_ast(p, &mut self.used);
+        }
         let letter = letter.to_ascii_lowercase();
         loop {
             let n = self.counters.entry(letter).or_insert(0);
@@ -228,8 +233,10 @@ fn letter_of_constant(c: &Constant) -> Option<char> {
 /// Compiles a parsed production, applying Soar's load-time checks. Errors reject the rule.
 pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Production, Diagnostic> {
     let flags = compile_flags(p)?;
-    let mut ph = Placeholders::default();
-    collect_vars_ast(p, &mut ph.used);
+    let mut ph = Placeholders {
+        source: Some(p),
+        ..Placeholders::default()
+    };
     let mut conditions = Vec::new();
     for c in &p.conditions {
         compile_condition(c, &mut ph, &mut conditions, out)?;
@@ -891,10 +898,10 @@ fn root_variables<'a>(
             _ => None,
         })
         .collect();
-    let in_value: FxHashSet<&str> = positives
-        .iter()
-        .filter_map(|c| equality_var(&c.value))
-        .collect();
+    let mut in_value = Names::for_at_most(positives.len());
+    for v in positives.iter().filter_map(|c| equality_var(&c.value)) {
+        in_value.insert(v);
+    }
     let mut roots: Vec<&str> = Vec::new();
     for c in &positives {
         if let Some(id) = equality_var(&c.id) {
@@ -1017,8 +1024,53 @@ pub fn bound_variables(p: &Production) -> FxHashSet<String> {
     bound_names(p).into_iter().map(str::to_string).collect()
 }
 
-fn bound_names(p: &Production) -> FxHashSet<&str> {
-    let mut bound = FxHashSet::default();
+/// A set of variable names: a list for the few of a typical rule (no hashing, one small
+/// allocation), a hash set for many.
+pub(crate) enum Names<'a> {
+    Few(Vec<&'a str>),
+    Many(FxHashSet<&'a str>),
+}
+
+impl<'a> Names<'a> {
+    /// A set for at most `n` names.
+    pub(crate) fn for_at_most(n: usize) -> Self {
+        if n <= 32 {
+            Names::Few(Vec::with_capacity(n))
+        } else {
+            Names::Many(FxHashSet::default())
+        }
+    }
+
+    pub(crate) fn insert(&mut self, v: &'a str) {
+        match self {
+            Names::Few(l) => {
+                if !l.contains(&v) {
+                    l.push(v);
+                }
+            }
+            Names::Many(s) => {
+                s.insert(v);
+            }
+        }
+    }
+
+    pub(crate) fn contains(&self, v: &str) -> bool {
+        match self {
+            Names::Few(l) => l.contains(&v),
+            Names::Many(s) => s.contains(v),
+        }
+    }
+
+    fn into_iter(self) -> Box<dyn Iterator<Item = &'a str> + 'a> {
+        match self {
+            Names::Few(l) => Box::new(l.into_iter()),
+            Names::Many(s) => Box::new(s.into_iter()),
+        }
+    }
+}
+
+fn bound_names(p: &Production) -> Names<'_> {
+    let mut bound = Names::for_at_most(3 * p.conditions.len());
     for c in &p.conditions {
         if let Condition::Positive(c) = c {
             for t in [&c.id, &c.attr, &c.value] {

@@ -40,7 +40,7 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
                     let _ = write!(out, "#{k}");
                 }
             },
-            RhsTerm::Const(c) => out.push_str(&crate::printer::constant_text(c)),
+            RhsTerm::Const(c) => crate::printer::push_constant_text(c, out),
             RhsTerm::Call(f) => call(f, b, fresh, out),
         }
     }

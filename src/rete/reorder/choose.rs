@@ -11,8 +11,8 @@ use super::{equality_term, Bound};
 use crate::ast::Constant;
 use crate::production::{Condition, Term, Test};
 use rustc_hash::FxHashMap;
+use std::cell::RefCell;
 use std::cmp::Reverse;
-use std::collections::BTreeSet;
 
 /// The cost of a condition that cannot be joined yet (its id is unbound).
 const MAX_COST: u64 = 10_000_005;
@@ -61,9 +61,8 @@ struct Cond {
     mark: u32,
 }
 
-/// One variable of the list.
-struct Var<'a> {
-    name: &'a str,
+/// One variable of the list (its name is in `Chooser::names`).
+struct Var {
     bound: bool,
     root: bool,
     /// The conditions whose cost its binding can change, in `Chooser::users`.
@@ -73,11 +72,64 @@ struct Var<'a> {
 /// The conditions of one list, with their current costs.
 pub(super) struct Chooser<'a> {
     conds: Vec<Cond>,
-    vars: Vec<Var<'a>>,
+    names: Vec<&'a str>,
+    vars: Vec<Var>,
     required: Vec<u32>,
     users: Vec<u32>,
-    queue: BTreeSet<Key>,
+    /// The candidates' keys, sorted greatest first: the cheapest is last, where placing
+    /// it removes it at no cost.
+    queue: Vec<Key>,
+    ties: Vec<usize>,
     generation: u32,
+}
+
+/// A chooser's buffers, kept between lists: every rule is ordered when it is loaded, and
+/// allocating them afresh for each cost more than the ordering of a small rule.
+#[derive(Default)]
+struct Scratch {
+    conds: Vec<Cond>,
+    vars: Vec<Var>,
+    required: Vec<u32>,
+    users: Vec<u32>,
+    queue: Vec<Key>,
+    ties: Vec<usize>,
+    start: Vec<u32>,
+    next: Vec<u32>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::default();
+}
+
+fn take_scratch() -> Scratch {
+    SCRATCH.with(|s| {
+        s.try_borrow_mut()
+            .map(|mut s| std::mem::take(&mut *s))
+            .unwrap_or_default()
+    })
+}
+
+impl Drop for Chooser<'_> {
+    fn drop(&mut self) {
+        let mut s = Scratch {
+            conds: std::mem::take(&mut self.conds),
+            vars: std::mem::take(&mut self.vars),
+            required: std::mem::take(&mut self.required),
+            users: std::mem::take(&mut self.users),
+            queue: std::mem::take(&mut self.queue),
+            ties: std::mem::take(&mut self.ties),
+            start: Vec::new(),
+            next: Vec::new(),
+        };
+        SCRATCH.with(|cell| {
+            if let Ok(mut kept) = cell.try_borrow_mut() {
+                // `index_users` parked its counting buffers there.
+                s.start = std::mem::take(&mut kept.start);
+                s.next = std::mem::take(&mut kept.next);
+                *kept = s;
+            }
+        });
+    }
 }
 
 impl<'a> Chooser<'a> {
@@ -91,35 +143,38 @@ impl<'a> Chooser<'a> {
         rank: &dyn Fn(&Constant) -> u64,
     ) -> Self {
         let n = conds.len();
-        let mut vars: Vec<Var<'a>> = Vec::new();
+        let scratch = take_scratch();
+        let (mut cs, mut vars, mut req) = (scratch.conds, scratch.vars, scratch.required);
+        cs.clear();
+        vars.clear();
+        req.clear();
+        let mut names: Vec<&'a str> = Vec::new();
         // A linear search numbers the few variables of a list; past a few dozen, a map.
         let mut index: FxHashMap<&'a str, u32> = FxHashMap::default();
-        let mut number = |v: &'a str, vars: &mut Vec<Var<'a>>| -> u32 {
-            if vars.len() < 32 {
-                if let Some(k) = vars.iter().position(|x| x.name == v) {
+        let mut number = |v: &'a str, names: &mut Vec<&'a str>, vars: &mut Vec<Var>| -> u32 {
+            if names.len() < 32 {
+                if let Some(k) = names.iter().position(|&x| x == v) {
                     return k as u32;
                 }
             } else {
                 if index.is_empty() {
-                    for (k, x) in vars.iter().enumerate() {
-                        index.insert(x.name, k as u32);
+                    for (k, &x) in names.iter().enumerate() {
+                        index.insert(x, k as u32);
                     }
                 }
                 if let Some(&k) = index.get(v) {
                     return k;
                 }
-                index.insert(v, vars.len() as u32);
+                index.insert(v, names.len() as u32);
             }
+            names.push(v);
             vars.push(Var {
-                name: v,
                 bound: outside.contains(v),
                 root: false,
                 users: 0..0,
             });
             (vars.len() - 1) as u32
         };
-        let mut cs = Vec::with_capacity(n);
-        let mut req = Vec::new();
         for (i, c) in conds.iter().enumerate() {
             let start = req.len() as u32;
             let mut fields = [Field::Untested; 3];
@@ -128,7 +183,7 @@ impl<'a> Chooser<'a> {
                     for (slot, t) in fields.iter_mut().zip([&p.id, &p.attr, &p.value]) {
                         *slot = match equality_term(t) {
                             Some(Term::Const(_)) => Field::Const,
-                            Some(Term::Var(v)) => Field::Var(number(v, &mut vars)),
+                            Some(Term::Var(v)) => Field::Var(number(v, &mut names, &mut vars)),
                             None => Field::Untested,
                         };
                     }
@@ -136,7 +191,7 @@ impl<'a> Chooser<'a> {
                 }
                 _ => {
                     for v in required.get(i).map(Vec::as_slice).unwrap_or(&[]) {
-                        let k = number(v, &mut vars);
+                        let k = number(v, &mut names, &mut vars);
                         req.push(k);
                     }
                     false
@@ -153,26 +208,31 @@ impl<'a> Chooser<'a> {
             });
         }
         for r in roots {
-            if let Some(v) = vars.iter_mut().find(|v| v.name == r.as_str()) {
-                v.root = true;
+            if let Some(k) = names.iter().position(|&v| v == r.as_str()) {
+                vars[k].root = true;
             }
         }
         let mut c = Chooser {
             conds: cs,
+            names,
             vars,
             required: req,
-            users: Vec::new(),
-            queue: BTreeSet::new(),
+            users: scratch.users,
+            queue: scratch.queue,
+            ties: scratch.ties,
             generation: 0,
         };
-        c.index_users();
+        c.index_users(scratch.start, scratch.next);
         for i in 0..n {
             c.conds[i].cost = c.cost(i);
         }
+        c.queue.clear();
         for i in 0..n {
             let k = c.key(i);
-            c.queue.insert(k);
+            c.queue.push(k);
         }
+        // The keys are distinct (they end in the index).
+        c.queue.sort_unstable_by(|a, b| b.cmp(a));
         c
     }
 
@@ -187,10 +247,12 @@ impl<'a> Chooser<'a> {
         from_fields.chain(self.required[r].iter().copied())
     }
 
-    fn index_users(&mut self) {
+    /// `start` and `next`: buffers to count in, returned to the scratch afterwards.
+    fn index_users(&mut self, mut start: Vec<u32>, mut next: Vec<u32>) {
         let (n, nv) = (self.conds.len(), self.vars.len());
         // Counting sort of (variable, condition) pairs: each variable's users in a row.
-        let mut start = vec![0u32; nv + 1];
+        start.clear();
+        start.resize(nv + 1, 0);
         for i in 0..n {
             for v in self.cost_vars(i) {
                 start[v as usize + 1] += 1;
@@ -199,8 +261,11 @@ impl<'a> Chooser<'a> {
         for k in 0..nv {
             start[k + 1] += start[k];
         }
-        let mut users = vec![0u32; start[nv] as usize];
-        let mut next = start.clone();
+        let mut users = std::mem::take(&mut self.users);
+        users.clear();
+        users.resize(start[nv] as usize, 0);
+        next.clear();
+        next.extend_from_slice(&start);
         for i in 0..n {
             for v in self.cost_vars(i) {
                 users[next[v as usize] as usize] = i as u32;
@@ -211,6 +276,24 @@ impl<'a> Chooser<'a> {
             v.users = start[k]..start[k + 1];
         }
         self.users = users;
+        SCRATCH.with(|cell| {
+            if let Ok(mut kept) = cell.try_borrow_mut() {
+                kept.start = start;
+                kept.next = next;
+            }
+        });
+    }
+
+    fn queue_insert(&mut self, k: Key) {
+        if let Err(p) = self.queue.binary_search_by(|x| k.cmp(x)) {
+            self.queue.insert(p, k);
+        }
+    }
+
+    fn queue_remove(&mut self, k: &Key) {
+        if let Ok(p) = self.queue.binary_search_by(|x| k.cmp(x)) {
+            self.queue.remove(p);
+        }
     }
 
     fn users_of(&self, v: u32) -> std::ops::Range<usize> {
@@ -287,7 +370,7 @@ impl<'a> Chooser<'a> {
             }
         }
         let mut min = MAX_COST + 1;
-        for &(cached, _, _, Reverse(j)) in &self.queue {
+        for &(cached, _, _, Reverse(j)) in self.queue.iter().rev() {
             if j == i {
                 continue;
             }
@@ -309,17 +392,21 @@ impl<'a> Chooser<'a> {
     /// the one with the cheapest look-ahead, then the greater canonical key. 9.6 walks the
     /// tied set from the last condition to the first, so equal keys go to the later one.
     fn pick(&mut self) -> Option<usize> {
-        let &(min, _, _, Reverse(first)) = self.queue.iter().next()?;
+        let &(min, _, _, Reverse(first)) = self.queue.last()?;
         if min <= 1 {
             return Some(first);
         }
-        let mut ties: Vec<usize> = self
-            .queue
-            .iter()
-            .take_while(|k| k.0 == min)
-            .map(|k| k.3 .0)
-            .collect();
+        let mut ties = std::mem::take(&mut self.ties);
+        ties.clear();
+        ties.extend(
+            self.queue
+                .iter()
+                .rev()
+                .take_while(|k| k.0 == min)
+                .map(|k| k.3 .0),
+        );
         if ties.len() == 1 {
+            self.ties = ties;
             return Some(first);
         }
         ties.sort_unstable_by(|a, b| b.cmp(a));
@@ -337,6 +424,7 @@ impl<'a> Chooser<'a> {
                 chosen = i;
             }
         }
+        self.ties = ties;
         Some(chosen)
     }
 
@@ -344,7 +432,7 @@ impl<'a> Chooser<'a> {
     pub fn next(&mut self) -> Option<usize> {
         let i = self.pick()?;
         let k = self.key(i);
-        self.queue.remove(&k);
+        self.queue_remove(&k);
         self.conds[i].placed = true;
         Some(i)
     }
@@ -364,10 +452,10 @@ impl<'a> Chooser<'a> {
                 let c = self.cost(j);
                 if c != self.conds[j].cost {
                     let old = self.key(j);
-                    self.queue.remove(&old);
+                    self.queue_remove(&old);
                     self.conds[j].cost = c;
                     let new_key = self.key(j);
-                    self.queue.insert(new_key);
+                    self.queue_insert(new_key);
                 }
             }
         }
@@ -378,9 +466,9 @@ impl<'a> Chooser<'a> {
     /// Everything bound now, by name: `outside` and what the placed conditions bound.
     pub fn bound_names(&self, outside: &Bound) -> Bound {
         let mut b = outside.clone();
-        for v in &self.vars {
+        for (v, name) in self.vars.iter().zip(&self.names) {
             if v.bound {
-                b.insert(v.name.to_string());
+                b.insert(name.to_string());
             }
         }
         b

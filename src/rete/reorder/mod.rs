@@ -165,13 +165,14 @@ fn tested_vars<'a>(c: &'a Condition, out: &mut Vec<&'a str>) {
 /// Ids of positive conditions that no positive condition binds as a value, and that are
 /// not bound outside, in order of first appearance.
 fn root_variables(conds: &[Condition], outside: &Bound) -> Vec<String> {
-    let values: FxHashSet<&str> = conds
-        .iter()
-        .filter_map(|c| match c {
-            Condition::Positive(p) => equality_var(&p.value),
-            _ => None,
-        })
-        .collect();
+    let mut values = crate::production::Names::for_at_most(conds.len());
+    for c in conds {
+        if let Condition::Positive(p) = c {
+            if let Some(v) = equality_var(&p.value) {
+                values.insert(v);
+            }
+        }
+    }
     let mut roots: Vec<String> = Vec::new();
     for c in conds {
         if let Condition::Positive(p) = c {
