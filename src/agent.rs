@@ -41,6 +41,10 @@ pub struct Settings {
     /// each (spec §6c).
     pub trace: TraceFlags,
     pub warnings: bool,
+    /// `output agent-writes`: whether `write` (and `log`, `trace`) print.
+    pub agent_writes: bool,
+    /// `output print-depth`: `print`'s depth when none is given.
+    pub print_depth: usize,
     /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too (spec §4).
     pub learning_trace: u8,
 }
@@ -57,6 +61,8 @@ impl Default for Settings {
             wait_snc: false,
             trace: TraceFlags::level(1),
             warnings: true,
+            agent_writes: true,
+            print_depth: 1,
             learning_trace: 0,
         }
     }

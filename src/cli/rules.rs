@@ -241,7 +241,7 @@ impl Interpreter {
                 Some(d) => d
                     .parse::<usize>()
                     .map_err(|_| ctx.error("Non-negative depth expected."))?,
-                None => 1,
+                None => self.agent.settings.print_depth,
             };
             return self.print_memory(
                 ctx,

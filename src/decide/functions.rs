@@ -15,6 +15,7 @@ pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, 
         &agent.name,
     );
     ctx.decision_count = agent.decider.d_cycle_count;
+    ctx.agent_writes = agent.settings.agent_writes;
     ctx.trace_flags = crate::rhs::trace_flags_for_level(trace_level);
     let result = crate::rhs::call(name, args, &mut ctx);
     let (halt, interrupt) = (ctx.halt, ctx.interrupt);
