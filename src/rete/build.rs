@@ -342,7 +342,7 @@ impl Rete {
                 share_key(&self.nodes[c as usize].kind) == Some((kind, amem)) && same(c)
             });
         }
-        let nodes = self.share.get(&(parent, kind, amem))?;
+        let nodes = self.share.get(&(parent, kind, amem, tests_hash(tests)))?;
         nodes.as_slice().iter().copied().find(|&n| same(n))
     }
 
@@ -369,7 +369,8 @@ impl Rete {
 
     fn index_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
         use std::collections::hash_map::Entry;
-        match self.share.entry((parent, kind, amem)) {
+        let key = (parent, kind, amem, self.node_tests_hash(n));
+        match self.share.entry(key) {
             Entry::Vacant(e) => {
                 e.insert(Shared::One(n));
             }
@@ -383,11 +384,19 @@ impl Rete {
         }
     }
 
+    /// The tests of a join or negative node, hashed for the share index.
+    fn node_tests_hash(&self, n: NodeId) -> u64 {
+        match &self.nodes[n as usize].kind {
+            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests_hash(tests),
+            _ => 0,
+        }
+    }
+
     fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
         if !self.nodes[parent as usize].wide {
             return;
         }
-        let key = (parent, kind, amem);
+        let key = (parent, kind, amem, self.node_tests_hash(n));
         let Some(s) = self.share.get_mut(&key) else {
             return;
         };
@@ -756,4 +765,14 @@ fn for_each_simple<'a>(t: &'a Test, f: &mut dyn FnMut(&'a Test)) {
         Test::Conjunction(ts) => ts.iter().for_each(|t| for_each_simple(t, f)),
         other => f(other),
     }
+}
+
+/// A hash of a node's tests: the share index keys on it too, since thousands of rules can
+/// branch from one memory on one alpha memory, differing only in a constant (issue 3's
+/// counter rules), and a bucket per (parent, alpha memory) made each new rule scan them all.
+fn tests_hash(tests: &[JoinTest]) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    tests.hash(&mut h);
+    h.finish()
 }

@@ -319,7 +319,8 @@ pub struct Rete {
     /// Join and negative nodes by (parent, kind, alpha memory), for sharing, under parents
     /// with many children (`Node::wide`); their tests, kept only in the nodes, tell the
     /// candidates apart.
-    pub(crate) share: FxHashMap<(NodeId, u8, AmemId), Shared>,
+    /// Keyed by parent, node kind, alpha memory and a hash of the tests.
+    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
