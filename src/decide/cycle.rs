@@ -679,7 +679,7 @@ impl Agent {
             let empty = Slot::default();
             let slot = self.decider.slots.get(&key).unwrap_or(&empty);
             want.clear();
-            let large = slot.prefs.len() > 16;
+            let large = slot.prefs.len() > LARGE_SLOT;
             // Require preferences show as `+` WMEs too, before the acceptable ones, each
             // kind oldest first: that sets their timetags (checked on 9.6).
             for kind in [PrefType::Require, PrefType::Acceptable] {
@@ -1389,12 +1389,15 @@ impl Agent {
     }
 }
 
+/// Slots with more preferences than this get sets for their wanted and rejected values.
+const LARGE_SLOT: usize = 16;
+
 /// The values a non-context slot's WMEs should show: each acceptable value not rejected,
 /// oldest preference first. Linear in the slot, with sets only for large slots (one slot can
 /// hold thousands of values, most hold one).
 fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> &'a Wanted {
     out.clear();
-    let large = slot.prefs.len() > 16;
+    let large = slot.prefs.len() > LARGE_SLOT;
     let rejected = |v: Sym, rejects: &FxHashSet<Sym>| {
         if large {
             rejects.contains(&v)

@@ -80,12 +80,7 @@ impl Rete {
     /// impasse tests, fields of the WME itself): when one fails, no token can pair with the
     /// WME, so a right activation ends before it looks for tokens.
     fn wme_tests_pass(&self, n: NodeId, w: WmeId, new_depth: u32, syms: &Symbols) -> bool {
-        let (Kind::Join { tests, .. } | Kind::Negative { tests, .. }) =
-            &self.nodes[n as usize].kind
-        else {
-            return true;
-        };
-        tests.iter().all(|test| match test {
+        self.join_tests(n).iter().all(|test| match test {
             JoinTest::Compare {
                 field,
                 op,
@@ -108,13 +103,8 @@ impl Rete {
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
     /// candidate lists gave.
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
-        let node = &self.nodes[n as usize];
-        match &node.kind {
-            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => {
-                self.tests_pass_but(tests, node.hash, t, w, new_depth, s)
-            }
-            _ => true,
-        }
+        let hash = self.nodes[n as usize].hash;
+        self.tests_pass_but(self.join_tests(n), hash, t, w, new_depth, s)
     }
 
     /// The WME of the ancestor token (of `t`, inclusive) at `depth`.

@@ -386,10 +386,7 @@ impl Rete {
 
     /// The tests of a join or negative node, hashed for the share index.
     fn node_tests_hash(&self, n: NodeId) -> u64 {
-        match &self.nodes[n as usize].kind {
-            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests_hash(tests),
-            _ => 0,
-        }
+        tests_hash(self.join_tests(n))
     }
 
     fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {

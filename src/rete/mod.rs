@@ -855,12 +855,7 @@ impl Rete {
     /// The first test of join or negative node `n` on a field of the new WME against a
     /// constant, if it has one (see [`Succ`]).
     fn prefilter(&self, n: NodeId) -> Option<(tests::Field, tests::Op, Sym)> {
-        let (Kind::Join { tests, .. } | Kind::Negative { tests, .. }) =
-            &self.nodes[n as usize].kind
-        else {
-            return None;
-        };
-        tests.iter().find_map(|t| match t {
+        self.join_tests(n).iter().find_map(|t| match t {
             JoinTest::Compare {
                 field,
                 op,
@@ -868,6 +863,14 @@ impl Rete {
             } => Some((*field, *op, *c)),
             _ => None,
         })
+    }
+
+    /// The tests of a join or negative node (none for other kinds), read in place.
+    pub(crate) fn join_tests(&self, n: NodeId) -> &[JoinTest] {
+        match &self.nodes[n as usize].kind {
+            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests,
+            _ => &[],
+        }
     }
 
     /// Spreads an alpha memory's successor keys out again, keeping their order.
