@@ -141,3 +141,23 @@ fn max_goal_depth_interrupts_the_run_without_halting() {
          --> 2 decision cycles executed. 1 rule fired. \nRun stopped (interrupted)."
     ));
 }
+
+/// `fc N` lists the N most fired rules, as 9.6 does (observed on soar-sml 9.6.5 with these
+/// two rules after `run 2`: `fc 25` lists both, `fc 1` only `a`).
+#[test]
+fn firing_counts_takes_a_count_of_rules_to_list() {
+    let mut i = rusoar::cli::Interpreter::new();
+    i.run_text(
+        "setup",
+        "watch 0\nsp {a (state <s> ^superstate nil) --> (<s> ^x 1)}\n\
+         sp {b (state <s> ^superstate nil) --> (<s> ^y 1)}\nrun 2",
+    )
+    .unwrap();
+    i.take_output();
+    i.run_text("t", "fc 25").unwrap();
+    assert_eq!(i.take_output(), "     1:  a\n     1:  b\n");
+    i.run_text("t", "fc 1").unwrap();
+    assert_eq!(i.take_output(), "     1:  a\n");
+    i.run_text("t", "fc b").unwrap();
+    assert_eq!(i.take_output(), "     1:  b\n");
+}

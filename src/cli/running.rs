@@ -141,12 +141,15 @@ impl Interpreter {
         Ok("\nAgent reinitialized.\n".into())
     }
 
-    /// `production firing-counts [rule]`: `%6d:  name`, most fired first.
+    /// `production firing-counts [N] [rule...]`: `%6d:  name`, most fired first; a number
+    /// keeps the N most fired (as 9.6: `fc 25`).
     pub(super) fn cmd_firing_counts(&mut self, _ctx: &Ctx, args: &[String]) -> CmdResult {
+        let limit = args.first().and_then(|a| a.parse::<usize>().ok());
+        let names = &args[usize::from(limit.is_some())..];
         let mut rows: Vec<(u64, String)> = self
             .agent
             .productions()
-            .filter(|p| args.is_empty() || args.contains(&p.name))
+            .filter(|p| names.is_empty() || names.contains(&p.name))
             .map(|p| {
                 let id = self.agent.loaded(&p.name).map(|l| l.id);
                 (id.map_or(0, |i| self.agent.firing_count(i)), p.name.clone())
@@ -160,6 +163,9 @@ impl Interpreter {
             );
         }
         rows.sort_by_key(|r| std::cmp::Reverse(r.0));
+        if let Some(n) = limit {
+            rows.truncate(n);
+        }
         Ok(rows
             .iter()
             .map(|(n, name)| format!("{n:>6}:  {name}\n"))

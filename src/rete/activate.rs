@@ -8,8 +8,8 @@
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
 use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
-use super::{Kind, MatchSink, NodeId, Rete, Succ, TokId, NIL, NIL_WME};
-use crate::symbols::Symbols;
+use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
+use crate::symbols::{Sym, SymData, Symbols};
 use crate::wm::WmeId;
 
 impl Rete {
@@ -131,23 +131,29 @@ impl Rete {
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
+        // The successors this WME can reach, snapshotted first (activations relink and
+        // unlink successors). A linked join whose test on the WME alone fails is left out:
+        // no token can pair with it, and its right activation would change nothing else
+        // (its parent has tokens while it is linked on both sides).
+        let rw = self.wme(w);
+        let fields = [rw.id, rw.attr, rw.value];
+        let int_of = |s: Sym| match syms.get(s) {
+            SymData::Int(i) => Some(*i),
+            _ => None,
+        };
+        let ints = [None, None, int_of(rw.value)];
         let base = self.succ_scratch.len();
-        self.succ_scratch
-            .extend(self.amems[a as usize].successors.values().copied());
-        for i in base..self.succ_scratch.len() {
-            let Succ {
-                node: n,
-                pre,
-                left_unlinked,
-            } = self.succ_scratch[i];
-            if let (Some((field, op, c)), false) = (pre, left_unlinked) {
-                // The node's test on the WME alone fails: no token can pair with it. A
-                // linked join's right activation would change nothing else (its parent
-                // has tokens while it is linked on both sides), so it is skipped.
-                if !relation_holds(syms, op, self.field(w, field), c) {
+        for s in self.amems[a as usize].successors.values() {
+            if let (Some(pre), false) = (&s.pre, s.left_unlinked) {
+                let f = pre.field as usize;
+                if !pre.passes(syms, fields[f], ints[f]) {
                     continue;
                 }
             }
+            self.succ_scratch.push(*s);
+        }
+        for i in base..self.succ_scratch.len() {
+            let n = self.succ_scratch[i].node;
             if self.nodes[n as usize].alive {
                 self.right_activation(n, w, syms, sink);
             }
@@ -276,7 +282,7 @@ impl Rete {
                 ..
             } => {
                 if right_unlinked {
-                    self.relink_right(n);
+                    self.relink_right(n, syms);
                     if self.amems[amem as usize].count == 0 {
                         self.unlink_left(n);
                         return;
@@ -302,7 +308,7 @@ impl Rete {
                 ..
             } => {
                 if right_unlinked {
-                    self.relink_right(n);
+                    self.relink_right(n, syms);
                 }
                 let nt = self.new_token(n, t, w);
                 let depth = self.tokens[nt as usize].depth + 1;

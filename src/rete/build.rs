@@ -274,7 +274,7 @@ impl Rete {
                     let (key, tests) = cond_tests(c, depth, bindings, syms);
                     let hk = hash_key_of(&tests, depth);
                     let h = self.holder_under(cur, hk, syms);
-                    let j = self.share_or_build_join(h, key, tests);
+                    let j = self.share_or_build_join(h, key, tests, syms);
                     cur = Cur::Join(j);
                     if let Some((nodes, positives)) = record.as_mut() {
                         nodes[i] = j;
@@ -411,7 +411,13 @@ impl Rete {
         }
     }
 
-    fn share_or_build_join(&mut self, h: NodeId, key: AlphaKey, tests: Vec<JoinTest>) -> NodeId {
+    fn share_or_build_join(
+        &mut self,
+        h: NodeId,
+        key: AlphaKey,
+        tests: Vec<JoinTest>,
+        syms: &Symbols,
+    ) -> NodeId {
         let amem = self.amem_for(key);
         if let Some(c) = self.shared(h, 0, amem, &tests) {
             self.amems[amem as usize].refs -= 1;
@@ -448,7 +454,7 @@ impl Rete {
                 *right_unlinked = true;
             }
         } else {
-            self.link_to_amem(j, amem);
+            self.link_to_amem(j, amem, syms);
             if self.amems[amem as usize].count == 0 {
                 self.unlink_left_pub(j);
             }
@@ -486,7 +492,7 @@ impl Rete {
             self.add_left_key(n, d, f);
         }
         self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
-        self.link_to_amem(n, amem);
+        self.link_to_amem(n, amem, syms);
         self.fill_new_node(n, syms, &mut super::NullSink);
         if self.nodes[n as usize].token_count == 0 {
             self.unlink_right(n);

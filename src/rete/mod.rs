@@ -26,7 +26,7 @@ use rustc_hash::FxHashMap;
 use small_list::SmallList;
 use tests::{Field, JoinTest};
 
-use crate::symbols::{Sym, Symbols};
+use crate::symbols::{Sym, SymData, Symbols};
 use crate::wm::WmeId;
 
 pub(crate) const NIL: u32 = u32::MAX;
@@ -81,10 +81,44 @@ pub(crate) struct Amem {
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Succ {
     pub node: NodeId,
-    pub pre: Option<(tests::Field, tests::Op, Sym)>,
+    pub pre: Option<Prefilter>,
     /// The node's `left_unlinked`, mirrored: a left-unlinked join must relink on every
     /// right activation (Rete/UL), so only a linked one may be skipped.
     pub left_unlinked: bool,
+}
+
+/// A successor's test of one field of the new WME against a constant (see [`Succ`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Prefilter {
+    pub field: tests::Field,
+    pub op: tests::Op,
+    pub constant: Sym,
+    /// The constant's value when it is an integer and `op` an ordering (`<`, `<=`, `>`,
+    /// `>=`), so that an integer WME value is compared here without reading the symbol
+    /// table: the counter rules' thousands of constants would each be a cache miss there.
+    pub int_order: Option<i64>,
+}
+
+impl Prefilter {
+    /// Whether the WME field value `v` (whose integer value is `v_int`, if it has one)
+    /// passes; the same answer as `tests::relation_holds`.
+    #[inline]
+    pub fn passes(&self, syms: &Symbols, v: Sym, v_int: Option<i64>) -> bool {
+        use crate::ast::Relation;
+        use tests::Op;
+        if let (Some(c), Some(x), Op::Rel(r)) = (self.int_order, v_int, self.op) {
+            return match r {
+                Relation::Lt => x < c,
+                Relation::Le => x <= c,
+                Relation::Gt => x > c,
+                Relation::Ge => x >= c,
+                Relation::Ne | Relation::SameType => {
+                    tests::relation_holds(syms, self.op, v, self.constant)
+                }
+            };
+        }
+        tests::relation_holds(syms, self.op, v, self.constant)
+    }
 }
 
 /// One WME's membership in one alpha memory.
@@ -786,7 +820,7 @@ impl Rete {
     }
 
     /// Puts a node back among its alpha memory's successors.
-    pub(crate) fn relink_right(&mut self, n: NodeId) {
+    pub(crate) fn relink_right(&mut self, n: NodeId, syms: &Symbols) {
         let amem = match &mut self.nodes[n as usize].kind {
             Kind::Join {
                 amem,
@@ -806,7 +840,7 @@ impl Rete {
             }
             _ => return,
         };
-        self.link_to_amem(n, amem);
+        self.link_to_amem(n, amem, syms);
     }
 
     /// Links a node into its alpha memory's successors where Soar's Rete/UL puts it, when
@@ -814,7 +848,7 @@ impl Rete {
     /// the same memory (so no descendant sees a new WME twice, Doorenbos §4.3.2), or else
     /// at the tail. The order therefore follows linking history, which decides the firing
     /// order of rules matched by one WME (spec §3i): 9.6 activates from the head.
-    pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId) {
+    pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId, syms: &Symbols) {
         const GAP: u64 = 1 << 20;
         let mut a = self.nodes[n as usize].same_amem_ancestor;
         while a != NIL && self.is_right_unlinked(a) {
@@ -830,11 +864,11 @@ impl Rete {
                 before + (at - before) / 2
             } else {
                 self.respace_successors(amem);
-                return self.link_to_amem(n, amem);
+                return self.link_to_amem(n, amem, syms);
             }
         };
         self.nodes[n as usize].amem_key = key;
-        let pre = self.prefilter(n);
+        let pre = self.prefilter(n, syms);
         let left_unlinked = matches!(
             self.nodes[n as usize].kind,
             Kind::Join {
@@ -854,13 +888,30 @@ impl Rete {
 
     /// The first test of join or negative node `n` on a field of the new WME against a
     /// constant, if it has one (see [`Succ`]).
-    fn prefilter(&self, n: NodeId) -> Option<(tests::Field, tests::Op, Sym)> {
+    fn prefilter(&self, n: NodeId, syms: &Symbols) -> Option<Prefilter> {
+        use crate::ast::Relation;
+        use tests::Op;
         self.join_tests(n).iter().find_map(|t| match t {
             JoinTest::Compare {
                 field,
                 op,
                 operand: tests::Operand::Const(c),
-            } => Some((*field, *op, *c)),
+            } => {
+                let ordering = matches!(
+                    op,
+                    Op::Rel(Relation::Lt | Relation::Le | Relation::Gt | Relation::Ge)
+                );
+                let int_order = match syms.get(*c) {
+                    SymData::Int(i) if ordering => Some(*i),
+                    _ => None,
+                };
+                Some(Prefilter {
+                    field: *field,
+                    op: *op,
+                    constant: *c,
+                    int_order,
+                })
+            }
             _ => None,
         })
     }
