@@ -461,6 +461,16 @@ impl Agent {
         self.rhs_registry.register(name, Box::new(f));
     }
 
+    /// Gives the function registered as `name` a numeric form (see
+    /// [`crate::rhs::Registry::register_numeric`]); false when `name` is not registered.
+    pub fn register_rhs_numeric(
+        &mut self,
+        name: &str,
+        f: impl FnMut(&[f64]) -> Option<String> + 'static,
+    ) -> bool {
+        self.rhs_registry.register_numeric(name, Box::new(f))
+    }
+
     /// Adds a WME now (as `wm add` and the input phase do) and matches it.
     pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];

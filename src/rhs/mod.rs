@@ -30,6 +30,7 @@
 //! time in 9.6; UTC here, the same when `TZ` is UTC).
 
 mod math;
+mod numeric;
 mod text;
 mod wmefns;
 mod xml;
@@ -43,6 +44,7 @@ use crate::wm::{WmeId, WorkingMemory};
 use std::collections::BTreeMap;
 
 pub use math::MAX_DICE;
+pub use numeric::NumericRhsFn;
 pub use text::{c_fixed, c_strtod, c_strtol, value_text, Erange};
 
 /// A function registered by the embedding program: `(agent name, argument string) -> result`.
@@ -52,6 +54,10 @@ pub type RhsFn = Box<dyn FnMut(&str, &str) -> String>;
 /// that outlives one call (`make-constant-symbol`'s counter, `count`'s counters).
 pub struct Registry {
     functions: BTreeMap<String, RhsFn>,
+    /// Numeric forms of some of `functions` (see `numeric.rs`).
+    numeric: BTreeMap<String, NumericRhsFn>,
+    /// The numbers of the current numeric call (a reused buffer).
+    numbers: Vec<f64>,
     /// The next number `make-constant-symbol` tries. Starts at 1; `init-soar` does **not**
     /// reset it (observed on 9.6).
     pub mcs_counter: u64,
@@ -79,6 +85,8 @@ impl Registry {
     pub fn new() -> Self {
         Registry {
             functions: BTreeMap::new(),
+            numeric: BTreeMap::new(),
+            numbers: Vec::new(),
             mcs_counter: 1,
             counts: BTreeMap::new(),
         }
@@ -87,11 +95,27 @@ impl Registry {
     /// Registers `f` under `name`, returning the function it replaces. `(exec name ...)` and
     /// `(name ...)` (which the parser rewrites to `exec`) call it with the agent's name and
     /// the arguments' texts concatenated with no separator; its result becomes a string.
+    /// A numeric form registered before for `name` is dropped: it belonged to the old
+    /// function.
     pub fn register(&mut self, name: &str, f: RhsFn) -> Option<RhsFn> {
+        self.numeric.remove(name);
         self.functions.insert(name.to_string(), f)
     }
 
+    /// Adds a numeric form to the function registered as `name` (false, and nothing added,
+    /// when there is none): `exec` calls it instead when the arguments are numbers between
+    /// comma separators, with the numbers the argument string would hold. It must return
+    /// what the text form returns for that string (see `numeric.rs`).
+    pub fn register_numeric(&mut self, name: &str, f: NumericRhsFn) -> bool {
+        if !self.functions.contains_key(name) {
+            return false;
+        }
+        self.numeric.insert(name.to_string(), f);
+        true
+    }
+
     pub fn unregister(&mut self, name: &str) -> Option<RhsFn> {
+        self.numeric.remove(name);
         self.functions.remove(name)
     }
 
@@ -470,17 +494,34 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         eprintln!("exec should be followed by a function name ");
         return ctx.str_sym("error_expected_rhs_function_to_return_value_but_it_did_NOT");
     };
-    let function = ctx.value_text(f);
-    let mut argument = String::new();
-    for a in rest {
-        text::push_value_text(ctx.symbols, *a, &mut argument);
-    }
-    let result = ctx
-        .registry
-        .call(&function, ctx.agent_name, &argument)
-        .unwrap_or_else(|| {
-            format!("Error: Nobody was registered to implement rhs function {function}")
-        });
+    let owned;
+    let function: &str = match ctx.symbols.get(f) {
+        SymData::Str(name) => name,
+        _ => {
+            owned = ctx.value_text(f);
+            &owned
+        }
+    };
+    let registry = &mut *ctx.registry;
+    let mut numbers = std::mem::take(&mut registry.numbers);
+    let fast = match registry.numeric.get_mut(function) {
+        Some(numeric_form) => {
+            numeric::numbers(ctx.symbols, rest, &mut numbers).and_then(|()| numeric_form(&numbers))
+        }
+        None => None,
+    };
+    registry.numbers = numbers;
+    let result = fast.unwrap_or_else(|| {
+        let mut argument = String::new();
+        for a in rest {
+            text::push_value_text(ctx.symbols, *a, &mut argument);
+        }
+        registry
+            .call(function, ctx.agent_name, &argument)
+            .unwrap_or_else(|| {
+                format!("Error: Nobody was registered to implement rhs function {function}")
+            })
+    });
     ctx.str_sym(&result)
 }
 

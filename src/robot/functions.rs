@@ -33,6 +33,16 @@ pub fn register(agent: &mut Agent) {
     agent.register_rhs_function("getlength", |_, args| getlength(args));
     agent.register_rhs_function("checkwallrelation", |_, args| checkwallrelation(args));
     agent.register_rhs_function("getwalldistance", |_, args| getwalldistance(args));
+    // The same functions on the numbers themselves, which `exec` passes when the rules
+    // separate their numeric arguments with commas, as the thesis's rules do (no printing
+    // and reading back of 360,000 argument strings in a 600-s run).
+    agent.register_rhs_numeric("getlength", |n| Some(getlength_of(n.try_into().ok()?)));
+    agent.register_rhs_numeric("checkwallrelation", |n| {
+        Some(checkwallrelation_of(n.try_into().ok()))
+    });
+    agent.register_rhs_numeric("getwalldistance", |n| {
+        Some(getwalldistance_of(n.try_into().ok(), &P2DX_SONARS))
+    });
 }
 
 /// Splits an `exec` argument string on `,` and parses each trimmed field as a finite float.
@@ -52,9 +62,14 @@ fn parse_n<const N: usize>(args: &str) -> Option<[f64; N]> {
 /// decimals (`"2000.000"`).
 pub fn getlength(args: &str) -> String {
     match parse_n::<4>(args) {
-        Some([x1, y1, x2, y2]) => format!("{:.3}", (x2 - x1).hypot(y2 - y1)),
+        Some(n) => getlength_of(n),
         None => format!("Error: getlength expects \"x1, y1, x2, y2\", got \"{args}\""),
     }
+}
+
+/// [`getlength`] on its numbers.
+fn getlength_of([x1, y1, x2, y2]: [f64; 4]) -> String {
+    format!("{:.3}", (x2 - x1).hypot(y2 - y1))
 }
 
 /// Where a robot sees a wall (`checkwallrelation`'s result).
@@ -116,7 +131,12 @@ pub fn wall_relation(rx: f64, ry: f64, rth_deg: f64, s: (f64, f64), e: (f64, f64
 /// `checkwallrelation`: `rx, ry, rth, sx, sy, ex, ey` → `front`, `left`, `right`, `back` or
 /// `none` (see [`wall_relation`]). Malformed arguments give `none`.
 pub fn checkwallrelation(args: &str) -> String {
-    match parse_n::<7>(args) {
+    checkwallrelation_of(parse_n::<7>(args))
+}
+
+/// [`checkwallrelation`] on its numbers (`None`: not seven of them).
+fn checkwallrelation_of(n: Option<[f64; 7]>) -> String {
+    match n {
         Some([rx, ry, rth, sx, sy, ex, ey]) => wall_relation(rx, ry, rth, (sx, sy), (ex, ey))
             .word()
             .to_string(),
@@ -169,7 +189,12 @@ pub fn getwalldistance(args: &str) -> String {
 
 /// [`getwalldistance`] for another transducer table.
 pub fn getwalldistance_with(args: &str, sonars: &[Transducer]) -> String {
-    let Some([rx, ry, rth, i, sx, sy, ex, ey]) = parse_n::<8>(args) else {
+    getwalldistance_of(parse_n::<8>(args), sonars)
+}
+
+/// [`getwalldistance_with`] on its numbers (`None`: not eight of them).
+fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
+    let Some([rx, ry, rth, i, sx, sy, ex, ey]) = n else {
         return "-1".to_string();
     };
     if i.fract() != 0.0 || i < 0.0 {
