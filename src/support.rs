@@ -14,7 +14,7 @@ pub fn match_goal(agent: &Agent, _p: ProdId, t: TokId) -> Option<Sym> {
     goal_of(agent, agent.rete.chain_wmes(t))
 }
 
-fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
+pub(crate) fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
     let mut best: Option<(u32, Sym)> = None;
     for w in wmes {
         let Some(wme) = agent.wm.get(w) else { continue };
@@ -123,7 +123,7 @@ fn compiled_support(agent: &Agent, rule: &CompiledRule, t: TokId) -> MatchSuppor
             mixed: false,
         };
     }
-    if rule.flags.i_support || rule.proposes {
+    if rule.flags.i_support || rule.proposes || !rule.may_test_operator {
         return i_support;
     }
     let Some(goal) = goal_of(agent, agent.rete.chain_wmes(t)) else {

@@ -54,6 +54,25 @@ pub(crate) struct CompiledRule {
     /// For each make action: the binding of its id when that is a variable the conditions
     /// bind (for the §3c test of actions on the selected operator).
     pub make_ids: Vec<Option<(u32, Field)>>,
+    /// One of its positive conditions can match a `^operator` WME. Without one the rule
+    /// cannot test its goal's selected operator and is I-supported (spec §3c), which
+    /// spares the support test a walk over the match.
+    pub may_test_operator: bool,
+}
+
+/// Whether an attribute test can pass on `operator`.
+fn may_be_operator(t: &crate::production::Test) -> bool {
+    use crate::ast::Constant;
+    use crate::production::{Term as CondTerm, Test};
+    match t {
+        Test::Equal(CondTerm::Const(Constant::Str(s))) => s == "operator",
+        Test::Equal(CondTerm::Const(_)) => false,
+        Test::Disjunction(cs) => cs
+            .iter()
+            .any(|c| matches!(c, Constant::Str(s) if s == "operator")),
+        Test::Conjunction(ts) => ts.iter().all(may_be_operator),
+        Test::Equal(CondTerm::Var(_)) | Test::Relational(..) => true,
+    }
 }
 
 pub(crate) fn pref_type(k: PrefKind) -> PrefType {
@@ -147,11 +166,16 @@ pub(crate) fn compile(prod: &Production, info: &ProdInfo, symbols: &mut Symbols)
             }
         }
     }
+    let may_test_operator = prod.conditions.iter().any(|c| match c {
+        crate::production::Condition::Positive(c) => may_be_operator(&c.attr),
+        _ => false,
+    });
     CompiledRule {
         actions,
         new_vars: b.new_vars,
         proposes,
         flags: prod.flags.clone(),
         make_ids,
+        may_test_operator,
     }
 }

@@ -374,7 +374,10 @@ impl Agent {
             self.out(&s);
             self.trace_match_wmes(p, t);
         }
-        let goal = crate::support::match_goal(self, p, t);
+        let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
+        self.rete.token_wmes(t, &mut wmes);
+        // The match goal (spec §3b), from the WMEs the actions read anyway.
+        let goal = crate::support::goal_of(self, wmes.iter().copied());
         let level = goal
             .and_then(|g| self.symbols.id_data(g))
             .map_or(1, |d| d.level);
@@ -392,8 +395,6 @@ impl Agent {
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
-        let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
-        self.rete.token_wmes(t, &mut wmes);
         let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
         new_ids.clear();
         new_ids.resize(rule.new_vars.len(), None);
