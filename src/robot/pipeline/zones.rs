@@ -39,8 +39,35 @@ pub struct Zone {
 
 /// The zones of `acc` above the critical value `k`, ordered by their strongest peak.
 pub fn find_zones(acc: &Accumulator, k: u32) -> Vec<Zone> {
+    LABELS.with(|l| find_zones_with(acc, k, &mut l.borrow_mut()))
+}
+
+/// Zone labels of the accumulator's cells, kept between calls: a run extracts thousands of
+/// times, and a fresh label array each time (over a megabyte) costs more than the search.
+/// A cell belongs to zone `id` of this call when its label is `base + id`; labels below
+/// `base` are left over from earlier calls and mean "no zone yet".
+struct Labels {
+    cells: Vec<u32>,
+    base: u32,
+}
+
+thread_local! {
+    static LABELS: std::cell::RefCell<Labels> =
+        const { std::cell::RefCell::new(Labels { cells: Vec::new(), base: 1 }) };
+}
+
+fn find_zones_with(acc: &Accumulator, k: u32, labels: &mut Labels) -> Vec<Zone> {
     let (nt, nr) = (acc.n_theta(), acc.n_r());
-    let mut label = vec![usize::MAX; nt * nr];
+    // Each call may use up to one label per cell above k: start afresh (all zeros, base 1)
+    // when the array is too small or the labels could run out.
+    if labels.cells.len() < nt * nr || labels.base as usize >= (u32::MAX as usize) - nt * nr {
+        labels.cells.clear();
+        labels.cells.resize(nt * nr, 0);
+        labels.base = 1;
+    }
+    let base = labels.base;
+    let label = &mut labels.cells[..nt * nr];
+    let unlabelled = |l: u32| l < base;
     let mut zones = Vec::new();
     let neighbours = |t: usize, ri: usize| {
         let mut out = [(0usize, 0usize); 8];
@@ -62,10 +89,10 @@ pub fn find_zones(acc: &Accumulator, k: u32) -> Vec<Zone> {
     };
     for t0 in 0..nt {
         for r0 in 0..nr {
-            if acc.get(t0, r0) <= k || label[t0 * nr + r0] != usize::MAX {
+            if acc.get(t0, r0) <= k || !unlabelled(label[t0 * nr + r0]) {
                 continue;
             }
-            let id = zones.len();
+            let id = base + zones.len() as u32;
             let mut cells = vec![(t0, r0)];
             label[t0 * nr + r0] = id;
             let mut i = 0;
@@ -73,7 +100,7 @@ pub fn find_zones(acc: &Accumulator, k: u32) -> Vec<Zone> {
                 let (t, ri) = cells[i];
                 let (nb, n) = neighbours(t, ri);
                 for &(t2, r2) in &nb[..n] {
-                    if acc.get(t2, r2) > k && label[t2 * nr + r2] == usize::MAX {
+                    if acc.get(t2, r2) > k && unlabelled(label[t2 * nr + r2]) {
                         label[t2 * nr + r2] = id;
                         cells.push((t2, r2));
                     }
@@ -90,12 +117,13 @@ pub fn find_zones(acc: &Accumulator, k: u32) -> Vec<Zone> {
                         v2 < v || (v2 == v && (t2, r2) > (t, ri))
                     })
                 })
-                .map(|&(t, ri)| centre(acc, &label, id, t, ri))
+                .map(|&(t, ri)| centre(acc, label, id, t, ri))
                 .collect();
             peaks.sort_by(|a, b| b.votes.cmp(&a.votes).then((a.t, a.ri).cmp(&(b.t, b.ri))));
             zones.push(Zone { cells, peaks });
         }
     }
+    labels.base = base + zones.len() as u32;
     zones.retain(|z| !z.peaks.is_empty());
     zones.sort_by(|a, b| {
         let (pa, pb) = (&a.peaks[0], &b.peaks[0]);
@@ -107,7 +135,7 @@ pub fn find_zones(acc: &Accumulator, k: u32) -> Vec<Zone> {
 }
 
 /// The vote-weighted centre of zone `id`'s cells within ±2 columns and ±2 bins of (t, ri).
-fn centre(acc: &Accumulator, label: &[usize], id: usize, t: usize, ri: usize) -> Peak {
+fn centre(acc: &Accumulator, label: &[u32], id: u32, t: usize, ri: usize) -> Peak {
     let (nt, nr) = (acc.n_theta() as i64, acc.n_r() as i64);
     let (mut w, mut sum_dt, mut sum_r) = (0.0, 0.0, 0.0);
     for dt in -2i64..=2 {
