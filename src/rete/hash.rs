@@ -32,6 +32,11 @@ impl TokKey {
         }
     }
 
+    /// The token value of this bucket.
+    fn value(&self) -> Sym {
+        Sym(self.holder_value as u32)
+    }
+
     /// Whether this bucket is the holder's on key `(d, f)`.
     fn is_key_of(&self, holder: NodeId, d: u32, f: Field) -> bool {
         (self.holder_value >> 32) as u32 == holder && self.depth_field == depth_field(d, f)
@@ -189,8 +194,31 @@ impl Rete {
 
     /// A token's value at an index key, if it has a WME at that depth.
     pub(crate) fn key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
+        if let Some(v) = self.parent_key_value(t, d, f) {
+            return Some(v);
+        }
         let wm = self.wme_at_depth(t, d);
         (wm != NIL_WME).then(|| self.field(wm, f))
+    }
+
+    /// A token's value at `(d, f)` read off its parent's index entries, when the parent is
+    /// indexed on that key: chains of joins on one identifier (`(<c> ^X ..) (<c> ^Y ..)`)
+    /// index every level on the same key, and this spares the walk up the whole chain.
+    fn parent_key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
+        let tok = self.tokens.get(t as usize)?;
+        if tok.depth <= d || tok.parent == NIL {
+            return None;
+        }
+        let df = depth_field(d, f);
+        let mut e = self.tokens[tok.parent as usize].hfirst;
+        while e != NIL {
+            let entry = &self.hentries[e as usize];
+            if entry.key.depth_field == df {
+                return Some(entry.key.value());
+            }
+            e = entry.next_of_tok;
+        }
+        None
     }
 
     fn hentry_insert(&mut self, key: TokKey, t: TokId) {
