@@ -40,7 +40,10 @@ pub struct Symbols {
     str_clashes: FxHashMap<Box<str>, Sym>,
     ints: FxHashMap<i64, Sym>,
     floats: FxHashMap<u64, Sym>,
-    ids: FxHashMap<(u8, u64), Sym>,
+    /// Identifiers by letter, then number: `ids[L][n - 1]` is `Ln` (numbers go up by one
+    /// from 1 per letter, so a list serves where a hash map would cost every new id an
+    /// insert; a learning or SLAM run makes hundreds of thousands).
+    ids: [Vec<Sym>; 26],
     counters: [u64; 26],
 }
 
@@ -158,7 +161,8 @@ impl Symbols {
             is_goal: false,
             is_impasse: false,
         }));
-        self.ids.insert((l, number), x);
+        debug_assert_eq!(self.ids[slot].len() as u64 + 1, number);
+        self.ids[slot].push(x);
         x
     }
 
@@ -169,13 +173,17 @@ impl Symbols {
             return None;
         }
         let n: u64 = name[1..].parse().ok()?;
-        self.ids.get(&(b[0].to_ascii_uppercase(), n)).copied()
+        let slot = (b[0].to_ascii_uppercase() - b'A') as usize;
+        let index = usize::try_from(n.checked_sub(1)?).ok()?;
+        self.ids[slot].get(index).copied()
     }
 
     /// `init-soar`: identifier counters start again at 1 (spec §2, E:t8).
     pub fn reset_id_counters(&mut self) {
         self.counters = [1; 26];
-        self.ids.clear();
+        for list in &mut self.ids {
+            list.clear();
+        }
     }
 
     pub fn get(&self, s: Sym) -> &SymData {
