@@ -423,7 +423,7 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = tests.into();
+        let tests = self.shared_tests(tests);
         let depth = self.nodes[h as usize].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
@@ -475,7 +475,7 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = tests.into();
+        let tests = self.shared_tests(tests);
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -498,6 +498,17 @@ impl Rete {
             self.unlink_right(n);
         }
         n
+    }
+
+    /// The one shared copy of a list of join tests: most joins test only their identifier
+    /// against one binding place, so 100,000 rules hold a handful of distinct lists.
+    fn shared_tests(&mut self, tests: Vec<JoinTest>) -> std::sync::Arc<[JoinTest]> {
+        if let Some(t) = self.test_lists.get(tests.as_slice()) {
+            return t.clone();
+        }
+        let t: std::sync::Arc<[JoinTest]> = tests.into();
+        self.test_lists.insert(t.clone());
+        t
     }
 
     /// Fills a newly built token holder with the matches its parent already has

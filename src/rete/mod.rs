@@ -355,6 +355,8 @@ pub struct Rete {
     /// candidates apart.
     /// Keyed by parent, node kind, alpha memory and a hash of the tests.
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
+    /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
+    test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -400,6 +402,7 @@ impl Rete {
             free_neg: Vec::new(),
             prods: Blocks::default(),
             share: FxHashMap::default(),
+            test_lists: Default::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
@@ -440,6 +443,13 @@ impl Rete {
     }
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
+        let node = &mut self.nodes[n as usize];
+        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = &node.kind {
+            // Held by the set and this node only: no node uses the list any more.
+            if std::sync::Arc::strong_count(tests) == 2 {
+                self.test_lists.remove(&**tests);
+            }
+        }
         let node = &mut self.nodes[n as usize];
         node.alive = false;
         node.children = SmallList::Empty;
