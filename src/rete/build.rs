@@ -142,10 +142,9 @@ impl Rete {
         let pnode = self.new_node(Kind::Production { prod: pid }, parent, depth);
         self.attach(parent, pnode, true);
         self.prods.push(Some(ProdInfo {
-            name: p.name.clone(),
             pnode,
             positives,
-            bindings: bindings.into(),
+            bindings: super::VarBindings::new(bindings, &mut self.var_names),
             cond_nodes: cond_nodes.into(),
             action_key: action_key.into(),
         }));

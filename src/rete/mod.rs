@@ -281,12 +281,13 @@ impl Shared {
 }
 
 /// Variables and where they are bound, sorted by name: kept for every rule, where a hash
-/// map would cost several times the memory.
+/// map would cost several times the memory. The names are shared among all rules
+/// ([`VarNames`]): thousands of rules use the same few.
 #[derive(Debug, Clone, Default)]
 pub struct VarBindings(Box<[Binding]>);
 
 /// A variable's name and where it is bound.
-type Binding = (Box<str>, (u32, Field));
+type Binding = (std::sync::Arc<str>, (u32, Field));
 
 impl VarBindings {
     pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
@@ -308,13 +309,26 @@ impl VarBindings {
     pub fn is_empty(&self) -> bool {
         self.0.is_empty()
     }
-}
 
-impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
-    fn from(map: FxHashMap<&str, (u32, Field)>) -> Self {
+    fn new(map: FxHashMap<&str, (u32, Field)>, names: &mut VarNames) -> Self {
         let mut v: Vec<_> = map.into_iter().collect();
         v.sort_unstable_by(|a, b| a.0.cmp(b.0));
-        VarBindings(v.into_iter().map(|(k, b)| (k.into(), b)).collect())
+        VarBindings(v.into_iter().map(|(k, b)| (names.get(k), b)).collect())
+    }
+}
+
+/// The variable names of the rules in the network, each stored once.
+#[derive(Debug, Default)]
+pub(crate) struct VarNames(rustc_hash::FxHashSet<std::sync::Arc<str>>);
+
+impl VarNames {
+    fn get(&mut self, name: &str) -> std::sync::Arc<str> {
+        if let Some(n) = self.0.get(name) {
+            return n.clone();
+        }
+        let n: std::sync::Arc<str> = name.into();
+        self.0.insert(n.clone());
+        n
     }
 }
 
@@ -323,7 +337,6 @@ impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
 /// reordered), so no order is kept.
 #[derive(Debug, Clone, Default)]
 pub struct ProdInfo {
-    pub name: String,
     pub(crate) pnode: NodeId,
     /// The number of positive top-level conditions.
     pub(crate) positives: u32,
@@ -357,6 +370,8 @@ pub struct Rete {
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
     /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
     test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
+    /// The variable names of every rule's [`VarBindings`].
+    var_names: VarNames,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -403,6 +418,7 @@ impl Rete {
             prods: Blocks::default(),
             share: FxHashMap::default(),
             test_lists: Default::default(),
+            var_names: VarNames::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
