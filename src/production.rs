@@ -4,7 +4,7 @@
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
 use crate::rhs_functions::{self, Use};
-use crate::source::{Diagnostic, Span};
+use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Declared support and other `:flags` (spec §1c).
@@ -48,7 +48,7 @@ pub struct Cond {
     pub acceptable: bool,
     /// `(state ...)` or `(impasse ...)` put a goal or impasse test on the id.
     pub goal: Head,
-    pub span: Span,
+    pub span: PackedSpan,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -121,7 +121,7 @@ pub struct Make {
     pub value: RhsTerm,
     pub pref: PrefKind,
     pub referent: Option<RhsTerm>,
-    pub span: Span,
+    pub span: PackedSpan,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -507,7 +507,7 @@ fn compile_cond_for_one_id(
             value,
             acceptable: false,
             goal: c.head,
-            span: c.span,
+            span: c.span.into(),
         }));
         return Ok(());
     }
@@ -549,7 +549,7 @@ fn compile_attr_value_tests(
             value: Test::Equal(v.clone()),
             acceptable: false,
             goal,
-            span: avt.span,
+            span: avt.span.into(),
         }));
         cur_id = Test::Equal(v);
         goal = Head::None;
@@ -597,7 +597,7 @@ fn compile_attr_value_tests(
                     value,
                     acceptable: *acceptable,
                     goal,
-                    span: avt.span,
+                    span: avt.span.into(),
                 }));
             }
             ast::ValueTest::Structured {
@@ -610,7 +610,7 @@ fn compile_attr_value_tests(
                     value: Test::Equal(pv.clone()),
                     acceptable: *acceptable,
                     goal,
-                    span: avt.span,
+                    span: avt.span.into(),
                 }));
                 for inner in tests {
                     compile_attr_value_tests(
@@ -678,7 +678,7 @@ fn compile_action(
                         value: v.clone(),
                         pref: PrefKind::Acceptable,
                         referent: None,
-                        span: am.span,
+                        span: am.span.into(),
                     })));
                     cur = v;
                 }
@@ -750,7 +750,7 @@ fn compile_action(
                             value: value.clone(),
                             pref: kind,
                             referent,
-                            span: *span,
+                            span: (*span).into(),
                         })));
                     }
                     if !is_operator && rejects == 0 {
@@ -760,7 +760,7 @@ fn compile_action(
                             value: value.clone(),
                             pref: PrefKind::Acceptable,
                             referent: None,
-                            span: *span,
+                            span: (*span).into(),
                         })));
                     }
                 }
@@ -922,7 +922,7 @@ fn root_variables<'a>(
                 Diagnostic::warning(format!(
                     "Warning: On the LHS of production {name}, identifier {root} is not connected to any goal or impasse."
                 ))
-                .at(c.span)
+                .at(c.span.span())
                 .with_label("no chain of conditions links this identifier to a state"),
             );
         }
@@ -1007,7 +1007,7 @@ fn drop_unbound_relational(
                             "Error: production {name} has an unbound referent in negated relational test {}.",
                             crate::printer::test_text(rel)
                         ))
-                        .at(c.span)
+                        .at(c.span.span())
                         .with_label("no positive condition binds this variable")
                         .with_note("Attempted to add an invalid rule:\n      Unbound relational test in negative condition of rule"));
                     }
@@ -1127,7 +1127,7 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
         }
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
-            Action::Make(m) => (crate::printer::make_text(m), m.span),
+            Action::Make(m) => (crate::printer::make_text(m), m.span.span()),
             Action::Call(f) => (crate::printer::call_text(f), f.span),
         };
         if seen.insert(text.clone()) {

@@ -32,6 +32,39 @@ impl Span {
     }
 }
 
+/// A [`Span`] in half the bytes, for the parts of a loaded rule that keep one (each of
+/// its conditions and actions): 100,000 rules keep about 700,000. Offsets past 4 GiB
+/// saturate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct PackedSpan {
+    file: u32,
+    start: u32,
+    end: u32,
+}
+
+impl From<Span> for PackedSpan {
+    fn from(s: Span) -> Self {
+        let small = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
+        PackedSpan {
+            file: small(s.file),
+            start: small(s.start),
+            end: small(s.end),
+        }
+    }
+}
+
+impl From<PackedSpan> for Span {
+    fn from(s: PackedSpan) -> Self {
+        Span::new(s.file as usize, s.start as usize, s.end as usize)
+    }
+}
+
+impl PackedSpan {
+    pub fn span(self) -> Span {
+        self.into()
+    }
+}
+
 /// A registered text, shared (running a file's commands needs it while the map grows).
 /// Its line starts are found only when a diagnostic is rendered in it: most sourced files
 /// never need them, and for a large rule file they are megabytes.

@@ -164,7 +164,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
             value: value_test(&c.value, bound),
             acceptable: c.acceptable,
             goal: if first { Head::State } else { Head::None },
-            span: Span::default(),
+            span: Default::default(),
         }
     }
     fn bind(c: &Cond, bound: &mut BTreeSet<String>) {

@@ -302,7 +302,6 @@ mod tests {
     use super::*;
     use crate::ast::Relation;
     use crate::production::Cond;
-    use crate::source::Span;
 
     fn var(v: &str) -> Test {
         Test::Equal(Term::Var(v.into()))
@@ -317,7 +316,7 @@ mod tests {
             value: v,
             acceptable: false,
             goal,
-            span: Span::default(),
+            span: Default::default(),
         })
     }
 
