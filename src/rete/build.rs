@@ -746,24 +746,26 @@ fn add_test<'a>(
                 bindings.insert(v, (depth, field));
             }
         },
-        Test::Relational(r, Term::Var(v)) => {
-            // A relational test on a variable bound nowhere is dropped (spec §1g).
-            if let Some(&(d, f)) = bindings.get(&**v) {
+        Test::Relational(r, referent) => match &**referent {
+            Term::Var(v) => {
+                // A relational test on a variable bound nowhere is dropped (spec §1g).
+                if let Some(&(d, f)) = bindings.get(&**v) {
+                    tests.push(JoinTest::Compare {
+                        field,
+                        op: Op::Rel(*r),
+                        operand: Operand::Bound { depth: d, field: f },
+                    });
+                }
+            }
+            Term::Const(k) => {
+                let s = syms.constant(k);
                 tests.push(JoinTest::Compare {
                     field,
                     op: Op::Rel(*r),
-                    operand: Operand::Bound { depth: d, field: f },
+                    operand: Operand::Const(s),
                 });
             }
-        }
-        Test::Relational(r, Term::Const(k)) => {
-            let s = syms.constant(k);
-            tests.push(JoinTest::Compare {
-                field,
-                op: Op::Rel(*r),
-                operand: Operand::Const(s),
-            });
-        }
+        },
         Test::Disjunction(items) => {
             let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
             tests.push(JoinTest::Disjunction { field, items });
