@@ -123,10 +123,11 @@ impl PrefKind {
     }
 }
 
+/// (Both boxed: an action is then 16 bytes, and a rule keeps its list for its lifetime.)
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
     Make(Box<Make>),
-    Call(FuncCall),
+    Call(Box<FuncCall>),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -676,7 +677,7 @@ fn compile_action(
     match a {
         ast::Action::Call(f) => {
             let call = compile_call(f, true, out, rule)?;
-            dest.push(Action::Call(call));
+            dest.push(Action::Call(Box::new(call)));
             Ok(())
         }
         ast::Action::Make { id, attrs, span } => {
