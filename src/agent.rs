@@ -383,6 +383,7 @@ impl Agent {
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
         let conds = std::mem::take(&mut p.conditions);
         p.conditions = crate::rete::reorder::reorder_owned(conds, &self.symbols);
+        self.rete.share_var_names(&mut p.conditions);
         let replaced = self.excise(&p.name);
         let id = match self
             .rete

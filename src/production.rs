@@ -67,7 +67,7 @@ const _: () = assert!(std::mem::size_of::<Test>() == 24);
 impl Test {
     /// A test that allocates nothing, left behind when a test is taken out of its place.
     pub fn placeholder() -> Test {
-        Test::Equal(Term::Var(Box::default()))
+        Test::Equal(Term::Const(Constant::Int(0)))
     }
 
     pub fn conjunction(tests: Vec<Test>) -> Test {
@@ -77,9 +77,10 @@ impl Test {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum Term {
-    /// (Boxed text, not a `String`: with it a term is 24 bytes, and a rule keeps a few
-    /// dozen of them.)
-    Var(Box<str>),
+    /// (Shared text, not a `String`: with it a term is 24 bytes, and a rule keeps a few
+    /// dozen of them. A loaded rule's variables share one copy of each name with every
+    /// other rule's, see `Rete::share_var_names`.)
+    Var(std::sync::Arc<str>),
     Const(Constant),
 }
 

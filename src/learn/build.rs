@@ -261,7 +261,7 @@ impl Builder<'_> {
             }
         }
         match self.term(sym, ident, under) {
-            Term::Var(v) => RhsTerm::Var(v.into()),
+            Term::Var(v) => RhsTerm::Var(v.to_string()),
             Term::Const(c) => RhsTerm::Const(c),
         }
     }
@@ -271,7 +271,7 @@ impl Builder<'_> {
         for a in &f.args {
             args.push(match a {
                 RhsTerm::Var(v) => match self.var_term(trace, v)? {
-                    Term::Var(x) => RhsTerm::Var(x.into()),
+                    Term::Var(x) => RhsTerm::Var(x.to_string()),
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 RhsTerm::Const(c) => RhsTerm::Const(c.clone()),

@@ -15,6 +15,7 @@ mod activate;
 mod blocks;
 mod build;
 mod hash;
+mod names;
 pub mod reorder;
 mod small_list;
 pub mod tests;
@@ -22,6 +23,8 @@ mod tokens;
 
 use blocks::{Arena, Blocks};
 pub use build::BuildError;
+pub use names::VarBindings;
+use names::VarNames;
 use rustc_hash::FxHashMap;
 use small_list::SmallList;
 use tests::{Field, JoinTest};
@@ -280,58 +283,6 @@ impl Shared {
     }
 }
 
-/// Variables and where they are bound, sorted by name: kept for every rule, where a hash
-/// map would cost several times the memory. The names are shared among all rules
-/// ([`VarNames`]): thousands of rules use the same few.
-#[derive(Debug, Clone, Default)]
-pub struct VarBindings(Box<[Binding]>);
-
-/// A variable's name and where it is bound.
-type Binding = (std::sync::Arc<str>, (u32, Field));
-
-impl VarBindings {
-    pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
-        self.0
-            .binary_search_by(|(k, _)| (**k).cmp(var))
-            .ok()
-            .map(|i| &self.0[i].1)
-    }
-
-    /// The variable names, in sorted order.
-    pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.0.iter().map(|(k, _)| &**k)
-    }
-
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-
-    fn new(map: FxHashMap<&str, (u32, Field)>, names: &mut VarNames) -> Self {
-        let mut v: Vec<_> = map.into_iter().collect();
-        v.sort_unstable_by(|a, b| a.0.cmp(b.0));
-        VarBindings(v.into_iter().map(|(k, b)| (names.get(k), b)).collect())
-    }
-}
-
-/// The variable names of the rules in the network, each stored once.
-#[derive(Debug, Default)]
-pub(crate) struct VarNames(rustc_hash::FxHashSet<std::sync::Arc<str>>);
-
-impl VarNames {
-    fn get(&mut self, name: &str) -> std::sync::Arc<str> {
-        if let Some(n) = self.0.get(name) {
-            return n.clone();
-        }
-        let n: std::sync::Arc<str> = name.into();
-        self.0.insert(n.clone());
-        n
-    }
-}
-
 /// What the network knows of a production (kept for every rule, so exactly sized). The
 /// network joins the top-level conditions in the order the rule lists them (they come
 /// reordered), so no order is kept.
@@ -371,7 +322,7 @@ pub struct Rete {
     /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
     test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
     /// The variable names of every rule's [`VarBindings`].
-    var_names: VarNames,
+    pub(crate) var_names: VarNames,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
