@@ -321,6 +321,8 @@ pub struct Rete {
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
     /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
     test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
+    /// The tests of the condition being added (a reused buffer, see `build_conditions`).
+    test_buf: Vec<JoinTest>,
     /// The variable names of every rule's [`VarBindings`].
     pub(crate) var_names: VarNames,
     pub(crate) root: NodeId,
@@ -369,6 +371,7 @@ impl Rete {
             prods: Blocks::default(),
             share: FxHashMap::default(),
             test_lists: Default::default(),
+            test_buf: Vec::new(),
             var_names: VarNames::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
