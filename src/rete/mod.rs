@@ -12,7 +12,7 @@
 //! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
 
 mod activate;
-mod blocks;
+pub(crate) mod blocks;
 mod build;
 mod hash;
 mod names;
