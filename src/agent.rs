@@ -265,6 +265,31 @@ pub struct Loaded {
     pub id: ProdId,
 }
 
+/// A rule as the key of the rules by name: its own name, not a copy of it.
+#[derive(Debug, Clone)]
+struct ByName(std::sync::Arc<Production>);
+
+impl std::hash::Hash for ByName {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        // As a `str` hashes, so that lookups by `&str` find it.
+        self.0.name.as_str().hash(h);
+    }
+}
+
+impl PartialEq for ByName {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.name == other.0.name
+    }
+}
+
+impl Eq for ByName {}
+
+impl std::borrow::Borrow<str> for ByName {
+    fn borrow(&self) -> &str {
+        &self.0.name
+    }
+}
+
 /// The identifiers of the top state and its io link (spec §2).
 #[derive(Debug, Clone, Copy)]
 pub struct TopState {
@@ -285,7 +310,7 @@ pub struct Agent {
     pub wm: WorkingMemory,
     pub rete: Rete,
     pub matches: MatchSet,
-    productions: IndexMap<String, Loaded>,
+    productions: IndexMap<ByName, Loaded>,
     /// The same rules by network id, for firing without a lookup by name.
     by_id: Vec<Option<std::sync::Arc<Production>>>,
     pub settings: Settings,
@@ -358,6 +383,7 @@ impl Agent {
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
         let conds = std::mem::take(&mut p.conditions);
         p.conditions = crate::rete::reorder::reorder_owned(conds, &self.symbols);
+        self.rete.share_var_names(&mut p.conditions);
         let replaced = self.excise(&p.name);
         let id = match self
             .rete
@@ -380,7 +406,7 @@ impl Agent {
         }
         self.by_id[slot] = Some(production.clone());
         self.productions
-            .insert(production.name.clone(), Loaded { production, id });
+            .insert(ByName(production.clone()), Loaded { production, id });
         if replaced {
             Added::Replaced
         } else {
@@ -400,7 +426,7 @@ impl Agent {
     }
 
     pub fn excise_all(&mut self) -> usize {
-        let names: Vec<String> = self.productions.keys().cloned().collect();
+        let names: Vec<String> = self.productions.keys().map(|k| k.0.name.clone()).collect();
         for n in &names {
             self.excise(n);
         }
@@ -444,10 +470,10 @@ impl Agent {
 
     /// The name of a production in the network.
     pub fn production_name(&self, id: ProdId) -> &str {
-        self.rete
-            .production(id)
-            .map(|i| i.name.as_str())
-            .unwrap_or("?")
+        self.by_id
+            .get(id.0 as usize)
+            .and_then(Option::as_ref)
+            .map_or("?", |p| p.name.as_str())
     }
 
     /// Registers a Rust function callable from rules as `(exec name args...)` or `(name

@@ -88,7 +88,7 @@ pub fn test_text(t: &Test) -> String {
         Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
         Test::Disjunction(cs) => {
             let mut s = String::from("<< ");
-            for c in cs {
+            for c in cs.iter() {
                 s.push_str(&constant_text(c));
                 s.push(' ');
             }

@@ -4,7 +4,7 @@
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
 use crate::rhs_functions::{self, Use};
-use crate::source::{Diagnostic, Span};
+use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Declared support and other `:flags` (spec §1c).
@@ -48,23 +48,39 @@ pub struct Cond {
     pub acceptable: bool,
     /// `(state ...)` or `(impasse ...)` put a goal or impasse test on the id.
     pub goal: Head,
-    pub span: Span,
+    pub span: PackedSpan,
 }
 
+/// One field's test. All but the common `Equal` keep their contents boxed: that makes a
+/// test 24 bytes instead of 32, and a rule keeps three per condition.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Test {
     Equal(Term),
-    Relational(Relation, Term),
-    Disjunction(Vec<Constant>),
+    Relational(Relation, Box<Term>),
+    Disjunction(Box<Vec<Constant>>),
     /// At most one `Equal` inside, always last (as Soar prints it).
-    Conjunction(Vec<Test>),
+    Conjunction(Box<Vec<Test>>),
+}
+
+const _: () = assert!(std::mem::size_of::<Test>() == 24);
+
+impl Test {
+    /// A test that allocates nothing, left behind when a test is taken out of its place.
+    pub fn placeholder() -> Test {
+        Test::Equal(Term::Const(Constant::Int(0)))
+    }
+
+    pub fn conjunction(tests: Vec<Test>) -> Test {
+        Test::Conjunction(Box::new(tests))
+    }
 }
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum Term {
-    /// (Boxed text, not a `String`: with it a term is 24 bytes, and a rule keeps a few
-    /// dozen of them.)
-    Var(Box<str>),
+    /// (Shared text, not a `String`: with it a term is 24 bytes, and a rule keeps a few
+    /// dozen of them. A loaded rule's variables share one copy of each name with every
+    /// other rule's, see `Rete::share_var_names`.)
+    Var(std::sync::Arc<str>),
     Const(Constant),
 }
 
@@ -108,10 +124,11 @@ impl PrefKind {
     }
 }
 
+/// (Both boxed: an action is then 16 bytes, and a rule keeps its list for its lifetime.)
 #[derive(Debug, Clone, PartialEq)]
 pub enum Action {
     Make(Box<Make>),
-    Call(FuncCall),
+    Call(Box<FuncCall>),
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -121,7 +138,7 @@ pub struct Make {
     pub value: RhsTerm,
     pub pref: PrefKind,
     pub referent: Option<RhsTerm>,
-    pub span: Span,
+    pub span: PackedSpan,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -353,8 +370,8 @@ fn collect_vars_ast<'a>(p: &'a ast::Production, used: &mut FxHashSet<&'a str>) {
 fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
     match t {
         ast::Test::Equal(a, _) => Test::Equal(term(a)),
-        ast::Test::Relational(r, a, _) => Test::Relational(*r, term(a)),
-        ast::Test::Disjunction(cs, _) => Test::Disjunction(cs.clone()),
+        ast::Test::Relational(r, a, _) => Test::Relational(*r, Box::new(term(a))),
+        ast::Test::Disjunction(cs, _) => Test::Disjunction(Box::new(cs.clone())),
         ast::Test::Conjunction(ts, span) => {
             let mut others = Vec::new();
             let mut eq: Option<Term> = None;
@@ -383,7 +400,7 @@ fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
                             eq = Some(keep);
                         }
                     },
-                    Test::Conjunction(inner) => others.extend(inner),
+                    Test::Conjunction(inner) => others.extend(*inner),
                     other => others.push(other),
                 }
             }
@@ -391,9 +408,9 @@ fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
                 others.push(Test::Equal(e));
             }
             if others.len() == 1 {
-                others.pop().unwrap_or(Test::Conjunction(Vec::new()))
+                others.pop().unwrap_or_else(Test::placeholder)
             } else {
-                Test::Conjunction(others)
+                Test::conjunction(others)
             }
         }
     }
@@ -423,7 +440,7 @@ fn ensure_equality(t: Test, ph: &mut Placeholders, letter: char) -> Test {
             }
             Test::Conjunction(ts)
         }
-        other => Test::Conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter).into()))]),
+        other => Test::conjunction(vec![other, Test::Equal(Term::Var(ph.fresh(letter).into()))]),
     }
 }
 
@@ -507,7 +524,7 @@ fn compile_cond_for_one_id(
             value,
             acceptable: false,
             goal: c.head,
-            span: c.span,
+            span: c.span.into(),
         }));
         return Ok(());
     }
@@ -549,7 +566,7 @@ fn compile_attr_value_tests(
             value: Test::Equal(v.clone()),
             acceptable: false,
             goal,
-            span: avt.span,
+            span: avt.span.into(),
         }));
         cur_id = Test::Equal(v);
         goal = Head::None;
@@ -570,7 +587,7 @@ fn compile_attr_value_tests(
     // others (fill_in_attr_tests).
     // (Not needed, so not copied, when there is one value.)
     let attr_eq = match &attr {
-        _ if values.len() == 1 => Test::Conjunction(Vec::new()),
+        _ if values.len() == 1 => Test::placeholder(),
         Test::Conjunction(ts) => ts
             .iter()
             .find(|t| matches!(t, Test::Equal(_)))
@@ -583,7 +600,7 @@ fn compile_attr_value_tests(
         let attr = first_attr.take().unwrap_or_else(|| attr_eq.clone());
         // The last condition takes the id test itself.
         let id = if k + 1 == values.len() {
-            std::mem::replace(&mut cur_id, Test::Conjunction(Vec::new()))
+            std::mem::replace(&mut cur_id, Test::placeholder())
         } else {
             cur_id.clone()
         };
@@ -597,7 +614,7 @@ fn compile_attr_value_tests(
                     value,
                     acceptable: *acceptable,
                     goal,
-                    span: avt.span,
+                    span: avt.span.into(),
                 }));
             }
             ast::ValueTest::Structured {
@@ -610,7 +627,7 @@ fn compile_attr_value_tests(
                     value: Test::Equal(pv.clone()),
                     acceptable: *acceptable,
                     goal,
-                    span: avt.span,
+                    span: avt.span.into(),
                 }));
                 for inner in tests {
                     compile_attr_value_tests(
@@ -661,7 +678,7 @@ fn compile_action(
     match a {
         ast::Action::Call(f) => {
             let call = compile_call(f, true, out, rule)?;
-            dest.push(Action::Call(call));
+            dest.push(Action::Call(Box::new(call)));
             Ok(())
         }
         ast::Action::Make { id, attrs, span } => {
@@ -678,7 +695,7 @@ fn compile_action(
                         value: v.clone(),
                         pref: PrefKind::Acceptable,
                         referent: None,
-                        span: am.span,
+                        span: am.span.into(),
                     })));
                     cur = v;
                 }
@@ -750,7 +767,7 @@ fn compile_action(
                             value: value.clone(),
                             pref: kind,
                             referent,
-                            span: *span,
+                            span: (*span).into(),
                         })));
                     }
                     if !is_operator && rejects == 0 {
@@ -760,7 +777,7 @@ fn compile_action(
                             value: value.clone(),
                             pref: PrefKind::Acceptable,
                             referent: None,
-                            span: *span,
+                            span: (*span).into(),
                         })));
                     }
                 }
@@ -922,7 +939,7 @@ fn root_variables<'a>(
                 Diagnostic::warning(format!(
                     "Warning: On the LHS of production {name}, identifier {root} is not connected to any goal or impasse."
                 ))
-                .at(c.span)
+                .at(c.span.span())
                 .with_label("no chain of conditions links this identifier to a state"),
             );
         }
@@ -957,10 +974,10 @@ fn drop_unbound_relational(
 ) -> Result<(), Diagnostic> {
     // Most lists have no relational test on a variable: nothing to check, no set to build.
     let relational = |t: &Test| match t {
-        Test::Relational(_, Term::Var(_)) => true,
+        Test::Relational(_, t) => matches!(**t, Term::Var(_)),
         Test::Conjunction(ts) => ts
             .iter()
-            .any(|m| matches!(m, Test::Relational(_, Term::Var(_)))),
+            .any(|m| matches!(m, Test::Relational(_, t) if matches!(**t, Term::Var(_)))),
         _ => false,
     };
     let anything = conds.iter().any(|c| match c {
@@ -982,8 +999,7 @@ fn drop_unbound_relational(
             }
         }
     }
-    let unbound =
-        |t: &Test| matches!(t, Test::Relational(_, Term::Var(v)) if !bound.contains(&**v));
+    let unbound = |t: &Test| matches!(t, Test::Relational(_, r) if matches!(&**r, Term::Var(v) if !bound.contains(&**v)));
     for c in conds.iter_mut() {
         match c {
             Condition::Positive(c) => {
@@ -1007,7 +1023,7 @@ fn drop_unbound_relational(
                             "Error: production {name} has an unbound referent in negated relational test {}.",
                             crate::printer::test_text(rel)
                         ))
-                        .at(c.span)
+                        .at(c.span.span())
                         .with_label("no positive condition binds this variable")
                         .with_note("Attempted to add an invalid rule:\n      Unbound relational test in negative condition of rule"));
                     }
@@ -1127,7 +1143,7 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
         }
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
-            Action::Make(m) => (crate::printer::make_text(m), m.span),
+            Action::Make(m) => (crate::printer::make_text(m), m.span.span()),
             Action::Call(f) => (crate::printer::call_text(f), f.span),
         };
         if seen.insert(text.clone()) {

@@ -2,8 +2,10 @@
 //! [`Span`] into a file registered here, and renders with a caret under the text (codespan).
 
 use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
-use codespan_reporting::files::SimpleFiles;
+use codespan_reporting::files::{self as cs_files, Files};
 use codespan_reporting::term::{self, termcolor::NoColor};
+use std::ops::Range;
+use std::sync::OnceLock;
 
 /// Index of a file in a [`SourceMap`].
 pub type FileId = usize;
@@ -30,48 +32,126 @@ impl Span {
     }
 }
 
-/// A registered text, shared (running a file's commands needs it while the map grows).
-#[derive(Clone, Default)]
-struct Text(std::sync::Arc<String>);
+/// A [`Span`] in half the bytes, for the parts of a loaded rule that keep one (each of
+/// its conditions and actions): 100,000 rules keep about 700,000. Offsets past 4 GiB
+/// saturate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub struct PackedSpan {
+    file: u32,
+    start: u32,
+    end: u32,
+}
 
-impl AsRef<str> for Text {
-    fn as_ref(&self) -> &str {
-        &self.0
+impl From<Span> for PackedSpan {
+    fn from(s: Span) -> Self {
+        let small = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
+        PackedSpan {
+            file: small(s.file),
+            start: small(s.start),
+            end: small(s.end),
+        }
+    }
+}
+
+impl From<PackedSpan> for Span {
+    fn from(s: PackedSpan) -> Self {
+        Span::new(s.file as usize, s.start as usize, s.end as usize)
+    }
+}
+
+impl PackedSpan {
+    pub fn span(self) -> Span {
+        self.into()
+    }
+}
+
+/// A registered text, shared (running a file's commands needs it while the map grows).
+/// Its line starts are found only when a diagnostic is rendered in it: most sourced files
+/// never need them, and for a large rule file they are megabytes.
+struct SourceFile {
+    name: String,
+    text: std::sync::Arc<String>,
+    line_starts: OnceLock<Vec<usize>>,
+}
+
+impl SourceFile {
+    fn line_starts(&self) -> &[usize] {
+        self.line_starts
+            .get_or_init(|| cs_files::line_starts(&self.text).collect())
+    }
+
+    /// The start of line `i`, or the end of the text for the line after the last.
+    fn line_start(&self, i: usize) -> Result<usize, cs_files::Error> {
+        let starts = self.line_starts();
+        match starts.get(i) {
+            Some(&s) => Ok(s),
+            None if i == starts.len() => Ok(self.text.len()),
+            None => Err(cs_files::Error::LineTooLarge {
+                given: i,
+                max: starts.len() - 1,
+            }),
+        }
     }
 }
 
 /// All text the kernel has read: sourced files, `-c` commands, REPL lines.
 #[derive(Default)]
 pub struct SourceMap {
-    files: SimpleFiles<String, Text>,
+    files: Vec<SourceFile>,
+}
+
+impl<'a> Files<'a> for SourceMap {
+    type FileId = FileId;
+    type Name = &'a str;
+    type Source = &'a str;
+
+    fn name(&'a self, id: FileId) -> Result<&'a str, cs_files::Error> {
+        self.get(id).map(|f| f.name.as_str())
+    }
+
+    fn source(&'a self, id: FileId) -> Result<&'a str, cs_files::Error> {
+        self.get(id).map(|f| f.text.as_str())
+    }
+
+    fn line_index(&'a self, id: FileId, byte_index: usize) -> Result<usize, cs_files::Error> {
+        let starts = self.get(id)?.line_starts();
+        Ok(starts
+            .binary_search(&byte_index)
+            .unwrap_or_else(|next| next - 1))
+    }
+
+    fn line_range(&'a self, id: FileId, line: usize) -> Result<Range<usize>, cs_files::Error> {
+        let f = self.get(id)?;
+        Ok(f.line_start(line)?..f.line_start(line + 1)?)
+    }
 }
 
 impl SourceMap {
     pub fn new() -> Self {
         Self::default()
     }
+    fn get(&self, file: FileId) -> Result<&SourceFile, cs_files::Error> {
+        self.files.get(file).ok_or(cs_files::Error::FileMissing)
+    }
     /// Registers a text under a display name and returns its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
-        self.files
-            .add(name.into(), Text(std::sync::Arc::new(text.into())))
+        self.files.push(SourceFile {
+            name: name.into(),
+            text: std::sync::Arc::new(text.into()),
+            line_starts: OnceLock::new(),
+        });
+        self.files.len() - 1
     }
     pub fn text(&self, file: FileId) -> &str {
-        self.files
-            .get(file)
-            .map(|f| f.source().as_ref())
-            .unwrap_or("")
+        self.get(file).map(|f| f.text.as_str()).unwrap_or("")
     }
     /// The text itself, shared, not copied.
     pub fn shared_text(&self, file: FileId) -> std::sync::Arc<String> {
-        self.files
-            .get(file)
-            .map(|f| f.source().0.clone())
-            .unwrap_or_default()
+        self.get(file).map(|f| f.text.clone()).unwrap_or_default()
     }
     pub fn name(&self, file: FileId) -> &str {
-        self.files
-            .get(file)
-            .map(|f| f.name().as_str())
+        self.get(file)
+            .map(|f| f.name.as_str())
             .unwrap_or("<unknown>")
     }
     /// 1-based line and column of a byte offset.
@@ -112,7 +192,7 @@ impl SourceMap {
         cs = cs.with_labels(labels).with_notes(diag.notes.clone());
         let mut buf = NoColor::new(Vec::new());
         let config = term::Config::default();
-        if term::emit_to_write_style(&mut buf, &config, &self.files, &cs).is_err() {
+        if term::emit_to_write_style(&mut buf, &config, self, &cs).is_err() {
             return format!("{}: {}", diag.severity.word(), diag.message);
         }
         String::from_utf8_lossy(&buf.into_inner()).into_owned()

@@ -2,6 +2,7 @@
 //! identifiers named by a letter and a number with one counter per letter. Equality of
 //! symbols is equality of [`Sym`] handles, so int 1 and float 1.0 differ (E:t15).
 
+use crate::rete::blocks::Blocks;
 use rustc_hash::FxHashMap;
 use std::cmp::Ordering;
 
@@ -33,9 +34,12 @@ pub struct IdData {
 /// The symbol table of one agent. Counters live here and are reset by `init-soar`.
 #[derive(Debug, Default)]
 pub struct Symbols {
-    table: Vec<SymData>,
-    /// String symbols by a hash of their text, so the text is stored once (in `table`).
-    strs: FxHashMap<u64, Sym>,
+    /// (In fixed-size blocks: a doubling vector would leave up to half its room unused, and
+    /// loading 100,000 rules makes 300,000 symbols.)
+    table: Blocks<SymData>,
+    /// String symbols by a 32-bit hash of their text, so the text is stored once (in
+    /// `table`); the few strings whose hash is taken are in `str_clashes`.
+    strs: FxHashMap<u32, Sym>,
     /// The rare strings whose hash an earlier string already has, by their text.
     str_clashes: FxHashMap<Box<str>, Sym>,
     ints: FxHashMap<i64, Sym>,
@@ -259,15 +263,16 @@ impl Symbols {
     }
 
     pub fn is_empty(&self) -> bool {
-        self.table.is_empty()
+        self.table.len() == 0
     }
 }
 
-fn str_hash(s: &str) -> u64 {
+fn str_hash(s: &str) -> u32 {
     use std::hash::{Hash, Hasher};
     let mut h = rustc_hash::FxHasher::default();
     s.hash(&mut h);
-    h.finish()
+    let h = h.finish();
+    (h ^ (h >> 32)) as u32
 }
 
 #[cfg(test)]

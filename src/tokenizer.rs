@@ -102,7 +102,7 @@ impl<'a> Tokenizer<'a> {
     fn read_braced(&mut self) -> Result<Word, Diagnostic> {
         let open = self.pos;
         self.pos += 1;
-        let mut out = Vec::with_capacity(64);
+        let mut out = Vec::with_capacity(256);
         let mut depth = 1usize;
         let mut in_pipe = false;
         while let Some(c) = self.peek() {
@@ -143,7 +143,9 @@ impl<'a> Tokenizer<'a> {
                     depth -= 1;
                     self.pos += 1;
                     if depth == 0 {
-                        let text = String::from_utf8_lossy(&out).into_owned();
+                        // Whole characters of the text, and blanks: valid UTF-8, not copied.
+                        let text = String::from_utf8(out)
+                            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
                         return Ok(Word {
                             text,
                             span: self.span(open, self.pos),
@@ -153,8 +155,14 @@ impl<'a> Tokenizer<'a> {
                     out.push(c);
                 }
                 _ => {
-                    out.push(c);
-                    self.pos += 1;
+                    // The run up to the next byte that matters, copied at once.
+                    let rest = &self.bytes[self.pos..];
+                    let run = rest
+                        .iter()
+                        .position(|b| matches!(b, b'|' | b'\\' | b'#' | b'{' | b'}'))
+                        .unwrap_or(rest.len());
+                    out.extend_from_slice(&rest[..run]);
+                    self.pos += run;
                 }
             }
         }

@@ -130,19 +130,24 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
                     ValGen::Int(i) => Term::Const(Constant::Int(*i)),
                     _ => Term::Const(Constant::Float(1.5)),
                 };
-                Test::Relational(rel(*r), t)
+                Test::Relational(rel(*r), Box::new(t))
             }
-            ValGen::Disj(ks) => Test::Disjunction(ks.iter().map(|k| const_of(*k)).collect()),
+            ValGen::Disj(ks) => {
+                Test::Disjunction(Box::new(ks.iter().map(|k| const_of(*k)).collect()))
+            }
             ValGen::ConjNe(a, b) => {
                 let mut ts = Vec::new();
                 if bound.contains(VARS[*b]) && a != b {
-                    ts.push(Test::Relational(Relation::Ne, Term::Var(VARS[*b].into())));
+                    ts.push(Test::Relational(
+                        Relation::Ne,
+                        Box::new(Term::Var(VARS[*b].into())),
+                    ));
                 }
                 ts.push(Test::Equal(Term::Var(VARS[*a].into())));
                 if ts.len() == 1 {
                     ts.pop().unwrap_or(Test::Equal(Term::Var("<q>".into())))
                 } else {
-                    Test::Conjunction(ts)
+                    Test::conjunction(ts)
                 }
             }
         }
@@ -164,7 +169,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
             value: value_test(&c.value, bound),
             acceptable: c.acceptable,
             goal: if first { Head::State } else { Head::None },
-            span: Span::default(),
+            span: Default::default(),
         }
     }
     fn bind(c: &Cond, bound: &mut BTreeSet<String>) {
@@ -174,7 +179,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
                     bound.insert(v.to_string());
                 }
                 Test::Conjunction(ts) => {
-                    for t in ts {
+                    for t in ts.iter() {
                         if let Test::Equal(Term::Var(v)) = t {
                             bound.insert(v.to_string());
                         }
@@ -249,7 +254,7 @@ impl Naive<'_> {
                 }
             },
             Test::Relational(r, term) => {
-                let b = match term {
+                let b = match &**term {
                     Term::Const(c) => self.k(c),
                     Term::Var(v) => match env.get(&**v) {
                         Some(&b) => b,
@@ -374,7 +379,9 @@ fn naive_relation(syms: &Symbols, r: Relation, a: Sym, b: Sym) -> bool {
 fn has_ordering_test_between_variables(conds: &[Condition]) -> bool {
     fn test(t: &Test) -> bool {
         match t {
-            Test::Relational(r, Term::Var(_)) => !matches!(r, Relation::Ne | Relation::SameType),
+            Test::Relational(r, t) if matches!(**t, Term::Var(_)) => {
+                !matches!(r, Relation::Ne | Relation::SameType)
+            }
             Test::Conjunction(ts) => ts.iter().any(test),
             _ => false,
         }

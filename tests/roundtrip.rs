@@ -1080,7 +1080,7 @@ fn zero_term(t: &mut RhsTerm) {
 fn zero_conds(cs: &mut [Condition]) {
     for c in cs {
         match c {
-            Condition::Positive(c) | Condition::Negative(c) => c.span = Span::default(),
+            Condition::Positive(c) | Condition::Negative(c) => c.span = Default::default(),
             Condition::Ncc(inner) => zero_conds(inner),
         }
     }
@@ -1094,7 +1094,7 @@ fn strip(p: &Production) -> Production {
     for a in &mut p.actions {
         match a {
             Action::Make(m) => {
-                m.span = Span::default();
+                m.span = Default::default();
                 zero_term(&mut m.id);
                 zero_term(&mut m.attr);
                 zero_term(&mut m.value);

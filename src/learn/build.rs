@@ -144,12 +144,15 @@ impl Builder<'_> {
     /// The non-equality tests of a rule's test, carried over to the chunk.
     fn extra_tests(&mut self, trace: &InstTrace, t: &Test, out: &mut Vec<Test>) {
         match t {
-            Test::Relational(r, Term::Var(v)) => {
-                if let Some(term) = self.var_term(trace, v) {
-                    out.push(Test::Relational(*r, term));
+            Test::Relational(r, referent) => match &**referent {
+                Term::Var(v) => {
+                    if let Some(term) = self.var_term(trace, v) {
+                        out.push(Test::Relational(*r, Box::new(term)));
+                    }
                 }
-            }
-            Test::Relational(_, Term::Const(_)) | Test::Disjunction(_) => out.push(t.clone()),
+                Term::Const(_) => out.push(t.clone()),
+            },
+            Test::Disjunction(_) => out.push(t.clone()),
             Test::Conjunction(ts) => ts.iter().for_each(|x| self.extra_tests(trace, x, out)),
             Test::Equal(_) => {}
         }
@@ -161,7 +164,7 @@ impl Builder<'_> {
         } else {
             let mut ts = extra;
             ts.push(Test::Equal(main));
-            Test::Conjunction(ts)
+            Test::conjunction(ts)
         }
     }
 
@@ -230,14 +233,14 @@ impl Builder<'_> {
         };
         Some(match t {
             Test::Equal(x) => Test::Equal(term(self, x, locals)?),
-            Test::Relational(r, x) => Test::Relational(*r, term(self, x, locals)?),
+            Test::Relational(r, x) => Test::Relational(*r, Box::new(term(self, x, locals)?)),
             Test::Disjunction(cs) => Test::Disjunction(cs.clone()),
             Test::Conjunction(ts) => {
                 let mut out = Vec::with_capacity(ts.len());
-                for x in ts {
+                for x in ts.iter() {
                     out.push(self.negated_test(trace, x, locals)?);
                 }
-                Test::Conjunction(out)
+                Test::conjunction(out)
             }
         })
     }
@@ -258,7 +261,7 @@ impl Builder<'_> {
             }
         }
         match self.term(sym, ident, under) {
-            Term::Var(v) => RhsTerm::Var(v.into()),
+            Term::Var(v) => RhsTerm::Var(v.to_string()),
             Term::Const(c) => RhsTerm::Const(c),
         }
     }
@@ -268,7 +271,7 @@ impl Builder<'_> {
         for a in &f.args {
             args.push(match a {
                 RhsTerm::Var(v) => match self.var_term(trace, v)? {
-                    Term::Var(x) => RhsTerm::Var(x.into()),
+                    Term::Var(x) => RhsTerm::Var(x.to_string()),
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 RhsTerm::Const(c) => RhsTerm::Const(c.clone()),

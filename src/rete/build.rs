@@ -142,10 +142,9 @@ impl Rete {
         let pnode = self.new_node(Kind::Production { prod: pid }, parent, depth);
         self.attach(parent, pnode, true);
         self.prods.push(Some(ProdInfo {
-            name: p.name.clone(),
             pnode,
             positives,
-            bindings: bindings.into(),
+            bindings: super::VarBindings::new(bindings, &mut self.var_names),
             cond_nodes: cond_nodes.into(),
             action_key: action_key.into(),
         }));
@@ -271,10 +270,14 @@ impl Rete {
                         Cur::Holder(h) => self.nodes[h as usize].depth + 1,
                         Cur::Join(_) => self.next_depth(cur) + 1,
                     };
-                    let (key, tests) = cond_tests(c, depth, bindings, syms);
+                    // (The tests are built in a reused buffer: most are a list some node
+                    // already shares, so they need no allocation of their own.)
+                    let mut tests = std::mem::take(&mut self.test_buf);
+                    let key = cond_tests(c, depth, bindings, syms, &mut tests);
                     let hk = hash_key_of(&tests, depth);
                     let h = self.holder_under(cur, hk, syms);
-                    let j = self.share_or_build_join(h, key, tests, syms);
+                    let j = self.share_or_build_join(h, key, &tests, syms);
+                    self.test_buf = tests;
                     cur = Cur::Join(j);
                     if let Some((nodes, positives)) = record.as_mut() {
                         nodes[i] = j;
@@ -285,8 +288,10 @@ impl Rete {
                     let parent = cur_node(cur);
                     let depth = self.next_depth(cur);
                     let mut local = bindings.clone();
-                    let (key, tests) = cond_tests(c, depth + 1, &mut local, syms);
-                    let n = self.share_or_build_negative(parent, depth, key, tests, syms);
+                    let mut tests = std::mem::take(&mut self.test_buf);
+                    let key = cond_tests(c, depth + 1, &mut local, syms, &mut tests);
+                    let n = self.share_or_build_negative(parent, depth, key, &tests, syms);
+                    self.test_buf = tests;
                     cur = Cur::Holder(n);
                     if let Some((nodes, _)) = record.as_mut() {
                         nodes[i] = n;
@@ -415,15 +420,15 @@ impl Rete {
         &mut self,
         h: NodeId,
         key: AlphaKey,
-        tests: Vec<JoinTest>,
+        tests: &[JoinTest],
         syms: &Symbols,
     ) -> NodeId {
         let amem = self.amem_for(key);
-        if let Some(c) = self.shared(h, 0, amem, &tests) {
+        if let Some(c) = self.shared(h, 0, amem, tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = tests.into();
+        let tests = self.shared_tests(tests);
         let depth = self.nodes[h as usize].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
@@ -467,15 +472,15 @@ impl Rete {
         parent: NodeId,
         depth: u32,
         key: AlphaKey,
-        tests: Vec<JoinTest>,
+        tests: &[JoinTest],
         syms: &Symbols,
     ) -> NodeId {
         let amem = self.amem_for(key);
-        if let Some(c) = self.shared(parent, 1, amem, &tests) {
+        if let Some(c) = self.shared(parent, 1, amem, tests) {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests: std::sync::Arc<[JoinTest]> = tests.into();
+        let tests = self.shared_tests(tests);
         let n = self.new_node(
             Kind::Negative {
                 amem,
@@ -498,6 +503,17 @@ impl Rete {
             self.unlink_right(n);
         }
         n
+    }
+
+    /// The one shared copy of a list of join tests: most joins test only their identifier
+    /// against one binding place, so 100,000 rules hold a handful of distinct lists.
+    fn shared_tests(&mut self, tests: &[JoinTest]) -> std::sync::Arc<[JoinTest]> {
+        if let Some(t) = self.test_lists.get(tests) {
+            return t.clone();
+        }
+        let t: std::sync::Arc<[JoinTest]> = tests.into();
+        self.test_lists.insert(t.clone());
+        t
     }
 
     /// Fills a newly built token holder with the matches its parent already has
@@ -673,13 +689,14 @@ fn cond_tests<'a>(
     depth: u32,
     bindings: &mut Bindings<'a>,
     syms: &mut Symbols,
-) -> (AlphaKey, Vec<JoinTest>) {
+    tests: &mut Vec<JoinTest>,
+) -> AlphaKey {
+    tests.clear();
     let mut key = AlphaKey {
         attr: None,
         value: None,
         acceptable: c.acceptable,
     };
-    let mut tests = Vec::new();
     match c.goal {
         Head::State => tests.push(JoinTest::IsGoal),
         Head::Impasse => tests.push(JoinTest::IsImpasse),
@@ -695,12 +712,12 @@ fn cond_tests<'a>(
         for equality in [true, false] {
             for_each_simple(test, &mut |t| {
                 if matches!(t, Test::Equal(_)) == equality {
-                    add_test(t, field, depth, &mut key, &mut tests, bindings, syms);
+                    add_test(t, field, depth, &mut key, tests, bindings, syms);
                 }
             });
         }
     }
-    (key, tests)
+    key
 }
 
 /// One simple test of a condition's field, as an alpha-memory constant or a join test.
@@ -736,24 +753,26 @@ fn add_test<'a>(
                 bindings.insert(v, (depth, field));
             }
         },
-        Test::Relational(r, Term::Var(v)) => {
-            // A relational test on a variable bound nowhere is dropped (spec §1g).
-            if let Some(&(d, f)) = bindings.get(&**v) {
+        Test::Relational(r, referent) => match &**referent {
+            Term::Var(v) => {
+                // A relational test on a variable bound nowhere is dropped (spec §1g).
+                if let Some(&(d, f)) = bindings.get(&**v) {
+                    tests.push(JoinTest::Compare {
+                        field,
+                        op: Op::Rel(*r),
+                        operand: Operand::Bound { depth: d, field: f },
+                    });
+                }
+            }
+            Term::Const(k) => {
+                let s = syms.constant(k);
                 tests.push(JoinTest::Compare {
                     field,
                     op: Op::Rel(*r),
-                    operand: Operand::Bound { depth: d, field: f },
+                    operand: Operand::Const(s),
                 });
             }
-        }
-        Test::Relational(r, Term::Const(k)) => {
-            let s = syms.constant(k);
-            tests.push(JoinTest::Compare {
-                field,
-                op: Op::Rel(*r),
-                operand: Operand::Const(s),
-            });
-        }
+        },
         Test::Disjunction(items) => {
             let items: Vec<Sym> = items.iter().map(|k| syms.constant(k)).collect();
             tests.push(JoinTest::Disjunction { field, items });

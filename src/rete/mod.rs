@@ -12,9 +12,10 @@
 //! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
 
 mod activate;
-mod blocks;
+pub(crate) mod blocks;
 mod build;
 mod hash;
+mod names;
 pub mod reorder;
 mod small_list;
 pub mod tests;
@@ -22,6 +23,8 @@ mod tokens;
 
 use blocks::{Arena, Blocks};
 pub use build::BuildError;
+pub use names::VarBindings;
+use names::VarNames;
 use rustc_hash::FxHashMap;
 use small_list::SmallList;
 use tests::{Field, JoinTest};
@@ -280,50 +283,11 @@ impl Shared {
     }
 }
 
-/// Variables and where they are bound, sorted by name: kept for every rule, where a hash
-/// map would cost several times the memory.
-#[derive(Debug, Clone, Default)]
-pub struct VarBindings(Box<[Binding]>);
-
-/// A variable's name and where it is bound.
-type Binding = (Box<str>, (u32, Field));
-
-impl VarBindings {
-    pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
-        self.0
-            .binary_search_by(|(k, _)| (**k).cmp(var))
-            .ok()
-            .map(|i| &self.0[i].1)
-    }
-
-    /// The variable names, in sorted order.
-    pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.0.iter().map(|(k, _)| &**k)
-    }
-
-    pub fn len(&self) -> usize {
-        self.0.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
-    }
-}
-
-impl From<FxHashMap<&str, (u32, Field)>> for VarBindings {
-    fn from(map: FxHashMap<&str, (u32, Field)>) -> Self {
-        let mut v: Vec<_> = map.into_iter().collect();
-        v.sort_unstable_by(|a, b| a.0.cmp(b.0));
-        VarBindings(v.into_iter().map(|(k, b)| (k.into(), b)).collect())
-    }
-}
-
 /// What the network knows of a production (kept for every rule, so exactly sized). The
 /// network joins the top-level conditions in the order the rule lists them (they come
 /// reordered), so no order is kept.
 #[derive(Debug, Clone, Default)]
 pub struct ProdInfo {
-    pub name: String,
     pub(crate) pnode: NodeId,
     /// The number of positive top-level conditions.
     pub(crate) positives: u32,
@@ -355,6 +319,12 @@ pub struct Rete {
     /// candidates apart.
     /// Keyed by parent, node kind, alpha memory and a hash of the tests.
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
+    /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
+    test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
+    /// The tests of the condition being added (a reused buffer, see `build_conditions`).
+    test_buf: Vec<JoinTest>,
+    /// The variable names of every rule's [`VarBindings`].
+    pub(crate) var_names: VarNames,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -400,6 +370,9 @@ impl Rete {
             free_neg: Vec::new(),
             prods: Blocks::default(),
             share: FxHashMap::default(),
+            test_lists: Default::default(),
+            test_buf: Vec::new(),
+            var_names: VarNames::default(),
             amem_by_id: FxHashMap::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
@@ -440,6 +413,13 @@ impl Rete {
     }
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
+        let node = &mut self.nodes[n as usize];
+        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = &node.kind {
+            // Held by the set and this node only: no node uses the list any more.
+            if std::sync::Arc::strong_count(tests) == 2 {
+                self.test_lists.remove(&**tests);
+            }
+        }
         let node = &mut self.nodes[n as usize];
         node.alive = false;
         node.children = SmallList::Empty;

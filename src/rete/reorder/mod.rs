@@ -65,8 +65,13 @@ pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbol
     use crate::production::{Action, FuncCall, RhsTerm};
     fn test(t: &Test, syms: &mut Symbols) {
         match t {
-            Test::Equal(Term::Const(c)) | Test::Relational(_, Term::Const(c)) => {
+            Test::Equal(Term::Const(c)) => {
                 syms.constant(c);
+            }
+            Test::Relational(_, r) => {
+                if let Term::Const(c) = &**r {
+                    syms.constant(c);
+                }
             }
             Test::Disjunction(cs) => cs.iter().for_each(|c| {
                 syms.constant(c);
@@ -147,7 +152,12 @@ fn bound_by(c: &Condition) -> Vec<&str> {
 fn tested_vars<'a>(c: &'a Condition, out: &mut Vec<&'a str>) {
     fn test<'a>(t: &'a Test, out: &mut Vec<&'a str>) {
         match t {
-            Test::Equal(Term::Var(v)) | Test::Relational(_, Term::Var(v)) => out.push(v),
+            Test::Equal(Term::Var(v)) => out.push(v),
+            Test::Relational(_, r) => {
+                if let Term::Var(v) = &**r {
+                    out.push(v);
+                }
+            }
             Test::Conjunction(ts) => ts.iter().for_each(|t| test(t, out)),
             _ => {}
         }
@@ -302,7 +312,6 @@ mod tests {
     use super::*;
     use crate::ast::Relation;
     use crate::production::Cond;
-    use crate::source::Span;
 
     fn var(v: &str) -> Test {
         Test::Equal(Term::Var(v.into()))
@@ -317,7 +326,7 @@ mod tests {
             value: v,
             acceptable: false,
             goal,
-            span: Span::default(),
+            span: Default::default(),
         })
     }
 
@@ -330,7 +339,7 @@ mod tests {
             pos(
                 "<s>",
                 attr("a"),
-                Test::Relational(Relation::Lt, Term::Var("<z>".into())),
+                Test::Relational(Relation::Lt, Box::new(Term::Var("<z>".into()))),
                 Head::None,
             ),
         ];

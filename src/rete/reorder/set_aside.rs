@@ -38,7 +38,7 @@ impl SetAside {
             let Some((index, test)) = t else { continue };
             self.by_term.entry(key(index)).or_default().push(slot);
             if let Test::Relational(_, referent) = test {
-                if referent != index {
+                if **referent != *index {
                     self.by_term.entry(key(referent)).or_default().push(slot);
                 }
             }
@@ -53,8 +53,8 @@ fn simplify_field(field: &mut Test, saved: &mut SetAside, dummies: &mut usize) {
     if matches!(field, Test::Equal(_)) {
         return;
     }
-    let parts: Vec<Test> = match std::mem::replace(field, Test::Conjunction(Vec::new())) {
-        Test::Conjunction(parts) => parts,
+    let parts: Vec<Test> = match std::mem::replace(field, Test::placeholder()) {
+        Test::Conjunction(parts) => *parts,
         other => vec![other],
     };
     let eq = parts
@@ -125,8 +125,8 @@ fn add_test(field: &mut Test, t: Test) {
         }
         other => {
             if *other != t {
-                let eq = std::mem::replace(other, Test::Conjunction(Vec::new()));
-                *other = Test::Conjunction(vec![t, eq]);
+                let eq = std::mem::replace(other, Test::placeholder());
+                *other = Test::conjunction(vec![t, eq]);
             }
         }
     }
@@ -152,11 +152,11 @@ fn restore_field(field: &mut Test, bound: &Bound, saved: &mut SetAside) {
         let restored = match test {
             Test::Relational(r, referent) => {
                 if *index == eq {
-                    (is_bound(referent, bound) || referent == index)
+                    (is_bound(referent, bound) || **referent == *index)
                         .then(|| Test::Relational(*r, referent.clone()))
-                } else if *referent == eq {
-                    (is_bound(index, bound) || index == referent)
-                        .then(|| Test::Relational(reversed(*r), index.clone()))
+                } else if **referent == eq {
+                    (is_bound(index, bound) || *index == **referent)
+                        .then(|| Test::Relational(reversed(*r), Box::new(index.clone())))
                 } else {
                     None
                 }

@@ -1,0 +1,89 @@
+//! Variable names kept by loaded rules: each rule's bindings (where the network binds each
+//! of its variables) and the variables of its conditions share one copy of each name, since
+//! thousands of rules use the same few.
+
+use super::tests::Field;
+use super::Rete;
+use crate::production::{Condition, Term, Test};
+use rustc_hash::FxHashMap;
+
+/// Variables and where they are bound, sorted by name: kept for every rule, where a hash
+/// map would cost several times the memory. The names are shared among all rules
+/// ([`VarNames`]): thousands of rules use the same few.
+#[derive(Debug, Clone, Default)]
+pub struct VarBindings(Box<[Binding]>);
+
+/// A variable's name and where it is bound.
+type Binding = (std::sync::Arc<str>, (u32, Field));
+
+impl VarBindings {
+    pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
+        self.0
+            .binary_search_by(|(k, _)| (**k).cmp(var))
+            .ok()
+            .map(|i| &self.0[i].1)
+    }
+
+    /// The variable names, in sorted order.
+    pub fn keys(&self) -> impl Iterator<Item = &str> {
+        self.0.iter().map(|(k, _)| &**k)
+    }
+
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    pub(super) fn new(map: FxHashMap<&str, (u32, Field)>, names: &mut VarNames) -> Self {
+        let mut v: Vec<_> = map.into_iter().collect();
+        v.sort_unstable_by(|a, b| a.0.cmp(b.0));
+        VarBindings(v.into_iter().map(|(k, b)| (names.get(k), b)).collect())
+    }
+}
+
+/// The variable names of the rules in the network, each stored once.
+#[derive(Debug, Default)]
+pub(crate) struct VarNames(rustc_hash::FxHashSet<std::sync::Arc<str>>);
+
+impl VarNames {
+    pub(super) fn get(&mut self, name: &str) -> std::sync::Arc<str> {
+        if let Some(n) = self.0.get(name) {
+            return n.clone();
+        }
+        let n: std::sync::Arc<str> = name.into();
+        self.0.insert(n.clone());
+        n
+    }
+}
+
+impl Rete {
+    /// Points every variable of these conditions at the network's copy of its name, so that
+    /// a loaded rule keeps no name of its own.
+    pub fn share_var_names(&mut self, conds: &mut [Condition]) {
+        fn test(t: &mut Test, names: &mut VarNames) {
+            match t {
+                Test::Equal(Term::Var(v)) => *v = names.get(v),
+                Test::Relational(_, r) => {
+                    if let Term::Var(v) = &mut **r {
+                        *v = names.get(v);
+                    }
+                }
+                Test::Conjunction(ts) => ts.iter_mut().for_each(|t| test(t, names)),
+                Test::Equal(Term::Const(_)) | Test::Disjunction(_) => {}
+            }
+        }
+        for c in conds {
+            match c {
+                Condition::Positive(c) | Condition::Negative(c) => {
+                    for t in [&mut c.id, &mut c.attr, &mut c.value] {
+                        test(t, &mut self.var_names);
+                    }
+                }
+                Condition::Ncc(inner) => self.share_var_names(inner),
+            }
+        }
+    }
+}
