@@ -155,12 +155,13 @@ impl<'a> Tokenizer<'a> {
                     out.push(c);
                 }
                 _ => {
-                    // The run up to the next byte that matters, copied at once.
+                    // This byte (in a `|...|`, `#`, `{` and `}` come here too) and the run
+                    // up to the next byte that matters, copied at once.
                     let rest = &self.bytes[self.pos..];
-                    let run = rest
+                    let run = 1 + rest[1..]
                         .iter()
                         .position(|b| matches!(b, b'|' | b'\\' | b'#' | b'{' | b'}'))
-                        .unwrap_or(rest.len());
+                        .unwrap_or(rest.len() - 1);
                     out.extend_from_slice(&rest[..run]);
                     self.pos += run;
                 }
