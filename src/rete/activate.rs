@@ -103,7 +103,7 @@ impl Rete {
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
     /// candidate lists gave.
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
-        let hash = self.nodes[n as usize].hash;
+        let hash = self.nodes[n as usize].hash.get();
         self.tests_pass_but(self.join_tests(n), hash, t, w, new_depth, s)
     }
 
@@ -329,14 +329,11 @@ impl Rete {
                 let nt = self.new_token(n, t, w);
                 // Results the subnetwork found before this token existed (Doorenbos §2.8):
                 // those whose ancestor above the subnetwork is this token's parent.
-                let (buffered, owner_depth) = match &mut self.nodes[partner as usize].kind {
-                    Kind::NccPartner {
-                        buffer,
-                        owner_depth,
-                        ..
-                    } => (std::mem::take(&mut **buffer), *owner_depth),
-                    _ => (Vec::new(), 0),
+                let owner_depth = match self.nodes[partner as usize].kind {
+                    Kind::NccPartner { owner_depth, .. } => owner_depth,
+                    _ => 0,
                 };
+                let buffered = self.ncc_buffers.remove(&partner).unwrap_or_default();
                 let mut keep = Vec::new();
                 for r in buffered {
                     if !self.tokens[r as usize].alive {
@@ -348,8 +345,8 @@ impl Rete {
                         keep.push(r);
                     }
                 }
-                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
-                    buffer.extend(keep);
+                if !keep.is_empty() {
+                    self.ncc_buffers.insert(partner, keep);
                 }
                 if self.tokens[nt as usize].results == NIL {
                     self.activate_children(n, nt, NIL_WME, syms, sink);
@@ -372,9 +369,7 @@ impl Rete {
                         }
                     }
                     None => {
-                        if let Kind::NccPartner { buffer, .. } = &mut self.nodes[n as usize].kind {
-                            buffer.push(r);
-                        }
+                        self.ncc_buffers.entry(n).or_default().push(r);
                     }
                 }
             }

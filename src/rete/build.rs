@@ -168,14 +168,14 @@ impl Rete {
             Cur::Join(j) => {
                 let existing = self.all_children(j).find(|&c| {
                     self.nodes[c as usize].kind == Kind::Memory
-                        && self.nodes[c as usize].hash == key
+                        && self.nodes[c as usize].hash.get() == key
                 });
                 if let Some(m) = existing {
                     return m;
                 }
                 let depth = self.next_depth(cur);
                 let m = self.new_node(Kind::Memory, j, depth);
-                self.nodes[m as usize].hash = key;
+                self.nodes[m as usize].hash = super::HashKey::new(key);
                 self.attach(j, m, true);
                 self.fill_new_node(m, syms, &mut super::NullSink);
                 m
@@ -308,7 +308,6 @@ impl Rete {
                         Kind::NccPartner {
                             ncc: NIL,
                             owner_depth,
-                            buffer: Box::default(),
                         },
                         sub_parent,
                         pdepth,
@@ -339,7 +338,9 @@ impl Rete {
     /// branch from) has its children in the share index.
     fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
         let same = |n: NodeId| match &self.nodes[n as usize].kind {
-            Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => **t == *tests,
+            Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => {
+                *self.test_lists.get(*t) == *tests
+            }
             _ => false,
         };
         if !self.nodes[parent as usize].wide {
@@ -428,7 +429,7 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests = self.shared_tests(tests);
+        let list = self.test_lists.intern(tests);
         let depth = self.nodes[h as usize].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
@@ -436,7 +437,7 @@ impl Rete {
         let j = self.new_node(
             Kind::Join {
                 amem,
-                tests,
+                tests: list,
                 left_unlinked: false,
                 right_unlinked: false,
             },
@@ -445,8 +446,8 @@ impl Rete {
         );
         self.attach(h, j, true);
         self.add_shared(h, 0, amem, j);
-        if let Some((d, f)) = hash_key(&self.nodes[j as usize].kind, depth + 1) {
-            self.nodes[j as usize].hash = Some((d, f));
+        if let Some((d, f)) = hash_key_of(tests, depth + 1) {
+            self.nodes[j as usize].hash = super::HashKey::new(Some((d, f)));
             self.add_left_key(h, d, f);
         }
         self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
@@ -480,11 +481,11 @@ impl Rete {
             self.amems[amem as usize].refs -= 1;
             return c;
         }
-        let tests = self.shared_tests(tests);
+        let list = self.test_lists.intern(tests);
         let n = self.new_node(
             Kind::Negative {
                 amem,
-                tests,
+                tests: list,
                 right_unlinked: false,
             },
             parent,
@@ -492,8 +493,8 @@ impl Rete {
         );
         self.attach(parent, n, true);
         self.add_shared(parent, 1, amem, n);
-        if let Some((d, f)) = hash_key(&self.nodes[n as usize].kind, depth + 1) {
-            self.nodes[n as usize].hash = Some((d, f));
+        if let Some((d, f)) = hash_key_of(tests, depth + 1) {
+            self.nodes[n as usize].hash = super::HashKey::new(Some((d, f)));
             self.add_left_key(n, d, f);
         }
         self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
@@ -507,15 +508,6 @@ impl Rete {
 
     /// The one shared copy of a list of join tests: most joins test only their identifier
     /// against one binding place, so 100,000 rules hold a handful of distinct lists.
-    fn shared_tests(&mut self, tests: &[JoinTest]) -> std::sync::Arc<[JoinTest]> {
-        if let Some(t) = self.test_lists.get(tests) {
-            return t.clone();
-        }
-        let t: std::sync::Arc<[JoinTest]> = tests.into();
-        self.test_lists.insert(t.clone());
-        t
-    }
-
     /// Fills a newly built token holder with the matches its parent already has
     /// (Doorenbos `update-new-node-with-matches-from-above`).
     fn fill_new_node(&mut self, n: NodeId, syms: &Symbols, sink: &mut dyn MatchSink) {
@@ -549,7 +541,7 @@ impl Rete {
                 for t in self.live_tokens(grand).into_iter().rev() {
                     for &w in items.iter().rev() {
                         if self.tokens[t as usize].alive
-                            && self.tests_pass(&tests, t, w, depth, syms)
+                            && self.tests_pass(self.test_lists.get(tests), t, w, depth, syms)
                         {
                             self.left_activation(n, t, w, syms, sink);
                         }
@@ -601,7 +593,7 @@ impl Rete {
                 self.delete_token_and_descendants(t, syms, sink);
             }
             let parent_of = self.nodes[n as usize].parent;
-            if let (Kind::Join { .. }, Some((d, f))) = (&kind, self.nodes[n as usize].hash) {
+            if let (Kind::Join { .. }, Some((d, f))) = (&kind, self.nodes[n as usize].hash.get()) {
                 self.release_left_key(parent_of, d, f);
             }
             match &kind {
@@ -628,9 +620,7 @@ impl Rete {
             }
             if let Kind::Ncc { partner } = kind {
                 // The partner's branch may now be unused too.
-                if let Kind::NccPartner { buffer, .. } = &mut self.nodes[partner as usize].kind {
-                    buffer.clear();
-                }
+                self.ncc_buffers.remove(&partner);
                 self.delete_node_and_unused_ancestors(partner, syms, sink);
             }
             // The partner's branch may already have taken the parent with it.
@@ -645,13 +635,6 @@ impl Rete {
 /// The test a join or negative node hashes on: its new WME's identifier equal to a variable
 /// bound above it (Soar hashes both memories on it, so a WME meets only the tokens it can
 /// join). `new_depth` is the depth of the new WME.
-fn hash_key(kind: &Kind, new_depth: u32) -> Option<(u32, Field)> {
-    match kind {
-        Kind::Join { tests, .. } | Kind::Negative { tests, .. } => hash_key_of(tests, new_depth),
-        _ => None,
-    }
-}
-
 fn hash_key_of(tests: &[JoinTest], new_depth: u32) -> Option<(u32, Field)> {
     tests.iter().find_map(|t| match t {
         JoinTest::Compare {

@@ -110,7 +110,7 @@ impl Rete {
     /// with token `t`, newest first: only those whose identifier is the token's value at
     /// `n`'s key, when it has one.
     pub(crate) fn push_amem_candidates(&mut self, a: AmemId, n: NodeId, t: TokId) {
-        let Some((d, f)) = self.nodes[n as usize].hash else {
+        let Some((d, f)) = self.nodes[n as usize].hash.get() else {
             let mut e = self.amems[a as usize].first;
             while e != NIL {
                 self.scratch.push(self.rm[e as usize].wme.0);
@@ -164,7 +164,7 @@ impl Rete {
     /// WME `w`, newest first: only those whose value at `n`'s key is `w`'s identifier, when
     /// it has one.
     pub(crate) fn push_token_candidates(&mut self, holder: NodeId, n: NodeId, w: WmeId) {
-        let Some((d, f)) = self.nodes[n as usize].hash else {
+        let Some((d, f)) = self.nodes[n as usize].hash.get() else {
             let mut t = self.nodes[holder as usize].first_token;
             while t != NIL {
                 self.scratch.push(t);

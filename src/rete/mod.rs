@@ -18,6 +18,7 @@ mod hash;
 mod names;
 pub mod reorder;
 mod small_list;
+mod test_lists;
 pub mod tests;
 mod tokens;
 
@@ -157,26 +158,26 @@ pub(crate) struct RWme {
 pub(crate) enum Kind {
     Root,
     Memory,
+    /// `tests`: the node's list in [`Rete::test_lists`].
     Join {
         amem: AmemId,
-        tests: std::sync::Arc<[JoinTest]>,
+        tests: u32,
         left_unlinked: bool,
         right_unlinked: bool,
     },
     Negative {
         amem: AmemId,
-        tests: std::sync::Arc<[JoinTest]>,
+        tests: u32,
         right_unlinked: bool,
     },
     Ncc {
         partner: NodeId,
     },
+    /// Its buffer of results that came before their owner is in [`Rete::ncc_buffers`]
+    /// (partners are rare, and inline it would widen every node).
     NccPartner {
         ncc: NodeId,
         owner_depth: u32,
-        /// (Boxed: partners are rare, and inline it would widen every node.)
-        #[allow(clippy::box_collection)]
-        buffer: Box<Vec<TokId>>,
     },
     Production {
         prod: ProdId,
@@ -201,7 +202,7 @@ pub(crate) struct Node {
     pub alive: bool,
     /// Join and negative nodes: the equality test of the new WME's identifier against a
     /// bound variable, `(depth, field)`, that both sides of the join are hashed on.
-    pub hash: Option<(u32, Field)>,
+    pub hash: HashKey,
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: SmallList<(u32, Field, u32)>,
@@ -218,6 +219,36 @@ pub(crate) struct Node {
     /// Join and negative nodes: the nearest ancestor on the same alpha memory (NIL if none),
     /// found when the node is built.
     pub same_amem_ancestor: NodeId,
+}
+
+// 100,000 rules build 400,000 nodes: each byte here is 0.4 MB.
+const _: () = assert!(std::mem::size_of::<Node>() == 88);
+
+/// An optional `(depth, field)` in 4 bytes (depth in the high 30 bits), for [`Node::hash`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct HashKey(u32);
+
+impl HashKey {
+    pub const NONE: HashKey = HashKey(u32::MAX);
+
+    pub fn new(key: Option<(u32, Field)>) -> HashKey {
+        match key {
+            Some((depth, field)) => HashKey(depth << 2 | field as u32),
+            None => HashKey::NONE,
+        }
+    }
+
+    pub fn get(self) -> Option<(u32, Field)> {
+        if self == HashKey::NONE {
+            return None;
+        }
+        let field = match self.0 & 3 {
+            0 => Field::Id,
+            1 => Field::Attr,
+            _ => Field::Value,
+        };
+        Some((self.0 >> 2, field))
+    }
 }
 
 impl Node {
@@ -320,7 +351,9 @@ pub struct Rete {
     /// Keyed by parent, node kind, alpha memory and a hash of the tests.
     pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
     /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
-    test_lists: rustc_hash::FxHashSet<std::sync::Arc<[JoinTest]>>,
+    pub(crate) test_lists: test_lists::TestLists,
+    /// NCC partners' results that came before their owner token, by partner.
+    pub(crate) ncc_buffers: FxHashMap<NodeId, Vec<TokId>>,
     /// The tests of the condition being added (a reused buffer, see `build_conditions`).
     test_buf: Vec<JoinTest>,
     /// The variable names of every rule's [`VarBindings`].
@@ -371,6 +404,7 @@ impl Rete {
             prods: Blocks::default(),
             share: FxHashMap::default(),
             test_lists: Default::default(),
+            ncc_buffers: FxHashMap::default(),
             test_buf: Vec::new(),
             var_names: VarNames::default(),
             amem_by_id: FxHashMap::default(),
@@ -402,7 +436,7 @@ impl Rete {
             token_count: 0,
             depth,
             alive: true,
-            hash: None,
+            hash: HashKey::NONE,
             left_keys: SmallList::Empty,
             indexed: false,
             wide: false,
@@ -413,12 +447,12 @@ impl Rete {
     }
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
-        let node = &mut self.nodes[n as usize];
-        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = &node.kind {
-            // Held by the set and this node only: no node uses the list any more.
-            if std::sync::Arc::strong_count(tests) == 2 {
-                self.test_lists.remove(&**tests);
-            }
+        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = self.nodes[n as usize].kind
+        {
+            self.test_lists.release(tests);
+        }
+        if let Kind::NccPartner { .. } = self.nodes[n as usize].kind {
+            self.ncc_buffers.remove(&n);
         }
         let node = &mut self.nodes[n as usize];
         node.alive = false;
@@ -426,7 +460,7 @@ impl Rete {
         node.first_child = NIL;
         node.next_sibling = NIL;
         node.kind = Kind::Memory;
-        node.hash = None;
+        node.hash = HashKey::NONE;
         node.left_keys = SmallList::Empty;
         node.indexed = false;
         node.wide = false;
@@ -899,7 +933,7 @@ impl Rete {
     /// The tests of a join or negative node (none for other kinds), read in place.
     pub(crate) fn join_tests(&self, n: NodeId) -> &[JoinTest] {
         match &self.nodes[n as usize].kind {
-            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => tests,
+            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => self.test_lists.get(*tests),
             _ => &[],
         }
     }
@@ -1067,7 +1101,9 @@ impl Rete {
                 for t in self.live_tokens(parent) {
                     c += items
                         .iter()
-                        .filter(|&&w| self.tests_pass(tests, t, w, depth, syms))
+                        .filter(|&&w| {
+                            self.tests_pass(self.test_lists.get(*tests), t, w, depth, syms)
+                        })
                         .count();
                 }
                 c
