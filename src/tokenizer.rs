@@ -393,6 +393,11 @@ mod tests {
     }
 
     #[test]
+    fn braces_and_hashes_inside_pipes_are_text() {
+        assert_eq!(words("sp {a |{#}| b}"), vec![vec!["sp", "a |{#}| b"]]);
+    }
+
+    #[test]
     fn newline_and_semicolon_inside_braces_do_not_end_command() {
         assert_eq!(words("x {a;\nb}"), vec![vec!["x", "a;\nb"]]);
     }
