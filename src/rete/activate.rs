@@ -9,7 +9,7 @@
 
 use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
 use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
-use crate::symbols::{Sym, SymData, Symbols};
+use crate::symbols::{SymData, Symbols};
 use crate::wm::WmeId;
 
 impl Rete {
@@ -137,16 +137,23 @@ impl Rete {
         // (its parent has tokens while it is linked on both sides).
         let rw = self.wme(w);
         let fields = [rw.id, rw.attr, rw.value];
-        let int_of = |s: Sym| match syms.get(s) {
-            SymData::Int(i) => Some(*i),
-            _ => None,
-        };
-        let ints = [None, None, int_of(rw.value)];
+        let value = rw.value;
+        // The value's integer, read from the symbol table once and only if a successor
+        // compares it with an integer (identifiers and attributes are left to the full test).
+        let mut value_int: Option<Option<i64>> = None;
         let base = self.succ_scratch.len();
         for s in self.amems[a as usize].successors.values() {
             if let (Some(pre), false) = (&s.pre, s.left_unlinked) {
-                let f = pre.field as usize;
-                if !pre.passes(syms, fields[f], ints[f]) {
+                let int = match pre.field {
+                    Field::Value if pre.int_order.is_some() => {
+                        *value_int.get_or_insert_with(|| match syms.get(value) {
+                            SymData::Int(i) => Some(*i),
+                            _ => None,
+                        })
+                    }
+                    _ => None,
+                };
+                if !pre.passes(syms, fields[pre.field as usize], int) {
                     continue;
                 }
             }

@@ -337,18 +337,17 @@ impl Rete {
     /// parent with few children is scanned; a wide one (the memory that thousands of rules
     /// branch from) has its children in the share index.
     fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
-        let same = |n: NodeId| match &self.nodes[n as usize].kind {
-            Kind::Join { tests: t, .. } | Kind::Negative { tests: t, .. } => {
-                *self.test_lists.get(*t) == *tests
-            }
-            _ => false,
-        };
+        // Equal test lists are stored once: no stored list, no node to share. The share index
+        // keys on the list too: thousands of rules can branch from one memory on one alpha
+        // memory, differing only in a constant (issue 3's counter rules).
+        let list = self.test_lists.find(tests)?;
+        let same = |n: NodeId| self.node_test_list(n) == Some(list);
         if !self.nodes[parent as usize].wide {
             return self.all_children(parent).find(|&c| {
                 share_key(&self.nodes[c as usize].kind) == Some((kind, amem)) && same(c)
             });
         }
-        let nodes = self.share.get(&(parent, kind, amem, tests_hash(tests)))?;
+        let nodes = self.share.get(&(parent, kind, amem, list))?;
         nodes.as_slice().iter().copied().find(|&n| same(n))
     }
 
@@ -375,8 +374,10 @@ impl Rete {
 
     fn index_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
         use std::collections::hash_map::Entry;
-        let key = (parent, kind, amem, self.node_tests_hash(n));
-        match self.share.entry(key) {
+        let Some(list) = self.node_test_list(n) else {
+            return;
+        };
+        match self.share.entry((parent, kind, amem, list)) {
             Entry::Vacant(e) => {
                 e.insert(Shared::One(n));
             }
@@ -390,16 +391,22 @@ impl Rete {
         }
     }
 
-    /// The tests of a join or negative node, hashed for the share index.
-    fn node_tests_hash(&self, n: NodeId) -> u64 {
-        tests_hash(self.join_tests(n))
+    /// The test list of a join or negative node (see `test_lists.rs`).
+    fn node_test_list(&self, n: NodeId) -> Option<u32> {
+        match self.nodes[n as usize].kind {
+            Kind::Join { tests, .. } | Kind::Negative { tests, .. } => Some(tests),
+            _ => None,
+        }
     }
 
     fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
         if !self.nodes[parent as usize].wide {
             return;
         }
-        let key = (parent, kind, amem, self.node_tests_hash(n));
+        let Some(list) = self.node_test_list(n) else {
+            return;
+        };
+        let key = (parent, kind, amem, list);
         let Some(s) = self.share.get_mut(&key) else {
             return;
         };
@@ -770,14 +777,4 @@ fn for_each_simple<'a>(t: &'a Test, f: &mut dyn FnMut(&'a Test)) {
         Test::Conjunction(ts) => ts.iter().for_each(|t| for_each_simple(t, f)),
         other => f(other),
     }
-}
-
-/// A hash of a node's tests: the share index keys on it too, since thousands of rules can
-/// branch from one memory on one alpha memory, differing only in a constant (issue 3's
-/// counter rules), and a bucket per (parent, alpha memory) made each new rule scan them all.
-fn tests_hash(tests: &[JoinTest]) -> u64 {
-    use std::hash::{Hash, Hasher};
-    let mut h = rustc_hash::FxHasher::default();
-    tests.hash(&mut h);
-    h.finish()
 }

@@ -6,7 +6,7 @@
 //! removal is constant time however many entries share a value.
 
 use super::tests::Field;
-use super::{alloc, AmemId, NodeId, Rete, TokId, NIL, NIL_WME};
+use super::{alloc, AmemId, HashKey, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
@@ -21,14 +21,14 @@ pub(crate) const SMALL_BETA: u32 = 8;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(crate) struct TokKey {
     holder_value: u64,
-    depth_field: u32,
+    depth_field: HashKey,
 }
 
 impl TokKey {
     pub(crate) fn new(holder: NodeId, d: u32, f: Field, v: Sym) -> Self {
         TokKey {
             holder_value: (u64::from(holder) << 32) | u64::from(v.0),
-            depth_field: depth_field(d, f),
+            depth_field: HashKey::new(Some((d, f))),
         }
     }
 
@@ -39,12 +39,8 @@ impl TokKey {
 
     /// Whether this bucket is the holder's on key `(d, f)`.
     fn is_key_of(&self, holder: NodeId, d: u32, f: Field) -> bool {
-        (self.holder_value >> 32) as u32 == holder && self.depth_field == depth_field(d, f)
+        (self.holder_value >> 32) as u32 == holder && self.depth_field == HashKey::new(Some((d, f)))
     }
-}
-
-fn depth_field(d: u32, f: Field) -> u32 {
-    (d << 2) | f as u32
 }
 
 /// The right-index key of (alpha memory, identifier), packed into one word.
@@ -209,7 +205,7 @@ impl Rete {
         if tok.depth <= d || tok.parent == NIL {
             return None;
         }
-        let df = depth_field(d, f);
+        let df = HashKey::new(Some((d, f)));
         let mut e = self.tokens[tok.parent as usize].hfirst;
         while e != NIL {
             let entry = &self.hentries[e as usize];

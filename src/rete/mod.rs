@@ -111,15 +111,14 @@ impl Prefilter {
         use crate::ast::Relation;
         use tests::Op;
         if let (Some(c), Some(x), Op::Rel(r)) = (self.int_order, v_int, self.op) {
-            return match r {
-                Relation::Lt => x < c,
-                Relation::Le => x <= c,
-                Relation::Gt => x > c,
-                Relation::Ge => x >= c,
-                Relation::Ne | Relation::SameType => {
-                    tests::relation_holds(syms, self.op, v, self.constant)
-                }
-            };
+            match r {
+                Relation::Lt => return x < c,
+                Relation::Le => return x <= c,
+                Relation::Gt => return x > c,
+                Relation::Ge => return x >= c,
+                // (Not orderings: `int_order` is never set for them.)
+                Relation::Ne | Relation::SameType => {}
+            }
         }
         tests::relation_holds(syms, self.op, v, self.constant)
     }
@@ -224,8 +223,9 @@ pub(crate) struct Node {
 // 100,000 rules build 400,000 nodes: each byte here is 0.4 MB.
 const _: () = assert!(std::mem::size_of::<Node>() == 88);
 
-/// An optional `(depth, field)` in 4 bytes (depth in the high 30 bits), for [`Node::hash`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// An optional `(depth, field)` in 4 bytes (depth in the high 30 bits), for [`Node::hash`]
+/// and the left index keys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub(crate) struct HashKey(u32);
 
 impl HashKey {
@@ -345,11 +345,9 @@ pub struct Rete {
     pub(crate) neg: Vec<NegResult>,
     free_neg: Vec<u32>,
     pub(crate) prods: Blocks<Option<ProdInfo>>,
-    /// Join and negative nodes by (parent, kind, alpha memory), for sharing, under parents
-    /// with many children (`Node::wide`); their tests, kept only in the nodes, tell the
-    /// candidates apart.
-    /// Keyed by parent, node kind, alpha memory and a hash of the tests.
-    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u64), Shared>,
+    /// Join and negative nodes by (parent, kind, alpha memory, test list), for sharing,
+    /// under parents with many children (`Node::wide`).
+    pub(crate) share: FxHashMap<(NodeId, u8, AmemId, u32), Shared>,
     /// The distinct test lists of join and negative nodes, each kept once (`shared_tests`).
     pub(crate) test_lists: test_lists::TestLists,
     /// NCC partners' results that came before their owner token, by partner.

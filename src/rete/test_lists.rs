@@ -16,31 +16,25 @@ pub(crate) struct TestLists {
 }
 
 impl TestLists {
+    /// The index of the stored list equal to `tests`, if there is one.
+    pub fn find(&self, tests: &[JoinTest]) -> Option<u32> {
+        let in_use = |i: u32| self.lists[i as usize].1 > 0 && *self.lists[i as usize].0 == *tests;
+        match self.by_hash.get(&hash(tests)) {
+            Some(&i) if in_use(i) => Some(i),
+            Some(_) => (0..self.lists.len() as u32).find(|&i| in_use(i)),
+            None => None,
+        }
+    }
+
     /// The index of a list equal to `tests`, stored now if there is none; one more user.
     pub fn intern(&mut self, tests: &[JoinTest]) -> u32 {
-        let h = hash(tests);
-        let found = match self.by_hash.get(&h) {
-            Some(&i) if *self.lists[i as usize].0 == *tests => Some(i),
-            Some(_) => (0..self.lists.len() as u32)
-                .find(|&i| self.lists[i as usize].1 > 0 && *self.lists[i as usize].0 == *tests),
-            None => None,
-        };
-        if let Some(i) = found {
+        if let Some(i) = self.find(tests) {
             self.lists[i as usize].1 += 1;
             return i;
         }
         let entry = (Box::<[JoinTest]>::from(tests), 1);
-        let i = match self.free.pop() {
-            Some(i) => {
-                self.lists[i as usize] = entry;
-                i
-            }
-            None => {
-                self.lists.push(entry);
-                self.lists.len() as u32 - 1
-            }
-        };
-        self.by_hash.entry(h).or_insert(i);
+        let i = super::alloc(&mut self.lists, &mut self.free, entry);
+        self.by_hash.entry(hash(tests)).or_insert(i);
         i
     }
 
@@ -64,7 +58,7 @@ impl TestLists {
     }
 }
 
-pub(crate) fn hash(tests: &[JoinTest]) -> u64 {
+fn hash(tests: &[JoinTest]) -> u64 {
     use std::hash::{Hash, Hasher};
     let mut h = rustc_hash::FxHasher::default();
     tests.hash(&mut h);
