@@ -503,14 +503,11 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         }
     };
     let registry = &mut *ctx.registry;
-    let mut numbers = std::mem::take(&mut registry.numbers);
     let fast = match registry.numeric.get_mut(function) {
-        Some(numeric_form) => {
-            numeric::numbers(ctx.symbols, rest, &mut numbers).and_then(|()| numeric_form(&numbers))
-        }
+        Some(numeric_form) => numeric::numbers(ctx.symbols, rest, &mut registry.numbers)
+            .and_then(|()| numeric_form(&registry.numbers)),
         None => None,
     };
-    registry.numbers = numbers;
     let result = fast.unwrap_or_else(|| {
         let mut argument = String::new();
         for a in rest {
