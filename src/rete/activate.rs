@@ -108,18 +108,15 @@ impl Rete {
     }
 
     /// The WME of the ancestor token (of `t`, inclusive) at `depth`.
-    pub(crate) fn wme_at_depth(&self, mut t: TokId, depth: u32) -> WmeId {
-        while t != NIL {
-            let tok = &self.tokens[t as usize];
-            if tok.depth == depth {
-                return tok.wme;
-            }
-            if tok.depth < depth {
-                break;
-            }
-            t = tok.parent;
+    pub(crate) fn wme_at_depth(&self, t: TokId, depth: u32) -> WmeId {
+        if t == NIL {
+            return NIL_WME;
         }
-        NIL_WME
+        let tok = &self.tokens[t as usize];
+        if depth > tok.depth {
+            return NIL_WME;
+        }
+        self.rows[(tok.row + depth) as usize]
     }
 
     /// Right-activates the linked successors of alpha memory `a` with its new WME `w`, in

@@ -6,7 +6,7 @@
 //! removal is constant time however many entries share a value.
 
 use super::tests::Field;
-use super::{alloc, AmemId, HashKey, NodeId, Rete, TokId, NIL, NIL_WME};
+use super::{alloc, AmemId, HashKey, LeftMode, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
@@ -15,6 +15,13 @@ pub(crate) const SMALL_AMEM: u32 = 4;
 
 /// Token holders up to this many tokens are scanned rather than indexed.
 pub(crate) const SMALL_BETA: u32 = 8;
+
+/// A cached key value for "no WME at the key's depth".
+pub(crate) const NO_VALUE: Sym = Sym(u32::MAX);
+
+fn some_value(v: Sym) -> Option<Sym> {
+    (v != NO_VALUE).then_some(v)
+}
 
 /// A left-index bucket: holder, key depth, key field and value, packed into two words (one
 /// hash round each: every token of an indexed memory goes in and out under one).
@@ -30,11 +37,6 @@ impl TokKey {
             holder_value: (u64::from(holder) << 32) | u64::from(v.0),
             depth_field: HashKey::new(Some((d, f))),
         }
-    }
-
-    /// The token value of this bucket.
-    fn value(&self) -> Sym {
-        Sym(self.holder_value as u32)
     }
 
     /// Whether this bucket is the holder's on key `(d, f)`.
@@ -114,18 +116,9 @@ impl Rete {
             }
             return;
         };
-        // The token was usually indexed on this very key when it was made (see
-        // `index_token`): the walk up its ancestors is not repeated.
-        let memo = self.key_memo;
-        let id = if memo.0 == t && memo.1 == d && memo.2 == f {
-            memo.3
-        } else {
-            // Remembered for the token's other children on the same key.
-            let v = self.key_value(t, d, f);
-            self.key_memo = (t, d, f, v);
-            v
-        };
-        let Some(id) = id else {
+        // Nearly always the token's cached key (its holder's first key is this join's).
+        let holder = self.tokens[t as usize].node;
+        let Some(id) = self.holder_key_value(holder, t, d, f) else {
             return;
         };
         let am = &self.amems[a as usize];
@@ -161,60 +154,126 @@ impl Rete {
     /// it has one.
     pub(crate) fn push_token_candidates(&mut self, holder: NodeId, n: NodeId, w: WmeId) {
         let Some((d, f)) = self.nodes[n as usize].hash.get() else {
-            let mut t = self.nodes[holder as usize].first_token;
-            while t != NIL {
-                self.scratch.push(t);
-                t = self.tokens[t as usize].next_in_node;
-            }
+            self.push_all_tokens(holder);
             return;
         };
         let id = self.wme(w).id;
-        if !self.nodes[holder as usize].indexed {
-            // A small memory: its tokens with that value, newest first, as the index has them.
-            let mut t = self.nodes[holder as usize].first_token;
-            while t != NIL {
-                if self.key_value(t, d, f) == Some(id) {
-                    self.scratch.push(t);
+        let h = &self.nodes[holder as usize];
+        match h.left_mode {
+            LeftMode::Indexed => {
+                let key = TokKey::new(holder, d, f, id);
+                let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
+                while e != NIL {
+                    self.scratch.push(self.hentries[e as usize].tok);
+                    e = self.hentries[e as usize].next;
                 }
-                t = self.tokens[t as usize].next_in_node;
             }
-            return;
+            LeftMode::Uniform if h.first_token != NIL && self.is_first_key(holder, d, f) => {
+                // Every token has the head's value: all of them, or none.
+                if self.tokens[h.first_token as usize].key == id {
+                    self.push_all_tokens(holder);
+                }
+            }
+            _ => {
+                // A small memory: its tokens with that value, newest first, as the index
+                // has them.
+                let cached = self.is_first_key(holder, d, f);
+                let mut t = h.first_token;
+                while t != NIL {
+                    let v = if cached {
+                        some_value(self.tokens[t as usize].key)
+                    } else {
+                        self.key_value(t, d, f)
+                    };
+                    if v == Some(id) {
+                        self.scratch.push(t);
+                    }
+                    t = self.tokens[t as usize].next_in_node;
+                }
+            }
         }
-        let key = TokKey::new(holder, d, f, id);
-        let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
-        while e != NIL {
-            self.scratch.push(self.hentries[e as usize].tok);
-            e = self.hentries[e as usize].next;
+    }
+
+    fn push_all_tokens(&mut self, holder: NodeId) {
+        let mut t = self.nodes[holder as usize].first_token;
+        while t != NIL {
+            self.scratch.push(t);
+            t = self.tokens[t as usize].next_in_node;
         }
+    }
+
+    fn is_first_key(&self, holder: NodeId, d: u32, f: Field) -> bool {
+        matches!(self.nodes[holder as usize].left_keys.as_slice().first(), Some(k) if k.0 == d && k.1 == f)
     }
 
     /// A token's value at an index key, if it has a WME at that depth.
     pub(crate) fn key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
-        if let Some(v) = self.parent_key_value(t, d, f) {
-            return Some(v);
-        }
         let wm = self.wme_at_depth(t, d);
         (wm != NIL_WME).then(|| self.field(wm, f))
     }
 
-    /// A token's value at `(d, f)` read off its parent's index entries, when the parent is
-    /// indexed on that key: chains of joins on one identifier (`(<c> ^X ..) (<c> ^Y ..)`)
-    /// index every level on the same key, and this spares the walk up the whole chain.
-    fn parent_key_value(&self, t: TokId, d: u32, f: Field) -> Option<Sym> {
-        let tok = self.tokens.get(t as usize)?;
-        if tok.depth <= d || tok.parent == NIL {
-            return None;
+    /// A holder's token's value at key `(d, f)`: its cached key when that is the holder's
+    /// first key (nearly always: most holders have one).
+    pub(crate) fn holder_key_value(
+        &self,
+        holder: NodeId,
+        t: TokId,
+        d: u32,
+        f: Field,
+    ) -> Option<Sym> {
+        if self.is_first_key(holder, d, f) {
+            some_value(self.tokens[t as usize].key)
+        } else {
+            self.key_value(t, d, f)
         }
-        let df = HashKey::new(Some((d, f)));
-        let mut e = self.tokens[tok.parent as usize].hfirst;
-        while e != NIL {
-            let entry = &self.hentries[e as usize];
-            if entry.key.depth_field == df {
-                return Some(entry.key.value());
+    }
+
+    /// Caches a token's value at its holder's first key.
+    fn cache_key(&mut self, t: TokId, key: Option<(u32, Field)>) {
+        let value = key
+            .and_then(|(d, f)| self.key_value(t, d, f))
+            .unwrap_or(NO_VALUE);
+        self.tokens[t as usize].key = value;
+    }
+
+    fn first_key(&self, holder: NodeId) -> Option<(u32, Field)> {
+        let k = self.nodes[holder as usize].left_keys.as_slice().first()?;
+        Some((k.0, k.1))
+    }
+
+    /// Caches a new token's key and keeps its holder's [`LeftMode`] true.
+    pub(crate) fn token_added_to_holder(&mut self, holder: NodeId, t: TokId) {
+        self.cache_key(t, self.first_key(holder));
+        let h = &self.nodes[holder as usize];
+        match h.left_mode {
+            LeftMode::Indexed => self.index_token(holder, t),
+            LeftMode::Uniform => {
+                let older = self.tokens[t as usize].next_in_node;
+                if older != NIL && self.tokens[older as usize].key != self.tokens[t as usize].key {
+                    self.index_holder(holder);
+                }
             }
-            e = entry.next_of_tok;
+            LeftMode::Scan if h.token_count > SMALL_BETA => self.choose_left_mode(holder),
+            LeftMode::Scan => {}
         }
-        None
+    }
+
+    /// A memory past scanning size: `Uniform` if it has one key and its tokens share their
+    /// value there, otherwise indexed.
+    fn choose_left_mode(&mut self, holder: NodeId) {
+        let h = &self.nodes[holder as usize];
+        if h.left_keys.len() == 1 && h.first_token != NIL {
+            let v = self.tokens[h.first_token as usize].key;
+            let mut t = h.first_token;
+            while t != NIL && self.tokens[t as usize].key == v {
+                t = self.tokens[t as usize].next_in_node;
+            }
+            if t == NIL {
+                self.nodes[holder as usize].left_mode = LeftMode::Uniform;
+                return;
+            }
+        }
+        self.index_holder(holder);
     }
 
     fn hentry_insert(&mut self, key: TokKey, t: TokId) {
@@ -252,11 +311,14 @@ impl Rete {
     }
 
     /// Indexes a new token under every key of its holder.
-    pub(crate) fn index_token(&mut self, holder: NodeId, t: TokId) {
+    fn index_token(&mut self, holder: NodeId, t: TokId) {
         for i in 0..self.nodes[holder as usize].left_keys.len() {
             let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
-            let v = self.key_value(t, d, f);
-            self.key_memo = (t, d, f, v);
+            let v = if i == 0 {
+                some_value(self.tokens[t as usize].key)
+            } else {
+                self.key_value(t, d, f)
+            };
             if let Some(v) = v {
                 self.hentry_insert(TokKey::new(holder, d, f, v), t);
             }
@@ -287,8 +349,22 @@ impl Rete {
             return;
         }
         keys.push((d, f, 1));
-        if self.nodes[holder as usize].indexed {
-            self.index_tokens_on(holder, d, f);
+        if keys.len() == 1 {
+            self.recache_keys(holder);
+        }
+        let h = &self.nodes[holder as usize];
+        match h.left_mode {
+            LeftMode::Indexed => self.index_tokens_on(holder, d, f),
+            _ if h.token_count > SMALL_BETA => self.choose_left_mode(holder),
+            _ => {}
+        }
+    }
+
+    /// Caches every token's key afresh after the holder's first key changed.
+    fn recache_keys(&mut self, holder: NodeId) {
+        let key = self.first_key(holder);
+        for t in self.node_tokens(holder) {
+            self.cache_key(t, key);
         }
     }
 
@@ -302,9 +378,10 @@ impl Rete {
         }
     }
 
-    /// Indexes every token of a holder that has outgrown scanning.
+    /// Indexes every token of a holder under every key (it outgrew scanning, or lost its
+    /// one shared value).
     pub(crate) fn index_holder(&mut self, holder: NodeId) {
-        self.nodes[holder as usize].indexed = true;
+        self.nodes[holder as usize].left_mode = LeftMode::Indexed;
         for i in 0..self.nodes[holder as usize].left_keys.len() {
             let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
             self.index_tokens_on(holder, d, f);
@@ -322,6 +399,12 @@ impl Rete {
             return;
         }
         keys.remove(pos);
+        if pos == 0 {
+            self.recache_keys(holder);
+        }
+        if self.nodes[holder as usize].left_keys.is_empty() {
+            self.nodes[holder as usize].left_mode = LeftMode::Scan;
+        }
         for t in self.node_tokens(holder) {
             // Rebuild the token's entry chain without this key's entries.
             let mut e = self.tokens[t as usize].hfirst;

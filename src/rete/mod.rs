@@ -205,11 +205,8 @@ pub(crate) struct Node {
     /// Token holders: the `(depth, field)` keys their tokens are indexed by, with the number
     /// of hashed nodes using each.
     pub left_keys: SmallList<(u32, Field, u32)>,
-    /// Token holders with keys: whether their tokens are in the left index. A small memory
-    /// is scanned instead (most hold a few tokens, and indexing each costs more than the
-    /// scan); it is indexed once it grows past [`hash::SMALL_BETA`] tokens, and no longer
-    /// once empty.
-    pub indexed: bool,
+    /// Token holders with keys: how their tokens are found by value (see [`LeftMode`]).
+    pub left_mode: LeftMode,
     /// Whether its join and negative children are in [`Rete::share`] (see `build.rs`).
     pub wide: bool,
     /// Join and negative nodes: the place among their alpha memory's successors (ascending
@@ -218,6 +215,22 @@ pub(crate) struct Node {
     /// Join and negative nodes: the nearest ancestor on the same alpha memory (NIL if none),
     /// found when the node is built.
     pub same_amem_ancestor: NodeId,
+}
+
+/// How a token holder with index keys finds its tokens with a given key value.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum LeftMode {
+    /// Its tokens are scanned, each read off its cached key: most memories hold a few
+    /// tokens, and indexing each costs more than the scan. A memory is scanned until it
+    /// grows past [`hash::SMALL_BETA`] tokens, and again once empty.
+    Scan,
+    /// One key, and every token has the head token's value there: chains of joins on one
+    /// identifier (the robot's `^X`, `^Y`, `^Th` below every wall) make hundreds of tokens
+    /// with one value, where a hash index only adds upkeep. A token with another value
+    /// makes the memory `Indexed`.
+    Uniform,
+    /// Every token is in the left index under every key.
+    Indexed,
 }
 
 // 100,000 rules build 400,000 nodes: each byte here is 0.4 MB.
@@ -285,6 +298,11 @@ pub(crate) struct Token {
     pub owner: TokId,
     pub next_result: TokId,
     pub prev_result: TokId,
+    /// Where its row of WMEs starts in [`Rete::rows`].
+    pub row: u32,
+    /// The token's value at its holder's first index key (`hash::NO_VALUE` if none), cached:
+    /// the holder's joins read it for every pairing (`hash.rs`).
+    pub key: Sym,
     pub alive: bool,
 }
 
@@ -336,6 +354,12 @@ pub struct Rete {
     free_nodes: Vec<NodeId>,
     pub(crate) tokens: Vec<Token>,
     free_tokens: Vec<TokId>,
+    /// Every token's WMEs by depth, from the root's (depth 0) to its own, in one row: a
+    /// join test or a key reads any depth at once instead of walking up the parents (a
+    /// hot walk: rules join a dozen conditions and test the first one's state last).
+    pub(crate) rows: Vec<WmeId>,
+    /// Freed rows, by length.
+    free_rows: Vec<Vec<u32>>,
     pub(crate) amems: Blocks<Amem>,
     free_amems: Vec<AmemId>,
     amem_index: FxHashMap<AlphaKey, AmemId>,
@@ -371,8 +395,6 @@ pub struct Rete {
     emptied_succ: Vec<NodeId>,
     /// The same for alpha-memory successors.
     succ_scratch: Vec<Succ>,
-    /// The last index key computed for a new token: (token, depth, field, value).
-    pub(crate) key_memo: (TokId, u32, tests::Field, Option<Sym>),
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
@@ -391,6 +413,8 @@ impl Rete {
             free_nodes: Vec::new(),
             tokens: Vec::new(),
             free_tokens: Vec::new(),
+            rows: Vec::new(),
+            free_rows: Vec::new(),
             amems: Blocks::default(),
             free_amems: Vec::new(),
             amem_index: FxHashMap::default(),
@@ -412,7 +436,6 @@ impl Rete {
             scratch: Vec::new(),
             succ_scratch: Vec::new(),
             emptied_succ: Vec::new(),
-            key_memo: (NIL, 0, tests::Field::Id, None),
             root: 0,
             root_token: 0,
             right_activations: 0,
@@ -436,7 +459,7 @@ impl Rete {
             alive: true,
             hash: HashKey::NONE,
             left_keys: SmallList::Empty,
-            indexed: false,
+            left_mode: LeftMode::Scan,
             wide: false,
             amem_key: 0,
             same_amem_ancestor: NIL,
@@ -460,7 +483,7 @@ impl Rete {
         node.kind = Kind::Memory;
         node.hash = HashKey::NONE;
         node.left_keys = SmallList::Empty;
-        node.indexed = false;
+        node.left_mode = LeftMode::Scan;
         node.wide = false;
         self.free_nodes.push(n);
     }
@@ -1022,13 +1045,43 @@ impl Rete {
         if token == NIL {
             return;
         }
-        out.resize(self.tokens[token as usize].depth as usize + 1, NIL_WME);
-        let mut t = token;
-        while t != NIL {
-            let tok = &self.tokens[t as usize];
-            out[tok.depth as usize] = tok.wme;
-            t = tok.parent;
+        out.extend_from_slice(self.token_row(token));
+    }
+
+    /// A token's row: its and its ancestors' WMEs by depth.
+    pub(crate) fn token_row(&self, t: TokId) -> &[WmeId] {
+        let tok = &self.tokens[t as usize];
+        let start = tok.row as usize;
+        &self.rows[start..=start + tok.depth as usize]
+    }
+
+    /// Takes a row for a new token at `depth`: its parent's row, then `wme`.
+    pub(crate) fn alloc_row(&mut self, parent: TokId, depth: u32, wme: WmeId) -> u32 {
+        let len = depth as usize + 1;
+        let row = match self.free_rows.get_mut(len).and_then(Vec::pop) {
+            Some(r) => r,
+            None => {
+                let r = self.rows.len();
+                self.rows.resize(r + len, NIL_WME);
+                r as u32
+            }
+        };
+        if parent != NIL {
+            let from = self.tokens[parent as usize].row as usize;
+            self.rows
+                .copy_within(from..from + depth as usize, row as usize);
         }
+        self.rows[row as usize + depth as usize] = wme;
+        row
+    }
+
+    /// Gives a deleted token's row back.
+    pub(crate) fn free_row(&mut self, row: u32, depth: u32) {
+        let len = depth as usize + 1;
+        if self.free_rows.len() <= len {
+            self.free_rows.resize_with(len + 1, Vec::new);
+        }
+        self.free_rows[len].push(row);
     }
 
     /// The WMEs of a token and its ancestors, newest first.

@@ -2,7 +2,10 @@
 //! result lists of negative and NCC nodes (§2.7, §2.8). Every list is intrusive (indexes into
 //! arenas), so removal is constant time and order is kept.
 
-use super::{alloc, Kind, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME};
+use super::hash::NO_VALUE;
+use super::{
+    alloc, Kind, LeftMode, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME,
+};
 use crate::symbols::Symbols;
 use crate::wm::WmeId;
 
@@ -31,13 +34,13 @@ impl Rete {
             owner: NIL,
             next_result: NIL,
             prev_result: NIL,
+            row: 0,
+            key: NO_VALUE,
             alive: true,
         };
+        let row = self.alloc_row(parent, depth, wme);
         let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
-        if self.key_memo.0 == t {
-            // A reused id: what was remembered of the old token is not true of this one.
-            self.key_memo.0 = NIL;
-        }
+        self.tokens[t as usize].row = row;
         if head != NIL {
             self.tokens[head as usize].prev_in_node = t;
         }
@@ -62,13 +65,8 @@ impl Rete {
                 }
             }
         }
-        let n = &self.nodes[node as usize];
-        if !n.left_keys.is_empty() {
-            if n.indexed {
-                self.index_token(node, t);
-            } else if n.token_count > super::hash::SMALL_BETA {
-                self.index_holder(node);
-            }
+        if !self.nodes[node as usize].left_keys.is_empty() {
+            self.token_added_to_holder(node, t);
         }
         t
     }
@@ -125,7 +123,7 @@ impl Rete {
         n.token_count -= 1;
         if n.token_count == 0 {
             // Its last token took its last index entries with it.
-            n.indexed = false;
+            n.left_mode = LeftMode::Scan;
         }
         // Out of its WME's list.
         if tok.wme != NIL_WME {
@@ -194,6 +192,7 @@ impl Rete {
             }
         }
         self.tokens[t as usize].alive = false;
+        self.free_row(tok.row, tok.depth);
         self.free_tokens.push(t);
     }
 
