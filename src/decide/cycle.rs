@@ -6,6 +6,7 @@
 
 use super::compiled::{self, Act, CompiledRule, Term};
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
+use super::slot::SlotId;
 use super::state::{Goal, ImpasseKind, InstId, Instantiation, Phase, PrefId, Preference, Slot};
 use crate::agent::Agent;
 use crate::rete::{ProdId, TokId};
@@ -568,21 +569,29 @@ impl Agent {
             }
             let key = (pref.id, pref.attr);
             let value = pref.value;
-            if let Some(slot) = self.decider.slots.get_mut(&key) {
-                slot.remove(pid, value);
+            if let Some(slot) = self.decider.slots.id_of(&key) {
+                self.decider.slots.slot_mut(slot).remove(pid, value);
+                self.mark_changed(key, Some(slot));
                 self.decider.drop_slot_if_empty(key);
+            } else {
+                self.mark_changed(key, None);
             }
             self.decider.free_pref(pid);
-            self.mark_changed(key);
         }
         prefs.clear();
         self.decider.insts[inst_id as usize].prefs = prefs;
         self.decider.free_inst(inst_id);
     }
 
-    fn mark_changed(&mut self, key: (Sym, Sym)) {
-        if self.decider.changed_set.insert(key) {
-            self.decider.changed.push(key);
+    /// Marks slot `key` (at `slot`, if it exists) for `update_slots`.
+    fn mark_changed(&mut self, key: (Sym, Sym), slot: Option<SlotId>) {
+        if let Some(id) = slot {
+            let slots = &mut self.decider.slots;
+            if !slots.slot(id).changed {
+                slots.slot_mut(id).changed = true;
+                let generation = slots.generation(id);
+                self.decider.changed.push((id, generation));
+            }
         }
         let op = self.operator_sym();
         if key.1 == op {
@@ -604,14 +613,18 @@ impl Agent {
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
             if kind == PrefType::Reject && o_support {
                 removed.clear();
-                if let Some(slot) = self.decider.slots.get_mut(&key) {
-                    slot.remove_value(value, &mut removed);
+                let slot = self.decider.slots.id_of(&key);
+                if let Some(id) = slot {
+                    self.decider
+                        .slots
+                        .slot_mut(id)
+                        .remove_value(value, &mut removed);
                 }
                 for &r in &removed {
                     self.decider.free_pref(r);
                 }
                 self.decider.free_pref(pid);
-                self.mark_changed(key);
+                self.mark_changed(key, slot);
             }
         }
         for &pid in new_prefs.iter().rev() {
@@ -621,8 +634,9 @@ impl Agent {
             }
             let key = (p.id, p.attr);
             let value = p.value;
-            self.decider.slots.entry(key).push(pid, value);
-            self.mark_changed(key);
+            let slot = self.decider.slots.entry_id(key);
+            self.decider.slots.slot_mut(slot).push(pid, value);
+            self.mark_changed(key, Some(slot));
         }
     }
 
@@ -639,7 +653,6 @@ impl Agent {
         // the reverse of marking order: the first action of the first firing gets the lowest
         // timetag (spec §3i, E:t6).
         let mut changed = std::mem::take(&mut self.decider.changed);
-        self.decider.changed_set.clear();
         changed.reverse();
         let mut sc = std::mem::take(&mut self.decider.slot_scratch);
         let mut adds = std::mem::take(&mut sc.adds);
@@ -647,14 +660,17 @@ impl Agent {
         let mut removes = std::mem::take(&mut sc.removes);
         let mut context = std::mem::take(&mut sc.context);
         let mut want = std::mem::take(&mut sc.want);
-        for &key in &changed {
+        for &(id, generation) in &changed {
+            if self.decider.slots.generation(id) != generation {
+                continue; // The slot went after it changed.
+            }
+            self.decider.slots.slot_mut(id).changed = false;
+            let key = self.decider.slots.slot(id).key;
             if self.is_context_slot(key) {
                 context.push(key);
                 continue;
             }
-            let Some(slot) = self.decider.slots.get(&key) else {
-                continue;
-            };
+            let slot = self.decider.slots.slot(id);
             let want = wanted_values(slot, &self.decider.prefs, &mut want);
             // Newest first, as 9.6 walks its slot's list.
             for (v, acc, w) in slot.wmes.iter().rev() {

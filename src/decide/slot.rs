@@ -15,7 +15,7 @@ const SMALL: usize = 32;
 
 /// All preferences for one (id, attr), oldest first (Soar's list read from its tail), and the
 /// WMEs they support.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct Slot {
     /// Change it only through [`Slot::push`], [`Slot::remove`] and [`Slot::remove_value`],
     /// which keep `values` and `by_value` in step.
@@ -26,6 +26,23 @@ pub struct Slot {
     by_value: Option<FxHashMap<Sym, Vec<PrefId>>>,
     /// Value (and acceptable flag) to the WME that shows it.
     pub wmes: SlotWmes,
+    /// Its (id, attr).
+    pub key: (Sym, Sym),
+    /// Marked changed in this elaboration cycle (it is in `DecideState::changed`).
+    pub changed: bool,
+}
+
+impl Default for Slot {
+    fn default() -> Self {
+        Slot {
+            prefs: Vec::new(),
+            values: Vec::new(),
+            by_value: None,
+            wmes: SlotWmes::default(),
+            key: (Sym(u32::MAX), Sym(u32::MAX)),
+            changed: false,
+        }
+    }
 }
 
 impl Slot {
@@ -100,6 +117,7 @@ impl Slot {
         self.values.clear();
         self.by_value = None;
         self.wmes.clear();
+        self.changed = false;
     }
 }
 
@@ -219,12 +237,22 @@ impl SlotWmes {
     }
 }
 
-/// The slots by (id, attribute), and each identifier's attributes that have one, so that
-/// the slots of one identifier are found without a scan of them all (a substate's slots
-/// when it goes, a result's objects when they move up).
+/// A slot's place in [`Slots`], valid while the slot lives: the changed list holds these
+/// and each firing's retraction finds its slot without hashing (9.6 points preferences at
+/// their slots).
+pub type SlotId = u32;
+
+/// The slots, in an arena found by (id, attribute), and each identifier's attributes that
+/// have one, so that the slots of one identifier are found without a scan of them all (a
+/// substate's slots when it goes, a result's objects when they move up).
 #[derive(Debug, Default)]
 pub struct Slots {
-    map: FxHashMap<(Sym, Sym), Slot>,
+    map: FxHashMap<(Sym, Sym), SlotId>,
+    arena: Vec<Slot>,
+    /// Each arena place's generation: it grows when the place's slot goes, so that a
+    /// [`SlotId`] kept with its generation can tell a later slot in the same place.
+    gens: Vec<u32>,
+    free: Vec<SlotId>,
     attrs: FxHashMap<Sym, Vec<Sym>>,
     /// Emptied slots and attribute lists, kept for their room.
     spare: Vec<Slot>,
@@ -233,29 +261,67 @@ pub struct Slots {
 
 impl Slots {
     pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
-        self.map.get(key)
+        self.map.get(key).map(|&i| &self.arena[i as usize])
     }
 
     pub fn get_mut(&mut self, key: &(Sym, Sym)) -> Option<&mut Slot> {
-        self.map.get_mut(key)
+        self.map.get(key).map(|&i| &mut self.arena[i as usize])
+    }
+
+    pub fn id_of(&self, key: &(Sym, Sym)) -> Option<SlotId> {
+        self.map.get(key).copied()
+    }
+
+    pub fn slot(&self, id: SlotId) -> &Slot {
+        &self.arena[id as usize]
+    }
+
+    pub fn slot_mut(&mut self, id: SlotId) -> &mut Slot {
+        &mut self.arena[id as usize]
+    }
+
+    pub fn generation(&self, id: SlotId) -> u32 {
+        self.gens[id as usize]
     }
 
     /// The slot, made empty if there was none.
     pub fn entry(&mut self, key: (Sym, Sym)) -> &mut Slot {
-        let (attrs, spare) = (&mut self.attrs, &mut self.spare);
-        let spare_attrs = &mut self.spare_attrs;
-        self.map.entry(key).or_insert_with(|| {
-            attrs
-                .entry(key.0)
-                .or_insert_with(|| spare_attrs.pop().unwrap_or_default())
-                .push(key.1);
-            spare.pop().unwrap_or_default()
-        })
+        let id = self.entry_id(key);
+        &mut self.arena[id as usize]
+    }
+
+    /// The slot's place, made empty if there was none.
+    pub fn entry_id(&mut self, key: (Sym, Sym)) -> SlotId {
+        if let Some(&id) = self.map.get(&key) {
+            return id;
+        }
+        self.attrs
+            .entry(key.0)
+            .or_insert_with(|| self.spare_attrs.pop().unwrap_or_default())
+            .push(key.1);
+        let mut slot = self.spare.pop().unwrap_or_default();
+        slot.key = key;
+        let id = match self.free.pop() {
+            Some(id) => {
+                self.arena[id as usize] = slot;
+                id
+            }
+            None => {
+                self.arena.push(slot);
+                self.gens.push(0);
+                (self.arena.len() - 1) as SlotId
+            }
+        };
+        self.map.insert(key, id);
+        id
     }
 
     /// Takes a slot out; hand it back with [`Slots::recycle`] once read.
     pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
-        let slot = self.map.remove(key)?;
+        let id = self.map.remove(key)?;
+        let slot = std::mem::take(&mut self.arena[id as usize]);
+        self.gens[id as usize] += 1;
+        self.free.push(id);
         if let Some(list) = self.attrs.get_mut(&key.0) {
             if let Some(i) = list.iter().position(|a| *a == key.1) {
                 list.remove(i);

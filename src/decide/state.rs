@@ -5,7 +5,7 @@ pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 pub type InstId = u32;
 pub type PrefId = u32;
@@ -96,10 +96,10 @@ pub struct DecideState {
     pub inst_by_token: super::by_token::ByToken<InstId>,
     pub prefs: Vec<Preference>,
     pub slots: Slots,
-    /// Slots whose preferences changed in this elaboration cycle, in order of change.
-    pub changed: Vec<(Sym, Sym)>,
-    /// The same slots as a set, for a constant-time "already marked?".
-    pub changed_set: FxHashSet<(Sym, Sym)>,
+    /// Slots whose preferences changed in this elaboration cycle, in order of change, with
+    /// their generations (a slot that went since is passed over); `Slot::changed` marks
+    /// them.
+    pub changed: Vec<(super::slot::SlotId, u32)>,
     pub goals: Vec<Goal>,
     pub phase: Option<Phase>,
     /// The propose phase has begun (its elaboration count is reset once, at its start).
