@@ -169,6 +169,12 @@ impl WorkingMemory {
 
     /// The WMEs whose value or attribute is the identifier `x` (any order; a constant has
     /// none listed when its WMEs were added with [`WorkingMemory::add_typed`]).
+    /// The WMEs that point at `x`, as [`WorkingMemory::parents_of`] lists them (removed ones
+    /// included: check with `get`).
+    pub fn parent_wmes(&self, x: Sym) -> &[(WmeId, bool)] {
+        self.parents.get(&x).map_or(&[], Vec::as_slice)
+    }
+
     pub fn parents_of(&self, x: Sym) -> impl Iterator<Item = WmeId> + '_ {
         self.parents
             .get(&x)

@@ -1309,36 +1309,51 @@ impl Agent {
         if let Some(&b) = gc.memo.get(&x) {
             return b;
         }
-        // Most identifiers hang straight off a goal: no search needed.
-        let direct = self.wm.parents_of(x).any(|w| {
-            self.wm.get(w).is_some_and(|wme| {
-                gc.roots.contains(&wme.id) || gc.memo.get(&wme.id) == Some(&true)
-            })
-        });
-        if direct || gc.roots.contains(&x) {
+        if gc.roots.contains(&x) {
             gc.memo.insert(x, true);
             return true;
         }
+        // Depth first, each identifier's oldest parent first: a wall pointed at by hundreds
+        // of comparison objects is found linked through the `^Wall` WME it was made with,
+        // without a look at the others.
         gc.visited.clear();
-        gc.queue.clear();
+        gc.path.clear();
         gc.visited.insert(x);
-        gc.queue.push(x);
+        gc.path.push((x, 0));
         let mut found = false;
-        while let Some(y) = gc.queue.pop() {
-            if gc.roots.contains(&y) || gc.memo.get(&y) == Some(&true) {
-                found = true;
-                break;
-            }
-            for w in self.wm.parents_of(y) {
-                if let Some(p) = self.wm.get(w).map(|wme| wme.id) {
-                    if gc.visited.insert(p) {
-                        gc.queue.push(p);
+        'search: while let Some(&(y, start)) = gc.path.last() {
+            let parents = self.wm.parent_wmes(y);
+            for (i, &(w, _)) in parents.iter().enumerate().skip(start) {
+                let Some(p) = self.wm.get(w).map(|wme| wme.id) else {
+                    continue;
+                };
+                match gc.memo.get(&p) {
+                    Some(true) => {
+                        found = true;
+                        break 'search;
                     }
+                    Some(false) => continue,
+                    None => {}
+                }
+                if gc.roots.contains(&p) {
+                    found = true;
+                    break 'search;
+                }
+                if gc.visited.insert(p) {
+                    if let Some(top) = gc.path.last_mut() {
+                        top.1 = i + 1;
+                    }
+                    gc.path.push((p, 0));
+                    continue 'search;
                 }
             }
+            gc.path.pop();
         }
         if found {
-            gc.memo.insert(x, true);
+            // Everything on the path hangs off the root found.
+            for &(y, _) in &gc.path {
+                gc.memo.insert(y, true);
+            }
         } else {
             for &v in &gc.visited {
                 gc.memo.insert(v, false);
@@ -1490,7 +1505,8 @@ pub(crate) struct GcScratch {
     memo: FxHashMap<Sym, bool>,
     dead: FxHashSet<Sym>,
     visited: FxHashSet<Sym>,
-    queue: Vec<Sym>,
+    /// The upward search's path: each identifier with the index of its next parent.
+    path: Vec<(Sym, usize)>,
     stack: Vec<Sym>,
 }
 
@@ -1500,7 +1516,7 @@ impl GcScratch {
         self.memo.clear();
         self.dead.clear();
         self.visited.clear();
-        self.queue.clear();
+        self.path.clear();
         self.stack.clear();
     }
 }
