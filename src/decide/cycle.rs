@@ -376,6 +376,7 @@ impl Agent {
             self.trace_match_wmes(p, t);
         }
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
+        let mut args = std::mem::take(&mut self.decider.rhs_args);
         self.rete.token_wmes(t, &mut wmes);
         // The match goal (spec §3b), from the WMEs the actions read anyway.
         let goal = crate::support::goal_of(self, wmes.iter().copied());
@@ -404,14 +405,20 @@ impl Agent {
         for (action_index, action) in rule.actions.iter().enumerate() {
             match action {
                 Act::Call(f) => {
-                    let args: Option<Vec<Sym>> = f
-                        .args
-                        .iter()
-                        .map(|a| self.term_value(&rule, &wmes, a, level, &mut new_ids))
-                        .collect();
-                    if let Some(args) = args {
+                    let mut complete = true;
+                    for a in &f.args {
+                        match self.term_value(&rule, &wmes, a, level, &mut new_ids, &mut args) {
+                            Some(v) => args.push(v),
+                            None => {
+                                complete = false;
+                                break;
+                            }
+                        }
+                    }
+                    if complete {
                         let _ = self.call_rhs(&f.name, &args);
                     }
+                    args.clear();
                 }
                 Act::Make {
                     id,
@@ -420,14 +427,17 @@ impl Agent {
                     referent,
                     kind,
                 } => {
-                    let id = self.term_value(&rule, &wmes, id, level, &mut new_ids);
-                    let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids);
-                    let value = self.term_value(&rule, &wmes, value, level, &mut new_ids);
+                    let id = self.term_value(&rule, &wmes, id, level, &mut new_ids, &mut args);
+                    let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids, &mut args);
+                    let value =
+                        self.term_value(&rule, &wmes, value, level, &mut new_ids, &mut args);
                     let referent = match referent {
-                        Some(r) => match self.term_value(&rule, &wmes, r, level, &mut new_ids) {
-                            Some(x) => Some(x),
-                            None => continue,
-                        },
+                        Some(r) => {
+                            match self.term_value(&rule, &wmes, r, level, &mut new_ids, &mut args) {
+                                Some(x) => Some(x),
+                                None => continue,
+                            }
+                        }
                         None => None,
                     };
                     let (Some(id), Some(attr), Some(value)) = (id, attr, value) else {
@@ -466,6 +476,7 @@ impl Agent {
             }
         }
         self.decider.rhs_wmes = wmes;
+        self.decider.rhs_args = args;
         self.decider.inst_by_token.insert((p, t), inst_id);
         let own_prefs = if traced || level >= 2 {
             inst.prefs.clone()
@@ -526,6 +537,7 @@ impl Agent {
         term: &Term,
         level: u32,
         new_ids: &mut [Option<Sym>],
+        args: &mut Vec<Sym>,
     ) -> Option<Sym> {
         match term {
             Term::Sym(s) => Some(*s),
@@ -539,11 +551,26 @@ impl Agent {
                 Some(s)
             }
             Term::Call(f) => {
-                let mut args = Vec::with_capacity(f.args.len());
+                // The arguments go on the firing's one stack, above the caller's.
+                let base = args.len();
                 for a in &f.args {
-                    args.push(self.term_value(rule, wmes, a, level, new_ids)?);
+                    // Constants and bindings (nearly every argument) without the recursion.
+                    let v = match a {
+                        Term::Sym(s) => Some(*s),
+                        Term::Bound(depth, field) => self.rete.field_at(wmes, *depth, *field),
+                        _ => self.term_value(rule, wmes, a, level, new_ids, args),
+                    };
+                    match v {
+                        Some(v) => args.push(v),
+                        None => {
+                            args.truncate(base);
+                            return None;
+                        }
+                    }
                 }
-                match self.call_rhs(&f.name, &args) {
+                let result = self.call_rhs(&f.name, &args[base..]);
+                args.truncate(base);
+                match result {
                     Ok(Some(s)) => Some(s),
                     _ => None,
                 }
@@ -664,10 +691,31 @@ impl Agent {
             if self.decider.slots.generation(id) != generation {
                 continue; // The slot went after it changed.
             }
-            self.decider.slots.slot_mut(id).changed = false;
-            let key = self.decider.slots.slot(id).key;
+            let slot = self.decider.slots.slot_mut(id);
+            slot.changed = false;
+            let key = slot.key;
+            let incremental = slot.only_touched_changed();
+            let mut touched = std::mem::take(&mut slot.touched);
+            slot.full = false;
             if self.is_context_slot(key) {
+                touched.clear();
+                self.decider.slots.slot_mut(id).touched = touched;
                 context.push(key);
+                continue;
+            }
+            let slot = self.decider.slots.slot(id);
+            let done = incremental
+                && update_touched_values(
+                    slot,
+                    &self.decider.prefs,
+                    &mut touched,
+                    &self.wm,
+                    &mut removes,
+                    &mut adds,
+                );
+            touched.clear();
+            self.decider.slots.slot_mut(id).touched = touched;
+            if done {
                 continue;
             }
             let slot = self.decider.slots.slot(id);
@@ -1427,6 +1475,59 @@ const LARGE_SLOT: usize = 16;
 /// The values a non-context slot's WMEs should show: each acceptable value not rejected,
 /// oldest preference first. Linear in the slot, with sets only for large slots (one slot can
 /// hold thousands of values, most hold one).
+/// Brings a large non-context slot in line for its touched values alone, as the full pass
+/// of `update_slots` would: a value shows as a WME while it has an acceptable and no reject
+/// preference; its removal goes in newest-WME-first order. `false` (nothing done) when more
+/// than one value is to be added: their order (that of their oldest acceptable preference)
+/// is the full pass's to find.
+fn update_touched_values(
+    slot: &Slot,
+    prefs: &[Preference],
+    touched: &mut Vec<Sym>,
+    wm: &crate::wm::WorkingMemory,
+    removes: &mut Vec<(WmeId, u64)>,
+    adds: &mut Vec<(Sym, Sym, Sym, bool)>,
+) -> bool {
+    touched.sort_unstable();
+    touched.dedup();
+    let mut gone: Vec<(usize, WmeId)> = Vec::new();
+    let mut add = None;
+    for &v in touched.iter() {
+        let (mut acceptable, mut rejected) = (false, false);
+        for pid in slot.prefs_for(v) {
+            match prefs[pid as usize].kind {
+                PrefType::Reject => rejected = true,
+                PrefType::Acceptable => acceptable = true,
+                _ => {}
+            }
+        }
+        let wanted = acceptable && !rejected;
+        match (wanted, slot.wmes.position(&(v, false))) {
+            (false, Some(pos)) => {
+                if let Some(w) = slot.wmes.get(&(v, false)) {
+                    gone.push((pos, w));
+                }
+            }
+            (true, None) => {
+                if add.is_some() {
+                    return false;
+                }
+                add = Some(v);
+            }
+            _ => {}
+        }
+    }
+    gone.sort_unstable_by_key(|g| std::cmp::Reverse(g.0));
+    removes.extend(
+        gone.iter()
+            .map(|&(_, w)| (w, wm.get(w).map_or(0, |x| x.timetag))),
+    );
+    if let Some(v) = add {
+        adds.push((slot.key.0, slot.key.1, v, false));
+    }
+    true
+}
+
 fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> &'a Wanted {
     out.clear();
     let large = slot.prefs.len() > LARGE_SLOT;

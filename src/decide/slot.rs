@@ -28,6 +28,11 @@ pub struct Slot {
     pub wmes: SlotWmes,
     /// Its (id, attr).
     pub key: (Sym, Sym),
+    /// Large slots (with `by_value`): the values whose preferences came or went since the
+    /// slot was last brought in line with working memory, so that one new value among
+    /// thousands is decided alone (`update_slots`); `full` when they were not all noted.
+    pub touched: Vec<Sym>,
+    pub full: bool,
     /// Marked changed in this elaboration cycle (it is in `DecideState::changed`).
     pub changed: bool,
 }
@@ -40,6 +45,8 @@ impl Default for Slot {
             by_value: None,
             wmes: SlotWmes::default(),
             key: (Sym(u32::MAX), Sym(u32::MAX)),
+            touched: Vec::new(),
+            full: false,
             changed: false,
         }
     }
@@ -50,13 +57,17 @@ impl Slot {
         self.prefs.push(pid);
         self.values.push(value);
         match &mut self.by_value {
-            Some(index) => index.entry(value).or_default().push(pid),
+            Some(index) => {
+                index.entry(value).or_default().push(pid);
+                self.touched.push(value);
+            }
             None if self.prefs.len() > SMALL => {
                 let mut index: FxHashMap<Sym, Vec<PrefId>> = FxHashMap::default();
                 for (&p, &v) in self.prefs.iter().zip(&self.values) {
                     index.entry(v).or_default().push(p);
                 }
                 self.by_value = Some(index);
+                self.full = true;
             }
             None => {}
         }
@@ -70,6 +81,7 @@ impl Slot {
         self.prefs.remove(pos);
         self.values.remove(pos);
         if let Some(index) = &mut self.by_value {
+            self.touched.push(value);
             if let Some(list) = index.get_mut(&value) {
                 if let Some(i) = list.iter().rposition(|x| *x == pid) {
                     list.remove(i);
@@ -86,7 +98,10 @@ impl Slot {
     pub fn remove_value(&mut self, value: Sym, gone: &mut Vec<PrefId>) {
         let before = gone.len();
         match &mut self.by_value {
-            Some(index) => gone.extend(index.remove(&value).unwrap_or_default()),
+            Some(index) => {
+                gone.extend(index.remove(&value).unwrap_or_default());
+                self.touched.push(value);
+            }
             None => gone.extend(self.prefs_for(value)),
         }
         if gone.len() > before {
@@ -111,12 +126,19 @@ impl Slot {
         self.prefs.is_empty() && self.wmes.is_empty()
     }
 
+    /// Whether the touched values alone can bring the slot in line (see `touched`).
+    pub fn only_touched_changed(&self) -> bool {
+        self.by_value.is_some() && !self.full
+    }
+
     /// Empties the slot, keeping its vectors' room for the next slot made.
     fn clear(&mut self) {
         self.prefs.clear();
         self.values.clear();
         self.by_value = None;
         self.wmes.clear();
+        self.touched.clear();
+        self.full = false;
         self.changed = false;
     }
 }
@@ -209,7 +231,8 @@ impl SlotWmes {
         self.live == 0
     }
 
-    fn position(&self, key: &(Sym, bool)) -> Option<usize> {
+    /// Where the entry for `key` is (entries are in the order added).
+    pub fn position(&self, key: &(Sym, bool)) -> Option<usize> {
         match &self.index {
             Some(index) => index.get(key).map(|&i| i as usize),
             None => self

@@ -157,6 +157,8 @@ pub struct DecideState {
     pub(crate) compiled: Vec<Option<std::rc::Rc<super::compiled::CompiledRule>>>,
     /// Scratch for firing: the WMEs of the match, by token depth.
     pub(crate) rhs_wmes: Vec<WmeId>,
+    /// The arguments of a firing's RHS function calls, as a stack (nested calls above).
+    pub(crate) rhs_args: Vec<Sym>,
 }
 
 impl DecideState {
