@@ -306,6 +306,28 @@ impl Rete {
                 }
                 self.scratch.truncate(base);
             }
+            Kind::Negative { .. } | Kind::Ncc { .. } | Kind::NccPartner { .. } => {
+                self.left_activation_cold(n, t, w, syms, sink)
+            }
+            Kind::Production { prod } => {
+                let nt = self.new_token(n, t, w);
+                sink.matched(prod, nt);
+            }
+        }
+    }
+
+    /// The left activations of negative and NCC nodes, kept out of `left_activation` so
+    /// that its hot arms (memories, joins, productions) stay small.
+    #[inline(never)]
+    fn left_activation_cold(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        match self.nodes[n as usize].kind {
             Kind::Negative {
                 amem,
                 right_unlinked,
@@ -377,10 +399,7 @@ impl Rete {
                     }
                 }
             }
-            Kind::Production { prod } => {
-                let nt = self.new_token(n, t, w);
-                sink.matched(prod, nt);
-            }
+            _ => {}
         }
     }
 
