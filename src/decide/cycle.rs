@@ -703,19 +703,14 @@ impl Agent {
                 context.push(key);
                 continue;
             }
-            let slot = self.decider.slots.slot(id);
-            let done = incremental
-                && update_touched_values(
-                    slot,
-                    &self.decider.prefs,
-                    &mut touched,
-                    &self.wm,
-                    &mut removes,
-                    &mut adds,
-                );
+            if incremental {
+                let slot = self.decider.slots.slot(id);
+                let prefs = &self.decider.prefs;
+                update_touched_values(slot, prefs, &mut touched, &self.wm, &mut removes, &mut adds);
+            }
             touched.clear();
             self.decider.slots.slot_mut(id).touched = touched;
-            if done {
+            if incremental {
                 continue;
             }
             let slot = self.decider.slots.slot(id);
@@ -1477,9 +1472,8 @@ const LARGE_SLOT: usize = 16;
 /// hold thousands of values, most hold one).
 /// Brings a large non-context slot in line for its touched values alone, as the full pass
 /// of `update_slots` would: a value shows as a WME while it has an acceptable and no reject
-/// preference; its removal goes in newest-WME-first order. `false` (nothing done) when more
-/// than one value is to be added: their order (that of their oldest acceptable preference)
-/// is the full pass's to find.
+/// preference; removals go in newest-WME-first order, additions in the order of each
+/// value's oldest acceptable preference (a new wall brings a hundred comparisons at once).
 fn update_touched_values(
     slot: &Slot,
     prefs: &[Preference],
@@ -1487,11 +1481,11 @@ fn update_touched_values(
     wm: &crate::wm::WorkingMemory,
     removes: &mut Vec<(WmeId, u64)>,
     adds: &mut Vec<(Sym, Sym, Sym, bool)>,
-) -> bool {
+) {
     touched.sort_unstable();
     touched.dedup();
     let mut gone: Vec<(usize, WmeId)> = Vec::new();
-    let mut add = None;
+    let mut add: Vec<Sym> = Vec::new();
     for &v in touched.iter() {
         let (mut acceptable, mut rejected) = (false, false);
         for pid in slot.prefs_for(v) {
@@ -1508,12 +1502,7 @@ fn update_touched_values(
                     gone.push((pos, w));
                 }
             }
-            (true, None) => {
-                if add.is_some() {
-                    return false;
-                }
-                add = Some(v);
-            }
+            (true, None) => add.push(v),
             _ => {}
         }
     }
@@ -1522,10 +1511,23 @@ fn update_touched_values(
         gone.iter()
             .map(|&(_, w)| (w, wm.get(w).map_or(0, |x| x.timetag))),
     );
-    if let Some(v) = add {
+    if add.len() > 1 {
+        // `add` is sorted (from `touched`): walk the slot's preferences oldest first.
+        let mut done = vec![false; add.len()];
+        let mut ordered = Vec::with_capacity(add.len());
+        for (&pid, &v) in slot.prefs.iter().zip(slot.values()) {
+            if let Ok(i) = add.binary_search(&v) {
+                if !done[i] && prefs[pid as usize].kind == PrefType::Acceptable {
+                    done[i] = true;
+                    ordered.push(v);
+                }
+            }
+        }
+        add = ordered;
+    }
+    for v in add {
         adds.push((slot.key.0, slot.key.1, v, false));
     }
-    true
 }
 
 fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> &'a Wanted {

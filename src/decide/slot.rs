@@ -126,6 +126,11 @@ impl Slot {
         self.prefs.is_empty() && self.wmes.is_empty()
     }
 
+    /// The value of each preference of `prefs`, at the same position.
+    pub fn values(&self) -> &[Sym] {
+        &self.values
+    }
+
     /// Whether the touched values alone can bring the slot in line (see `touched`).
     pub fn only_touched_changed(&self) -> bool {
         self.by_value.is_some() && !self.full

@@ -363,6 +363,9 @@ pub struct Rete {
     pub(crate) amems: Blocks<Amem>,
     free_amems: Vec<AmemId>,
     amem_index: FxHashMap<AlphaKey, AmemId>,
+    /// How many alpha memories leave the attribute open: most networks have none, and then
+    /// a new WME looks up two keys, not four.
+    attrless_amems: u32,
     pub(crate) rm: Vec<RmEntry>,
     free_rm: Vec<u32>,
     pub(crate) wmes: Vec<Option<RWme>>,
@@ -418,6 +421,7 @@ impl Rete {
             amems: Blocks::default(),
             free_amems: Vec::new(),
             amem_index: FxHashMap::default(),
+            attrless_amems: 0,
             rm: Vec::new(),
             free_rm: Vec::new(),
             wmes: Vec::new(),
@@ -505,6 +509,9 @@ impl Rete {
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
         self.amem_index.insert(key, id);
+        if key.attr.is_none() {
+            self.attrless_amems += 1;
+        }
         // A new alpha memory starts with every WME that passes its constant tests.
         let matching: Vec<WmeId> = self
             .wmes
@@ -545,6 +552,9 @@ impl Rete {
             e = next;
         }
         self.amem_index.remove(&key);
+        if key.attr.is_none() {
+            self.attrless_amems -= 1;
+        }
         let am = &mut self.amems[a as usize];
         am.first = NIL;
         am.count = 0;
@@ -655,6 +665,9 @@ impl Rete {
             (None, Some(value)),
             (None, None),
         ] {
+            if a.is_none() && self.attrless_amems == 0 {
+                break;
+            }
             let key = AlphaKey {
                 attr: a,
                 value: v,
