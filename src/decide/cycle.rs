@@ -599,7 +599,7 @@ impl Agent {
             if let Some(slot) = self.decider.slots.id_of(&key) {
                 self.decider.slots.slot_mut(slot).remove(pid, value);
                 self.mark_changed(key, Some(slot));
-                self.decider.drop_slot_if_empty(key);
+                self.decider.slots.drop_if_empty(slot);
             } else {
                 self.mark_changed(key, None);
             }
@@ -851,9 +851,10 @@ impl Agent {
         };
         self.trace_wme("<=WM: ", &wme);
         let key = (wme.id, wme.attr);
-        if let Some(slot) = self.decider.slots.get_mut(&key) {
-            slot.wmes.remove(&(wme.value, wme.acceptable));
-            self.decider.drop_slot_if_empty(key);
+        if let Some(id) = self.decider.slots.id_of(&key) {
+            let slots = &mut self.decider.slots;
+            slots.slot_mut(id).wmes.remove(&(wme.value, wme.acceptable));
+            slots.drop_if_empty(id);
         }
         self.decider.wme_changes += 1;
         self.remove_wme(w);

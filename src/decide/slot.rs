@@ -327,29 +327,35 @@ impl Slots {
             .entry(key.0)
             .or_insert_with(|| self.spare_attrs.pop().unwrap_or_default())
             .push(key.1);
-        let mut slot = self.spare.pop().unwrap_or_default();
-        slot.key = key;
+        // A freed place holds an emptied slot (with its room) or a default one.
         let id = match self.free.pop() {
-            Some(id) => {
-                self.arena[id as usize] = slot;
-                id
-            }
+            Some(id) => id,
             None => {
-                self.arena.push(slot);
+                self.arena.push(self.spare.pop().unwrap_or_default());
                 self.gens.push(0);
                 (self.arena.len() - 1) as SlotId
             }
         };
+        self.arena[id as usize].key = key;
         self.map.insert(key, id);
         id
     }
 
-    /// Takes a slot out; hand it back with [`Slots::recycle`] once read.
-    pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
-        let id = self.map.remove(key)?;
-        let slot = std::mem::take(&mut self.arena[id as usize]);
+    /// Forgets the slot at `id` if it has no preferences and no WMEs, emptying it in place.
+    pub fn drop_if_empty(&mut self, id: SlotId) {
+        let slot = &mut self.arena[id as usize];
+        if !slot.is_empty() {
+            return;
+        }
+        let key = slot.key;
+        slot.clear();
+        self.map.remove(&key);
         self.gens[id as usize] += 1;
         self.free.push(id);
+        self.forget_attr(key);
+    }
+
+    fn forget_attr(&mut self, key: (Sym, Sym)) {
         if let Some(list) = self.attrs.get_mut(&key.0) {
             if let Some(i) = list.iter().position(|a| *a == key.1) {
                 list.remove(i);
@@ -362,6 +368,15 @@ impl Slots {
                 }
             }
         }
+    }
+
+    /// Takes a slot out; hand it back with [`Slots::recycle`] once read.
+    pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
+        let id = self.map.remove(key)?;
+        let slot = std::mem::take(&mut self.arena[id as usize]);
+        self.gens[id as usize] += 1;
+        self.free.push(id);
+        self.forget_attr(*key);
         Some(slot)
     }
 

@@ -199,10 +199,8 @@ impl DecideState {
     /// A slot with no preferences and no WMEs is forgotten (new identifiers keep coming;
     /// their slots must not pile up).
     pub fn drop_slot_if_empty(&mut self, key: (Sym, Sym)) {
-        if self.slots.get(&key).is_some_and(|s| s.is_empty()) {
-            if let Some(slot) = self.slots.remove(&key) {
-                self.slots.recycle(slot);
-            }
+        if let Some(id) = self.slots.id_of(&key) {
+            self.slots.drop_if_empty(id);
         }
     }
 
