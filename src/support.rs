@@ -27,6 +27,19 @@ pub(crate) fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId
     best.map(|(_, s)| s)
 }
 
+/// The lowest goal among some identifiers (see [`goal_of`]).
+pub(crate) fn goal_among(agent: &Agent, ids: impl Iterator<Item = Sym>) -> Option<Sym> {
+    let mut best: Option<(u32, Sym)> = None;
+    for id in ids {
+        if let Some(d) = agent.symbols.id_data(id).filter(|d| d.is_goal) {
+            if best.is_none_or(|(l, _)| d.level > l) {
+                best = Some((d.level, id));
+            }
+        }
+    }
+    best.map(|(_, s)| s)
+}
+
 /// The support a match gets (spec §3c, decided at match time as 9.6's rete does).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MatchSupport {

@@ -58,6 +58,11 @@ pub(crate) struct CompiledRule {
     /// cannot test its goal's selected operator and is I-supported (spec §3c), which
     /// spares the support test a walk over the match.
     pub may_test_operator: bool,
+    /// Where a match's distinct condition identifiers are read (token depth and field):
+    /// the first condition's, and for each later one the binding its identifier is joined
+    /// on. The match goal is the lowest goal among them (spec §3b); most rules test a dozen
+    /// conditions on a handful of identifiers. Filled in by `Agent::compiled_rule`.
+    pub id_places: Vec<(u32, Field)>,
 }
 
 /// Whether an attribute test can pass on `operator`.
@@ -177,5 +182,6 @@ pub(crate) fn compile(prod: &Production, info: &ProdInfo, symbols: &mut Symbols)
         flags: prod.flags.clone(),
         make_ids,
         may_test_operator,
+        id_places: Vec::new(),
     }
 }

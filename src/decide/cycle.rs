@@ -379,7 +379,12 @@ impl Agent {
         let mut args = std::mem::take(&mut self.decider.rhs_args);
         self.rete.token_wmes(t, &mut wmes);
         // The match goal (spec §3b), from the WMEs the actions read anyway.
-        let goal = crate::support::goal_of(self, wmes.iter().copied());
+        let goal = crate::support::goal_among(
+            self,
+            rule.id_places
+                .iter()
+                .filter_map(|&(d, f)| self.rete.field_at(&wmes, d, f)),
+        );
         let level = goal
             .and_then(|g| self.symbols.id_data(g))
             .map_or(1, |d| d.level);
@@ -519,7 +524,9 @@ impl Agent {
         }
         let prod = self.production_by_id(p)?;
         let info = self.rete.production(p)?;
-        let rule = Rc::new(compiled::compile(&prod, info, &mut self.symbols));
+        let mut rule = compiled::compile(&prod, info, &mut self.symbols);
+        rule.id_places = self.rete.condition_id_places(info);
+        let rule = Rc::new(rule);
         if self.decider.compiled.len() <= i {
             self.decider.compiled.resize(i + 1, None);
         }

@@ -1097,6 +1097,25 @@ impl Rete {
         self.free_rows[len].push(row);
     }
 
+    /// Where a production's matches hold their distinct condition identifiers (see
+    /// `CompiledRule::id_places`): each positive condition's identifier is its WME's, or the
+    /// binding its join is hashed on when it has one (an equal symbol read once).
+    pub(crate) fn condition_id_places(&self, info: &ProdInfo) -> Vec<(u32, tests::Field)> {
+        let mut places = Vec::new();
+        for &n in info.cond_nodes.iter() {
+            let node = &self.nodes[n as usize];
+            if !matches!(node.kind, Kind::Join { .. }) {
+                continue;
+            }
+            let own = (self.nodes[node.parent as usize].depth + 1, tests::Field::Id);
+            let place = node.hash.get().unwrap_or(own);
+            if !places.contains(&place) {
+                places.push(place);
+            }
+        }
+        places
+    }
+
     /// The WMEs of a token and its ancestors, newest first.
     pub(crate) fn chain_wmes(&self, token: TokId) -> impl Iterator<Item = WmeId> + '_ {
         let mut t = token;
