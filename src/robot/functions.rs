@@ -22,6 +22,7 @@
 
 use crate::agent::Agent;
 
+use super::fixed::fixed;
 use super::sonar::{Transducer, P2DX_SONARS};
 
 /// The names the rules call, in the order of the table above.
@@ -69,7 +70,7 @@ pub fn getlength(args: &str) -> String {
 
 /// [`getlength`] on its numbers.
 fn getlength_of([x1, y1, x2, y2]: [f64; 4]) -> String {
-    format!("{:.3}", (x2 - x1).hypot(y2 - y1))
+    fixed((x2 - x1).hypot(y2 - y1), 3)
 }
 
 /// Where a robot sees a wall (`checkwallrelation`'s result).
@@ -204,7 +205,7 @@ fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
         return "-1".to_string();
     };
     match sonar_distance(rx, ry, rth, t, (sx, sy), (ex, ey)) {
-        Some(d) => format!("{d:.3}"),
+        Some(d) => fixed(d, 3),
         None => "-1".to_string(),
     }
 }

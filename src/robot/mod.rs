@@ -10,12 +10,14 @@
 //! - [`soar_loop`]: the SoarRobot loop joining simulator, pipeline and the thesis rules;
 //! - [`experiment`]: `rusoar slam`, the thesis's experiment over many seeds, and [`report`]:
 //!   its figures (SVG and PNG) and `report.md`;
-//! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share.
+//! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share;
+//! - [`fixed`]: fast fixed-decimal printing for the step records and `exec` results.
 //!
 //! Sources: the thesis's "Hough-Transform Java" section (`soar-slam-thesis.txt`) and
 //! `robotics-anchors.md` (Pioneer geometry, Stage's sonar and odometry models).
 
 pub mod experiment;
+pub mod fixed;
 pub mod functions;
 pub mod geom;
 pub mod odometry;

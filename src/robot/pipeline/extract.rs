@@ -56,11 +56,17 @@ const BUCKET_DEG: f64 = 10.0;
 /// through it (a real sonar loses such echoes by specular reflection).
 const MAX_CROSSING_DEG: f64 = 60.0;
 
+/// Number of beam-direction buckets.
+const N_BUCKETS: usize = (360.0 / BUCKET_DEG) as usize;
+
 /// The wall extractor over one set of filtered returns.
 struct Extractor<'a> {
     rays: Vec<Ray>,
-    /// Ray indices by beam direction, in [`BUCKET_DEG`] buckets (arcs mode).
-    buckets: Vec<Vec<usize>>,
+    /// Which rays fall in each beam-direction bucket of [`BUCKET_DEG`] (arcs mode): bit `i % 64`
+    /// of word `b * words + i / 64` is set when ray `i` is in bucket `b`.
+    buckets: Vec<u64>,
+    /// Words per bucket.
+    words: usize,
     settings: &'a Settings,
     cos_half: f64,
     floor: f64,
@@ -68,39 +74,55 @@ struct Extractor<'a> {
 
 impl<'a> Extractor<'a> {
     fn new(points: &[SonarPoint], settings: &'a Settings) -> Self {
-        let n_buckets = (360.0 / BUCKET_DEG) as usize;
-        let mut buckets = vec![Vec::new(); n_buckets];
+        let words = points.len().div_ceil(64);
+        let mut buckets = vec![0u64; N_BUCKETS * words];
         for (i, p) in points.iter().enumerate() {
             let b = (p.heading.to_degrees().rem_euclid(360.0) / BUCKET_DEG) as usize;
-            buckets[b.min(n_buckets - 1)].push(i);
+            buckets[b.min(N_BUCKETS - 1) * words + i / 64] |= 1 << (i % 64);
         }
         Extractor {
             rays: points.iter().map(Ray::from).collect(),
             buckets,
+            words,
             settings,
             cos_half: (settings.beam_deg.to_radians() / 2.0).cos(),
             floor: settings.r_bin_mm / 2.0,
         }
     }
 
-    /// Indices of the returns that may support `line`: all of them in points mode; in arcs
-    /// mode only those whose beam points within the cone of the line's normal (either way).
+    /// Indices of the returns that may support `line`, in increasing order: all of them in
+    /// points mode; in arcs mode only those whose beam points within the cone of the line's
+    /// normal (either way).
     fn may_support(&self, line: &Line) -> Vec<usize> {
         if self.settings.vote_mode == VoteMode::Points || self.settings.beam_deg >= 180.0 {
             return (0..self.rays.len()).collect();
         }
-        let n = self.buckets.len() as i64;
+        let n = N_BUCKETS as i64;
         let half = self.settings.beam_deg / 2.0;
-        let mut out = Vec::new();
+        let mut wanted = [false; N_BUCKETS];
         for centre in [line.th.to_degrees(), line.th.to_degrees() + 180.0] {
             let lo = ((centre - half) / BUCKET_DEG).floor() as i64;
             let hi = ((centre + half) / BUCKET_DEG).floor() as i64;
             for b in lo..=hi.min(lo + n - 1) {
-                out.extend_from_slice(&self.buckets[b.rem_euclid(n) as usize]);
+                wanted[b.rem_euclid(n) as usize] = true;
             }
         }
-        out.sort_unstable();
-        out.dedup();
+        let mut list = [0usize; N_BUCKETS];
+        let mut count = 0;
+        for (b, _) in wanted.iter().enumerate().filter(|(_, &on)| on) {
+            list[count] = b * self.words;
+            count += 1;
+        }
+        // The union of the wanted buckets' rays, read off their bit sets word by word.
+        let mut out = Vec::new();
+        for w in 0..self.words {
+            let bits_of = |start: &usize| self.buckets[start + w];
+            let mut bits = list[..count].iter().map(bits_of).fold(0, |a, b| a | b);
+            while bits != 0 {
+                out.push(w * 64 + bits.trailing_zeros() as usize);
+                bits &= bits - 1;
+            }
+        }
         out
     }
 

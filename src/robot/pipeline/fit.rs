@@ -15,6 +15,7 @@
 //!   the wall obliquely, by up to 1 − cos(β/2) of the range; the tangent estimate is not.
 
 use std::f64::consts::{PI, TAU};
+use std::sync::LazyLock;
 
 use super::convert::SonarPoint;
 
@@ -220,18 +221,20 @@ impl Ray {
     }
 }
 
-/// The line near direction `th0` that best agrees with the tangent r of the facing returns
+/// The line near the direction `th0` of `from` that best agrees with the tangent r of the facing returns
 /// `set`: `r_i(θ) = sx_i cos θ + sy_i sin θ + sign_i·range_i` is linear in (cos θ, sin θ), so its
 /// variance over the set is a quadratic form in them, evaluated from six moments for every θ
 /// within [`MAX_TURN_DEG`] of `th0` in 0.05° steps. θ stays `th0` when the transducers are too
 /// bunched along the line (under 300 mm apart, or fewer than 3) to observe it.
-fn best_tangent_line(set: &[(Ray, f64)], th0: f64) -> Line {
+fn best_tangent_line(set: &[(Ray, f64)], from: &Line) -> Line {
+    let th0 = from.th;
     let n = set.len().max(1) as f64;
     let z = |(p, sign): &(Ray, f64)| sign * p.range;
     let mx = set.iter().map(|(p, _)| p.sx).sum::<f64>() / n;
     let my = set.iter().map(|(p, _)| p.sy).sum::<f64>() / n;
     let mz = set.iter().map(z).sum::<f64>() / n;
-    let line0 = Line::new(0.0, th0);
+    // `from` holds th0's sine and cosine already.
+    let line0 = Line { r: 0.0, ..*from };
     let along = set.iter().map(|(p, _)| line0.along(p.sx, p.sy));
     let spread =
         along.clone().fold(f64::NEG_INFINITY, f64::max) - along.fold(f64::INFINITY, f64::min);
@@ -253,9 +256,9 @@ fn best_tangent_line(set: &[(Ray, f64)], th0: f64) -> Line {
             c * c * cxx + s * s * cyy + czz + 2.0 * (c * s * cxy + c * cxz + s * cyz)
         };
         // Scan θ = th0 − max_turn … th0 + max_turn, rotating (cos, sin) step by step.
-        let steps = 60;
+        let steps = SCAN_STEPS;
         let step = MAX_TURN_DEG.to_radians() / steps as f64;
-        let (ds, dc) = step.sin_cos();
+        let (ds, dc) = *STEP_TRIG;
         let (mut s, mut c) = (th0 - step * steps as f64).sin_cos();
         let (mut best, mut best_var) = (th0, f64::INFINITY);
         for i in -steps..=steps {
@@ -267,9 +270,25 @@ fn best_tangent_line(set: &[(Ray, f64)], th0: f64) -> Line {
         }
         best
     };
-    let (s, c) = th.sin_cos();
-    Line::new(mx * c + my * s + mz, th)
+    let (s, c) = if th.to_bits() == th0.to_bits() {
+        (from.s, from.c)
+    } else {
+        th.sin_cos()
+    };
+    Line {
+        r: mx * c + my * s + mz,
+        th,
+        c,
+        s,
+    }
 }
+
+/// [`best_tangent_line`] scans this many θ steps either side of its start.
+const SCAN_STEPS: i32 = 60;
+
+/// Sine and cosine of that θ step, computed once.
+static STEP_TRIG: LazyLock<(f64, f64)> =
+    LazyLock::new(|| (MAX_TURN_DEG.to_radians() / SCAN_STEPS as f64).sin_cos());
 
 /// The line near `line0` tangent to the visible arcs of the returns of `rays` that face it
 /// (`cos_half` = cosine of the beam's half-width), after one round of trimming (tangent r
@@ -282,7 +301,7 @@ pub fn tangent_fit(rays: &[Ray], line0: &Line, cos_half: f64, floor: f64) -> Opt
     if set.is_empty() {
         return None;
     }
-    let line1 = best_tangent_line(&set, line0.th);
+    let line1 = best_tangent_line(&set, line0);
     let limit = trim_limit(
         set.iter().map(|(p, s)| p.tangent_r(*s, &line1) - line1.r),
         floor,
@@ -291,7 +310,7 @@ pub fn tangent_fit(rays: &[Ray], line0: &Line, cos_half: f64, floor: f64) -> Opt
     if set.is_empty() {
         return Some(line1.normalised());
     }
-    Some(best_tangent_line(&set, line1.th).normalised())
+    Some(best_tangent_line(&set, &line1).normalised())
 }
 
 /// Folds a line to r ≥ 0 and θ in `[0, 2π)`.

@@ -20,8 +20,13 @@
 //!   of beams meeting it obliquely (placed short of the wall on the beam axis) do not vote for it.
 
 use super::convert::SonarPoint;
+use super::pool::{self, Bands, Pool};
 use super::settings::VoteMode;
 use super::Settings;
+
+thread_local! {
+    static FREE: Pool = const { Pool::new(Vec::new()) };
+}
 
 /// Largest accumulator, in cells; beyond it the r bin is widened (only for absurd inputs).
 const MAX_CELLS: usize = 1 << 21;
@@ -35,6 +40,16 @@ pub struct Accumulator {
     r_min_mm: f64,
     n_r: usize,
     votes: Vec<u32>,
+    /// The r bins of each θ column that hold votes.
+    bands: Bands,
+}
+
+impl Drop for Accumulator {
+    fn drop(&mut self) {
+        let mut votes = std::mem::take(&mut self.votes);
+        self.bands.zero(&mut votes, self.n_r);
+        pool::give(&FREE, votes);
+    }
 }
 
 impl Accumulator {
@@ -67,7 +82,8 @@ impl Accumulator {
             r_bin_mm: bin,
             r_min_mm: -2.0 * bin,
             n_r,
-            votes: vec![0; n_theta * n_r],
+            votes: pool::take(&FREE, n_theta * n_r),
+            bands: Bands::new(n_theta),
         }
     }
 
@@ -91,8 +107,15 @@ impl Accumulator {
         };
         let f = (r - self.r_min_mm) * (1.0 / self.r_bin_mm);
         if f >= 0.0 && f < self.n_r as f64 {
-            self.votes[t * self.n_r + f as usize] += 1;
+            self.bump(t, f as usize);
         }
+    }
+
+    /// One more vote in cell (t, ri).
+    #[inline]
+    fn bump(&mut self, t: usize, ri: usize) {
+        self.votes[t * self.n_r + ri] += 1;
+        self.bands.note(t, ri);
     }
 
     /// Votes `points` (x, y in mm) into a new accumulator with θ steps of `theta_step_deg`
@@ -109,11 +132,10 @@ impl Accumulator {
         let trig = acc.trig();
         let (n_r, r_min, inv) = (acc.n_r, acc.r_min_mm, 1.0 / acc.r_bin_mm);
         for (t, &(c, s)) in trig.iter().enumerate() {
-            let row = &mut acc.votes[t * n_r..(t + 1) * n_r];
             for &(x, y) in &points {
                 let f = (x * c + y * s - r_min) * inv;
                 if f >= 0.0 && f < n_r as f64 {
-                    row[f as usize] += 1;
+                    acc.bump(t, f as usize);
                 }
             }
         }
@@ -181,6 +203,11 @@ impl Accumulator {
         } else {
             0
         }
+    }
+
+    /// The r bins of column `t` that may hold votes (all others hold none).
+    pub fn voted_bins(&self, t: usize) -> std::ops::Range<usize> {
+        self.bands.get(t)
     }
 
     /// Number of θ columns.

@@ -24,6 +24,7 @@ pub mod extract;
 pub mod filter;
 pub mod fit;
 pub mod hough;
+mod pool;
 pub mod settings;
 pub mod wall;
 pub mod zones;

@@ -88,7 +88,8 @@ fn find_zones_with(acc: &Accumulator, k: u32, labels: &mut Labels) -> Vec<Zone> 
         (out, n)
     };
     for t0 in 0..nt {
-        for r0 in 0..nr {
+        // Bins outside the voted band hold no votes, so none is above k.
+        for r0 in acc.voted_bins(t0) {
             if acc.get(t0, r0) <= k || !unlabelled(label[t0 * nr + r0]) {
                 continue;
             }
