@@ -15,19 +15,13 @@ pub fn match_goal(agent: &Agent, _p: ProdId, t: TokId) -> Option<Sym> {
 }
 
 pub(crate) fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
-    let mut best: Option<(u32, Sym)> = None;
-    for w in wmes {
-        let Some(wme) = agent.wm.get(w) else { continue };
-        if let Some(d) = agent.symbols.id_data(wme.id).filter(|d| d.is_goal) {
-            if best.is_none_or(|(l, _)| d.level > l) {
-                best = Some((d.level, wme.id));
-            }
-        }
-    }
-    best.map(|(_, s)| s)
+    goal_among(
+        agent,
+        wmes.filter_map(|w| agent.wm.get(w).map(|wme| wme.id)),
+    )
 }
 
-/// The lowest goal among some identifiers (see [`goal_of`]).
+/// The lowest goal among some identifiers.
 pub(crate) fn goal_among(agent: &Agent, ids: impl Iterator<Item = Sym>) -> Option<Sym> {
     let mut best: Option<(u32, Sym)> = None;
     for id in ids {

@@ -196,14 +196,6 @@ impl DecideState {
         }
     }
 
-    /// A slot with no preferences and no WMEs is forgotten (new identifiers keep coming;
-    /// their slots must not pile up).
-    pub fn drop_slot_if_empty(&mut self, key: (Sym, Sym)) {
-        if let Some(id) = self.slots.id_of(&key) {
-            self.slots.drop_if_empty(id);
-        }
-    }
-
     /// Frees a retracted instantiation (nothing refers to it any more).
     pub fn free_inst(&mut self, i: InstId) {
         let inst = &mut self.insts[i as usize];
