@@ -330,6 +330,11 @@ pub fn is_builtin(name: &str) -> bool {
 /// `(exec getlength a b)`.
 pub fn call(name: &str, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym>, String> {
     ctx.error_fresh_line = false;
+    // `exec` first: robot agents call it in most firings, and the match below tries its
+    // arms in turn.
+    if name == "exec" {
+        return Ok(Some(exec(args, ctx)));
+    }
     match name {
         "+" => math::plus(args, ctx).map(Some),
         "*" => math::times(args, ctx).map(Some),
@@ -362,7 +367,6 @@ pub fn call(name: &str, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym
             }
             Ok(Some(ctx.str_sym(&s)))
         }
-        "exec" => Ok(Some(exec(args, ctx))),
         "cmd" => Ok(Some(cmd(args, ctx))),
         "interrupt" => {
             ctx.interrupt = true;

@@ -27,11 +27,14 @@ pub fn numbers(symbols: &Symbols, args: &[Sym], out: &mut Vec<f64>) -> Option<()
     if args.is_empty() || args.len().is_multiple_of(2) {
         return None;
     }
+    // The separators of one call are nearly always one constant: its text is checked once.
+    let mut last_separator = Sym(u32::MAX);
     for (i, &a) in args.iter().enumerate() {
         match (i % 2, symbols.get(a)) {
             (0, SymData::Int(n)) => out.push(*n as f64),
             (0, SymData::Float(f)) => out.push(six_decimals(*f)?),
-            (1, SymData::Str(s)) if is_separator(s) => {}
+            (1, SymData::Str(_)) if a == last_separator => {}
+            (1, SymData::Str(s)) if is_separator(s) => last_separator = a,
             _ => return None,
         }
     }
