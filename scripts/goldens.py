@@ -83,6 +83,7 @@ TRACE_AGENTS = [
     "gds",
     "halt",
     "impasse-conflict",
+    "justification-negation",
     "impasse-state-no-change",
     "prefs-binary",
     "substates",

@@ -508,6 +508,7 @@ impl Agent {
             &self.symbols,
             &mut self.matches,
         );
+        self.justification_wme_added(w);
         w
     }
 

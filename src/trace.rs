@@ -436,6 +436,10 @@ impl Agent {
     /// An o-supported instantiation, or one that made no preferences, has nothing to
     /// retract: 9.6 prints nothing for it, nor for a justification.
     pub(crate) fn trace_retraction(&mut self, inst: crate::decide::state::InstId) {
+        if self.decider.insts[inst as usize].serial != 0 {
+            self.trace_justification_retraction(inst);
+            return;
+        }
         let (prod, quiet) = {
             let i = &self.decider.insts[inst as usize];
             // Firings in a substate that is gone retract silently too (checked on 9.6).
@@ -463,6 +467,38 @@ impl Agent {
             self.trace_match_wmes(p, t);
             let prefs = self.decider.insts[inst as usize].prefs.clone();
             self.trace_instantiation_prefs(&prefs);
+        }
+        if self.settings.trace.preferences {
+            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            for pid in prefs.into_iter().rev() {
+                let p = &self.decider.prefs[pid as usize];
+                if p.alive && !p.o_support {
+                    self.trace_pref('-', pid);
+                }
+            }
+        }
+    }
+
+    /// A justification retracting (a superstate negation matched, or a WME it tests went):
+    /// `Retracting justify1` with the firings trace, then its results' `-` lines with the
+    /// preferences trace, as 9.6 prints them; no match WMEs (checked on 9.6).
+    fn trace_justification_retraction(&mut self, inst: crate::decide::state::InstId) {
+        let i = &self.decider.insts[inst as usize];
+        if i.o_support || i.prefs.is_empty() {
+            return;
+        }
+        let serial = i.serial;
+        let Some(j) = self
+            .learn
+            .justifications
+            .iter()
+            .find(|j| j.serial == serial)
+        else {
+            return;
+        };
+        if self.settings.trace.firings_of(&j.production.flags) {
+            let line = format!("\nRetracting {}\n", j.production.name);
+            self.output.push_str(&line);
         }
         if self.settings.trace.preferences {
             let prefs = self.decider.insts[inst as usize].prefs.clone();

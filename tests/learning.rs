@@ -117,3 +117,42 @@ fn chunk_settings_listing() {
     ));
     assert!(out.ends_with("For a detailed explanation of these settings:         help chunk\n"));
 }
+
+/// 9.6 holds justifications in its rete, negations included: a result whose justification
+/// negates a superstate WME goes when that WME appears (checked on soar-sml 9.6.5), and
+/// one behind a conjunctive negation goes when the conjunction comes to match.
+#[test]
+fn justification_retracts_when_its_negated_superstate_wme_appears() {
+    let mut interp = Interpreter::new();
+    run(
+        &mut interp,
+        "sp {init (state <s> ^superstate nil) --> (<s> ^a 1)}\n\
+         sp {sub*neg (state <s> ^superstate <ss>) (<ss> ^a 1 -^b 1) --> (<ss> ^r x)}\n\
+         sp {sub*ncc (state <s> ^superstate <ss>) (<ss> ^a 1) \
+             -{(<ss> ^c <c>) (<c> ^d 1)} --> (<ss> ^t y)}",
+    );
+    run(&mut interp, "run 2");
+    let before = run(&mut interp, "print s1");
+    assert!(
+        before.contains("^r x") && before.contains("^t y"),
+        "{before}"
+    );
+    run(&mut interp, "wm add S1 b 1");
+    run(&mut interp, "wm add S1 c *");
+    run(&mut interp, "run 1");
+    let after_b = run(&mut interp, "print s1");
+    assert!(!after_b.contains("^r x"), "{after_b}");
+    assert!(
+        after_b.contains("^t y"),
+        "the conjunction does not match yet: {after_b}"
+    );
+    let c = after_b
+        .split("^c ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .expect("S1 ^c");
+    run(&mut interp, &format!("wm add {c} d 1"));
+    run(&mut interp, "run 1");
+    let after_d = run(&mut interp, "print s1");
+    assert!(!after_d.contains("^t y"), "{after_d}");
+}

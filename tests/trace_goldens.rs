@@ -21,6 +21,25 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
     ),
     ("gds", 5, "as at level 4"),
     (
+        "justification-negation",
+        3,
+        "order of two retractions one new WME causes, a rule's and a justification's over \
+         the same alpha memory: 9.6 lists the rule's first (its rete reaches the newer \
+         justification's node first), ours the justification's",
+    ),
+    (
+        "justification-negation",
+        4,
+        "as at level 3, and the order of `<=WM:` lines when a result goes with the \
+         structure of a removed operator",
+    ),
+    (
+        "justification-negation",
+        5,
+        "as at level 4, and 9.6 lists the `-` lines of the preferences of a substate's \
+         firings when the substate goes",
+    ),
+    (
         "prefs-binary",
         4,
         "order of `<=WM:` lines when several operators and their structure go at once",

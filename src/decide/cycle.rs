@@ -793,6 +793,7 @@ impl Agent {
                     &self.symbols,
                     &mut self.matches,
                 );
+                self.justification_wme_added(w);
             }
         }
         for &w in &added {
@@ -1217,6 +1218,7 @@ impl Agent {
                     &self.symbols,
                     &mut self.matches,
                 );
+                self.justification_wme_added(w);
             }
         }
         if self.settings.trace.decisions {

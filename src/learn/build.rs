@@ -16,6 +16,7 @@ use crate::production::{
 };
 use crate::symbols::{Sym, SymData};
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::Arc;
 
 fn pref_kind(t: PrefType) -> PrefKind {
     match t {
@@ -288,6 +289,39 @@ impl Builder<'_> {
 
 impl Agent {
     /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
+    /// The negations of a backtrace that belong to a learned rule or justification: those
+    /// about superstate objects, with the rule each is a condition of.
+    pub(crate) fn superstate_negations<'b>(
+        &self,
+        bt: &'b Backtrace,
+    ) -> Vec<(&'b super::backtrace::Negation, Arc<Production>)> {
+        let mut out = Vec::new();
+        for n in &bt.negations {
+            let Some(prod) = n.trace.prod.clone() else {
+                continue;
+            };
+            let Some(c) = prod.conditions.get(n.cond) else {
+                continue;
+            };
+            let first = match c {
+                Condition::Negative(x) | Condition::Positive(x) => Some(x),
+                Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
+                    Condition::Positive(x) | Condition::Negative(x) => Some(x),
+                    _ => None,
+                }),
+            };
+            let id_level = first
+                .and_then(|x| equality_var(&x.id))
+                .and_then(|v| n.trace.vars.get(v))
+                .and_then(|&(_, s)| self.symbols.id_data(s))
+                .map_or(u32::MAX, |d| d.level);
+            if id_level != 0 && id_level < bt.level {
+                out.push((n, prod));
+            }
+        }
+        out
+    }
+
     pub(crate) fn build_learned_rule(
         &self,
         bt: &Backtrace,
@@ -387,30 +421,8 @@ impl Agent {
                 span: orig.map(|o| o.span).unwrap_or_default(),
             }));
         }
-        let level = bt.level;
-        for n in &bt.negations {
-            let Some(prod) = n.trace.prod.clone() else {
-                continue;
-            };
-            let Some(c) = prod.conditions.get(n.cond) else {
-                continue;
-            };
-            // Only negations about superstate objects belong to the rule.
-            let first = match c {
-                Condition::Negative(x) | Condition::Positive(x) => Some(x),
-                Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
-                    Condition::Positive(x) | Condition::Negative(x) => Some(x),
-                    _ => None,
-                }),
-            };
-            let id_level = first
-                .and_then(|x| equality_var(&x.id))
-                .and_then(|v| n.trace.vars.get(v))
-                .and_then(|&(_, s)| self.symbols.id_data(s))
-                .map_or(u32::MAX, |d| d.level);
-            if id_level == 0 || id_level >= level {
-                continue;
-            }
+        for (n, prod) in self.superstate_negations(bt) {
+            let c = &prod.conditions[n.cond];
             let mut locals = FxHashMap::default();
             if let Some(t) = b.negation(&n.trace, c, &mut locals) {
                 if !conditions.contains(&t) {

@@ -455,6 +455,18 @@ impl Agent {
                 self.decider.justification_retractions.push((id, serial));
             }
         }
+        let negations: Vec<_> = self
+            .superstate_negations(bt)
+            .into_iter()
+            .map(|(n, prod)| (n.trace.clone(), prod, n.cond))
+            .collect();
+        if !negations.is_empty() {
+            let list: Vec<_> = negations
+                .iter()
+                .map(|(trace, prod, c)| (trace.clone(), &prod.conditions[*c]))
+                .collect();
+            self.learn.negations.watch(id, serial, &list, &self.symbols);
+        }
         if named {
             self.learn
                 .justification_names
@@ -494,6 +506,32 @@ impl Agent {
                 }
             }
         }
+    }
+
+    /// A WME was added: the justifications one of whose negations it matches retract
+    /// (9.6's rete holds justifications, negations included).
+    #[inline]
+    pub(crate) fn justification_wme_added(&mut self, w: crate::wm::WmeId) {
+        if !self.learn.negations.is_empty() {
+            self.check_justification_negations(w);
+        }
+    }
+
+    #[inline(never)]
+    fn check_justification_negations(&mut self, w: crate::wm::WmeId) {
+        let Some(attr) = self.wm.get(w).map(|x| x.attr) else {
+            return;
+        };
+        let insts = &self.decider.insts;
+        let hit = self
+            .learn
+            .negations
+            .violated_by(attr, &self.wm, &self.symbols, |i, s| {
+                insts
+                    .get(i as usize)
+                    .is_some_and(|x| x.alive && x.serial == s)
+            });
+        self.decider.justification_retractions.extend(hit);
     }
 
     /// A justification's instantiation lost a WME: its retraction is queued.

@@ -6,6 +6,7 @@
 mod backtrace;
 mod build;
 mod episode;
+mod negations;
 mod record;
 
 use crate::production::Production;
@@ -110,6 +111,9 @@ pub struct LearnState {
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
     pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(u32, u64)>>,
+    /// The superstate negations of live justifications: a new WME that matches one
+    /// retracts it.
+    pub negations: negations::WatchedNegations,
     pub next_serial: u64,
 }
 
@@ -121,6 +125,7 @@ impl LearnState {
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
+        self.negations.clear();
         self.force_learn.clear();
         self.dont_learn.clear();
         self.chunks_this_phase = 0;
