@@ -156,3 +156,20 @@ fn justification_retracts_when_its_negated_superstate_wme_appears() {
     let after_d = run(&mut interp, "print s1");
     assert!(!after_d.contains("^t y"), "{after_d}");
 }
+
+/// At trace level 5, 9.6 lists a removed substate's standing results as removed, oldest
+/// first, before the substate's `<=WM:` lines (soar-sml 9.6.5's trace of this agent).
+#[test]
+fn removed_substate_lists_its_results_at_trace_5() {
+    let mut interp = Interpreter::new();
+    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    run(&mut interp, "srand 1");
+    run(&mut interp, "source tests/agents/justification-negation.soar");
+    run(&mut interp, "trace 5");
+    let out = run(&mut interp, "run 50");
+    let expected = "Replacing it with....\n\
+                    - (S1 ^r x +) [level 2] (sub*result*negation)\n\
+                    - (S1 ^t y +) [level 2] (sub*result*ncc)\n\
+                    <=WM: ";
+    assert!(out.contains(expected), "{out}");
+}

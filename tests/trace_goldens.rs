@@ -33,12 +33,7 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
         "as at level 3, and the order of `<=WM:` lines when a result goes with the \
          structure of a removed operator",
     ),
-    (
-        "justification-negation",
-        5,
-        "as at level 4, and 9.6 lists the `-` lines of the preferences of a substate's \
-         firings when the substate goes",
-    ),
+    ("justification-negation", 5, "as at level 4"),
     (
         "prefs-binary",
         4,

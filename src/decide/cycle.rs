@@ -67,6 +67,7 @@ impl Agent {
                 items: Vec::new(),
                 wmes: Vec::new(),
                 slot_changed: true,
+                results: Vec::new(),
             });
         }
         let start_dc = self.decider.decisions;
@@ -508,6 +509,7 @@ impl Agent {
             if let Some(trace) = recorded {
                 let results = self.find_results(&own_prefs, level);
                 if !results.is_empty() {
+                    self.note_goal_results(goal, &results);
                     self.learn_from_results(results, level, &trace, new_prefs);
                 }
             }
@@ -939,6 +941,14 @@ impl Agent {
             );
             self.out(&s);
         }
+        if self.settings.trace.preferences {
+            // Before the substates' `<=WM:` lines, as 9.6 lists them.
+            for k in (gi + 1..self.decider.goals.len()).rev() {
+                let results = std::mem::take(&mut self.decider.goals[k].results);
+                let state = self.decider.goals[k].state;
+                self.trace_removed_results(state, &results);
+            }
+        }
         if self.settings.trace.wmes {
             self.trace_substate_wmes_removed(gi);
         }
@@ -1243,6 +1253,7 @@ impl Agent {
             items,
             wmes,
             slot_changed: true,
+            results: Vec::new(),
         });
     }
 
@@ -1253,6 +1264,9 @@ impl Agent {
             let Some(g) = self.decider.goals.pop() else {
                 break;
             };
+            if self.settings.trace.preferences {
+                self.trace_removed_results(g.state, &g.results);
+            }
             if let Some((_, w)) = g.operator {
                 self.remove_wme(w);
             }
@@ -1279,6 +1293,56 @@ impl Agent {
             self.decider.gds.retain(|_, goal| *goal != g.state);
         }
         self.collect_garbage();
+    }
+
+    /// Keeps a substate firing's i-supported results with its goal, for
+    /// [`Self::trace_removed_results`].
+    fn note_goal_results(&mut self, goal: Option<Sym>, results: &[PrefId]) {
+        let Some(gi) = self
+            .decider
+            .goals
+            .iter()
+            .position(|g| Some(g.state) == goal)
+        else {
+            return;
+        };
+        for &r in results {
+            let p = &self.decider.prefs[r as usize];
+            if !p.o_support {
+                let what = (p.id, p.attr, p.value);
+                self.decider.goals[gi].results.push((r, what));
+            }
+        }
+        // A long-lived substate keeps only the results that still stand (amortized).
+        let n = self.decider.goals[gi].results.len();
+        if n >= 64 && n.is_power_of_two() {
+            let mut kept = std::mem::take(&mut self.decider.goals[gi].results);
+            let prefs = &self.decider.prefs;
+            kept.retain(|&(pid, what)| {
+                let p = &prefs[pid as usize];
+                p.alive && !p.freed && (p.id, p.attr, p.value) == what
+            });
+            self.decider.goals[gi].results = kept;
+        }
+    }
+
+    /// 9.6's level-5 trace lists a removed state's results that its firings still
+    /// support, `- (S1 ^r x +) [level 2] (rule)`, oldest first, before the state's WMEs go
+    /// (checked on soar-sml 9.6.5, agent justification-negation).
+    fn trace_removed_results(&mut self, state: Sym, results: &[(PrefId, (Sym, Sym, Sym))]) {
+        for &(pid, what) in results {
+            let p = &self.decider.prefs[pid as usize];
+            let still = p.alive
+                && !p.freed
+                && (p.id, p.attr, p.value) == what
+                && p.inst.is_some_and(|i| {
+                    let inst = &self.decider.insts[i as usize];
+                    inst.alive && inst.goal == Some(state)
+                });
+            if still {
+                self.trace_pref('-', pid);
+            }
+        }
     }
 
     /// Removes WMEs no longer linked to a goal or the io link (spec §2). Only identifiers

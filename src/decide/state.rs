@@ -78,6 +78,9 @@ pub struct Goal {
     pub wmes: Vec<WmeId>,
     /// The operator slot's preferences changed since it was last decided (spec §3e).
     pub slot_changed: bool,
+    /// The i-supported results its firings made, oldest first, with what each says (a
+    /// handle can be reused): 9.6 lists them as removed when the state goes (level 5).
+    pub results: Vec<(PrefId, (Sym, Sym, Sym))>,
 }
 
 /// The phases of a decision cycle (spec §3a).
