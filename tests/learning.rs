@@ -164,7 +164,10 @@ fn removed_substate_lists_its_results_at_trace_5() {
     let mut interp = Interpreter::new();
     interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
     run(&mut interp, "srand 1");
-    run(&mut interp, "source tests/agents/justification-negation.soar");
+    run(
+        &mut interp,
+        "source tests/agents/justification-negation.soar",
+    );
     run(&mut interp, "trace 5");
     let out = run(&mut interp, "run 50");
     let expected = "Replacing it with....\n\
