@@ -468,13 +468,20 @@ impl Agent {
             let prefs = self.decider.insts[inst as usize].prefs.clone();
             self.trace_instantiation_prefs(&prefs);
         }
-        if self.settings.trace.preferences {
-            let prefs = self.decider.insts[inst as usize].prefs.clone();
-            for pid in prefs.into_iter().rev() {
-                let p = &self.decider.prefs[pid as usize];
-                if p.alive && !p.o_support {
-                    self.trace_pref('-', pid);
-                }
+        self.trace_retracted_prefs(inst);
+    }
+
+    /// The `-` lines of a retracting instantiation's i-supported preferences, newest first
+    /// (preferences trace).
+    fn trace_retracted_prefs(&mut self, inst: crate::decide::state::InstId) {
+        if !self.settings.trace.preferences {
+            return;
+        }
+        let prefs = self.decider.insts[inst as usize].prefs.clone();
+        for pid in prefs.into_iter().rev() {
+            let p = &self.decider.prefs[pid as usize];
+            if p.alive && !p.o_support {
+                self.trace_pref('-', pid);
             }
         }
     }
@@ -500,15 +507,7 @@ impl Agent {
             let line = format!("\nRetracting {}\n", j.production.name);
             self.output.push_str(&line);
         }
-        if self.settings.trace.preferences {
-            let prefs = self.decider.insts[inst as usize].prefs.clone();
-            for pid in prefs.into_iter().rev() {
-                let p = &self.decider.prefs[pid as usize];
-                if p.alive && !p.o_support {
-                    self.trace_pref('-', pid);
-                }
-            }
-        }
+        self.trace_retracted_prefs(inst);
     }
 
     /// The preferences of one elaboration cycle's firings as they are asserted: the newest
