@@ -642,20 +642,25 @@ impl Agent {
     /// from its slot (its `+` WME, then the selected one), the operator slots' other `+`
     /// WMEs oldest first, then the rest newest first (what is removed does not change,
     /// only the order it is listed in).
-    pub(crate) fn trace_removed_wmes(&mut self) {
-        let Some(mut wmes) = self.removed_wmes.take() else {
+    pub(crate) fn trace_removed_wmes(&mut self, decided: usize) {
+        let Some(wmes) = self.removed_wmes.take() else {
             return;
         };
+        let mut wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
         let op = self.symbols.find_str("operator");
         let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
         let selected: Vec<(Sym, Sym)> = wmes
             .iter()
-            .filter(|w| !w.acceptable && context(self, w))
-            .map(|w| (w.id, w.value))
+            .filter(|(_, w)| !w.acceptable && context(self, w))
+            .map(|(_, w)| (w.id, w.value))
             .collect();
-        let rank = |agent: &Agent, w: &Wme| -> (u8, u8, i64) {
+        let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, u8, i64) {
             if !context(agent, w) {
-                (2, 0, -(w.timetag as i64))
+                if *i < decided {
+                    (3, 0, *i as i64)
+                } else {
+                    (2, 0, -(w.timetag as i64))
+                }
             } else if selected.contains(&(w.id, w.value)) {
                 (0, u8::from(!w.acceptable), w.timetag as i64)
             } else {
@@ -663,7 +668,7 @@ impl Agent {
             }
         };
         wmes.sort_by_key(|w| rank(self, w));
-        for w in wmes {
+        for (_, w) in wmes {
             self.trace_wme("<=WM: ", &w);
         }
     }

@@ -336,13 +336,16 @@ impl Agent {
         // New preferences go in before the retractions are processed (9.6 prints the `+`
         // lines before `Retracting`), which sets the order slots change in (spec §3i).
         self.assert_preferences(&new_prefs);
-        // 9.6 lists the retractions newest first; they are processed oldest first here.
+        // 9.6 lists the retractions newest first and processes them in that order, each
+        // instantiation's preferences newest first: that is the order their slots change
+        // in, so the order of the `<=WM:` lines (checked with scripts/trace_compare.py:
+        // blocks-world now matches 9.6 at trace 4 and 5).
         if self.settings.trace.preferences || self.settings.trace.any_firings() {
             for &inst in retracted.iter().rev() {
                 self.trace_retraction(inst);
             }
         }
-        for &inst in &retracted {
+        for &inst in retracted.iter().rev() {
             self.retract(inst);
         }
         if apply && self.settings.trace.phases {
@@ -596,7 +599,8 @@ impl Agent {
         let inst = &mut self.decider.insts[inst_id as usize];
         inst.alive = false;
         let mut prefs = std::mem::take(&mut inst.prefs);
-        for &pid in &prefs {
+        // Newest first, as 9.6's list of an instantiation's preferences runs.
+        for &pid in prefs.iter().rev() {
             let pref = &mut self.decider.prefs[pid as usize];
             pref.inst = None;
             // O-supported preferences outlive their instantiation (spec §3a).
@@ -821,9 +825,10 @@ impl Agent {
                 self.remove_slot_wme(w);
             }
         }
+        let decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
         self.collect_garbage();
-        self.trace_removed_wmes();
+        self.trace_removed_wmes(decided);
         self.classify_new_matches();
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
         // minor quiescence, spec §3b): a result that ends a tie removes the tie's substate
