@@ -35,12 +35,6 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
     ),
     ("justification-negation", 5, "as at level 4"),
     (
-        "prefs-binary",
-        4,
-        "order of `<=WM:` lines when several operators and their structure go at once",
-    ),
-    ("prefs-binary", 5, "as at level 4"),
-    (
         "support-retraction",
         4,
         "order of `<=WM:` lines: 9.6 lists an o-supported WME of the removed operator \
