@@ -656,17 +656,21 @@ impl Rete {
             tokens: NIL,
             neg_results: NIL,
         });
-        // Up to four alpha memories can hold it: attribute and value constant or not.
+        // Up to four alpha memories can hold it: attribute and value constant or not. They
+        // are activated least specific first, as 9.6 walks its alpha hash tables; the order
+        // decides which left-unlinked joins relink first, so the order of new matches and
+        // of firings (spec §3i, §8 risk 1; scripts/trace_compare.py: o-reject,
+        // random-tokens and missionaries match 9.6 at every trace level with it).
         let mut targets = [NIL; 4];
         let mut n = 0;
         for (a, v) in [
-            (Some(attr), Some(value)),
-            (Some(attr), None),
-            (None, Some(value)),
             (None, None),
+            (None, Some(value)),
+            (Some(attr), None),
+            (Some(attr), Some(value)),
         ] {
             if a.is_none() && self.attrless_amems == 0 {
-                break;
+                continue;
             }
             let key = AlphaKey {
                 attr: a,
