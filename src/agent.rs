@@ -333,6 +333,9 @@ pub struct Agent {
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
+    /// The `<=WM:` lines of substates an operator removal takes away in this phase, each
+    /// with its place in 9.6's listing (see `trace_removed_wmes`).
+    pub(crate) substate_removals: Vec<(crate::trace::SubstateLine, crate::wm::Wme)>,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
@@ -368,6 +371,7 @@ impl Agent {
             output_line_start: false,
             output_reported: 0,
             removed_wmes: None,
+            substate_removals: Vec::new(),
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,

@@ -637,6 +637,21 @@ impl Agent {
     }
 }
 
+/// Where a removed substate's WME goes in a phase's `<=WM:` listing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SubstateLine {
+    /// The `^smem`/`^epmem`/`^reward-link` structure.
+    Memories,
+    /// Its slots' other WMEs.
+    Other,
+    /// Its operators' `+` WMEs.
+    OperatorPlus,
+    /// `^type`, `^superstate`, `^impasse` and the other impasse WMEs.
+    Impasse,
+    /// Its selected operator.
+    Selected,
+}
+
 impl Agent {
     /// The `<=WM:` lines of one working-memory phase in 9.6's order (what is removed does
     /// not change, only the order it is listed in): the operator slots' `+` WMEs oldest
@@ -644,11 +659,12 @@ impl Agent {
     /// garbage collection, newest first; then the WMEs the slot decisions removed, in the
     /// order their slots changed (the first `decided` of the buffer). Checked with
     /// scripts/trace_compare.py: 18 of the 30 agents match 9.6 whole at trace 4 and 5.
-    pub(crate) fn trace_removed_wmes(&mut self, decided: usize) {
+    pub(crate) fn trace_removed_wmes(&mut self, decided: std::ops::Range<usize>) {
         let Some(wmes) = self.removed_wmes.take() else {
             return;
         };
-        let mut wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
+        let substates = std::mem::take(&mut self.substate_removals);
+        let wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
         let op = self.symbols.find_str("operator");
         let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
         // Each operator's `+` WME's timetag, by (state, operator).
@@ -657,23 +673,48 @@ impl Agent {
             .filter(|(_, w)| w.acceptable && context(self, w))
             .map(|(_, w)| ((w.id, w.value), w.timetag))
             .collect();
+        // Without substates going: the goals' operator WMEs, the garbage, the slot
+        // decisions. With them (an operator removal took them), 9.6 lists the memories'
+        // structure, the substates' slot WMEs and the garbage first, then the operator `+`
+        // WMEs (the substates' first), the substates' impasse WMEs, and the selected
+        // operators after those (checked on soar-sml 9.6.5: substate-results,
+        // learn-justification, tests/data/traces/substate.soar).
+        let with_substates = !substates.is_empty();
         let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
-                if *i < decided {
-                    (2, *i as i64, 0)
+                if decided.contains(i) {
+                    (9, *i as i64, 0)
+                } else if with_substates {
+                    (2, -(w.timetag as i64), 0)
                 } else {
-                    (1, -(w.timetag as i64), 0)
+                    (5, -(w.timetag as i64), 0)
                 }
             } else {
                 let tt = plus
                     .iter()
                     .find(|(k, _)| *k == (w.id, w.value))
                     .map_or(w.timetag, |&(_, tt)| tt);
-                (0, tt as i64, u8::from(!w.acceptable))
+                match (with_substates, w.acceptable) {
+                    (true, false) => (8, tt as i64, 0),
+                    _ => (4, tt as i64, u8::from(!w.acceptable)),
+                }
             }
         };
-        wmes.sort_by_key(|w| rank(self, w));
-        for (_, w) in wmes {
+        let mut lines: Vec<((u8, i64, u8), Wme)> =
+            wmes.iter().map(|x| (rank(self, x), x.1)).collect();
+        for (k, (place, w)) in substates.into_iter().enumerate() {
+            let k = k as i64;
+            let r = match place {
+                SubstateLine::Memories => (0, k, 0),
+                SubstateLine::Other => (1, -(w.timetag as i64), 0),
+                SubstateLine::OperatorPlus => (3, w.timetag as i64, 0),
+                SubstateLine::Impasse => (6, k, 0),
+                SubstateLine::Selected => (7, k, 0),
+            };
+            lines.push((r, w));
+        }
+        lines.sort_by_key(|(r, _)| *r);
+        for (_, w) in lines {
             self.trace_wme("<=WM: ", &w);
         }
     }

@@ -743,6 +743,9 @@ impl Agent {
         // Operators whose proposal went are removed before the `+` WMEs change (9.6's
         // REMOVING lines come first, and its removals are buffered in that order).
         let goals_before = self.decider.goals.len();
+        if self.settings.trace.wmes {
+            self.removed_wmes = Some(Vec::new());
+        }
         for &key in &context {
             if let Some(w) = self.check_operator_consistency(key) {
                 removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
@@ -815,9 +818,7 @@ impl Agent {
                 }
             }
         }
-        if self.settings.trace.wmes {
-            self.removed_wmes = Some(Vec::new());
-        }
+        let before_decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
         for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
@@ -825,7 +826,7 @@ impl Agent {
                 self.remove_slot_wme(w);
             }
         }
-        let decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
+        let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
         self.collect_garbage();
         self.trace_removed_wmes(decided);
@@ -901,6 +902,9 @@ impl Agent {
                 self.out(&s);
             }
         }
+        if self.settings.trace.wmes && self.removed_wmes.is_some() {
+            self.collect_substate_removals(gi);
+        }
         self.remove_goals_below(gi);
         self.decider.goals[gi].operator = None;
         Some(w)
@@ -966,6 +970,55 @@ impl Agent {
     /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
     /// WMEs (each group oldest first; seen on 9.6).
     fn trace_substate_wmes_removed(&mut self, gi: usize) {
+        for (_, wme) in self.substate_lines(gi) {
+            self.trace_wme("<=WM: ", &wme);
+        }
+    }
+
+    /// An operator removal takes the substates below goal `gi` away: their `<=WM:` lines
+    /// join this phase's listing in 9.6's places (`trace_removed_wmes`): the memories'
+    /// structure first, the substates' operator `+` WMEs after the other garbage, their
+    /// impasse WMEs after the goals' `+` WMEs, then their selected operators.
+    fn collect_substate_removals(&mut self, gi: usize) {
+        use crate::trace::SubstateLine;
+        let mut out = Vec::new();
+        for (group, wme) in self.substate_lines(gi) {
+            let place = if group <= 2 {
+                SubstateLine::Memories
+            } else {
+                SubstateLine::Impasse
+            };
+            out.push((place, wme));
+        }
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            let op = self.operator_sym();
+            for key in self.decider.slots.keys_of(g.state) {
+                let Some(slot) = self.decider.slots.get(&key) else {
+                    continue;
+                };
+                for (_, acc, w) in slot.wmes.iter() {
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        let place = if acc && key.1 == op {
+                            SubstateLine::OperatorPlus
+                        } else {
+                            SubstateLine::Other
+                        };
+                        out.push((place, wme));
+                    }
+                }
+            }
+        }
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            if let Some(wme) = g.operator.and_then(|(_, w)| self.wm.get(w).copied()) {
+                out.push((SubstateLine::Selected, wme));
+            }
+        }
+        self.substate_removals.extend(out);
+    }
+
+    /// The architecture WMEs of the goals below `gi` in 9.6's order, each with its group
+    /// (0–2: the memories' structure; 3 and up: the impasse's WMEs).
+    fn substate_lines(&self, gi: usize) -> Vec<(u8, crate::wm::Wme)> {
         let mut lines: Vec<(u8, u64, crate::wm::Wme)> = Vec::new();
         for g in &self.decider.goals[gi + 1..] {
             let of = |attr: &str| {
@@ -1001,9 +1054,7 @@ impl Agent {
             }
         }
         lines.sort_by_key(|(g, k, _)| (*g, *k));
-        for (_, _, wme) in lines {
-            self.trace_wme("<=WM: ", &wme);
-        }
+        lines.into_iter().map(|(g, _, w)| (g, w)).collect()
     }
 
     fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
