@@ -67,7 +67,7 @@ impl Agent {
                 items: Vec::new(),
                 wmes: Vec::new(),
                 slot_changed: true,
-                results: Vec::new(),
+                firings: Vec::new(),
             });
         }
         let start_dc = self.decider.decisions;
@@ -406,6 +406,9 @@ impl Agent {
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
+        if level >= 2 {
+            self.note_goal_firing(goal, inst_id);
+        }
         let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
         new_ids.clear();
         new_ids.resize(rule.new_vars.len(), None);
@@ -512,7 +515,6 @@ impl Agent {
             if let Some(trace) = recorded {
                 let results = self.find_results(&own_prefs, level);
                 if !results.is_empty() {
-                    self.note_goal_results(goal, &results);
                     self.learn_from_results(results, level, &trace, new_prefs);
                 }
             }
@@ -953,9 +955,9 @@ impl Agent {
         if self.settings.trace.preferences {
             // Before the substates' `<=WM:` lines, as 9.6 lists them.
             for k in (gi + 1..self.decider.goals.len()).rev() {
-                let results = std::mem::take(&mut self.decider.goals[k].results);
+                let firings = std::mem::take(&mut self.decider.goals[k].firings);
                 let state = self.decider.goals[k].state;
-                self.trace_removed_results(state, &results);
+                self.trace_removed_firings(state, &firings);
             }
         }
         if self.settings.trace.wmes {
@@ -1309,7 +1311,7 @@ impl Agent {
             items,
             wmes,
             slot_changed: true,
-            results: Vec::new(),
+            firings: Vec::new(),
         });
     }
 
@@ -1321,7 +1323,7 @@ impl Agent {
                 break;
             };
             if self.settings.trace.preferences {
-                self.trace_removed_results(g.state, &g.results);
+                self.trace_removed_firings(g.state, &g.firings);
             }
             if let Some((_, w)) = g.operator {
                 self.remove_wme(w);
@@ -1351,9 +1353,8 @@ impl Agent {
         self.collect_garbage();
     }
 
-    /// Keeps a substate firing's i-supported results with its goal, for
-    /// [`Self::trace_removed_results`].
-    fn note_goal_results(&mut self, goal: Option<Sym>, results: &[PrefId]) {
+    /// Keeps a substate firing with its goal, for [`Self::trace_removed_firings`].
+    fn note_goal_firing(&mut self, goal: Option<Sym>, inst: InstId) {
         let Some(gi) = self
             .decider
             .goals
@@ -1362,41 +1363,37 @@ impl Agent {
         else {
             return;
         };
-        for &r in results {
-            let p = &self.decider.prefs[r as usize];
-            if !p.o_support {
-                let what = (p.id, p.attr, p.value);
-                self.decider.goals[gi].results.push((r, what));
-            }
-        }
-        // A long-lived substate keeps only the results that still stand (amortized).
-        let n = self.decider.goals[gi].results.len();
+        let g = &mut self.decider.goals[gi];
+        g.firings.push(inst);
+        // A long-lived substate keeps only the firings that still stand (amortized).
+        let n = g.firings.len();
         if n >= 64 && n.is_power_of_two() {
-            let mut kept = std::mem::take(&mut self.decider.goals[gi].results);
-            let prefs = &self.decider.prefs;
-            kept.retain(|&(pid, what)| {
-                let p = &prefs[pid as usize];
-                p.alive && !p.freed && (p.id, p.attr, p.value) == what
+            let state = g.state;
+            let insts = &self.decider.insts;
+            let mut seen = FxHashSet::default();
+            g.firings.retain(|&i| {
+                let x = &insts[i as usize];
+                x.alive && x.goal == Some(state) && seen.insert(i)
             });
-            self.decider.goals[gi].results = kept;
         }
     }
 
-    /// 9.6's level-5 trace lists a removed state's results that its firings still
-    /// support, `- (S1 ^r x +) [level 2] (rule)`, oldest first, before the state's WMEs go
-    /// (checked on soar-sml 9.6.5, agent justification-negation).
-    fn trace_removed_results(&mut self, state: Sym, results: &[(PrefId, (Sym, Sym, Sym))]) {
-        for &(pid, what) in results {
-            let p = &self.decider.prefs[pid as usize];
-            let still = p.alive
-                && !p.freed
-                && (p.id, p.attr, p.value) == what
-                && p.inst.is_some_and(|i| {
-                    let inst = &self.decider.insts[i as usize];
-                    inst.alive && inst.goal == Some(state)
-                });
-            if still {
-                self.trace_pref('-', pid);
+    /// 9.6's trace 5 lists the preferences of a removed state's standing firings as
+    /// removed, `- (S1 ^r x +) [level 2] (rule)`: firings oldest first, each one's
+    /// preferences newest first, before the state's WMEs go (checked on soar-sml 9.6.5:
+    /// agents justification-negation, substate-results).
+    fn trace_removed_firings(&mut self, state: Sym, firings: &[InstId]) {
+        let mut seen = FxHashSet::default();
+        for &i in firings {
+            let inst = &self.decider.insts[i as usize];
+            if !inst.alive || inst.goal != Some(state) || !seen.insert(i) {
+                continue;
+            }
+            let prefs = inst.prefs.clone();
+            for pid in prefs.into_iter().rev() {
+                if self.decider.prefs[pid as usize].alive {
+                    self.trace_pref('-', pid);
+                }
             }
         }
     }

@@ -78,9 +78,10 @@ pub struct Goal {
     pub wmes: Vec<WmeId>,
     /// The operator slot's preferences changed since it was last decided (spec §3e).
     pub slot_changed: bool,
-    /// The i-supported results its firings made, oldest first, with what each says (a
-    /// handle can be reused): 9.6 lists them as removed when the state goes (level 5).
-    pub results: Vec<(PrefId, (Sym, Sym, Sym))>,
+    /// The instantiations fired with this state as their match goal, oldest first (handles
+    /// can be reused: check `goal`): 9.6 lists their preferences as removed when the state
+    /// goes (trace 5).
+    pub firings: Vec<InstId>,
 }
 
 /// The phases of a decision cycle (spec §3a).
