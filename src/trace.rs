@@ -654,11 +654,11 @@ pub(crate) enum SubstateLine {
 
 impl Agent {
     /// The `<=WM:` lines of one working-memory phase in 9.6's order (what is removed does
-    /// not change, only the order it is listed in): the operator slots' `+` WMEs oldest
-    /// first, a selected operator's WME right after its `+` WME; then what went with
-    /// garbage collection, newest first; then the WMEs the slot decisions removed, in the
-    /// order their slots changed (the first `decided` of the buffer). Checked with
-    /// scripts/trace_compare.py: 18 of the 30 agents match 9.6 whole at trace 4 and 5.
+    /// not change, only the order it is listed in). 9.6 head-inserts its removals, so it
+    /// lists them in the reverse of the order it made them: garbage first (newest first),
+    /// then the operator slots' `+` WMEs oldest first with a selected operator right after
+    /// its `+` WME, then the WMEs the slot decisions removed in the order their slots
+    /// changed (the `decided` part of the buffer). Checked with scripts/trace_compare.py.
     pub(crate) fn trace_removed_wmes(&mut self, decided: std::ops::Range<usize>) {
         let Some(wmes) = self.removed_wmes.take() else {
             return;
@@ -673,21 +673,17 @@ impl Agent {
             .filter(|(_, w)| w.acceptable && context(self, w))
             .map(|(_, w)| ((w.id, w.value), w.timetag))
             .collect();
-        // Without substates going: the goals' operator WMEs, the garbage, the slot
-        // decisions. With them (an operator removal took them), 9.6 lists the memories'
-        // structure, the substates' slot WMEs and the garbage first, then the operator `+`
-        // WMEs (the substates' first), the substates' impasse WMEs, and the selected
-        // operators after those (checked on soar-sml 9.6.5: substate-results,
+        // When an operator removal takes substates away, 9.6 lists the memories' structure
+        // and the substates' slot WMEs before the garbage, their operator `+` WMEs before
+        // the goals', then their impasse WMEs, and the selected operators after those (checked on soar-sml 9.6.5: substate-results,
         // learn-justification, tests/data/traces/substate.soar).
         let with_substates = !substates.is_empty();
         let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
                 if decided.contains(i) {
                     (9, *i as i64, 0)
-                } else if with_substates {
-                    (2, -(w.timetag as i64), 0)
                 } else {
-                    (5, -(w.timetag as i64), 0)
+                    (2, -(w.timetag as i64), 0)
                 }
             } else {
                 let tt = plus
