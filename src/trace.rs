@@ -566,10 +566,11 @@ impl Agent {
 impl Agent {
     /// `Removing state S2 because element in GDS changed. WME: (...)` (`-g`), before the
     /// working-memory changes of the cycle that take a WME out of a substate's GDS: once
-    /// for the highest such goal (the ones below it go with it).
+    /// for the highest such goal (the ones below it go with it), naming the first such
+    /// WME in the order the slot decisions remove them (9.6's order).
     pub(crate) fn trace_gds_removals(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
         let mut reported: Option<u32> = None;
-        for &(w, tt) in removes.iter().rev() {
+        for &(w, tt) in removes.iter() {
             let Some(wme) = self.wm.get(w).copied().filter(|x| x.timetag == tt) else {
                 continue;
             };

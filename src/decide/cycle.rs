@@ -748,6 +748,14 @@ impl Agent {
         if self.settings.trace.wmes {
             self.removed_wmes = Some(Vec::new());
         }
+        // A substate whose GDS holds a WME the slot decisions remove goes first, before
+        // the operator checks (9.6 removes it as the WME goes: its `Removing state ...
+        // because element in GDS changed` comes before the `REMOVING: Operator` lines).
+        let decided_removes = removes.len();
+        if self.settings.trace.gds {
+            self.trace_gds_removals(&removes);
+        }
+        self.remove_gds_goals_of(&removes);
         for &key in &context {
             if let Some(w) = self.check_operator_consistency(key) {
                 removes.push((w, self.wm.get(w).map_or(0, |x| x.timetag)));
@@ -780,7 +788,7 @@ impl Agent {
             }
         }
         if self.settings.trace.gds {
-            self.trace_gds_removals(&removes);
+            self.trace_gds_removals(&removes[decided_removes..]);
         }
         // Timetags in action order, but the matcher gets the batch newest first, and the
         // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher

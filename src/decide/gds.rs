@@ -103,6 +103,24 @@ impl Agent {
     }
 
     /// Removes the goals whose GDS lost a WME (the highest first, with all below).
+    /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with
+    /// their timetags), and every goal below it.
+    pub(crate) fn remove_gds_goals_of(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
+        if self.decider.gds.is_empty() {
+            return;
+        }
+        let top_index = removes
+            .iter()
+            .filter(|&&(w, tt)| self.wm.get(w).is_some_and(|x| x.timetag == tt))
+            .filter_map(|(w, _)| self.decider.gds.get(w))
+            .filter_map(|g| self.decider.goals.iter().position(|x| x.state == *g))
+            .min();
+        if let Some(top_index) = top_index.filter(|&i| i > 0) {
+            self.remove_goals_below(top_index - 1);
+            self.decider.goals[top_index - 1].slot_changed = true;
+        }
+    }
+
     pub(crate) fn remove_invalid_gds_goals(&mut self) {
         let invalid = std::mem::take(&mut self.decider.gds_invalid);
         let Some(top_index) = invalid
