@@ -844,8 +844,13 @@ impl Agent {
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
         // minor quiescence, spec §3b): a result that ends a tie removes the tie's substate
         // before the phase ends.
-        if !context.is_empty() && !self.has_pending(false) {
-            for &key in &context {
+        for &key in &context {
+            if !self.decider.consistency_pending.contains(&key) {
+                self.decider.consistency_pending.push(key);
+            }
+        }
+        if !self.decider.consistency_pending.is_empty() && !self.has_pending(false) {
+            for key in std::mem::take(&mut self.decider.consistency_pending) {
                 self.check_impasse_consistency(key);
             }
         }
@@ -1089,6 +1094,8 @@ impl Agent {
     /// Decides the first operator slot without an installed operator, from the top; if every
     /// goal has one, the bottom goal has an operator no-change (spec §3e).
     fn decide_context_slots(&mut self) {
+        // The decision decides every changed slot anew.
+        self.decider.consistency_pending.clear();
         let op = self.operator_sym();
         let policy = match self.settings_policy.as_str() {
             "first" => Policy::First,

@@ -152,6 +152,10 @@ pub struct DecideState {
     pub gds: FxHashMap<WmeId, Sym>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
+    /// Operator slots changed since the last quiescent working-memory phase: their
+    /// impasses are checked for consistency at the next one (9.6 keeps a slot's changed
+    /// flag until it is checked).
+    pub consistency_pending: Vec<(Sym, Sym)>,
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
