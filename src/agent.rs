@@ -336,6 +336,8 @@ pub struct Agent {
     /// The `<=WM:` lines of substates an operator removal takes away in this phase, each
     /// with its place in 9.6's listing (see `trace_removed_wmes`).
     pub(crate) substate_removals: Vec<(crate::trace::SubstateLine, crate::wm::Wme)>,
+    /// Whether those substates went for their GDS (9.6 lists them in another order).
+    pub(crate) substates_by_gds: bool,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
@@ -372,6 +374,7 @@ impl Agent {
             output_reported: 0,
             removed_wmes: None,
             substate_removals: Vec::new(),
+            substates_by_gds: false,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             output_callback: None,

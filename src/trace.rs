@@ -665,6 +665,7 @@ impl Agent {
             return;
         };
         let substates = std::mem::take(&mut self.substate_removals);
+        let by_gds = std::mem::take(&mut self.substates_by_gds);
         let wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
         let op = self.symbols.find_str("operator");
         let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
@@ -679,21 +680,24 @@ impl Agent {
         // the goals', then their impasse WMEs, and the selected operators after those (checked on soar-sml 9.6.5: substate-results,
         // learn-justification, tests/data/traces/substate.soar).
         let with_substates = !substates.is_empty();
+        // A GDS removal: the memories' structure, the substates' operator `+` WMEs, their
+        // slot WMEs, the garbage, the slot decisions, their impasse WMEs, their selected
+        // operators (checked on soar-sml 9.6.5: agent gds).
         let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
                 if decided.contains(i) {
-                    (9, *i as i64, 0)
+                    (if by_gds { 6 } else { 10 }, *i as i64, 0)
                 } else {
-                    (2, -(w.timetag as i64), 0)
+                    (if by_gds { 4 } else { 2 }, -(w.timetag as i64), 0)
                 }
             } else {
                 let tt = plus
                     .iter()
                     .find(|(k, _)| *k == (w.id, w.value))
                     .map_or(w.timetag, |&(_, tt)| tt);
-                match (with_substates, w.acceptable) {
-                    (true, false) => (8, tt as i64, 0),
-                    _ => (4, tt as i64, u8::from(!w.acceptable)),
+                match (with_substates && !by_gds, w.acceptable) {
+                    (true, false) => (9, tt as i64, 0),
+                    _ => (5, tt as i64, u8::from(!w.acceptable)),
                 }
             }
         };
@@ -701,12 +705,14 @@ impl Agent {
             wmes.iter().map(|x| (rank(self, x), x.1)).collect();
         for (k, (place, w)) in substates.into_iter().enumerate() {
             let k = k as i64;
-            let r = match place {
-                SubstateLine::Memories => (0, k, 0),
-                SubstateLine::Other => (1, -(w.timetag as i64), 0),
-                SubstateLine::OperatorPlus => (3, w.timetag as i64, 0),
-                SubstateLine::Impasse => (6, k, 0),
-                SubstateLine::Selected => (7, k, 0),
+            let r = match (place, by_gds) {
+                (SubstateLine::Memories, _) => (0, k, 0),
+                (SubstateLine::Other, false) => (1, -(w.timetag as i64), 0),
+                (SubstateLine::OperatorPlus, false) => (3, w.timetag as i64, 0),
+                (SubstateLine::OperatorPlus, true) => (1, w.timetag as i64, 0),
+                (SubstateLine::Other, true) => (3, -(w.timetag as i64), 0),
+                (SubstateLine::Impasse, _) => (7, k, 0),
+                (SubstateLine::Selected, _) => (8, k, 0),
             };
             lines.push((r, w));
         }

@@ -994,7 +994,7 @@ impl Agent {
     /// join this phase's listing in 9.6's places (`trace_removed_wmes`): the memories'
     /// structure first, the substates' operator `+` WMEs after the other garbage, their
     /// impasse WMEs after the goals' `+` WMEs, then their selected operators.
-    fn collect_substate_removals(&mut self, gi: usize) {
+    pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
         use crate::trace::SubstateLine;
         let mut out = Vec::new();
         for (group, wme) in self.substate_lines(gi) {

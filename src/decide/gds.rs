@@ -116,6 +116,10 @@ impl Agent {
             .filter_map(|g| self.decider.goals.iter().position(|x| x.state == *g))
             .min();
         if let Some(top_index) = top_index.filter(|&i| i > 0) {
+            if self.settings.trace.wmes && self.removed_wmes.is_some() {
+                self.collect_substate_removals(top_index - 1);
+                self.substates_by_gds = true;
+            }
             self.remove_goals_below(top_index - 1);
             self.decider.goals[top_index - 1].slot_changed = true;
         }
