@@ -14,12 +14,6 @@ use std::path::PathBuf;
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.
 const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
     (
-        "gds",
-        5,
-        "a substate removed by its GDS: 9.6 lists the `-` lines of its firings' \
-         preferences",
-    ),
-    (
         "justification-negation",
         3,
         "order of two retractions one new WME causes, a rule's and a justification's over \

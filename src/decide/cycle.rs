@@ -67,7 +67,7 @@ impl Agent {
                 items: Vec::new(),
                 wmes: Vec::new(),
                 slot_changed: true,
-                firings: Vec::new(),
+                made: Vec::new(),
             });
         }
         let start_dc = self.decider.decisions;
@@ -406,9 +406,6 @@ impl Agent {
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
-        if level >= 2 {
-            self.note_goal_firing(goal, inst_id);
-        }
         let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
         new_ids.clear();
         new_ids.resize(rule.new_vars.len(), None);
@@ -489,6 +486,11 @@ impl Agent {
         }
         self.decider.rhs_wmes = wmes;
         self.decider.rhs_args = args;
+        if level >= 2 {
+            for &pid in inst.prefs.iter().rev() {
+                self.note_goal_pref(goal, pid);
+            }
+        }
         self.decider.inst_by_token.insert((p, t), inst_id);
         let own_prefs = if traced || level >= 2 {
             inst.prefs.clone()
@@ -968,9 +970,9 @@ impl Agent {
         if self.settings.trace.preferences {
             // Before the substates' `<=WM:` lines, as 9.6 lists them.
             for k in (gi + 1..self.decider.goals.len()).rev() {
-                let firings = std::mem::take(&mut self.decider.goals[k].firings);
+                let made = std::mem::take(&mut self.decider.goals[k].made);
                 let state = self.decider.goals[k].state;
-                self.trace_removed_firings(state, &firings);
+                self.trace_removed_prefs(state, &made);
             }
         }
         if self.settings.trace.wmes {
@@ -1326,7 +1328,7 @@ impl Agent {
             items,
             wmes,
             slot_changed: true,
-            firings: Vec::new(),
+            made: Vec::new(),
         });
     }
 
@@ -1338,7 +1340,7 @@ impl Agent {
                 break;
             };
             if self.settings.trace.preferences {
-                self.trace_removed_firings(g.state, &g.firings);
+                self.trace_removed_prefs(g.state, &g.made);
             }
             if let Some((_, w)) = g.operator {
                 self.remove_wme(w);
@@ -1368,8 +1370,9 @@ impl Agent {
         self.collect_garbage();
     }
 
-    /// Keeps a substate firing with its goal, for [`Self::trace_removed_firings`].
-    fn note_goal_firing(&mut self, goal: Option<Sym>, inst: InstId) {
+    /// Keeps a substate firing's preference with its goal (a firing's newest first), for
+    /// [`Self::trace_removed_prefs`].
+    fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
         let Some(gi) = self
             .decider
             .goals
@@ -1378,37 +1381,39 @@ impl Agent {
         else {
             return;
         };
-        let g = &mut self.decider.goals[gi];
-        g.firings.push(inst);
-        // A long-lived substate keeps only the firings that still stand (amortized).
-        let n = g.firings.len();
+        let p = &self.decider.prefs[pid as usize];
+        let what = (p.id, p.attr, p.value);
+        self.decider.goals[gi].made.push((pid, what));
+        // A long-lived substate keeps only the preferences that still stand (amortized).
+        let n = self.decider.goals[gi].made.len();
         if n >= 64 && n.is_power_of_two() {
-            let state = g.state;
-            let insts = &self.decider.insts;
-            let mut seen = FxHashSet::default();
-            g.firings.retain(|&i| {
-                let x = &insts[i as usize];
-                x.alive && x.goal == Some(state) && seen.insert(i)
-            });
+            let state = self.decider.goals[gi].state;
+            let mut made = std::mem::take(&mut self.decider.goals[gi].made);
+            made.retain(|&(pid, what)| self.pref_stands(pid, what, state));
+            self.decider.goals[gi].made = made;
         }
     }
 
-    /// 9.6's trace 5 lists the preferences of a removed state's standing firings as
-    /// removed, `- (S1 ^r x +) [level 2] (rule)`: firings oldest first, each one's
-    /// preferences newest first, before the state's WMEs go (checked on soar-sml 9.6.5:
-    /// agents justification-negation, substate-results).
-    fn trace_removed_firings(&mut self, state: Sym, firings: &[InstId]) {
+    /// Whether preference `pid` is still the one a firing of `state` made saying `what`.
+    fn pref_stands(&self, pid: PrefId, what: (Sym, Sym, Sym), state: Sym) -> bool {
+        let p = &self.decider.prefs[pid as usize];
+        p.alive
+            && !p.freed
+            && (p.id, p.attr, p.value) == what
+            && p.inst
+                .is_none_or(|i| self.decider.insts[i as usize].goal == Some(state))
+    }
+
+    /// 9.6's trace 5 lists the standing preferences of a removed state's firings as
+    /// removed (`- (S1 ^r x +) [level 2] (rule)`) before the state's WMEs go: firings
+    /// oldest first, each one's preferences newest first, o-supported ones that outlived
+    /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
+    /// justification-negation).
+    fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
         let mut seen = FxHashSet::default();
-        for &i in firings {
-            let inst = &self.decider.insts[i as usize];
-            if !inst.alive || inst.goal != Some(state) || !seen.insert(i) {
-                continue;
-            }
-            let prefs = inst.prefs.clone();
-            for pid in prefs.into_iter().rev() {
-                if self.decider.prefs[pid as usize].alive {
-                    self.trace_pref('-', pid);
-                }
+        for &(pid, what) in made {
+            if self.pref_stands(pid, what, state) && seen.insert(pid) {
+                self.trace_pref('-', pid);
             }
         }
     }

@@ -78,10 +78,9 @@ pub struct Goal {
     pub wmes: Vec<WmeId>,
     /// The operator slot's preferences changed since it was last decided (spec §3e).
     pub slot_changed: bool,
-    /// The instantiations fired with this state as their match goal, oldest first (handles
-    /// can be reused: check `goal`): 9.6 lists their preferences as removed when the state
-    /// goes (trace 5).
-    pub firings: Vec<InstId>,
+    /// The preferences its firings made, oldest first, with what each says (handles are
+    /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
+    pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
 }
 
 /// The phases of a decision cycle (spec §3a).
