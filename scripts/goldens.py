@@ -80,16 +80,23 @@ RUN = "run 1000"
 
 # Agents whose whole trace at levels 2 to 5 is kept as a golden (tests/trace_goldens.rs).
 TRACE_AGENTS = [
+    "blocks-world",
     "gds",
     "halt",
     "impasse-conflict",
-    "justification-negation",
     "impasse-state-no-change",
+    "justification-negation",
+    "learn-justification",
+    "missionaries-cannibals",
+    "o-reject",
     "prefs-binary",
+    "random-tokens",
+    "substate-results",
     "substates",
     "support-declared",
     "support-retraction",
     "wait-snc",
+    "water-jug",
 ]
 TRACE_LEVELS = [2, 3, 4, 5]
 TRACE_RUN = "run 50"
