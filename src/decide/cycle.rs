@@ -804,9 +804,16 @@ impl Agent {
         for &(id, attr, value, acc) in &adds {
             added.push(self.add_slot_wme(id, attr, value, acc));
         }
+        // Where the `=>WM:` lines start: 9.6 warns there of a WME this phase adds and
+        // removes (see below).
+        let adds_at = self.output.len();
+        let mut traced_adds = Vec::new();
         for &w in added.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
                 self.trace_wme("=>WM: ", &wme);
+                if self.settings.trace.wmes {
+                    traced_adds.push(wme);
+                }
                 self.rete.add_wme(
                     w,
                     (wme.id, wme.attr, wme.value),
@@ -841,6 +848,9 @@ impl Agent {
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
         self.collect_garbage();
+        if self.settings.trace.wmes {
+            self.warn_added_and_removed(&traced_adds, adds_at);
+        }
         self.trace_removed_wmes(decided);
         self.classify_new_matches();
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
@@ -1368,6 +1378,27 @@ impl Agent {
             self.decider.gds.retain(|_, goal| *goal != g.state);
         }
         self.collect_garbage();
+    }
+
+    /// 9.6's `WARNING: WME added and removed in same phase : (31: S2 ^note hello)`, before
+    /// the phase's `=>WM:` lines (at `at` in the output), for each WME it added that is
+    /// already gone again (a substate removed in the same phase took it; checked on
+    /// soar-sml 9.6.5: agent substate-removed-same-wave).
+    fn warn_added_and_removed(&mut self, added: &[crate::wm::Wme], at: usize) {
+        let Some(removed) = self.removed_wmes.as_ref() else {
+            return;
+        };
+        let mut text = String::new();
+        for wme in added {
+            if removed.iter().any(|x| x.timetag == wme.timetag) {
+                text.push_str("WARNING: WME added and removed in same phase : ");
+                text.push_str(&crate::trace::wme_internal(self, wme));
+                text.push('\n');
+            }
+        }
+        if !text.is_empty() && at <= self.output.len() && self.output.is_char_boundary(at) {
+            self.output.insert_str(at, &text);
+        }
     }
 
     /// Keeps a substate firing's preference with its goal (a firing's newest first), for
