@@ -677,12 +677,12 @@ impl Agent {
             .collect();
         // When an operator removal takes substates away, 9.6 lists the memories' structure
         // and the substates' slot WMEs before the garbage, their operator `+` WMEs before
-        // the goals', then their impasse WMEs, and the selected operators after those (checked on soar-sml 9.6.5: substate-results,
-        // learn-justification, tests/data/traces/substate.soar).
+        // the goals', then their impasse WMEs, and the selected operators after those
+        // (checked on soar-sml 9.6.5: substate-results, learn-justification,
+        // tests/data/traces/substate.soar). When a GDS change takes them: the memories'
+        // structure, their operator `+` WMEs, their slot WMEs, the garbage, the slot
+        // decisions, their impasse WMEs, their selected operators (agent gds).
         let with_substates = !substates.is_empty();
-        // A GDS removal: the memories' structure, the substates' operator `+` WMEs, their
-        // slot WMEs, the garbage, the slot decisions, their impasse WMEs, their selected
-        // operators (checked on soar-sml 9.6.5: agent gds).
         let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
                 if decided.contains(i) {

@@ -1002,12 +1002,12 @@ impl Agent {
         }
     }
 
-    /// An operator removal takes the substates below goal `gi` away: their `<=WM:` lines
-    /// join this phase's listing in 9.6's places (`trace_removed_wmes`): the memories'
-    /// structure first, the substates' operator `+` WMEs after the other garbage, their
-    /// impasse WMEs after the goals' `+` WMEs, then their selected operators.
+    /// An operator removal or a GDS change takes the substates below goal `gi` away: their
+    /// `<=WM:` lines join this phase's listing, each tagged with its kind, for
+    /// `trace_removed_wmes` to put in 9.6's place.
     pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
         use crate::trace::SubstateLine;
+        let op = self.operator_sym();
         let mut out = Vec::new();
         for (group, wme) in self.substate_lines(gi) {
             let place = if group <= 2 {
@@ -1018,7 +1018,6 @@ impl Agent {
             out.push((place, wme));
         }
         for g in self.decider.goals[gi + 1..].iter().rev() {
-            let op = self.operator_sym();
             for key in self.decider.slots.keys_of(g.state) {
                 let Some(slot) = self.decider.slots.get(&key) else {
                     continue;

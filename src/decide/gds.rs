@@ -102,7 +102,6 @@ impl Agent {
         }
     }
 
-    /// Removes the goals whose GDS lost a WME (the highest first, with all below).
     /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with
     /// their timetags), and every goal below it.
     pub(crate) fn remove_gds_goals_of(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
@@ -120,11 +119,18 @@ impl Agent {
                 self.collect_substate_removals(top_index - 1);
                 self.substates_by_gds = true;
             }
-            self.remove_goals_below(top_index - 1);
-            self.decider.goals[top_index - 1].slot_changed = true;
+            self.remove_goal_and_below(top_index);
         }
     }
 
+    /// Removes the goal at `top_index` (not the top state) with every goal below it; the
+    /// goal above may impasse again at the next decision.
+    fn remove_goal_and_below(&mut self, top_index: usize) {
+        self.remove_goals_below(top_index - 1);
+        self.decider.goals[top_index - 1].slot_changed = true;
+    }
+
+    /// Removes the goals whose GDS lost a WME (the highest first, with all below).
     pub(crate) fn remove_invalid_gds_goals(&mut self) {
         let invalid = std::mem::take(&mut self.decider.gds_invalid);
         let Some(top_index) = invalid
@@ -134,11 +140,8 @@ impl Agent {
         else {
             return;
         };
-        if top_index == 0 {
-            return;
+        if top_index > 0 {
+            self.remove_goal_and_below(top_index);
         }
-        self.remove_goals_below(top_index - 1);
-        // The goal above may impasse again at the next decision.
-        self.decider.goals[top_index - 1].slot_changed = true;
     }
 }

@@ -288,7 +288,6 @@ impl Builder<'_> {
 }
 
 impl Agent {
-    /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
     /// The negations of a backtrace that belong to a learned rule or justification: those
     /// about superstate objects, with the rule each is a condition of.
     pub(crate) fn superstate_negations<'b>(
@@ -322,6 +321,7 @@ impl Agent {
         out
     }
 
+    /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
     pub(crate) fn build_learned_rule(
         &self,
         bt: &Backtrace,

@@ -455,15 +455,11 @@ impl Agent {
                 self.decider.justification_retractions.push((id, serial));
             }
         }
-        let negations: Vec<_> = self
-            .superstate_negations(bt)
-            .into_iter()
-            .map(|(n, prod)| (n.trace.clone(), prod, n.cond))
-            .collect();
+        let negations = self.superstate_negations(bt);
         if !negations.is_empty() {
             let list: Vec<_> = negations
                 .iter()
-                .map(|(trace, prod, c)| (trace.clone(), &prod.conditions[*c]))
+                .map(|(n, prod)| (n.trace.clone(), &prod.conditions[n.cond]))
                 .collect();
             self.learn.negations.watch(id, serial, &list, &self.symbols);
         }

@@ -54,6 +54,15 @@ struct Watched {
     /// Each negation as the conjunction whose match violates it.
     negations: Vec<Vec<Pattern>>,
     locals: usize,
+    /// The constant attribute each of its patterns tests (`None`: not a constant).
+    attrs: Vec<Option<Sym>>,
+}
+
+impl Watched {
+    /// Whether a new WME with attribute `attr` can match one of its patterns.
+    fn may_match(&self, attr: Sym) -> bool {
+        self.attrs.iter().any(|a| a.is_none_or(|a| a == attr))
+    }
 }
 
 /// The negations of the live justifications that have any.
@@ -87,6 +96,7 @@ impl WatchedNegations {
             serial,
             negations: Vec::new(),
             locals: 0,
+            attrs: Vec::new(),
         };
         for (trace, c) in negations {
             let mut locals = FxHashMap::default();
@@ -104,11 +114,6 @@ impl WatchedNegations {
         if w.negations.is_empty() {
             return;
         }
-        self.count_attrs(&w, 1);
-        self.watched.push(w);
-    }
-
-    fn count_attrs(&mut self, w: &Watched, add: i64) {
         fn walk(p: &[Pattern], out: &mut Vec<Option<Sym>>) {
             for x in p {
                 match x {
@@ -120,11 +125,15 @@ impl WatchedNegations {
                 }
             }
         }
-        let mut attrs = Vec::new();
         for n in &w.negations {
-            walk(n, &mut attrs);
+            walk(n, &mut w.attrs);
         }
-        for a in attrs {
+        self.count_attrs(&w, 1);
+        self.watched.push(w);
+    }
+
+    fn count_attrs(&mut self, w: &Watched, add: i64) {
+        for &a in &w.attrs {
             let slot = match a {
                 Some(s) => self.attrs.entry(s).or_insert(0),
                 None => &mut self.any_attr,
@@ -150,7 +159,7 @@ impl WatchedNegations {
         let mut keep = Vec::with_capacity(self.watched.len());
         for w in std::mem::take(&mut self.watched) {
             let gone = !alive(w.inst, w.serial);
-            let violated = !gone && {
+            let violated = !gone && w.may_match(attr) && {
                 let mut binding = vec![None; w.locals];
                 w.negations
                     .iter()
@@ -247,29 +256,37 @@ fn satisfiable(
         return true;
     };
     match first {
-        Pattern::Pos(c) => {
-            for w in candidates(c, binding, wm) {
-                let Some(wme) = wm.get(w).copied() else {
-                    continue;
-                };
-                let saved = binding.clone();
-                if wme_matches(c, &wme, binding, syms) && satisfiable(rest, binding, wm, syms) {
-                    *binding = saved;
-                    return true;
-                }
-                *binding = saved;
-            }
-            false
-        }
+        Pattern::Pos(c) => matched_then(c, rest, binding, wm, syms),
         Pattern::Neg(c) => {
-            let blocked = satisfiable(&[Pattern::Pos(c.clone())], binding, wm, syms);
-            !blocked && satisfiable(rest, binding, wm, syms)
+            !matched_then(c, &[], binding, wm, syms) && satisfiable(rest, binding, wm, syms)
         }
         Pattern::Ncc(cs) => {
             let blocked = satisfiable(cs, binding, wm, syms);
             !blocked && satisfiable(rest, binding, wm, syms)
         }
     }
+}
+
+/// Whether a WME matches `c` such that `rest` is then satisfiable; `binding` is restored.
+fn matched_then(
+    c: &PCond,
+    rest: &[Pattern],
+    binding: &mut Vec<Option<Sym>>,
+    wm: &WorkingMemory,
+    syms: &Symbols,
+) -> bool {
+    for w in candidates(c, binding, wm) {
+        let Some(wme) = wm.get(w).copied() else {
+            continue;
+        };
+        let saved = binding.clone();
+        let found = wme_matches(c, &wme, binding, syms) && satisfiable(rest, binding, wm, syms);
+        *binding = saved;
+        if found {
+            return true;
+        }
+    }
+    false
 }
 
 /// The WMEs that can match `c`: those of its identifier when that is known.
