@@ -12,14 +12,10 @@ usage: python3 scripts/bench_counter.py [--repeat R] [--decisions D] [N ...]
 """
 import argparse
 import os
-import statistics
 import subprocess
 import tempfile
-import time
 
-import soar_sml as sml
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_common import ROOT, official, ours
 
 DRIVER = """\
 sp {counter*propose*init
@@ -59,29 +55,6 @@ def write_agent(n, path):
         f.write(rules)
 
 
-def official(path, decisions, repeat):
-    times = []
-    for _ in range(repeat):
-        k = sml.Kernel.CreateKernelInNewThread()
-        a = k.CreateAgent("soar")
-        for c in ["watch 0", f"source {path}"]:
-            a.ExecuteCommandLine(c)
-        t = time.perf_counter()
-        a.ExecuteCommandLine(f"run {decisions}")
-        times.append(time.perf_counter() - t)
-        k.Shutdown()
-    return statistics.median(times)
-
-
-def ours(path, decisions, repeat):
-    out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "--example", "time_run", "--", str(repeat),
-         "--run", str(decisions), path],
-        capture_output=True, text=True, cwd=ROOT, check=True).stdout
-    _, dec, _, secs = out.split()
-    return float(secs), int(dec)
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
@@ -95,8 +68,8 @@ def main():
         for n in sizes:
             path = os.path.join(tmp, f"counter-{n}.soar")
             write_agent(n, path)
-            rt, rd = ours(path, opts.decisions, opts.repeat)
-            ot = official(path, opts.decisions, opts.repeat)
+            rt, rd, _ = ours(path, opts.decisions, opts.repeat)
+            ot, _, _ = official(path, opts.decisions, opts.repeat)
             ours_rate, off_rate = rd / rt, opts.decisions / ot
             print(f"| {n:,} | {rd} | {ours_rate:,.0f} | {off_rate:,.0f} | "
                   f"{ours_rate / off_rate:.2f} |", flush=True)

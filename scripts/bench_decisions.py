@@ -15,32 +15,11 @@ usage: python3 scripts/bench_decisions.py [--repeat N] [--rounds R] [AGENT ...]
 """
 import argparse
 import os
-import re
 import statistics
 import subprocess
-import time
 
-import soar_sml as sml
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_common import ROOT, official
 AGENTS = os.path.join(ROOT, "tests", "agents")
-
-
-def official(path, repeat):
-    times, dec, fir = [], 0, 0
-    for _ in range(repeat):
-        k = sml.Kernel.CreateKernelInNewThread()
-        a = k.CreateAgent("soar")
-        for c in ["srand 1", "watch 0", f"source {path}"]:
-            a.ExecuteCommandLine(c)
-        t = time.perf_counter()
-        a.ExecuteCommandLine("run 1000")
-        times.append(time.perf_counter() - t)
-        stats = a.ExecuteCommandLine("stats")
-        dec = int(re.search(r"(\d+) decisions", stats).group(1))
-        fir = int(re.search(r"(\d+) production firings", stats).group(1))
-        k.Shutdown()
-    return statistics.median(times), dec, fir
 
 
 def ours_all(paths, repeat):
@@ -71,7 +50,7 @@ def main():
     counts = {}
     for _ in range(max(1, opts.rounds)):
         for name, path in zip(names, paths):
-            ot, od, _ = official(path, opts.repeat)
+            ot, od, _ = official(path, 1000, opts.repeat)
             off_times[name].append(ot)
             counts[name] = od
         mine = ours_all(paths, opts.repeat)

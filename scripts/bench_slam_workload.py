@@ -19,14 +19,9 @@ usage: python3 scripts/bench_slam_workload.py [--repeat R] [--decisions D] [N ..
 """
 import argparse
 import os
-import statistics
-import subprocess
 import tempfile
-import time
 
-import soar_sml as sml
-
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from bench_common import official, ours
 
 RULES = """\
 sp {slamload*propose*init
@@ -130,38 +125,6 @@ def write_agent(walls, path):
         f.write(RULES.replace("{walls}", "".join(lines)))
 
 
-def official(path, decisions, repeat):
-    times = []
-    for _ in range(repeat):
-        k = sml.Kernel.CreateKernelInNewThread()
-        a = k.CreateAgent("soar")
-        for c in ["srand 1", "watch 0", f"source {path}"]:
-            a.ExecuteCommandLine(c)
-        t = time.perf_counter()
-        a.ExecuteCommandLine(f"run {decisions}")
-        times.append(time.perf_counter() - t)
-        firings = a.ExecuteCommandLine("stats")
-        k.Shutdown()
-    return statistics.median(times), firings
-
-
-def ours(path, decisions, repeat):
-    out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "--example", "time_run", "--", str(repeat),
-         "--run", str(decisions), path],
-        capture_output=True, text=True, cwd=ROOT, check=True).stdout
-    _, dec, firings, secs = out.split()
-    return float(secs), int(dec), int(firings)
-
-
-def firing_count(stats):
-    for line in stats.splitlines():
-        parts = line.split()
-        if len(parts) > 2 and parts[1:3] == ["production", "firings"]:
-            return int(parts[0])
-    return 0
-
-
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--repeat", type=int, default=3)
@@ -177,8 +140,7 @@ def main():
             path = os.path.join(tmp, f"slam-workload-{n}.soar")
             write_agent(n, path)
             rt, rd, rf = ours(path, opts.decisions, opts.repeat)
-            ot, stats = official(path, opts.decisions, opts.repeat)
-            of = firing_count(stats)
+            ot, _, of = official(path, opts.decisions, opts.repeat)
             ours_rate, off_rate = rd / rt, opts.decisions / ot
             print(f"| {n} | {rd} | {rf:,} / {of:,} | {ours_rate:,.0f} | {off_rate:,.0f} | "
                   f"{ours_rate / off_rate:.2f} |", flush=True)
