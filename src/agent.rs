@@ -342,6 +342,8 @@ pub struct Agent {
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
     pub input_callback: Option<PhaseCallback>,
+    /// Input-link changes waiting for the next input phase (`io.rs`).
+    pub(crate) input_queue: Vec<crate::io::InputChange>,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters (spec §4).
@@ -377,6 +379,7 @@ impl Agent {
             substates_by_gds: false,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
+            input_queue: Vec::new(),
             output_callback: None,
             learn: crate::learn::LearnState::default(),
         }

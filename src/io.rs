@@ -37,6 +37,13 @@ impl From<Sym> for Value {
     }
 }
 
+/// An input-link change the embedding program made, waiting for the next input phase.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum InputChange {
+    Add(WmeId),
+    Remove(WmeId),
+}
+
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputCommand {
@@ -69,26 +76,73 @@ impl Agent {
         self.symbols.new_id(letter, 1)
     }
 
-    /// Adds `(id ^attr value)` now; it is matched at once, as input-phase WMEs are.
+    /// Adds `(id ^attr value)`: it gets its timetag now and reaches the matcher at the next
+    /// input phase (see [`Agent::apply_input_changes`]), as an SML client's WMEs do.
     pub fn add_input(&mut self, id: Sym, attr: &str, value: impl Into<Value>) -> WmeId {
         let a = self.symbols.str(attr);
         let v = self.value_sym(&value.into());
-        self.add_wme(id, a, v, false)
+        self.queue_input_add(id, a, v)
     }
 
-    /// Adds `(id ^attr <new id>)` and returns the new identifier.
+    fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
+        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let w = self.wm.add_typed(id, attr, value, false, links);
+        self.input_queue.push(InputChange::Add(w));
+        w
+    }
+
+    /// Applies the input-link changes made since the last input phase, as 9.6 applies an
+    /// SML client's buffered changes there (`do_buffered_wm_changes`, checked with soar-sml
+    /// 9.6.5): first every added WME, newest first, then every removed one, newest first,
+    /// each traced as `=>WM:` or `<=WM:`. The order decides the order of new matches, so
+    /// of firings, identifiers and random choices (`scripts/slam_oracle.py`).
+    pub(crate) fn apply_input_changes(&mut self) {
+        if self.input_queue.is_empty() {
+            return;
+        }
+        let queue = std::mem::take(&mut self.input_queue);
+        for change in queue.iter().rev() {
+            let InputChange::Add(w) = *change else {
+                continue;
+            };
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            self.rete.add_wme(
+                w,
+                (wme.id, wme.attr, wme.value),
+                wme.acceptable,
+                &self.symbols,
+                &mut self.matches,
+            );
+            self.justification_wme_added(w);
+            self.trace_wme("=>WM: ", &wme);
+        }
+        for change in queue.iter().rev() {
+            let InputChange::Remove(w) = *change else {
+                continue;
+            };
+            if let Some(wme) = self.remove_wme(w) {
+                self.trace_wme("<=WM: ", &wme);
+            }
+        }
+    }
+
+    /// Adds `(id ^attr <new id>)` and returns the new identifier. Its letter is the
+    /// attribute's first letter, or `I` when that is not a letter or is `s` (9.6 names an
+    /// SML client's `^sonar` object `I4`, keeping `S` for states; soar-sml 9.6.5).
     pub fn add_input_object(&mut self, id: Sym, attr: &str) -> (WmeId, Sym) {
         let letter = attr
             .chars()
             .next()
-            .filter(|c| c.is_ascii_alphabetic())
+            .filter(|c| c.is_ascii_alphabetic() && !c.eq_ignore_ascii_case(&'s'))
             .unwrap_or('I');
         let child = self.new_input_id(letter);
         (self.add_input(id, attr, child), child)
     }
 
-    /// Replaces the value of an input WME if it differs (a remove and an add, as SML does);
-    /// returns the WME that now holds the value.
+    /// Replaces the value of an input WME if it differs (a removal and an addition, applied
+    /// at the next input phase, as SML does); returns the WME that holds the new value.
     pub fn update_input(&mut self, w: WmeId, value: impl Into<Value>) -> WmeId {
         let v = value.into();
         let Some(old) = self.wm.get(w).copied() else {
@@ -98,38 +152,23 @@ impl Agent {
         if new == old.value {
             return w;
         }
-        self.remove_wme(w);
-        self.add_wme(old.id, old.attr, new, false)
+        self.input_queue.push(InputChange::Remove(w));
+        self.queue_input_add(old.id, old.attr, new)
     }
 
-    /// Replaces several input values at once (each as [`Agent::update_input`] does): every
-    /// changed WME is removed first, then the new ones are added in the order given. Rules
-    /// that join several of them (a pose's X, Y and heading) then re-match once, not once
-    /// per value. Returns, for each change, the WME that now holds the value.
+    /// [`Agent::update_input`] for several values, in the order given. Returns, for each
+    /// change, the WME that now holds the value.
     pub fn update_inputs(&mut self, changes: &[(WmeId, Value)]) -> Vec<WmeId> {
-        let mut result: Vec<WmeId> = changes.iter().map(|(w, _)| *w).collect();
-        let mut adds = Vec::new();
-        for (i, (w, v)) in changes.iter().enumerate() {
-            let Some(old) = self.wm.get(*w).copied() else {
-                continue;
-            };
-            let new = self.value_sym(v);
-            if new != old.value {
-                adds.push((i, old.id, old.attr, new));
-            }
-        }
-        for &(i, ..) in &adds {
-            self.remove_wme(changes[i].0);
-        }
-        for (i, id, attr, value) in adds {
-            result[i] = self.add_wme(id, attr, value, false);
-        }
-        result
+        changes
+            .iter()
+            .map(|(w, v)| self.update_input(*w, v.clone()))
+            .collect()
     }
 
-    /// Removes an input WME and, with the next garbage collection, what hangs below it.
+    /// Removes an input WME at the next input phase and, with the garbage collection
+    /// after it, what hangs below it.
     pub fn remove_input(&mut self, w: WmeId) {
-        self.remove_wme(w);
+        self.input_queue.push(InputChange::Remove(w));
     }
 
     /// Commands on the output-link: each `(I3 ^name <obj>)` object with its parameters.
@@ -220,6 +259,23 @@ mod tests {
     }
 
     #[test]
+    fn input_objects_are_named_as_sml_names_them() {
+        let mut a = Agent::new("t");
+        let il = a.input_link();
+        let name = |a: &mut Agent, attr: &str| {
+            let (_, id) = a.add_input_object(il, attr);
+            a.symbols.text(id)
+        };
+        // What soar-sml 9.6.5 printed for the same objects on a fresh agent's input-link.
+        assert_eq!(name(&mut a, "currentrobotdata"), "C3");
+        assert_eq!(name(&mut a, "sonar"), "I4");
+        assert_eq!(name(&mut a, "Start"), "I5");
+        assert_eq!(name(&mut a, "wallData"), "W1");
+        assert_eq!(name(&mut a, "obj"), "O1");
+        assert_eq!(name(&mut a, "1abc"), "I6");
+    }
+
+    #[test]
     fn new_output_commands_are_reported_once() {
         let mut a = Agent::new("t");
         let ol = a.output_link();
@@ -253,6 +309,70 @@ mod tests {
         assert_eq!(a.wm.get(now[1]).map(|w| w.timetag), tt_y);
         let text = |a: &Agent, w: WmeId| a.wm.get(w).map(|w| a.symbols.text(w.value));
         assert_eq!(text(&a, now[0]), Some("5".into()));
+        // The old value goes at the input phase.
+        assert_eq!(a.wm.of_id(data).count(), 3);
+        a.apply_input_changes();
         assert_eq!(a.wm.of_id(data).count(), 2);
+    }
+
+    /// 9.6 applies an SML client's changes at the input phase, the added WMEs newest first
+    /// and then the removed ones (soar-sml 9.6.5 printed the same trace and firings for this
+    /// input, `=>WM` lines newest first, then `<=WM` lines).
+    #[test]
+    fn input_changes_reach_the_matcher_at_the_input_phase_newest_first() {
+        let mut i = crate::cli::Interpreter::new();
+        i.run_text(
+            "t",
+            "sp {p (state <s> ^io.input-link <il>) (<il> ^obj <o> ^crd <c>) (<o> ^a <a>) \
+             (<c> ^X <x> ^Y <y>) --> (write |fire | <a> | | <x> | | <y> (crlf))}",
+        )
+        .unwrap();
+        let a = &mut i.agent;
+        let il = a.input_link();
+        for v in [1i64, 2] {
+            let (_, o) = a.add_input_object(il, "obj");
+            a.add_input(o, "a", v);
+        }
+        let (_, c) = a.add_input_object(il, "crd");
+        let x = a.add_input(c, "X", 10i64);
+        let y = a.add_input(c, "Y", 20i64);
+        // Nothing is matched before the input phase.
+        assert!(a.matches.assertions.is_empty());
+        i.run_text("t", "watch 4\nrun 1").unwrap();
+        let first = i.take_output();
+        let fired: Vec<&str> = first.lines().filter(|l| l.starts_with("fire")).collect();
+        assert_eq!(fired, ["fire 1 10 20", "fire 2 10 20"], "{first}");
+        let adds: Vec<&str> = first.lines().filter(|l| l.starts_with("=>WM")).collect();
+        assert!(
+            adds[0].contains("^Y 20") && adds[6].contains("^obj"),
+            "{first}"
+        );
+        let a = &mut i.agent;
+        a.update_inputs(&[(x, Value::Int(11)), (y, Value::Int(21))]);
+        i.run_text("t", "run 1").unwrap();
+        let second = i.take_output();
+        let input: Vec<&str> = second
+            .lines()
+            .filter(|l| l.starts_with("=>WM") || l.starts_with("<=WM"))
+            .take(4)
+            .collect();
+        assert!(
+            input[0].contains("=>WM") && input[0].contains("^Y 21"),
+            "{second}"
+        );
+        assert!(
+            input[1].contains("=>WM") && input[1].contains("^X 11"),
+            "{second}"
+        );
+        assert!(
+            input[2].contains("<=WM") && input[2].contains("^Y 20"),
+            "{second}"
+        );
+        assert!(
+            input[3].contains("<=WM") && input[3].contains("^X 10"),
+            "{second}"
+        );
+        let fired: Vec<&str> = second.lines().filter(|l| l.starts_with("fire")).collect();
+        assert_eq!(fired, ["fire 2 11 21", "fire 1 11 21"], "{second}");
     }
 }

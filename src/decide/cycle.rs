@@ -142,6 +142,7 @@ impl Agent {
             Phase::Input => {
                 self.trace_phase("\n--- Input Phase --- \n");
                 self.run_input_callbacks();
+                self.apply_input_changes();
                 self.classify_new_matches();
                 self.trace_phase("\n--- END Input Phase --- \n");
                 self.decider.phase = Some(Phase::Propose);
@@ -1612,6 +1613,8 @@ impl Agent {
     /// `init-soar` (spec §2, §3a): working memory, preferences, the goal stack, identifier
     /// counters and timetags start again; rules (and chunks) stay.
     pub fn init_soar(&mut self) {
+        // Input changes not applied yet go with the rest of working memory.
+        self.input_queue.clear();
         let all = self.wm.all();
         for w in all.into_iter().rev() {
             self.remove_wme(w);

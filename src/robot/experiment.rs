@@ -16,6 +16,8 @@
 //!   and 600 s, RMSE, maximum and final error, heading error, walls in memory, corrections,
 //!   the map against the true walls, and the paired comparison (seeds improved, Wilcoxon
 //!   signed-rank p-value);
+//! - `io-<on|off>-<seed>.log` with `--io-log`: the run's input-link and output-link traffic
+//!   ([`super::io_log`]), which `scripts/slam_oracle.py` replays in the official kernel;
 //! - `fig-*.svg` and `fig-*.png`, and `report.md` putting numbers and figures together (see
 //!   [`super::report`]).
 //!
@@ -82,6 +84,8 @@ pub struct Options {
     pub out: PathBuf,
     pub jobs: usize,
     pub rules_dir: PathBuf,
+    /// Write each run's input-link and output-link traffic (`io-<on|off>-<seed>.log`).
+    pub io_log: bool,
 }
 
 fn command() -> Command {
@@ -157,6 +161,15 @@ fn command() -> Command {
                 .value_name("N")
                 .value_parser(value_parser!(u64).range(1..=1024))
                 .help("Runs in parallel (default: the number of cores)"),
+        )
+        .arg(
+            Arg::new("io-log")
+                .long("io-log")
+                .action(ArgAction::SetTrue)
+                .help(
+                    "Also write io-<on|off>-<seed>.log: each run's input-link and output-link \
+                     traffic, for replaying it in the official kernel (scripts/slam_oracle.py)",
+                ),
         )
         .arg(
             Arg::new("rules")
@@ -251,6 +264,7 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             .get_one::<PathBuf>("rules")
             .cloned()
             .unwrap_or_else(soar_loop::default_rules_dir),
+        io_log: m.get_flag("io-log"),
     })
 }
 
@@ -463,6 +477,7 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                 };
                 let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
                 cfg.rules_dir = opts.rules_dir.clone();
+                cfg.io_log = opts.io_log;
                 if seed == opts.first_seed {
                     let n = cfg.steps();
                     cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
@@ -584,6 +599,11 @@ fn write_run(out: &Path, r: &RunResult) -> Result<(), String> {
         );
     }
     write(format!("map-{tag}.csv"), map)?;
+    if !r.io_log.is_empty() {
+        let mut log = r.io_log.join("\n");
+        log.push('\n');
+        write(format!("io-{tag}.log"), log)?;
+    }
     if r.slam {
         let mut c = String::from(soar_loop::CORRECTIONS_HEADER);
         c.push('\n');

@@ -20,6 +20,7 @@ pub mod experiment;
 pub mod fixed;
 pub mod functions;
 pub mod geom;
+pub mod io_log;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;

@@ -55,6 +55,7 @@ use crate::wm::WmeId;
 
 use super::fixed::{push_fixed, push_u64};
 use super::geom::{deg_0_360, Pose};
+use super::io_log::IoLog;
 use super::pipeline::{self, Extraction, Scan, Settings as PipelineSettings, Wall};
 use super::sim::Simulator;
 use super::sonar::{NUM_SONARS, P2DX_SONARS};
@@ -86,6 +87,9 @@ pub struct LoopConfig {
     /// Keep the whole pipeline output ([`Extraction`]) of the first extraction at or after this
     /// step that yields a wall, for the Hough figure (the thesis's Figure 20). `None` by default.
     pub sample_extraction_at: Option<u64>,
+    /// Keep the run's input-link and output-link traffic in [`RunResult::io_log`] (see
+    /// [`IoLog`]), for replaying the run in another kernel. Off by default.
+    pub io_log: bool,
 }
 
 impl LoopConfig {
@@ -100,6 +104,7 @@ impl LoopConfig {
             expire_after: if slam { None } else { Some(8) },
             snapshot_steps: Vec::new(),
             sample_extraction_at: None,
+            io_log: false,
         }
     }
 
@@ -354,6 +359,8 @@ pub struct RunResult {
     pub map_snapshots: Vec<(f64, Vec<MemoryWall>)>,
     /// The pipeline output asked for by [`LoopConfig::sample_extraction_at`]: (time s, output).
     pub sample_extraction: Option<(f64, Box<Extraction>)>,
+    /// The input-link and output-link traffic, when [`LoopConfig::io_log`] asked for it.
+    pub io_log: Vec<String>,
 }
 
 impl RunResult {
@@ -385,10 +392,13 @@ struct InputWall {
     id: Sym,
     /// The extraction that made it.
     extraction: u64,
+    /// Its number among the walls put on the input-link, from 1 (for the [`IoLog`]).
+    serial: u64,
 }
 
 /// The environment side, shared by the loop and the agent's input and output callbacks.
 struct Env {
+    log: Option<IoLog>,
     sim: Simulator,
     settings: PipelineSettings,
     expire_after: Option<u64>,
@@ -420,6 +430,9 @@ impl Env {
     fn input(&mut self, agent: &mut Agent) {
         let s = self.sim.tick();
         self.steps += 1;
+        if let Some(log) = &mut self.log {
+            log.step(self.steps);
+        }
         let believed = s.believed;
         let (x, y, th) = (
             believed.x_mm().round() as i64,
@@ -441,6 +454,10 @@ impl Env {
                 }
                 let (_, wd) = agent.add_input_object(il, "wallData");
                 self.wall_data = Some(wd);
+                if let Some(log) = &mut self.log {
+                    let ranges = s.ranges_mm.map(range_int);
+                    log.init(x, y, th, &ranges);
+                }
                 self.robot = Some(RobotIo {
                     x: xw,
                     y: yw,
@@ -459,6 +476,23 @@ impl Env {
                     changes.push((*w, Value::Int(range_int(s.ranges_mm[i]))));
                 }
                 let now = agent.update_inputs(&changes);
+                if let Some(log) = &mut self.log {
+                    let old = [io.x, io.y, io.th].into_iter().chain(io.ranges);
+                    for (i, (before, after)) in old.zip(now.iter()).enumerate() {
+                        if before == *after {
+                            continue;
+                        }
+                        let Value::Int(v) = changes[i].1 else {
+                            continue;
+                        };
+                        match i {
+                            0 => log.update("X", v),
+                            1 => log.update("Y", v),
+                            2 => log.update("Th", v),
+                            _ => log.update(&format!("range {}", i - 3), v),
+                        }
+                    }
+                }
                 (io.x, io.y, io.th) = (now[0], now[1], now[2]);
                 io.ranges.copy_from_slice(&now[3..]);
             }
@@ -504,13 +538,20 @@ impl Env {
                     .of_id(w.id)
                     .any(|x| agent.wm.get(x).is_some_and(|m| m.attr == a))
             });
+            let log_removal = |log: &mut Option<IoLog>| {
+                if let Some(log) = log {
+                    log.remove_wall(w.serial);
+                }
+            };
             if copied {
+                log_removal(&mut self.log);
                 agent.remove_input(w.wme);
                 self.stats.walls_copied += 1;
             } else if self
                 .expire_after
                 .is_some_and(|n| now.saturating_sub(w.extraction) >= n.max(1))
             {
+                log_removal(&mut self.log);
                 agent.remove_input(w.wme);
                 self.stats.walls_expired += 1;
             } else {
@@ -538,12 +579,17 @@ impl Env {
         agent.add_input(id, "R", wall.r);
         agent.add_input(id, "Th", wall.th);
         agent.add_input(id, "Time", wall.time);
+        self.stats.walls_extracted += 1;
+        let serial = self.stats.walls_extracted;
+        if let Some(log) = &mut self.log {
+            log.wall(serial, wall);
+        }
         self.input_walls.push(InputWall {
             wme,
             id,
             extraction: self.stats.extractions,
+            serial,
         });
-        self.stats.walls_extracted += 1;
     }
 
     /// The output phase: carry out each new command once and mark it done.
@@ -551,6 +597,14 @@ impl Env {
         for cmd in agent.new_output_commands() {
             if cmd.params.iter().any(|(a, _)| a == "status") {
                 continue;
+            }
+            if let Some(log) = &mut self.log {
+                let params: Vec<(String, String)> = cmd
+                    .params
+                    .iter()
+                    .map(|(a, v)| (a.clone(), agent.symbols.text(*v)))
+                    .collect();
+                log.command(&cmd.name, &params);
             }
             let param = |name: &str| -> Option<f64> {
                 cmd.params
@@ -736,6 +790,7 @@ impl SoarRobot {
         agent.settings.trace.set_level(1);
         super::functions::register(agent);
         let env = Rc::new(RefCell::new(Env {
+            log: cfg.io_log.then(IoLog::default),
             sim: Simulator::new(cfg.world.clone(), cfg.seed),
             settings: cfg.world.pipeline.clone(),
             expire_after: cfg.expire_after,
@@ -813,6 +868,10 @@ impl SoarRobot {
         let halted = agent.decider.halted;
         {
             let mut env = self.env.borrow_mut();
+            let firings = agent.decider.firings;
+            if let Some(log) = &mut env.log {
+                log.decided(firings, &trace.operators);
+            }
             let stats = &mut env.stats;
             for op in &trace.operators {
                 *stats.operators.entry(op.clone()).or_default() += 1;
@@ -952,6 +1011,7 @@ pub fn run(cfg: &LoopConfig) -> RunResult {
         wall_time: Duration::ZERO,
         map_snapshots: Vec::new(),
         sample_extraction: None,
+        io_log: Vec::new(),
     };
     let mut robot = match SoarRobot::new(cfg) {
         Ok(r) => r,
@@ -988,6 +1048,13 @@ pub fn run(cfg: &LoopConfig) -> RunResult {
             result.stats = robot.stats();
             result.memory_walls = robot.memory_walls();
             result.sample_extraction = robot.env.borrow_mut().sample.take();
+            result.io_log = robot
+                .env
+                .borrow_mut()
+                .log
+                .take()
+                .map(|l| l.lines)
+                .unwrap_or_default();
         }
         Err(panic) => {
             let msg = panic

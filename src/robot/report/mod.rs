@@ -1315,6 +1315,7 @@ mod tests {
             wall_time: std::time::Duration::ZERO,
             map_snapshots: Vec::new(),
             sample_extraction: None,
+            io_log: Vec::new(),
         };
         RunSummary::of(&r, 0.1)
     }
