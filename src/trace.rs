@@ -374,62 +374,27 @@ impl Agent {
 /// The trace of the decision cycle's steps (spec §6c): elaboration headers, retractions,
 /// new preferences, operators removed by the consistency check.
 impl Agent {
-    /// `\t--- Firing Productions (PE) For State At Depth N ---` (apply phase, `-p`) and
-    /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before an
-    /// elaboration cycle. The active level is the highest goal any of the cycle's firings
-    /// and retractions is in (the top state if there are none).
-    pub(crate) fn trace_elaboration_header(
-        &mut self,
-        to_fire: &[(crate::rete::ProdId, crate::rete::TokId)],
-        retracted: &[crate::decide::state::InstId],
-        apply: bool,
-        o_support: bool,
-    ) {
-        let level_of = |agent: &Agent, g: Option<Sym>| {
-            g.and_then(|g| agent.symbols.id_data(g))
-                .map_or(1, |d| d.level)
-        };
-        let fired = to_fire
-            .iter()
-            .map(|&(p, t)| level_of(self, crate::support::match_goal(self, p, t)));
-        let gone = retracted
-            .iter()
-            .map(|&i| level_of(self, self.decider.insts[i as usize].goal));
-        let level = fired.chain(gone).min().unwrap_or(1);
-        let goal = self
-            .decider
-            .goals
-            .iter()
-            .find(|g| g.level == level)
-            .map_or_else(
-                || self.symbols.text(self.top.state),
-                |g| self.symbols.text(g.state),
-            );
-        // Only retractions of matches whose goal has gone (a substate removed in the last
-        // phase): 9.6 has no active goal then.
-        let orphans = to_fire.is_empty()
-            && !retracted.is_empty()
-            && retracted.iter().all(|&i| {
-                self.decider.insts[i as usize]
-                    .goal
-                    .is_some_and(|g| !self.symbols.is_goal(g))
-            });
-        let (level, goal) = if orphans {
-            (0, "#".to_string())
-        } else {
-            (level, goal)
-        };
-        if apply && self.settings.trace.phases {
-            let kind = if o_support { "PE" } else { "IE" };
-            self.output.push_str(&format!(
-                "\t--- Firing Productions ({kind}) For State At Depth {level} ---\n"
-            ));
+    /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before the firings
+    /// at one goal of an elaboration cycle (spec §3b); `None` when only retractions of
+    /// goals that are gone are pending (9.6 has no active goal then).
+    pub(crate) fn trace_inner_elaboration(&mut self, level: Option<u32>) {
+        if !self.settings.trace.waterfall {
+            return;
         }
-        if self.settings.trace.waterfall {
-            let s =
-                format!("\n--- Inner Elaboration Phase, active level {level} goal {goal} ---\n");
-            self.output.push_str(&s);
-        }
+        let (level, goal) = match level {
+            Some(l) => {
+                let goal = self
+                    .decider
+                    .goals
+                    .iter()
+                    .find(|g| g.level == l)
+                    .map_or(self.top.state, |g| g.state);
+                (l, self.symbols.text(goal))
+            }
+            None => (0, "#".to_string()),
+        };
+        let s = format!("\n--- Inner Elaboration Phase, active level {level} goal {goal} ---\n");
+        self.output.push_str(&s);
     }
 
     /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).

@@ -1,8 +1,8 @@
 //! The run loop (spec §3a–§3e): phases, elaboration cycles, firing and retracting
 //! instantiations, slots and working-memory changes, operator selection, impasses and
-//! substates. A first, functional version: the order of firings, identifiers and timetags
-//! follows the spec where noted; goal dependency sets, results' justifications and the
-//! per-goal "waterfall" are not modelled yet (see README).
+//! substates. The order of firings, identifiers and timetags follows 9.6's; each
+//! elaboration cycle fires at the highest goal with activity and then at each lower one
+//! (the "waterfall", spec §3b).
 
 use super::compiled::{self, Act, CompiledRule, Term};
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref, PrefType};
@@ -234,14 +234,18 @@ impl Agent {
         {
             return true;
         }
-        self.matches.retractions.iter().any(|k| {
-            let Some(&i) = self.decider.inst_by_token.get(k) else {
-                return true;
-            };
+        let live = |i: InstId| {
             self.decider.insts[i as usize]
                 .goal
                 .is_none_or(|g| self.symbols.is_goal(g))
-        })
+        };
+        self.decider.waiting_retractions.iter().any(|&i| live(i))
+            || self.matches.retractions.iter().any(|k| {
+                let Some(&i) = self.decider.inst_by_token.get(k) else {
+                    return true;
+                };
+                live(i)
+            })
     }
 
     /// Is there an assertion (of i-support only, unless `any`) or a retraction to process?
@@ -249,6 +253,7 @@ impl Agent {
         // Justifications that lost a WME retract like rules (spec §4).
         if !self.matches.retractions.is_empty()
             || !self.decider.justification_retractions.is_empty()
+            || !self.decider.waiting_retractions.is_empty()
         {
             return true;
         }
@@ -285,29 +290,16 @@ impl Agent {
     fn elaboration_cycle(&mut self, o_support: bool) -> bool {
         self.decider.e_cycles += 1;
         self.decider.e_cycles_this_phase += 1;
-        self.decider.pe_cycles += u64::from(o_support);
+        let apply = self.decider.phase == Some(Phase::Apply);
         let retractions = std::mem::take(&mut self.matches.retractions);
-        // Fire from the head: the newest match first (spec §3i).
         let mut pending = std::mem::take(&mut self.matches.assertions);
         let mut sc = std::mem::take(&mut self.decider.cycle_scratch);
-        let (mut keep, mut to_fire) = (sc.keep, sc.to_fire);
-        for (p, t) in pending.drain(..).rev() {
-            let o = self.is_o_supported(p, t);
-            if o == o_support {
-                self.matches.support.remove(&(p, t));
-                self.matches.taken(p, t);
-                to_fire.push((p, t));
-            } else {
-                keep.push((p, t));
-            }
-        }
-        keep.reverse();
-        // The emptied queue's room serves the next cycle's `keep`.
-        sc.keep = pending;
-        self.matches.assertions = keep;
         // Token ids are reused: resolve retractions to their instantiations before new
-        // matches (possibly on a reused id) fire.
+        // matches (possibly on a reused id) fire. Those a higher goal kept waiting in
+        // earlier cycles come first (they are older).
         let mut retracted = std::mem::take(&mut sc.retracted);
+        retracted.append(&mut self.decider.waiting_retractions);
+        retracted.retain(|&i| self.decider.insts[i as usize].alive);
         retracted.extend(
             retractions
                 .iter()
@@ -325,43 +317,167 @@ impl Agent {
                 retracted.push(i);
             }
         }
-        let apply = self.decider.phase == Some(Phase::Apply);
-        if self.settings.trace.phases || self.settings.trace.waterfall {
-            self.trace_elaboration_header(&to_fire, &retracted, apply, o_support);
+        // The waterfall (spec §3b): the pending matches by goal level, newest first (the
+        // order they fire in, spec §3i), with their support.
+        let mut queued = std::mem::take(&mut sc.queued);
+        queued.extend(pending.iter().rev().map(|&(p, t)| {
+            let level = crate::support::match_goal(self, p, t)
+                .and_then(|g| self.symbols.id_data(g))
+                .map_or(1, |d| d.level);
+            (p, t, level, self.is_o_supported(p, t), false)
+        }));
+        pending.clear();
+        // The emptied queue's room serves the next cycle's queue.
+        sc.keep = pending;
+        let retraction_level = |agent: &Agent, i: InstId| {
+            agent.decider.insts[i as usize]
+                .goal
+                .filter(|&g| agent.symbols.is_goal(g))
+                .and_then(|g| agent.symbols.id_data(g))
+                .map(|d| d.level)
+        };
+        // Goal levels with activity, highest goal first: assertions (in the propose phase
+        // only i-supported ones) and retractions.
+        let mut levels: Vec<u32> = queued
+            .iter()
+            .filter(|q| apply || !q.3)
+            .map(|q| q.2)
+            .chain(retracted.iter().filter_map(|&i| retraction_level(self, i)))
+            .collect();
+        levels.sort_unstable();
+        levels.dedup();
+        let top = levels.first().copied();
+        // The firing type: in the apply phase, i-supported matches first at the active goal,
+        // where retractions count as i-activity (consistency.cpp `i_activity_at_goal`).
+        let o_support = match (apply, top) {
+            (true, Some(g)) => {
+                !queued.iter().any(|q| q.2 == g && !q.3)
+                    && !retracted
+                        .iter()
+                        .any(|&i| retraction_level(self, i) == Some(g))
+            }
+            (true, None) => o_support,
+            (false, _) => false,
+        };
+        self.decider.pe_cycles += u64::from(o_support);
+        if apply && self.settings.trace.phases {
+            let kind = if o_support { "PE" } else { "IE" };
+            let depth = top.unwrap_or(0);
+            self.out(&format!(
+                "\t--- Firing Productions ({kind}) For State At Depth {depth} ---\n"
+            ));
         }
+        // Inner elaboration: each goal with activity, from the active one down, fires its
+        // matches of the firing type; below the active goal a match whose actions would
+        // change an identifier at or above the change level waits (9.6's "new waterfall":
+        // decide.cpp `do_preference_phase`, `shouldCreateInstantiation`).
         let mut new_prefs = std::mem::take(&mut sc.new_prefs);
-        for &(p, t) in &to_fire {
-            // A halt ends the run after this elaboration cycle: the rest of it still fires.
-            self.fire(p, t, o_support, &mut new_prefs);
+        let mut level = top;
+        let mut next_change = top.unwrap_or(0);
+        if top.is_none() {
+            self.trace_inner_elaboration(None);
         }
-        // New preferences go in before the retractions are processed (9.6 prints the `+`
-        // lines before `Retracting`), which sets the order slots change in (spec §3i).
-        self.assert_preferences(&new_prefs);
+        while let Some(l) = level {
+            let change_level = next_change;
+            self.trace_inner_elaboration(Some(l));
+            let mut exist = false;
+            for q in queued.iter_mut() {
+                let (p, t, ql, o, fired) = *q;
+                if fired || ql != l || o != o_support {
+                    continue;
+                }
+                exist = true;
+                if Some(l) != top && self.waits_for_higher_goal(p, t, change_level) {
+                    continue;
+                }
+                q.4 = true;
+                self.matches.support.remove(&(p, t));
+                self.matches.taken(p, t);
+                // A halt ends the run after this elaboration cycle: the rest still fires.
+                self.fire(p, t, o_support, &mut new_prefs);
+            }
+            if exist && l > next_change {
+                next_change = l;
+            }
+            // New preferences go in before the retractions are processed (9.6 prints the
+            // `+` lines before `Retracting`), which sets the order slots change in.
+            self.assert_preferences(&new_prefs);
+            new_prefs.clear();
+            level = levels.iter().copied().find(|&x| x > l);
+        }
+        // Matches that did not fire wait, in their order, before any the firings made.
+        let made = std::mem::take(&mut self.matches.assertions);
+        let mut keep = std::mem::take(&mut sc.keep);
+        keep.extend(queued.iter().rev().filter(|q| !q.4).map(|q| (q.0, q.1)));
+        keep.extend(made);
+        self.matches.assertions = keep;
+        queued.clear();
+        sc.queued = queued;
+        // Retractions at the active goal and of goals that are gone happen now; lower
+        // goals' wait for a cycle where they are the active goal (rete.cpp
+        // `get_next_retraction`).
+        let mut now = std::mem::take(&mut sc.to_fire_insts);
+        for &i in &retracted {
+            match retraction_level(self, i) {
+                Some(l) if Some(l) != top => self.decider.waiting_retractions.push(i),
+                _ => now.push(i),
+            }
+        }
         // 9.6 lists the retractions newest first and processes them in that order, each
         // instantiation's preferences newest first: that is the order their slots change
         // in, so the order of the `<=WM:` lines (checked with scripts/trace_compare.py:
         // blocks-world now matches 9.6 at trace 4 and 5).
         if self.settings.trace.preferences || self.settings.trace.any_firings() {
-            for &inst in retracted.iter().rev() {
+            for &inst in now.iter().rev() {
                 self.trace_retraction(inst);
             }
         }
-        for &inst in retracted.iter().rev() {
+        for &inst in now.iter().rev() {
             self.retract(inst);
         }
         if apply && self.settings.trace.phases {
             let kind = if o_support { "PE" } else { "IE" };
             self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
         }
-        to_fire.clear();
+        now.clear();
         retracted.clear();
-        new_prefs.clear();
-        sc.to_fire = to_fire;
+        sc.to_fire_insts = now;
         sc.retracted = retracted;
         sc.new_prefs = new_prefs;
         self.decider.cycle_scratch = sc;
         self.update_slots();
         true
+    }
+
+    /// Whether a match below the active goal must wait: one of its actions adds to an
+    /// identifier at or above the change level (9.6's `shouldCreateInstantiation`; new
+    /// identifiers and function calls do not count).
+    fn waits_for_higher_goal(&mut self, p: ProdId, t: TokId, change_level: u32) -> bool {
+        let Some(rule) = self.compiled_rule(p) else {
+            return false;
+        };
+        let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
+        self.rete.token_wmes(t, &mut wmes);
+        let mut waits = false;
+        for action in rule.actions.iter() {
+            let Act::Make { id, .. } = action else {
+                continue;
+            };
+            let sym = match id {
+                Term::Sym(s) => Some(*s),
+                Term::Bound(depth, field) => self.rete.field_at(&wmes, *depth, *field),
+                _ => None,
+            };
+            if sym
+                .and_then(|s| self.symbols.id_data(s))
+                .is_some_and(|d| d.level <= change_level)
+            {
+                waits = true;
+                break;
+            }
+        }
+        self.decider.rhs_wmes = wmes;
+        waits
     }
 
     fn fire(&mut self, p: ProdId, t: TokId, o_support: bool, new_prefs: &mut Vec<PrefId>) {
@@ -1808,7 +1924,9 @@ impl GcScratch {
 #[derive(Debug, Default)]
 pub(crate) struct CycleScratch {
     keep: Vec<(ProdId, TokId)>,
-    to_fire: Vec<(ProdId, TokId)>,
+    /// The pending matches of a cycle: rule, token, goal level, o-support, fired.
+    queued: Vec<(ProdId, TokId, u32, bool, bool)>,
+    to_fire_insts: Vec<InstId>,
     retracted: Vec<InstId>,
     new_prefs: Vec<PrefId>,
 }

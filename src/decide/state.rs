@@ -160,6 +160,9 @@ pub struct DecideState {
     pub free_prefs: Vec<PrefId>,
     /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
     pub justification_retractions: Vec<(InstId, u64)>,
+    /// Retractions of matches at a goal below the active one, waiting for a cycle in which
+    /// their goal is the active goal (spec §3b), oldest first.
+    pub waiting_retractions: Vec<InstId>,
     /// Rules' actions compiled for firing, by rule id (built at a rule's first firing).
     pub(crate) compiled: Vec<Option<std::rc::Rc<super::compiled::CompiledRule>>>,
     /// Scratch for firing: the WMEs of the match, by token depth.

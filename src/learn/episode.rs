@@ -433,10 +433,14 @@ impl Agent {
     ) -> InstId {
         self.learn.next_serial += 1;
         let serial = self.learn.next_serial;
+        // Its match goal is the lowest goal among its conditions' identifiers, as for a
+        // rule: 9.6 holds justifications in the network (spec §3b: the waterfall retracts
+        // them at that goal).
+        let goal = crate::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
         let inst = Instantiation {
             prod: ProdId(u32::MAX),
             token: 0,
-            goal: None,
+            goal,
             o_support,
             prefs: Vec::new(),
             alive: true,
