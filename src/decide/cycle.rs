@@ -1062,7 +1062,8 @@ impl Agent {
         let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
             return;
         };
-        if self.decider.goals[gi].operator.is_some() {
+        if let Some((op, w)) = self.decider.goals[gi].operator {
+            self.check_selected_operator(gi, key, op, w);
             return;
         }
         let Some(sub) = self.decider.goals.get(gi + 1) else {
@@ -1106,6 +1107,38 @@ impl Agent {
             self.trace_substate_wmes_removed(gi);
         }
         self.remove_goals_below(gi);
+        self.decider.goals[gi].slot_changed = true;
+    }
+
+    /// A selected operator stays while the preferences still give it among the candidates;
+    /// when another operator is now better (or an impasse would come instead), the operator
+    /// and every substate below go at once, and the next decision decides the slot again
+    /// (consistency.cpp `decision_consistent_with_current_preferences`, spec §3b).
+    fn check_selected_operator(&mut self, gi: usize, key: (Sym, Sym), op: Sym, w: WmeId) {
+        if matches!(procedure::candidates(&self.slot_prefs(key)), Ok(c) if c.contains(&op)) {
+            return;
+        }
+        if self.settings.trace.consistency {
+            let goal = self.symbols.text(key.0);
+            let s = format!(
+                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
+            );
+            self.out(&s);
+        }
+        if self.settings.trace.preferences {
+            for k in (gi + 1..self.decider.goals.len()).rev() {
+                let made = std::mem::take(&mut self.decider.goals[k].made);
+                let state = self.decider.goals[k].state;
+                self.trace_removed_prefs(state, &made);
+            }
+        }
+        if self.settings.trace.wmes {
+            self.trace_substate_wmes_removed(gi);
+        }
+        self.remove_goals_below(gi);
+        self.decider.goals[gi].operator = None;
+        self.remove_slot_wme(w);
+        self.collect_garbage();
         self.decider.goals[gi].slot_changed = true;
     }
 

@@ -1222,9 +1222,9 @@ mod tests {
 
     /// With the SLAM rules off only the moving rules load, no wall reaches memory and no
     /// correction happens. The true path of a seed is the SLAM-on path until the first decision
-    /// in which the SLAM-on agent still holds a SLAM operator where the SLAM-off agent selects
-    /// a motion operator: 9.6 keeps a selected operator until its proposal retracts, so a
-    /// `CheckWallRelation` in progress delays a `move` or `turn-right` by a decision or two.
+    /// in which the SLAM-on agent holds a SLAM operator where the SLAM-off agent selects a
+    /// motion operator (9.6 replaces a selected operator at once when a better one is
+    /// proposed, so this is rare: seed 3 has none in 20 s).
     #[test]
     fn slam_off_drives_the_same_true_path_until_a_slam_operator_delays_a_motion() {
         let on = run(&config(true, 3, 20.0));
@@ -1249,9 +1249,9 @@ mod tests {
             .zip(&off.steps)
             .position(|(a, b)| motion(&b.operators) && !motion(&a.operators))
             .unwrap_or(on.steps.len());
-        // The paths can only part one step after the delayed command.
+        // The paths can only part one step after a delayed command.
         assert!(
-            split > first_delay,
+            split == on.steps.len() || split > first_delay,
             "paths split at {split}, first delay at {first_delay}"
         );
     }
