@@ -220,9 +220,29 @@ pub struct MatchSet {
     /// finding that out must not mean a scan of the queue. Whoever takes a match off
     /// `assertions` calls [`MatchSet::taken`].
     pending: crate::decide::by_token::ByToken<()>,
+    /// How many entries of `assertions` are [`MatchSet::GONE`].
+    gone: usize,
 }
 
 impl MatchSet {
+    /// What a match that went before it fired leaves in `assertions`: taking it out at once
+    /// would shift the rest of the queue, and an input phase that changes a pose cancels
+    /// hundreds of matches it made a moment before (spec §2 I/O order). Readers skip it.
+    pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), u32::MAX);
+
+    /// Whether a match is queued (not yet fired, not gone).
+    pub fn has_assertions(&self) -> bool {
+        self.assertions.len() > self.gone
+    }
+
+    /// The queue without its gone entries.
+    pub fn compact(&mut self) {
+        if self.gone > 0 {
+            self.assertions.retain(|&x| x != Self::GONE);
+            self.gone = 0;
+        }
+    }
+
     /// A match left the queue (it fired or was taken over).
     pub fn taken(&mut self, p: ProdId, t: TokId) {
         self.pending.remove(&(p, t));
@@ -231,6 +251,7 @@ impl MatchSet {
     /// Empties the queue and the retractions (`init-soar`).
     pub fn clear(&mut self) {
         self.assertions.clear();
+        self.gone = 0;
         self.retractions.clear();
         self.support.clear();
         self.pending.clear();
@@ -249,8 +270,12 @@ impl MatchSink for MatchSet {
             .then(|| self.assertions.iter().rposition(|x| *x == (p, t)))
             .flatten()
         {
-            self.assertions.remove(i);
+            self.assertions[i] = Self::GONE;
+            self.gone += 1;
             self.support.remove(&(p, t));
+            if self.gone > 64 && self.gone * 2 > self.assertions.len() {
+                self.compact();
+            }
         } else {
             self.retractions.push((p, t));
         }

@@ -219,6 +219,9 @@ pub fn pending_matches(agent: &Agent) -> String {
     let mut o = String::from("O Assertions:\n");
     let mut i = String::from("I Assertions:\n");
     for &(p, t) in &agent.matches.assertions {
+        if (p, t) == crate::agent::MatchSet::GONE {
+            continue;
+        }
         let line = format!(
             "  {}  [{}] \n",
             agent.production_name(p),

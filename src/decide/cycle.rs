@@ -230,8 +230,7 @@ impl Agent {
     /// has gone (a substate removed in this phase) do not keep it going; 9.6 processes
     /// them in the next propose phase, with no active goal.
     fn has_pending_in_apply(&self) -> bool {
-        if !self.matches.assertions.is_empty() || !self.decider.justification_retractions.is_empty()
-        {
+        if self.matches.has_assertions() || !self.decider.justification_retractions.is_empty() {
             return true;
         }
         let live = |i: InstId| {
@@ -257,16 +256,16 @@ impl Agent {
         {
             return true;
         }
-        self.matches
-            .assertions
-            .iter()
-            .any(|&(p, t)| any || !self.is_o_supported(p, t))
+        self.matches.assertions.iter().any(|&(p, t)| {
+            (p, t) != crate::agent::MatchSet::GONE && (any || !self.is_o_supported(p, t))
+        })
     }
 
     /// Decides the support of the matches made since the last call, as 9.6's matcher does
     /// when it queues them, with its warning for rules that both elaborate and apply the
     /// operator (spec §3c, E:t24).
     pub(crate) fn classify_new_matches(&mut self) {
+        self.matches.compact();
         let n = self.matches.assertions.len();
         for i in 0..n {
             let key = self.matches.assertions[i];
@@ -292,6 +291,7 @@ impl Agent {
         self.decider.e_cycles_this_phase += 1;
         let apply = self.decider.phase == Some(Phase::Apply);
         let retractions = std::mem::take(&mut self.matches.retractions);
+        self.matches.compact();
         let mut pending = std::mem::take(&mut self.matches.assertions);
         let mut sc = std::mem::take(&mut self.decider.cycle_scratch);
         // Token ids are reused: resolve retractions to their instantiations before new
@@ -320,10 +320,16 @@ impl Agent {
         // The waterfall (spec §3b): the pending matches by goal level, newest first (the
         // order they fire in, spec §3i), with their support.
         let mut queued = std::mem::take(&mut sc.queued);
+        // With the top state alone every match is at level 1.
+        let one_goal = self.decider.goals.len() <= 1;
         queued.extend(pending.iter().rev().map(|&(p, t)| {
-            let level = crate::support::match_goal(self, p, t)
-                .and_then(|g| self.symbols.id_data(g))
-                .map_or(1, |d| d.level);
+            let level = if one_goal {
+                1
+            } else {
+                crate::support::match_goal(self, p, t)
+                    .and_then(|g| self.symbols.id_data(g))
+                    .map_or(1, |d| d.level)
+            };
             (p, t, level, self.is_o_supported(p, t), false)
         }));
         pending.clear();
@@ -406,6 +412,7 @@ impl Agent {
             level = levels.iter().copied().find(|&x| x > l);
         }
         // Matches that did not fire wait, in their order, before any the firings made.
+        self.matches.compact();
         let made = std::mem::take(&mut self.matches.assertions);
         let mut keep = std::mem::take(&mut sc.keep);
         keep.extend(queued.iter().rev().filter(|q| !q.4).map(|q| (q.0, q.1)));

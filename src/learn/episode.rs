@@ -372,6 +372,7 @@ impl Agent {
         let mut want: Vec<_> = grounds.to_vec();
         want.sort();
         want.dedup();
+        self.matches.compact();
         let pos = self.matches.assertions.iter().position(|&(p, t)| {
             if p != pid {
                 return false;

@@ -451,6 +451,10 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         .flat_map(|seed| opts.slam.conditions().iter().map(move |&s| (seed, s)))
         .collect();
     let total = jobs.len();
+    // The long runs (SLAM on) start first and the short ones fill in after them, so that
+    // no thread is left with a long run at the end; results keep the jobs' order.
+    let mut order: Vec<usize> = (0..total).collect();
+    order.sort_by_key(|&i| !jobs[i].1);
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<RunSummary>>> = Mutex::new(vec![None; total]);
@@ -471,10 +475,10 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     std::thread::scope(|scope| {
         for _ in 0..threads {
             let worker = || loop {
-                let i = next.fetch_add(1, Ordering::SeqCst);
-                let Some(&(seed, slam)) = jobs.get(i) else {
+                let Some(&i) = order.get(next.fetch_add(1, Ordering::SeqCst)) else {
                     break;
                 };
+                let (seed, slam) = jobs[i];
                 let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
                 cfg.rules_dir = opts.rules_dir.clone();
                 cfg.io_log = opts.io_log;
