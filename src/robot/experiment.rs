@@ -474,31 +474,30 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     }
     std::thread::scope(|scope| {
         for _ in 0..threads {
-            let worker = || loop {
-                let Some(&i) = order.get(next.fetch_add(1, Ordering::SeqCst)) else {
-                    break;
-                };
-                let (seed, slam) = jobs[i];
-                let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
-                cfg.rules_dir = opts.rules_dir.clone();
-                cfg.io_log = opts.io_log;
-                if seed == opts.first_seed {
-                    let n = cfg.steps();
-                    cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
-                    cfg.sample_extraction_at = Some(sample_step(&cfg));
+            let worker = || {
+                while let Some(&i) = order.get(next.fetch_add(1, Ordering::SeqCst)) {
+                    let (seed, slam) = jobs[i];
+                    let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
+                    cfg.rules_dir = opts.rules_dir.clone();
+                    cfg.io_log = opts.io_log;
+                    if seed == opts.first_seed {
+                        let n = cfg.steps();
+                        cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
+                        cfg.sample_extraction_at = Some(sample_step(&cfg));
+                    }
+                    let result = soar_loop::run(&cfg);
+                    let summary = RunSummary::of(&result, opts.world.run.dt);
+                    if let Err(e) = write_run(&opts.out, &result) {
+                        let mut w = write_error.lock().unwrap_or_else(|p| p.into_inner());
+                        w.get_or_insert(e);
+                    }
+                    let k = done.fetch_add(1, Ordering::SeqCst) + 1;
+                    if progress {
+                        eprintln!("{}", progress_line(k, total, &summary));
+                    }
+                    let mut r = results.lock().unwrap_or_else(|p| p.into_inner());
+                    r[i] = Some(summary);
                 }
-                let result = soar_loop::run(&cfg);
-                let summary = RunSummary::of(&result, opts.world.run.dt);
-                if let Err(e) = write_run(&opts.out, &result) {
-                    let mut w = write_error.lock().unwrap_or_else(|p| p.into_inner());
-                    w.get_or_insert(e);
-                }
-                let k = done.fetch_add(1, Ordering::SeqCst) + 1;
-                if progress {
-                    eprintln!("{}", progress_line(k, total, &summary));
-                }
-                let mut r = results.lock().unwrap_or_else(|p| p.into_inner());
-                r[i] = Some(summary);
             };
             let spawned = std::thread::Builder::new()
                 .name("slam-run".into())
