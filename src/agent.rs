@@ -216,10 +216,11 @@ pub struct MatchSet {
     pub retractions: Vec<(ProdId, TokId)>,
     /// Each pending assertion's support, decided once at match time (spec §3c).
     pub support: crate::decide::by_token::ByToken<bool>,
-    /// The same matches as `assertions`, as a set: most retracted matches have fired, and
+    /// The same matches as `assertions`, with their place there (a hint: a queue rebuilt
+    /// without [`MatchSet::reindex`] is searched): most retracted matches have fired, and
     /// finding that out must not mean a scan of the queue. Whoever takes a match off
     /// `assertions` calls [`MatchSet::taken`].
-    pending: crate::decide::by_token::ByToken<()>,
+    pending: crate::decide::by_token::ByToken<u32>,
     /// How many entries of `assertions` are [`MatchSet::GONE`].
     gone: usize,
 }
@@ -240,6 +241,16 @@ impl MatchSet {
         if self.gone > 0 {
             self.assertions.retain(|&x| x != Self::GONE);
             self.gone = 0;
+            self.reindex();
+        }
+    }
+
+    /// Records each queued match's place, after the queue was rebuilt.
+    pub fn reindex(&mut self) {
+        for (i, &k) in self.assertions.iter().enumerate() {
+            if k != Self::GONE {
+                self.pending.insert(k, i as u32);
+            }
         }
     }
 
@@ -260,16 +271,20 @@ impl MatchSet {
 
 impl MatchSink for MatchSet {
     fn matched(&mut self, p: ProdId, t: TokId) {
+        self.pending.insert((p, t), self.assertions.len() as u32);
         self.assertions.push((p, t));
-        self.pending.insert((p, t), ());
     }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         // A match that goes before it fired simply leaves the queue.
-        let queued = self.pending.remove(&(p, t)).is_some();
-        if let Some(i) = queued
-            .then(|| self.assertions.iter().rposition(|x| *x == (p, t)))
-            .flatten()
-        {
+        let place = self.pending.remove(&(p, t)).and_then(|i| {
+            let i = i as usize;
+            if self.assertions.get(i) == Some(&(p, t)) {
+                Some(i)
+            } else {
+                self.assertions.iter().rposition(|x| *x == (p, t))
+            }
+        });
+        if let Some(i) = place {
             self.assertions[i] = Self::GONE;
             self.gone += 1;
             self.support.remove(&(p, t));

@@ -418,6 +418,7 @@ impl Agent {
         keep.extend(queued.iter().rev().filter(|q| !q.4).map(|q| (q.0, q.1)));
         keep.extend(made);
         self.matches.assertions = keep;
+        self.matches.reindex();
         queued.clear();
         sc.queued = queued;
         // Retractions at the active goal and of goals that are gone happen now; lower

@@ -383,6 +383,7 @@ impl Agent {
             got == want
         })?;
         let (p, t) = self.matches.assertions.remove(pos);
+        self.matches.reindex();
         self.matches.support.remove(&(p, t));
         self.matches.taken(p, t);
         Some(t)
