@@ -710,6 +710,37 @@ pub(crate) fn fmt_band(v: &[f64]) -> String {
 }
 
 impl Experiment {
+    /// Whether each seed's true path came out the same with and without the SLAM rules, as
+    /// a sentence for the reports (`None` unless both conditions ran).
+    pub(crate) fn true_paths_note(&self) -> Option<String> {
+        let mut pairs = 0;
+        let mut same = 0;
+        for on in self.runs.iter().filter(|r| r.slam) {
+            let Some(off) = self.runs.iter().find(|r| !r.slam && r.seed == on.seed) else {
+                continue;
+            };
+            pairs += 1;
+            same += usize::from(on.true_path == off.true_path);
+        }
+        if pairs == 0 {
+            return None;
+        }
+        Some(if same == pairs {
+            format!(
+                "The true path of each seed is the same in both conditions ({same} of {pairs} \
+                 seeds): the moving rules react only to the sonar, and a motion operator they \
+                 propose replaces a selected SLAM operator at once, as 9.6's consistency check \
+                 does; only the believed pose differs."
+            )
+        } else {
+            format!(
+                "The true path of {same} of {pairs} seeds is the same in both conditions; in the \
+                 others the paths part where a SLAM operator holds the top state when the \
+                 moving rules want to move or turn."
+            )
+        })
+    }
+
     pub(crate) fn conditions(&self) -> Vec<bool> {
         let mut c: Vec<bool> = self.runs.iter().map(|r| r.slam).collect();
         c.sort();
@@ -861,16 +892,14 @@ impl Experiment {
             "World `{}` ({} sonar), {} seed(s) from {}, {} simulated seconds per run, time step \
              {} s. SLAM `on` loads `rules/robotagent.soar` as it is; `off` leaves out its line \
              `source slam.soar`. Paired by seed: the same seed gives the same odometry biases, \
-             sonar noise and start in both conditions. The true paths agree until the first \
-             decision in which a SLAM operator still holds the top state when the moving rules \
-             want to turn or move on (Soar keeps a selected operator until its proposal \
-             retracts), so they part after a few seconds.\n",
+             sonar noise and start in both conditions. {}\n",
             self.world_label,
             self.noise,
             opts.seeds,
             opts.first_seed,
             self.duration_s,
-            opts.world.run.dt
+            opts.world.run.dt,
+            self.true_paths_note().unwrap_or_default()
         );
         let _ = writeln!(
             s,

@@ -800,12 +800,12 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
     let _ = writeln!(
         s,
         "- **Seeds** {}–{} ({} per condition), {} simulated seconds each, paired by seed: a seed \
-         gives the same odometry biases, sonar noise and start in both conditions. The true paths \
-         agree until a SLAM operator first delays a motion command, then part.\n",
+         gives the same odometry biases, sonar noise and start in both conditions. {}\n",
         opts.first_seed,
         opts.first_seed + opts.seeds - 1,
         opts.seeds,
-        exp.duration_s
+        exp.duration_s,
+        exp.true_paths_note().unwrap_or_default()
     );
 
     let failed: Vec<&RunSummary> = exp.runs.iter().filter(|r| !r.outcome.completed()).collect();
