@@ -562,6 +562,18 @@ impl Agent {
         w
     }
 
+    /// Matches a WME already in working memory (a buffered addition reaching the matcher).
+    pub(crate) fn match_new_wme(&mut self, w: WmeId, wme: &Wme) {
+        self.rete.add_wme(
+            w,
+            (wme.id, wme.attr, wme.value),
+            wme.acceptable,
+            &self.symbols,
+            &mut self.matches,
+        );
+        self.justification_wme_added(w);
+    }
+
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
         self.wm.get(w)?;
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);

@@ -108,14 +108,7 @@ impl Agent {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };
-            self.rete.add_wme(
-                w,
-                (wme.id, wme.attr, wme.value),
-                wme.acceptable,
-                &self.symbols,
-                &mut self.matches,
-            );
-            self.justification_wme_added(w);
+            self.match_new_wme(w, &wme);
             self.trace_wme("=>WM: ", &wme);
         }
         for change in queue.iter().rev() {
@@ -356,22 +349,16 @@ mod tests {
             .filter(|l| l.starts_with("=>WM") || l.starts_with("<=WM"))
             .take(4)
             .collect();
-        assert!(
-            input[0].contains("=>WM") && input[0].contains("^Y 21"),
-            "{second}"
-        );
-        assert!(
-            input[1].contains("=>WM") && input[1].contains("^X 11"),
-            "{second}"
-        );
-        assert!(
-            input[2].contains("<=WM") && input[2].contains("^Y 20"),
-            "{second}"
-        );
-        assert!(
-            input[3].contains("<=WM") && input[3].contains("^X 10"),
-            "{second}"
-        );
+        let want = [
+            ("=>WM", "^Y 21"),
+            ("=>WM", "^X 11"),
+            ("<=WM", "^Y 20"),
+            ("<=WM", "^X 10"),
+        ];
+        assert_eq!(input.len(), want.len(), "{second}");
+        for (line, (arrow, wme)) in input.iter().zip(want) {
+            assert!(line.contains(arrow) && line.contains(wme), "{second}");
+        }
         let fired: Vec<&str> = second.lines().filter(|l| l.starts_with("fire")).collect();
         assert_eq!(fired, ["fire 2 11 21", "fire 1 11 21"], "{second}");
     }

@@ -939,14 +939,7 @@ impl Agent {
                 if self.settings.trace.wmes {
                     traced_adds.push(wme);
                 }
-                self.rete.add_wme(
-                    w,
-                    (wme.id, wme.attr, wme.value),
-                    wme.acceptable,
-                    &self.symbols,
-                    &mut self.matches,
-                );
-                self.justification_wme_added(w);
+                self.match_new_wme(w, &wme);
             }
         }
         for &w in &added {
@@ -1096,10 +1089,25 @@ impl Agent {
         if consistent {
             return;
         }
+        self.remove_inconsistent_decision(gi, key, true);
+        self.decider.goals[gi].slot_changed = true;
+    }
+
+    /// The substates below goal `gi` go because its decision no longer agrees with the
+    /// preferences, with 9.6's trace (`remove_current_decision`; the `REMOVING CONTEXT
+    /// SLOT` line only when no operator was selected).
+    fn remove_inconsistent_decision(&mut self, gi: usize, key: (Sym, Sym), empty_slot: bool) {
         if self.settings.trace.consistency {
             let goal = self.symbols.text(key.0);
+            let slot_line = if empty_slot {
+                format!(
+                    "\n       REMOVING CONTEXT SLOT: Slot Identifier [{goal}] and attribute [operator]\n"
+                )
+            } else {
+                String::new()
+            };
             let s = format!(
-                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n\n       REMOVING CONTEXT SLOT: Slot Identifier [{goal}] and attribute [operator]\n\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
+                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n{slot_line}\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
             );
             self.out(&s);
         }
@@ -1115,7 +1123,6 @@ impl Agent {
             self.trace_substate_wmes_removed(gi);
         }
         self.remove_goals_below(gi);
-        self.decider.goals[gi].slot_changed = true;
     }
 
     /// A selected operator stays while the preferences still give it among the candidates;
@@ -1126,24 +1133,7 @@ impl Agent {
         if matches!(procedure::candidates(&self.slot_prefs(key)), Ok(c) if c.contains(&op)) {
             return;
         }
-        if self.settings.trace.consistency {
-            let goal = self.symbols.text(key.0);
-            let s = format!(
-                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
-            );
-            self.out(&s);
-        }
-        if self.settings.trace.preferences {
-            for k in (gi + 1..self.decider.goals.len()).rev() {
-                let made = std::mem::take(&mut self.decider.goals[k].made);
-                let state = self.decider.goals[k].state;
-                self.trace_removed_prefs(state, &made);
-            }
-        }
-        if self.settings.trace.wmes {
-            self.trace_substate_wmes_removed(gi);
-        }
-        self.remove_goals_below(gi);
+        self.remove_inconsistent_decision(gi, key, false);
         self.decider.goals[gi].operator = None;
         self.remove_slot_wme(w);
         self.collect_garbage();
