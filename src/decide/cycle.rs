@@ -154,7 +154,7 @@ impl Agent {
                     self.decider.phase_started = true;
                 }
                 while self.has_pending(false) && !self.decider.halted {
-                    if !self.elaboration_cycle(false) {
+                    if !self.elaboration_cycle() {
                         break;
                     }
                     if self.max_elaborations_reached("decide") {
@@ -187,9 +187,7 @@ impl Agent {
                     self.decider.phase_started = true;
                 }
                 while self.has_pending_in_apply() && !self.decider.halted {
-                    // IE before PE: i-supported firings reach quiescence first (spec §3a).
-                    let pe = !self.has_pending(false);
-                    if !self.elaboration_cycle(pe) {
+                    if !self.elaboration_cycle() {
                         break;
                     }
                     if self.max_elaborations_reached("output") {
@@ -284,9 +282,10 @@ impl Agent {
         }
     }
 
-    /// One elaboration cycle: retractions, then the new matches of one support type fire in
-    /// parallel, then all preference and working-memory changes happen together (spec §3a).
-    fn elaboration_cycle(&mut self, o_support: bool) -> bool {
+    /// One elaboration cycle (spec §3a, §3b): the pending matches of one support type fire
+    /// at the active goal and then at each lower goal with activity, the active goal's
+    /// retractions follow, then the working-memory changes happen together.
+    fn elaboration_cycle(&mut self) -> bool {
         self.decider.e_cycles += 1;
         self.decider.e_cycles_this_phase += 1;
         let apply = self.decider.phase == Some(Phase::Apply);
@@ -353,8 +352,9 @@ impl Agent {
         levels.sort_unstable();
         levels.dedup();
         let top = levels.first().copied();
-        // The firing type: in the apply phase, i-supported matches first at the active goal,
-        // where retractions count as i-activity (consistency.cpp `i_activity_at_goal`).
+        // The firing type: IE before PE (spec §3a). In the apply phase PE only when the
+        // active goal has no i-activity, where retractions count too (consistency.cpp
+        // `i_activity_at_goal`); IE when only retractions of goals that are gone are left.
         let o_support = match (apply, top) {
             (true, Some(g)) => {
                 !queued.iter().any(|q| q.2 == g && !q.3)
@@ -362,8 +362,7 @@ impl Agent {
                         .iter()
                         .any(|&i| retraction_level(self, i) == Some(g))
             }
-            (true, None) => o_support,
-            (false, _) => false,
+            _ => false,
         };
         self.decider.pe_cycles += u64::from(o_support);
         if apply && self.settings.trace.phases {
