@@ -141,6 +141,11 @@ impl Agent {
         let Some(old) = self.wm.get(w).copied() else {
             return w;
         };
+        // A WME already on its way out is not replaced twice (its holder was updated or
+        // removed before in this phase: the caller holds a stale handle).
+        if self.input_queue.contains(&InputChange::Remove(w)) {
+            return w;
+        }
         let new = self.value_sym(&v);
         if new == old.value {
             return w;
@@ -161,7 +166,9 @@ impl Agent {
     /// Removes an input WME at the next input phase and, with the garbage collection
     /// after it, what hangs below it.
     pub fn remove_input(&mut self, w: WmeId) {
-        self.input_queue.push(InputChange::Remove(w));
+        if !self.input_queue.contains(&InputChange::Remove(w)) {
+            self.input_queue.push(InputChange::Remove(w));
+        }
     }
 
     /// Commands on the output-link: each `(I3 ^name <obj>)` object with its parameters.
@@ -302,7 +309,9 @@ mod tests {
         assert_eq!(a.wm.get(now[1]).map(|w| w.timetag), tt_y);
         let text = |a: &Agent, w: WmeId| a.wm.get(w).map(|w| a.symbols.text(w.value));
         assert_eq!(text(&a, now[0]), Some("5".into()));
-        // The old value goes at the input phase.
+        // The old value goes at the input phase; a stale handle is not replaced again.
+        assert_eq!(a.wm.of_id(data).count(), 3);
+        assert_eq!(a.update_input(x, 7i64), x);
         assert_eq!(a.wm.of_id(data).count(), 3);
         a.apply_input_changes();
         assert_eq!(a.wm.of_id(data).count(), 2);

@@ -321,34 +321,45 @@ impl Agent {
         let mut queued = std::mem::take(&mut sc.queued);
         // With the top state alone every match is at level 1.
         let one_goal = self.decider.goals.len() <= 1;
-        queued.extend(pending.iter().rev().map(|&(p, t)| {
+        queued.extend(pending.iter().rev().map(|&(prod, tok)| {
             let level = if one_goal {
                 1
             } else {
-                crate::support::match_goal(self, p, t)
+                crate::support::match_goal(self, prod, tok)
                     .and_then(|g| self.symbols.id_data(g))
                     .map_or(1, |d| d.level)
             };
-            (p, t, level, self.is_o_supported(p, t), false)
+            let o_support = self.is_o_supported(prod, tok);
+            Queued {
+                prod,
+                tok,
+                level,
+                o_support,
+                fired: false,
+            }
         }));
         pending.clear();
         // The emptied queue's room serves the next cycle's queue.
         sc.keep = pending;
-        let retraction_level = |agent: &Agent, i: InstId| {
-            agent.decider.insts[i as usize]
+        // Each retraction's goal level (`None`: its goal is gone).
+        let mut retracted_levels = std::mem::take(&mut sc.retracted_levels);
+        retracted_levels.extend(retracted.iter().map(|&i| {
+            self.decider.insts[i as usize]
                 .goal
-                .filter(|&g| agent.symbols.is_goal(g))
-                .and_then(|g| agent.symbols.id_data(g))
+                .filter(|&g| self.symbols.is_goal(g))
+                .and_then(|g| self.symbols.id_data(g))
                 .map(|d| d.level)
-        };
+        }));
         // Goal levels with activity, highest goal first: assertions (in the propose phase
         // only i-supported ones) and retractions.
-        let mut levels: Vec<u32> = queued
-            .iter()
-            .filter(|q| apply || !q.3)
-            .map(|q| q.2)
-            .chain(retracted.iter().filter_map(|&i| retraction_level(self, i)))
-            .collect();
+        let mut levels = std::mem::take(&mut sc.levels);
+        levels.extend(
+            queued
+                .iter()
+                .filter(|q| apply || !q.o_support)
+                .map(|q| q.level)
+                .chain(retracted_levels.iter().flatten().copied()),
+        );
         levels.sort_unstable();
         levels.dedup();
         let top = levels.first().copied();
@@ -357,10 +368,8 @@ impl Agent {
         // `i_activity_at_goal`); IE when only retractions of goals that are gone are left.
         let o_support = match (apply, top) {
             (true, Some(g)) => {
-                !queued.iter().any(|q| q.2 == g && !q.3)
-                    && !retracted
-                        .iter()
-                        .any(|&i| retraction_level(self, i) == Some(g))
+                !queued.iter().any(|q| q.level == g && !q.o_support)
+                    && !retracted_levels.contains(&Some(g))
             }
             _ => false,
         };
@@ -387,15 +396,15 @@ impl Agent {
             self.trace_inner_elaboration(Some(l));
             let mut exist = false;
             for q in queued.iter_mut() {
-                let (p, t, ql, o, fired) = *q;
-                if fired || ql != l || o != o_support {
+                if q.fired || q.level != l || q.o_support != o_support {
                     continue;
                 }
                 exist = true;
+                let (p, t) = (q.prod, q.tok);
                 if Some(l) != top && self.waits_for_higher_goal(p, t, change_level) {
                     continue;
                 }
-                q.4 = true;
+                q.fired = true;
                 self.matches.support.remove(&(p, t));
                 self.matches.taken(p, t);
                 // A halt ends the run after this elaboration cycle: the rest still fires.
@@ -414,7 +423,13 @@ impl Agent {
         self.matches.compact();
         let made = std::mem::take(&mut self.matches.assertions);
         let mut keep = std::mem::take(&mut sc.keep);
-        keep.extend(queued.iter().rev().filter(|q| !q.4).map(|q| (q.0, q.1)));
+        keep.extend(
+            queued
+                .iter()
+                .rev()
+                .filter(|q| !q.fired)
+                .map(|q| (q.prod, q.tok)),
+        );
         keep.extend(made);
         self.matches.assertions = keep;
         self.matches.reindex();
@@ -424,12 +439,16 @@ impl Agent {
         // goals' wait for a cycle where they are the active goal (rete.cpp
         // `get_next_retraction`).
         let mut now = std::mem::take(&mut sc.to_fire_insts);
-        for &i in &retracted {
-            match retraction_level(self, i) {
+        for (&i, &l) in retracted.iter().zip(&retracted_levels) {
+            match l {
                 Some(l) if Some(l) != top => self.decider.waiting_retractions.push(i),
                 _ => now.push(i),
             }
         }
+        retracted_levels.clear();
+        levels.clear();
+        sc.retracted_levels = retracted_levels;
+        sc.levels = levels;
         // 9.6 lists the retractions newest first and processes them in that order, each
         // instantiation's preferences newest first: that is the order their slots change
         // in, so the order of the `<=WM:` lines (checked with scripts/trace_compare.py:
@@ -1954,11 +1973,23 @@ impl GcScratch {
 #[derive(Debug, Default)]
 pub(crate) struct CycleScratch {
     keep: Vec<(ProdId, TokId)>,
-    /// The pending matches of a cycle: rule, token, goal level, o-support, fired.
-    queued: Vec<(ProdId, TokId, u32, bool, bool)>,
+    queued: Vec<Queued>,
+    retracted_levels: Vec<Option<u32>>,
+    levels: Vec<u32>,
     to_fire_insts: Vec<InstId>,
     retracted: Vec<InstId>,
     new_prefs: Vec<PrefId>,
+}
+
+/// A match pending at the start of an elaboration cycle (spec §3b).
+#[derive(Debug, Clone, Copy)]
+struct Queued {
+    prod: ProdId,
+    tok: TokId,
+    /// Its goal's level.
+    level: u32,
+    o_support: bool,
+    fired: bool,
 }
 
 /// The buffers of one working-memory phase, kept between phases for their room.

@@ -466,7 +466,8 @@ impl Env {
                 });
             }
             Some(io) => {
-                // One batch: the rules that join X, Y and Th re-match once per step.
+                // In one input phase, as SML sends them; the kernel applies them in 9.6's
+                // order (new values first, then the old ones go).
                 let mut changes = vec![
                     (io.x, Value::Int(x)),
                     (io.y, Value::Int(y)),
