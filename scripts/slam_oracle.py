@@ -143,14 +143,20 @@ FUNCTIONS = {
 }
 
 
+# The input lines of a log and their least number of words.
+INPUT_WORDS = {"init": 20, "update": 3, "wall": 13, "remove-wall": 2}
+
+
 def read_log(path):
     """Per step: (commands carried out before its input phase, input changes, decided line)."""
     steps = []
     pending_commands = []
-    for line in open(path):
+    for number, line in enumerate(open(path), 1):
         words = line.split()
         if not words:
             continue
+        if words[0] not in ("step", "command") and not steps:
+            raise SystemExit("%s:%d: `%s` before the first step line" % (path, number, words[0]))
         if words[0] == "step":
             steps.append({"n": int(words[1]), "commands": pending_commands, "input": [],
                           "decided": None})
@@ -159,8 +165,10 @@ def read_log(path):
             pending_commands.append(" ".join(words[1:]))
         elif words[0] == "decided":
             steps[-1]["decided"] = (int(words[1]), words[2:])
-        else:
+        elif words[0] in INPUT_WORDS and len(words) >= INPUT_WORDS[words[0]]:
             steps[-1]["input"].append(words)
+        else:
+            raise SystemExit("%s:%d: not a log line: %s" % (path, number, line.rstrip()))
     return steps
 
 
