@@ -192,6 +192,10 @@ impl Rete {
                     if blockable && self.tokens[t as usize].results != NIL {
                         continue;
                     }
+                    if self.doom.active && self.tokens[t as usize].doomed && self.may_skip_doomed(n)
+                    {
+                        continue;
+                    }
                     if self.tokens[t as usize].alive
                         && self.wmes[w.0 as usize].is_some()
                         && self.node_tests_pass(n, t, w, depth, syms)
@@ -295,8 +299,13 @@ impl Rete {
                 let depth = self.tokens[t as usize].depth + 1;
                 let base = self.scratch.len();
                 self.push_amem_candidates(amem, n, t);
+                let batch = self.doom.active;
+                let t_doomed = batch && self.tokens[t as usize].doomed;
                 for i in base..self.scratch.len() {
                     let wm = WmeId(self.scratch[i]);
+                    if batch && (t_doomed || self.wme_doomed(wm)) && self.may_skip_doomed(n) {
+                        continue;
+                    }
                     if self.wmes[wm.0 as usize].is_some()
                         && self.tokens[t as usize].alive
                         && self.node_tests_pass(n, t, wm, depth, syms)

@@ -14,6 +14,7 @@
 mod activate;
 pub(crate) mod blocks;
 mod build;
+mod doomed;
 mod hash;
 mod names;
 pub mod reorder;
@@ -151,6 +152,8 @@ pub(crate) struct RWme {
     pub tokens: u32,
     /// Negative join results naming this WME.
     pub neg_results: u32,
+    /// Whether the batch of changes in progress removes it (see `doomed.rs`).
+    pub doomed: bool,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -304,6 +307,8 @@ pub(crate) struct Token {
     /// the holder's joins read it for every pairing (`hash.rs`).
     pub key: Sym,
     pub alive: bool,
+    /// Whether it holds a WME the batch of changes in progress removes (see `doomed.rs`).
+    pub doomed: bool,
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -398,9 +403,14 @@ pub struct Rete {
     emptied_succ: Vec<NodeId>,
     /// The same for alpha-memory successors.
     succ_scratch: Vec<Succ>,
+    /// The batch of changes in progress, for leaving out its passing tokens.
+    pub(crate) doom: doomed::DoomState,
+    /// Counts changes to the network's nodes (summaries of it are kept until it changes).
+    pub(crate) network_version: u64,
     /// Counters for the benchmarks and `stats`.
     pub right_activations: u64,
     pub left_activations: u64,
+    pub tokens_made: u64,
 }
 
 impl Default for Rete {
@@ -442,8 +452,11 @@ impl Rete {
             emptied_succ: Vec::new(),
             root: 0,
             root_token: 0,
+            doom: Default::default(),
+            network_version: 0,
             right_activations: 0,
             left_activations: 0,
+            tokens_made: 0,
         };
         r.root = r.new_node(Kind::Root, NIL, 0);
         r.root_token = r.new_token(r.root, NIL, NIL_WME);
@@ -468,10 +481,12 @@ impl Rete {
             amem_key: 0,
             same_amem_ancestor: NIL,
         };
+        self.network_version += 1;
         alloc(&mut self.nodes, &mut self.free_nodes, node)
     }
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
+        self.network_version += 1;
         if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = self.nodes[n as usize].kind
         {
             self.test_lists.release(tests);
@@ -655,12 +670,21 @@ impl Rete {
             rm: [NIL; 4],
             tokens: NIL,
             neg_results: NIL,
+            doomed: false,
         });
         // Up to four alpha memories can hold it: attribute and value constant or not. They
         // are activated least specific first, as 9.6 walks its alpha hash tables; the order
         // decides which left-unlinked joins relink first, so the order of new matches and
         // of firings (spec §3i, §8 risk 1; scripts/trace_compare.py: o-reject,
         // random-tokens and missionaries match 9.6 at every trace level with it).
+        let targets = self.alpha_targets(attr, value, acceptable);
+        for &am in targets.iter().take_while(|&&a| a != NIL) {
+            self.alpha_activation(am, w, syms, sink);
+        }
+    }
+
+    /// The alpha memories a WME with this attribute and value goes into, NIL-padded.
+    pub(crate) fn alpha_targets(&self, attr: Sym, value: Sym, acceptable: bool) -> [AmemId; 4] {
         let mut targets = [NIL; 4];
         let mut n = 0;
         for (a, v) in [
@@ -682,9 +706,7 @@ impl Rete {
                 n += 1;
             }
         }
-        for &am in &targets[..n] {
-            self.alpha_activation(am, w, syms, sink);
-        }
+        targets
     }
 
     fn alpha_activation(&mut self, a: AmemId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {

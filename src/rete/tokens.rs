@@ -16,7 +16,11 @@ impl Rete {
         } else {
             self.tokens[parent as usize].depth + 1
         };
+        self.tokens_made += 1;
         let head = self.nodes[node as usize].first_token;
+        let doomed = self.doom.active
+            && ((parent != NIL && self.tokens[parent as usize].doomed)
+                || (wme != NIL_WME && self.wme_doomed(wme)));
         let tok = Token {
             node,
             parent,
@@ -37,6 +41,7 @@ impl Rete {
             row: 0,
             key: NO_VALUE,
             alive: true,
+            doomed,
         };
         let row = self.alloc_row(parent, depth, wme);
         let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
