@@ -258,6 +258,12 @@ sp {seen-pair (state <s> ^io.input-link.obj <o1> <o2>) (<o1> ^seen <v>) (<o2> ^s
   --> (write |pair | <v> (crlf))}
 sp {flagged (state <s> ^io.input-link.obj <o>) (<o> ^flag yes ^a <a>)
   --> (write |flag | <a> (crlf))}
+sp {pose-then-mark (state <s> ^io.input-link <il>) (<il> ^crd <c>) (<c> ^X <x> ^Y <y>)
+  (<il> ^obj <o>) (<o> ^mark <x>) --> (write |mark | <x> | | <y> (crlf))}
+sp {pose-then-mark-a (state <s> ^io.input-link <il>) (<il> ^crd <c>) (<c> ^Y <y> ^X <x>)
+  (<il> ^obj <o>) (<o> ^mark <y> ^a <a>) --> (write |mark-a | <a> (crlf))}
+sp {mark-th (state <s> ^io.input-link <il>) (<il> ^crd <c> ^obj <o>) (<c> ^Th <th>)
+  (<o> ^mark <th>) --> (write |mark-th | <th> (crlf))}
 ";
 
     /// Runs `steps` input phases of random pose, flag and object changes with the batch
@@ -275,7 +281,8 @@ sp {flagged (state <s> ^io.input-link.obj <o>) (<o> ^flag yes ^a <a>)
             .iter()
             .map(|attr| a.add_input(c, attr, 0i64))
             .collect();
-        let mut objs: Vec<(WmeId, crate::symbols::Sym, Option<WmeId>)> = Vec::new();
+        type Obj = (WmeId, crate::symbols::Sym, Option<WmeId>, Option<WmeId>);
+        let mut objs: Vec<Obj> = Vec::new();
         let mut out = String::new();
         i.run_text("t", "watch 5").unwrap();
         for _ in 0..steps {
@@ -283,12 +290,22 @@ sp {flagged (state <s> ^io.input-link.obj <o>) (<o> ^flag yes ^a <a>)
             if objs.len() < 2 || below(4) == 0 {
                 let (w, o) = a.add_input_object(il, "obj");
                 a.add_input(o, "a", i64::from(below(3)));
-                objs.push((w, o, None));
+                objs.push((w, o, None, None));
             } else if below(5) == 0 {
                 let k = below(objs.len() as u32) as usize;
                 a.remove_input(objs.remove(k).0);
             }
-            for (_, o, flag) in objs.iter_mut() {
+            for (_, o, flag, mark) in objs.iter_mut() {
+                if below(3) == 0 {
+                    let v = Value::Int(i64::from(below(3)));
+                    *mark = Some(match *mark {
+                        Some(m) => a.update_input(m, v),
+                        None => a.add_input(*o, "mark", v),
+                    });
+                } else if let (0, Some(m)) = (below(4), *mark) {
+                    a.remove_input(m);
+                    *mark = None;
+                }
                 match (below(4), *flag) {
                     (0, None) => *flag = Some(a.add_input(*o, "flag", "yes")),
                     (0, Some(f)) => {
@@ -312,16 +329,18 @@ sp {flagged (state <s> ^io.input-link.obj <o>) (<o> ^flag yes ^a <a>)
     #[test]
     fn batches_without_passing_tokens_trace_and_fire_exactly_as_with_them() {
         let mut fewer = 0;
-        for seed in 1..=12 {
-            let (with_skips, made) = run(seed, 40, false);
-            let (all, made_all) = run(seed, 40, true);
+        // Seed 130 has a passing token that would have made an empty memory non-empty: with
+        // that guard left out, its trace parts from 9.6's.
+        for seed in (1..=40).chain([130]) {
+            let (with_skips, made) = run(seed, 60, false);
+            let (all, made_all) = run(seed, 60, true);
             assert_eq!(with_skips, all, "seed {seed}");
             assert!(made <= made_all, "seed {seed}: {made} > {made_all}");
             fewer += u64::from(made < made_all);
         }
         assert!(
-            fewer >= 10,
-            "passing tokens were left out in {fewer} of 12 runs"
+            fewer >= 35,
+            "passing tokens were left out in {fewer} of 41 runs"
         );
     }
 
