@@ -101,32 +101,18 @@ impl Agent {
             return;
         }
         let queue = std::mem::take(&mut self.input_queue);
-        // The removals' passing matches with the additions are left out where that changes
-        // nothing (rete/doomed.rs); not when a WME is both added and removed here.
-        let removed: Vec<WmeId> = queue
-            .iter()
-            .filter_map(|c| match *c {
-                InputChange::Remove(w) => Some(w),
-                InputChange::Add(_) => None,
-            })
-            .collect();
-        let mut sorted: Vec<u32> = removed.iter().map(|w| w.0).collect();
-        sorted.sort_unstable();
-        let batch = !removed.is_empty()
-            && !queue.iter().any(|c| match *c {
-                InputChange::Add(w) => sorted.binary_search(&w.0).is_ok(),
-                InputChange::Remove(_) => false,
-            });
-        if batch {
-            let added: Vec<(Sym, Sym, bool)> = queue
-                .iter()
-                .filter_map(|c| match *c {
-                    InputChange::Add(w) => self.wm.get(w).map(|x| (x.attr, x.value, x.acceptable)),
-                    InputChange::Remove(_) => None,
-                })
-                .collect();
-            self.rete.begin_doomed_batch(&added, &removed);
+        // The passing tokens of the additions with the removals are left out where that
+        // changes nothing (rete/doomed.rs).
+        let (mut added, mut removed) = (Vec::new(), Vec::new());
+        for change in &queue {
+            match *change {
+                InputChange::Add(w) => {
+                    added.extend(self.wm.get(w).map(|x| (x.attr, x.value, x.acceptable)))
+                }
+                InputChange::Remove(w) => removed.push(w),
+            }
         }
+        let batch = self.rete.begin_doomed_batch(&added, &removed);
         for change in queue.iter().rev() {
             let InputChange::Add(w) = *change else {
                 continue;

@@ -67,16 +67,23 @@ pub(crate) struct DoomState {
 
 impl Rete {
     /// Starts a batch that adds WMEs with `added`'s attributes and values (and acceptable
-    /// flags), then removes `removed` (WMEs not in the network are left out): marks these
-    /// and every token built on them doomed.
-    pub(crate) fn begin_doomed_batch(&mut self, added: &[(Sym, Sym, bool)], removed: &[WmeId]) {
-        if self.doom.off {
-            return;
+    /// flags), then removes `removed`: marks these and every token built on them doomed,
+    /// and returns true (call [`Rete::end_doomed_batch`] after the removals). Starts none
+    /// when a removed WME is not in the network yet: it is one of the batch's additions,
+    /// whose passing tokens the counts here cannot account for.
+    pub(crate) fn begin_doomed_batch(
+        &mut self,
+        added: &[(Sym, Sym, bool)],
+        removed: &[WmeId],
+    ) -> bool {
+        let in_network = |w: &WmeId| self.wmes.get(w.0 as usize).is_some_and(Option::is_some);
+        if self.doom.off || removed.is_empty() || !removed.iter().all(in_network) {
+            return false;
         }
         let mut doomed_in: FxHashMap<AmemId, u32> = FxHashMap::default();
         let mut stack: Vec<TokId> = Vec::new();
         for &w in removed {
-            let Some(rw) = self.wmes.get_mut(w.0 as usize).and_then(|x| x.as_mut()) else {
+            let Some(rw) = self.wmes[w.0 as usize].as_mut() else {
                 continue;
             };
             if rw.doomed {
@@ -125,6 +132,7 @@ impl Rete {
             }
         }
         self.doom.active = true;
+        true
     }
 
     /// Ends the batch, after its removals: every doomed token went with its WME. (One
@@ -295,6 +303,12 @@ sp {mark-th (state <s> ^io.input-link <il>) (<il> ^crd <c> ^obj <o>) (<c> ^Th <t
                 let k = below(objs.len() as u32) as usize;
                 a.remove_input(objs.remove(k).0);
             }
+            if below(6) == 0 {
+                // Added and removed before one input phase: it passes through the matcher.
+                let (w, o) = a.add_input_object(il, "obj");
+                a.add_input(o, "a", i64::from(below(3)));
+                a.remove_input(w);
+            }
             for (_, o, flag, mark) in objs.iter_mut() {
                 if below(3) == 0 {
                     let v = Value::Int(i64::from(below(3)));
@@ -329,9 +343,9 @@ sp {mark-th (state <s> ^io.input-link <il>) (<il> ^crd <c> ^obj <o>) (<c> ^Th <t
     #[test]
     fn batches_without_passing_tokens_trace_and_fire_exactly_as_with_them() {
         let mut fewer = 0;
-        // Seed 130 has a passing token that would have made an empty memory non-empty: with
+        // Seed 582 has a passing token that would have made an empty memory non-empty: with
         // that guard left out, its trace parts from 9.6's.
-        for seed in (1..=40).chain([130]) {
+        for seed in (1..=40).chain([582]) {
             let (with_skips, made) = run(seed, 60, false);
             let (all, made_all) = run(seed, 60, true);
             assert_eq!(with_skips, all, "seed {seed}");
