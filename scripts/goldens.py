@@ -91,6 +91,7 @@ TRACE_AGENTS = [
     "o-reject",
     "prefs-binary",
     "random-tokens",
+    "substate-removed-same-wave",
     "substate-results",
     "substates",
     "support-declared",

@@ -510,7 +510,8 @@ impl Agent {
         }
         for &pid in new_prefs.iter().rev() {
             let p = &self.decider.prefs[pid as usize];
-            if !(p.kind == PrefType::Reject && p.o_support) {
+            let taken = self.decider.results_taken_by_o_rejects.contains(&pid);
+            if !(p.kind == PrefType::Reject && p.o_support) && !taken {
                 self.trace_pref('+', pid);
             }
         }

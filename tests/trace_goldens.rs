@@ -27,12 +27,6 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
          structure of a removed operator",
     ),
     ("justification-negation", 5, "as at level 4"),
-    (
-        "support-retraction",
-        5,
-        "when the selected operator is removed, 9.6 lists the `-` line of an operator \
-         elaboration's preference at once (the operator went with it); ours does not",
-    ),
 ];
 
 fn root() -> PathBuf {

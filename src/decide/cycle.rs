@@ -794,6 +794,10 @@ impl Agent {
         if self.settings.trace.preferences {
             self.trace_new_preferences(new_prefs);
         }
+        let taken = std::mem::take(&mut self.decider.results_taken_by_o_rejects);
+        for &pid in &taken {
+            self.decider.free_pref(pid);
+        }
         let mut removed = Vec::new();
         for &pid in new_prefs {
             let p = &self.decider.prefs[pid as usize];
@@ -983,9 +987,10 @@ impl Agent {
         }
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
-        self.collect_garbage();
+        // 9.6's warning comes after the garbage's `-` lines.
+        let gc_lines = self.collect_garbage_traced_at(Some(adds_at));
         if self.settings.trace.wmes {
-            self.warn_added_and_removed(&traced_adds, adds_at);
+            self.warn_added_and_removed(&traced_adds, adds_at + gc_lines);
         }
         self.trace_removed_wmes(decided);
         self.classify_new_matches();
@@ -1610,6 +1615,7 @@ impl Agent {
         for &(pid, what) in made {
             if self.pref_stands(pid, what, state) && seen.insert(pid) {
                 self.trace_pref('-', pid);
+                self.decider.prefs_traced_gone.push(pid);
             }
         }
     }
@@ -1618,8 +1624,18 @@ impl Agent {
     /// that lost a link can have become unlinked: each is searched upward for a goal, and
     /// the structure below one that has none goes (cycles included).
     fn collect_garbage(&mut self) {
+        self.collect_garbage_traced_at(None);
+    }
+
+    /// Garbage collection; the preferences it takes with the slots of unlinked identifiers
+    /// are traced as `- pref` lines (`trace -r`) at `at` in the output, where the phase's
+    /// `=>WM:` lines start, as 9.6 prints them (checked on soar-sml 9.6.5: agent
+    /// support-retraction, an operator elaboration's `^to` on an operator that went), or
+    /// where the output is now. Returns how many bytes of text went in at `at`.
+    fn collect_garbage_traced_at(&mut self, at: Option<usize>) -> usize {
+        let traced_gone = std::mem::take(&mut self.decider.prefs_traced_gone);
         if self.decider.gc_candidates.is_empty() {
-            return;
+            return 0;
         }
         let candidates = std::mem::take(&mut self.decider.gc_candidates);
         // The sets live between calls (emptied), so that a collection allocates nothing.
@@ -1657,16 +1673,29 @@ impl Agent {
         self.decider.gc_candidates = candidates;
         self.decider.gc_candidates.clear();
         if garbage.is_empty() {
-            return;
+            return 0;
         }
         garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
         // 9.6 lists the removals newest first; they happen oldest first here.
         let mut removed_lines = Vec::new();
+        let mut pref_lines = String::new();
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };
             if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
+                if self.settings.trace.preferences {
+                    // Newest first, as 9.6's list of a slot's preferences runs.
+                    for &pid in slot.prefs.iter().rev() {
+                        if traced_gone.contains(&pid) {
+                            continue;
+                        }
+                        let pref = &self.decider.prefs[pid as usize];
+                        pref_lines.push_str("- ");
+                        pref_lines.push_str(&crate::trace::pref_trace_text(self, pref));
+                        pref_lines.push('\n');
+                    }
+                }
                 for &pid in &slot.prefs {
                     self.decider.free_pref(pid);
                 }
@@ -1682,11 +1711,25 @@ impl Agent {
                 self.remove_wme(w);
             }
         }
+        let mut inserted = 0;
+        if !pref_lines.is_empty() {
+            match at.filter(|&a| a <= self.output.len() && self.output.is_char_boundary(a)) {
+                Some(at) => {
+                    self.output.insert_str(at, &pref_lines);
+                    inserted = pref_lines.len();
+                }
+                None => {
+                    self.fresh_line();
+                    self.output.push_str(&pref_lines);
+                }
+            }
+        }
         for wme in removed_lines.iter().rev() {
             self.trace_wme("<=WM: ", wme);
         }
         // What these removals point at was all collected above.
         self.decider.gc_candidates.clear();
+        inserted
     }
 
     /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a

@@ -140,6 +140,13 @@ pub struct DecideState {
     pub output_fn_time: std::time::Duration,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
+    /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the
+    /// garbage collection after it does not list them again.
+    pub(crate) prefs_traced_gone: Vec<PrefId>,
+    /// Substate preferences whose result copy (with its justification's support) is an
+    /// o-supported reject: in 9.6 the result itself becomes that o-reject, so the original
+    /// is neither traced nor asserted (spec §3a, §3c).
+    pub(crate) results_taken_by_o_rejects: Vec<PrefId>,
     pub(crate) gc_scratch: super::cycle::GcScratch,
     pub(crate) cycle_scratch: super::cycle::CycleScratch,
     pub(crate) slot_scratch: super::cycle::SlotScratch,

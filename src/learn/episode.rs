@@ -306,7 +306,11 @@ impl Agent {
                 ids,
                 action: recorded.as_ref().map(|_| k),
             }));
+            let o_reject = p.kind == PrefType::Reject && p.o_support;
             let pid = self.decider.alloc_pref(p);
+            if o_reject {
+                self.decider.results_taken_by_o_rejects.push(r);
+            }
             self.decider.insts[inst_id as usize].prefs.push(pid);
             new_prefs.push(pid);
             clones.push(pid);
