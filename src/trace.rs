@@ -510,8 +510,8 @@ impl Agent {
         }
         for &pid in new_prefs.iter().rev() {
             let p = &self.decider.prefs[pid as usize];
-            let taken = self.decider.results_taken_by_o_rejects.contains(&pid);
-            if !(p.kind == PrefType::Reject && p.o_support) && !taken {
+            let o_reject = p.kind == PrefType::Reject && p.o_support;
+            if !o_reject && !self.decider.results_taken_by_o_rejects.contains(&pid) {
                 self.trace_pref('+', pid);
             }
         }
