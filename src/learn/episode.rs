@@ -249,6 +249,9 @@ impl Agent {
         // A chunk's instantiation is recorded like any firing of it (its own variables and
         // tests carry on to a learning episode one level up); a justification keeps the
         // grounds, a literalized identity becoming a literal.
+        // An o-supported result outlives the chunk's instantiation under the chunk's name
+        // (9.6 names the chunk when an o-reject takes it: agent learn-negation, trace 5).
+        let chunk_rule = chunk_match.as_ref().map(|(pid, _, _)| *pid);
         let recorded = chunk_match.and_then(|(pid, tok, prod)| {
             let trace = self.record_firing(
                 pid,
@@ -299,6 +302,9 @@ impl Agent {
             };
             p.o_support = o_support;
             p.inst = Some(inst_id);
+            if chunk_rule.is_some() {
+                p.rule = chunk_rule;
+            }
             p.alive = true;
             p.freed = false;
             p.origin = Some(Arc::new(PrefOrigin {
