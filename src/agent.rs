@@ -274,6 +274,9 @@ impl MatchSink for MatchSet {
         self.pending.insert((p, t), self.assertions.len() as u32);
         self.assertions.push((p, t));
     }
+    fn retraction_count(&self) -> usize {
+        self.retractions.len()
+    }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         // A match that goes before it fired simply leaves the queue.
         let place = self.pending.remove(&(p, t)).and_then(|i| {
@@ -551,27 +554,22 @@ impl Agent {
     pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
         let w = self.wm.add_typed(id, attr, value, acceptable, links);
-        self.rete.add_wme(
-            w,
-            (id, attr, value),
-            acceptable,
-            &self.symbols,
-            &mut self.matches,
-        );
-        self.justification_wme_added(w);
+        self.match_wme_now(w, (id, attr, value), acceptable);
         w
+    }
+
+    /// Matches a WME in the network and against the justifications' negations, which
+    /// retract in 9.6's place among the rules' retractions (see `justification_wme_added`).
+    pub(crate) fn match_wme_now(&mut self, w: WmeId, fields: (Sym, Sym, Sym), acceptable: bool) {
+        self.rete.mark_alphas = self.watches_justification_negations();
+        self.rete
+            .add_wme(w, fields, acceptable, &self.symbols, &mut self.matches);
+        self.justification_wme_added(w);
     }
 
     /// Matches a WME already in working memory (a buffered addition reaching the matcher).
     pub(crate) fn match_new_wme(&mut self, w: WmeId, wme: &Wme) {
-        self.rete.add_wme(
-            w,
-            (wme.id, wme.attr, wme.value),
-            wme.acceptable,
-            &self.symbols,
-            &mut self.matches,
-        );
-        self.justification_wme_added(w);
+        self.match_wme_now(w, (wme.id, wme.attr, wme.value), wme.acceptable);
     }
 
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {

@@ -12,22 +12,7 @@ use rusoar::cli::Interpreter;
 use std::path::PathBuf;
 
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.
-const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
-    (
-        "justification-negation",
-        3,
-        "order of two retractions one new WME causes, a rule's and a justification's over \
-         the same alpha memory: 9.6 lists the rule's first (its rete reaches the newer \
-         justification's node first), ours the justification's",
-    ),
-    (
-        "justification-negation",
-        4,
-        "as at level 3, and the order of `<=WM:` lines when a result goes with the \
-         structure of a removed operator",
-    ),
-    ("justification-negation", 5, "as at level 4"),
-];
+const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

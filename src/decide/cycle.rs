@@ -299,22 +299,38 @@ impl Agent {
         let mut retracted = std::mem::take(&mut sc.retracted);
         retracted.append(&mut self.decider.waiting_retractions);
         retracted.retain(|&i| self.decider.insts[i as usize].alive);
-        retracted.extend(
-            retractions
-                .iter()
-                .filter_map(|k| self.decider.inst_by_token.remove(k)),
-        );
-        let mut retractions = retractions;
-        retractions.clear();
-        if self.matches.retractions.is_empty() {
-            self.matches.retractions = retractions;
+        // Justifications that lost a WME retract with them (spec §4), each in its place
+        // among the rules' retractions (see `justification_wme_added`).
+        let mut justified = std::mem::take(&mut self.decider.justification_retractions);
+        justified.sort_by_key(|&(_, _, at)| at);
+        let mut next = justified.iter().peekable();
+        for at in 0..=retractions.len() {
+            while let Some(&&(i, serial, _)) = next.peek().filter(|j| j.2 <= at) {
+                next.next();
+                let inst = &self.decider.insts[i as usize];
+                if inst.alive && inst.serial == serial && !retracted.contains(&i) {
+                    retracted.push(i);
+                }
+            }
+            if let Some(i) = retractions
+                .get(at)
+                .and_then(|k| self.decider.inst_by_token.remove(k))
+            {
+                retracted.push(i);
+            }
         }
-        // Justifications that lost a WME retract with them (spec §4).
-        for (i, serial) in std::mem::take(&mut self.decider.justification_retractions) {
+        for &(i, serial, _) in next {
             let inst = &self.decider.insts[i as usize];
             if inst.alive && inst.serial == serial && !retracted.contains(&i) {
                 retracted.push(i);
             }
+        }
+        justified.clear();
+        self.decider.justification_retractions = justified;
+        let mut retractions = retractions;
+        retractions.clear();
+        if self.matches.retractions.is_empty() {
+            self.matches.retractions = retractions;
         }
         // The waterfall (spec §3b): the pending matches by goal level, newest first (the
         // order they fire in, spec §3i), with their support.
@@ -1476,14 +1492,7 @@ impl Agent {
         for &w in wmes.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
                 self.trace_wme("=>WM: ", &wme);
-                self.rete.add_wme(
-                    w,
-                    (wme.id, wme.attr, wme.value),
-                    false,
-                    &self.symbols,
-                    &mut self.matches,
-                );
-                self.justification_wme_added(w);
+                self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
             }
         }
         if self.settings.trace.decisions {

@@ -166,7 +166,9 @@ pub struct DecideState {
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
     /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
-    pub justification_retractions: Vec<(InstId, u64)>,
+    /// (instantiation, serial, place among the rule retractions it goes before: an
+    /// index into `MatchSet::retractions`, `usize::MAX` after them all).
+    pub justification_retractions: Vec<(InstId, u64, usize)>,
     /// Retractions of matches at a goal below the active one, waiting for a cycle in which
     /// their goal is the active goal (spec §3b), oldest first.
     pub waiting_retractions: Vec<InstId>,

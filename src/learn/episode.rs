@@ -468,7 +468,9 @@ impl Agent {
                     .or_default()
                     .push((id, serial));
             } else {
-                self.decider.justification_retractions.push((id, serial));
+                self.decider
+                    .justification_retractions
+                    .push((id, serial, usize::MAX));
             }
         }
         let negations = self.superstate_negations(bt);
@@ -529,27 +531,50 @@ impl Agent {
         }
     }
 
+    /// Whether any live justification has negations to check new WMEs against.
+    pub(crate) fn watches_justification_negations(&self) -> bool {
+        !self.learn.negations.is_empty()
+    }
+
+    /// Each justification a new WME violates retracts where 9.6's rete puts it among the
+    /// rules' retractions: its alpha table is reached in order (`Rete::alpha_marks`), and
+    /// within one table before the rules' nodes, as the newer node (checked on soar-sml
+    /// 9.6.5: agent justification-negation, trace 3).
     #[inline(never)]
     fn check_justification_negations(&mut self, w: crate::wm::WmeId) {
-        let Some(attr) = self.wm.get(w).map(|x| x.attr) else {
+        let Some(new) = self.wm.get(w).copied() else {
             return;
         };
         let insts = &self.decider.insts;
         let hit = self
             .learn
             .negations
-            .violated_by(attr, &self.wm, &self.symbols, |i, s| {
+            .violated_by(&new, &self.wm, &self.symbols, |i, s| {
                 insts
                     .get(i as usize)
                     .is_some_and(|x| x.alive && x.serial == s)
             });
-        self.decider.justification_retractions.extend(hit);
+        let end = self.matches.retractions.len();
+        for (inst, serial, table) in hit {
+            let at = self
+                .rete
+                .alpha_marks
+                .iter()
+                .find(|&&(t, _)| t >= table)
+                .map_or(end, |&(_, n)| n);
+            self.decider
+                .justification_retractions
+                .push((inst, serial, at));
+        }
     }
 
     /// A justification's instantiation lost a WME: its retraction is queued.
     pub(crate) fn justification_wme_removed(&mut self, w: crate::wm::WmeId, timetag: u64) {
         if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
-            self.decider.justification_retractions.extend(list);
+            let after_rules = usize::MAX;
+            self.decider
+                .justification_retractions
+                .extend(list.into_iter().map(|(i, s)| (i, s, after_rules)));
         }
     }
 

@@ -142,16 +142,18 @@ impl WatchedNegations {
         }
     }
 
-    /// A WME with attribute `attr` was added: the justifications (instantiation, serial)
-    /// one of whose negations now matches. They stop being watched; so do the ones `alive`
-    /// says are gone.
+    /// WME `new` was added: the justifications (instantiation, serial, alpha table) one of
+    /// whose negations now matches, with the 9.6 alpha table (see [`alpha_table`]) its
+    /// rete would have reached first with `new`. They stop being watched; so do the ones
+    /// `alive` says are gone.
     pub fn violated_by(
         &mut self,
-        attr: Sym,
+        new: &Wme,
         wm: &WorkingMemory,
         syms: &Symbols,
         alive: impl Fn(u32, u64) -> bool,
-    ) -> Vec<(u32, u64)> {
+    ) -> Vec<(u32, u64, u8)> {
+        let attr = new.attr;
         if self.any_attr == 0 && self.attrs.get(&attr).is_none_or(|&n| n == 0) {
             return Vec::new();
         }
@@ -166,7 +168,13 @@ impl WatchedNegations {
                     .any(|n| satisfiable(n, &mut binding, wm, syms))
             };
             if violated {
-                out.push((w.inst, w.serial));
+                let table = w
+                    .negations
+                    .iter()
+                    .filter_map(|n| alpha_table(n, new))
+                    .min()
+                    .unwrap_or(u8::MAX);
+                out.push((w.inst, w.serial, table));
             }
             if gone || violated {
                 self.count_attrs(&w, -1);
@@ -177,6 +185,35 @@ impl WatchedNegations {
         self.watched = keep;
         out
     }
+}
+
+/// The lowest 9.6 alpha hash table among the conditions of `items` whose constant tests
+/// `new` passes: `id constant` × 4 + `attr constant` × 2 + `value constant` (a
+/// justification's identifiers are constants; the negation's own variables are not).
+fn alpha_table(items: &[Pattern], new: &Wme) -> Option<u8> {
+    items
+        .iter()
+        .filter_map(|p| match p {
+            Pattern::Pos(c) | Pattern::Neg(c) => {
+                if c.acceptable != new.acceptable {
+                    return None;
+                }
+                let mut table = 0;
+                for (bit, (tests, field)) in [4u8, 2, 1]
+                    .iter()
+                    .zip(c.fields.iter().zip([new.id, new.attr, new.value]))
+                {
+                    match tests.first() {
+                        Some(PTest::Eq(PTerm::Sym(s))) if *s == field => table |= bit,
+                        Some(PTest::Eq(PTerm::Sym(_) | PTerm::Missing)) => return None,
+                        _ => {}
+                    }
+                }
+                Some(table)
+            }
+            Pattern::Ncc(cs) => alpha_table(cs, new),
+        })
+        .min()
 }
 
 fn pattern(

@@ -48,6 +48,10 @@ pub struct ProdId(pub u32);
 pub trait MatchSink {
     fn matched(&mut self, prod: ProdId, token: TokId);
     fn unmatched(&mut self, prod: ProdId, token: TokId);
+    /// How many retractions the sink holds (see [`Rete::alpha_marks`]).
+    fn retraction_count(&self) -> usize {
+        0
+    }
 }
 
 /// A sink that ignores everything (for building the network without a consumer).
@@ -411,6 +415,12 @@ pub struct Rete {
     pub right_activations: u64,
     pub left_activations: u64,
     pub tokens_made: u64,
+    /// When set, `add_wme` notes before each alpha memory it activates that memory's
+    /// 9.6 alpha table (`attr constant` × 2 + `value constant`) and the sink's retraction
+    /// count, in `alpha_marks`: justifications are not in our network, and 9.6 reaches
+    /// theirs in that table order (see `Agent::match_wme_now`).
+    pub(crate) mark_alphas: bool,
+    pub(crate) alpha_marks: Vec<(u8, usize)>,
 }
 
 impl Default for Rete {
@@ -457,6 +467,8 @@ impl Rete {
             right_activations: 0,
             left_activations: 0,
             tokens_made: 0,
+            mark_alphas: false,
+            alpha_marks: Vec::new(),
         };
         r.root = r.new_node(Kind::Root, NIL, 0);
         r.root_token = r.new_token(r.root, NIL, NIL_WME);
@@ -678,7 +690,15 @@ impl Rete {
         // of firings (spec §3i, §8 risk 1; scripts/trace_compare.py: o-reject,
         // random-tokens and missionaries match 9.6 at every trace level with it).
         let targets = self.alpha_targets(attr, value, acceptable);
+        if self.mark_alphas {
+            self.alpha_marks.clear();
+        }
         for &am in targets.iter().take_while(|&&a| a != NIL) {
+            if self.mark_alphas {
+                let key = self.amems[am as usize].key;
+                let table = (u8::from(key.attr.is_some()) << 1) | u8::from(key.value.is_some());
+                self.alpha_marks.push((table, sink.retraction_count()));
+            }
             self.alpha_activation(am, w, syms, sink);
         }
     }
