@@ -87,6 +87,7 @@ TRACE_AGENTS = [
     "impasse-state-no-change",
     "justification-negation",
     "learn-justification",
+    "learn-lookahead",
     "learn-negation",
     "missionaries-cannibals",
     "o-reject",

@@ -12,7 +12,16 @@ use rusoar::cli::Interpreter;
 use std::path::PathBuf;
 
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.
-const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[];
+const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
+    (
+        "learn-lookahead",
+        4,
+        "the order of `<=WM:` lines when a GDS change removes the lookahead substate (9.6: \
+         i-supported WMEs newest first, then o-supported ones oldest first), and three WMEs \
+         of the selection state that go untraced when the top operator is replaced",
+    ),
+    ("learn-lookahead", 5, "as at level 4"),
+];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

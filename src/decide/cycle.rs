@@ -337,23 +337,12 @@ impl Agent {
         let mut queued = std::mem::take(&mut sc.queued);
         // With the top state alone every match is at level 1.
         let one_goal = self.decider.goals.len() <= 1;
-        queued.extend(pending.iter().rev().map(|&(prod, tok)| {
-            let level = if one_goal {
-                1
-            } else {
-                crate::support::match_goal(self, prod, tok)
-                    .and_then(|g| self.symbols.id_data(g))
-                    .map_or(1, |d| d.level)
-            };
-            let o_support = self.is_o_supported(prod, tok);
-            Queued {
-                prod,
-                tok,
-                level,
-                o_support,
-                fired: false,
-            }
-        }));
+        queued.extend(
+            pending
+                .iter()
+                .rev()
+                .map(|&(prod, tok)| self.queued_match(prod, tok, one_goal)),
+        );
         pending.clear();
         // The emptied queue's room serves the next cycle's queue.
         sc.keep = pending;
@@ -433,6 +422,7 @@ impl Agent {
             // `+` lines before `Retracting`), which sets the order slots change in.
             self.assert_preferences(&new_prefs);
             new_prefs.clear();
+            self.queue_new_lower_matches(l, apply, &mut queued, &mut levels);
             level = levels.iter().copied().find(|&x| x > l);
         }
         // Matches that did not fire wait, in their order, before any the firings made.
@@ -489,6 +479,66 @@ impl Agent {
         self.decider.cycle_scratch = sc;
         self.update_slots();
         true
+    }
+
+    /// A pending match with its goal level and support, for the waterfall.
+    fn queued_match(&mut self, prod: ProdId, tok: TokId, one_goal: bool) -> Queued {
+        let level = if one_goal {
+            1
+        } else {
+            crate::support::match_goal(self, prod, tok)
+                .and_then(|g| self.symbols.id_data(g))
+                .map_or(1, |d| d.level)
+        };
+        let o_support = self.is_o_supported(prod, tok);
+        Queued {
+            prod,
+            tok,
+            level,
+            o_support,
+            fired: false,
+        }
+    }
+
+    /// Matches made while goal level `l` fired (a chunk learned there matches at once) that
+    /// are at a lower goal join this elaboration cycle's waterfall, ahead of that goal's
+    /// older matches: 9.6 fires them when the waterfall reaches their goal (checked on
+    /// soar-sml 9.6.5: agent learn-lookahead, trace 3).
+    fn queue_new_lower_matches(
+        &mut self,
+        l: u32,
+        apply: bool,
+        queued: &mut Vec<Queued>,
+        levels: &mut Vec<u32>,
+    ) {
+        if !self.matches.has_assertions() {
+            return;
+        }
+        self.matches.compact();
+        let fresh = std::mem::take(&mut self.matches.assertions);
+        let one_goal = self.decider.goals.len() <= 1;
+        let mut lower = Vec::new();
+        let mut stay = Vec::new();
+        for &(prod, tok) in fresh.iter().rev() {
+            let q = self.queued_match(prod, tok, one_goal);
+            if q.level > l {
+                self.matches.taken(prod, tok);
+                if apply || !q.o_support {
+                    levels.push(q.level);
+                }
+                lower.push(q);
+            } else {
+                stay.push((prod, tok));
+            }
+        }
+        stay.reverse();
+        self.matches.assertions = stay;
+        self.matches.reindex();
+        if !lower.is_empty() {
+            levels.sort_unstable();
+            levels.dedup();
+            queued.splice(0..0, lower);
+        }
     }
 
     /// Whether a match below the active goal must wait: one of its actions adds to an
