@@ -868,7 +868,7 @@ impl Agent {
         for &pid in new_prefs {
             let p = &self.decider.prefs[pid as usize];
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
-            if kind == PrefType::Reject && o_support {
+            if kind == PrefType::Reject && o_support && p.alive {
                 removed.clear();
                 let slot = self.decider.slots.id_of(&key);
                 if let Some(id) = slot {

@@ -246,12 +246,12 @@ impl Agent {
         };
         // The results' copies, owned by the learned rule's instantiation (the originals
         // stay with the substate's firing, as 9.6 lists both, E:c3).
-        // A chunk's instantiation is recorded like any firing of it (its own variables and
-        // tests carry on to a learning episode one level up); a justification keeps the
-        // grounds, a literalized identity becoming a literal.
         // An o-supported result outlives the chunk's instantiation under the chunk's name
         // (9.6 names the chunk when an o-reject takes it: agent learn-negation, trace 5).
         let chunk_rule = chunk_match.as_ref().map(|(pid, _, _)| *pid);
+        // A chunk's instantiation is recorded like any firing of it (its own variables and
+        // tests carry on to a learning episode one level up); a justification keeps the
+        // grounds, a literalized identity becoming a literal.
         let recorded = chunk_match.and_then(|(pid, tok, prod)| {
             let trace = self.record_firing(
                 pid,
