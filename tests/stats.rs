@@ -111,6 +111,19 @@ WM size: 72 current, 51.618 mean, 72 maximum
 WM size: 37 current, 26.559 mean, 37 maximum
 ",
     ),
+    (
+        // A chunk's match fires at the lower goal in the same elaboration cycle, and 9.6
+        // counts each pass of the waterfall over a goal as an inner elaboration cycle.
+        "learn-lookahead",
+        "6 decisions (0.105 msec/decision)
+19 elaboration cycles (3.167 ec's per dc, 0.033 msec/ec)
+21 inner elaboration cycles
+4 p-elaboration cycles (0.667 pe's per dc, 0.158 msec/pe)
+22 production firings (1.158 pf's per ec, 0.029 msec/pf)
+188 wme changes (103 additions, 85 removals)
+WM size: 18 current, 43.379 mean, 82 maximum
+",
+    ),
 ];
 
 #[test]

@@ -196,6 +196,7 @@ impl Interpreter {
         let counts = StatsCounts {
             decisions: d.decisions,
             e_cycles: d.e_cycles,
+            inner_e_cycles: d.inner_e_cycles,
             pe_cycles: d.pe_cycles,
             firings: d.firings,
             additions: wm.additions() - d.wm_base.0,
@@ -226,6 +227,7 @@ impl Interpreter {
 pub(crate) struct StatsCounts {
     pub decisions: u64,
     pub e_cycles: u64,
+    pub inner_e_cycles: u64,
     pub pe_cycles: u64,
     pub firings: u64,
     pub additions: u64,
@@ -304,9 +306,7 @@ pub(crate) fn stats_report(
         ratio(c.e_cycles, c.decisions),
         per(c.e_cycles, ms)
     ));
-    // 9.6's inner count equals its elaboration cycles on every agent but learn-lookahead
-    // (21 vs 19; what the two extra are is not known): rusoar prints its elaboration cycles.
-    s.push_str(&format!("{} inner elaboration cycles\n", c.e_cycles));
+    s.push_str(&format!("{} inner elaboration cycles\n", c.inner_e_cycles));
     s.push_str(&format!(
         "{} p-elaboration cycles ({:.3} pe's per dc, {:.3} msec/pe)\n",
         c.pe_cycles,

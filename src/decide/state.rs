@@ -111,6 +111,10 @@ pub struct DecideState {
     pub decisions: u64,
     pub e_cycles: u64,
     pub e_cycles_this_phase: u64,
+    /// Passes of the waterfall over a goal level, one per `Inner Elaboration Phase` header
+    /// (9.6's `stats` counts these as "inner elaboration cycles": soar-sml 9.6.5 gives as
+    /// many as its trace 3 prints headers, on every agent in tests/agents).
+    pub inner_e_cycles: u64,
     pub firings: u64,
     /// Firings per rule, by rule id.
     pub firing_counts: Vec<u64>,
