@@ -302,28 +302,14 @@ impl Agent {
         // Justifications that lost a WME retract with them (spec §4), each in its place
         // among the rules' retractions (see `justification_wme_added`).
         let mut justified = std::mem::take(&mut self.decider.justification_retractions);
-        justified.sort_by_key(|&(_, _, at)| at);
-        let mut next = justified.iter().peekable();
-        for at in 0..=retractions.len() {
-            while let Some(&&(i, serial, _)) = next.peek().filter(|j| j.2 <= at) {
-                next.next();
-                let inst = &self.decider.insts[i as usize];
-                if inst.alive && inst.serial == serial && !retracted.contains(&i) {
-                    retracted.push(i);
-                }
-            }
-            if let Some(i) = retractions
-                .get(at)
-                .and_then(|k| self.decider.inst_by_token.remove(k))
-            {
-                retracted.push(i);
-            }
-        }
-        for &(i, serial, _) in next {
-            let inst = &self.decider.insts[i as usize];
-            if inst.alive && inst.serial == serial && !retracted.contains(&i) {
-                retracted.push(i);
-            }
+        if justified.is_empty() {
+            retracted.extend(
+                retractions
+                    .iter()
+                    .filter_map(|k| self.decider.inst_by_token.remove(k)),
+            );
+        } else {
+            self.merge_justification_retractions(&retractions, &mut justified, &mut retracted);
         }
         justified.clear();
         self.decider.justification_retractions = justified;
@@ -479,6 +465,40 @@ impl Agent {
         self.decider.cycle_scratch = sc;
         self.update_slots();
         true
+    }
+
+    /// The rules' retractions (`retractions`, as the matcher reported them) with the
+    /// justifications' (`justified`: each with the place it goes before), as instantiations
+    /// in that order, after those already in `retracted`.
+    fn merge_justification_retractions(
+        &mut self,
+        retractions: &[(ProdId, TokId)],
+        justified: &mut [(InstId, u64, usize)],
+        retracted: &mut Vec<InstId>,
+    ) {
+        justified.sort_by_key(|&(_, _, at)| at);
+        let mut next = justified.iter().peekable();
+        for at in 0..=retractions.len() {
+            while let Some(&&(i, serial, _)) = next.peek().filter(|j| j.2 <= at) {
+                next.next();
+                let inst = &self.decider.insts[i as usize];
+                if inst.alive && inst.serial == serial && !retracted.contains(&i) {
+                    retracted.push(i);
+                }
+            }
+            if let Some(i) = retractions
+                .get(at)
+                .and_then(|k| self.decider.inst_by_token.remove(k))
+            {
+                retracted.push(i);
+            }
+        }
+        for &(i, serial, _) in next {
+            let inst = &self.decider.insts[i as usize];
+            if inst.alive && inst.serial == serial && !retracted.contains(&i) {
+                retracted.push(i);
+            }
+        }
     }
 
     /// A pending match with its goal level and support, for the waterfall.
