@@ -189,7 +189,7 @@ impl Rete {
                 self.push_token_candidates(parent, n, w);
                 for i in base..self.scratch.len() {
                     let t = self.scratch[i];
-                    if blockable && self.tokens[t as usize].results != NIL {
+                    if blockable && self.links[t as usize].results != NIL {
                         continue;
                     }
                     if self.doom.active && self.tokens[t as usize].doomed && self.may_skip_doomed(n)
@@ -218,7 +218,7 @@ impl Rete {
                         continue;
                     }
                     if self.node_tests_pass(n, t, w, depth, syms) {
-                        if self.tokens[t as usize].results == NIL {
+                        if self.links[t as usize].results == NIL {
                             self.delete_descendants(t, syms, sink);
                         }
                         self.add_neg_result(t, w);
@@ -356,7 +356,7 @@ impl Rete {
                     }
                 }
                 self.scratch.truncate(base);
-                if self.tokens[nt as usize].results == NIL {
+                if self.links[nt as usize].results == NIL {
                     self.activate_children(n, nt, NIL_WME, syms, sink);
                 }
             }
@@ -383,7 +383,7 @@ impl Rete {
                 if !keep.is_empty() {
                     self.ncc_buffers.insert(partner, keep);
                 }
-                if self.tokens[nt as usize].results == NIL {
+                if self.links[nt as usize].results == NIL {
                     self.activate_children(n, nt, NIL_WME, syms, sink);
                 }
             }
@@ -397,7 +397,7 @@ impl Rete {
                 let owner = self.find_ncc_owner(ncc, owner_parent);
                 match owner {
                     Some(o) => {
-                        let had = self.tokens[o as usize].results != NIL;
+                        let had = self.links[o as usize].results != NIL;
                         self.add_ncc_result(o, r);
                         if !had {
                             self.delete_descendants(o, syms, sink);
@@ -420,7 +420,7 @@ impl Rete {
             self.nodes[n as usize].kind,
             Kind::Negative { .. } | Kind::Ncc { .. }
         ) {
-            toks.retain(|t| self.tokens[*t as usize].results == NIL);
+            toks.retain(|t| self.links[*t as usize].results == NIL);
         }
         toks
     }

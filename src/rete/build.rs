@@ -536,7 +536,7 @@ impl Rete {
             }
             Kind::Negative { .. } | Kind::Ncc { .. } => {
                 for t in self.node_tokens(parent).into_iter().rev() {
-                    if self.tokens[t as usize].results == NIL {
+                    if self.links[t as usize].results == NIL {
                         self.left_activation(n, t, NIL_WME, syms, sink);
                     }
                 }

@@ -285,6 +285,7 @@ impl Node {
 }
 
 #[derive(Debug, Clone, Copy)]
+#[repr(align(64))]
 pub(crate) struct Token {
     pub node: NodeId,
     pub parent: TokId,
@@ -297,14 +298,8 @@ pub(crate) struct Token {
     pub prev_in_node: TokId,
     pub next_of_wme: TokId,
     pub prev_of_wme: TokId,
-    /// Negative node tokens: head of their join results. NCC tokens: head of their results.
-    pub results: u32,
     /// The first of this token's entries in its holder's hash indexes.
     pub hfirst: u32,
-    /// NCC partner result tokens: their owner, and their links in the owner's result list.
-    pub owner: TokId,
-    pub next_result: TokId,
-    pub prev_result: TokId,
     /// Where its row of WMEs starts in [`Rete::rows`].
     pub row: u32,
     /// The token's value at its holder's first index key (`hash::NO_VALUE` if none), cached:
@@ -313,6 +308,32 @@ pub(crate) struct Token {
     pub alive: bool,
     /// Whether it holds a WME the batch of changes in progress removes (see `doomed.rs`).
     pub doomed: bool,
+}
+
+// One token, one cache line.
+const _: () = assert!(std::mem::size_of::<Token>() == 64);
+
+/// A token's result links, kept beside `Rete::tokens` (at the same index) rather than in
+/// the token: only negative and NCC nodes' tokens have results, and only NCC partner
+/// tokens an owner, so a token every join reads stays within one cache line (64 bytes).
+/// A token that is freed leaves them as [`ResultLinks::NONE`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ResultLinks {
+    /// Negative node tokens: head of their join results. NCC tokens: head of their results.
+    pub results: u32,
+    /// NCC partner result tokens: their owner, and their links in the owner's result list.
+    pub owner: TokId,
+    pub next_result: TokId,
+    pub prev_result: TokId,
+}
+
+impl ResultLinks {
+    pub const NONE: ResultLinks = ResultLinks {
+        results: NIL,
+        owner: NIL,
+        next_result: NIL,
+        prev_result: NIL,
+    };
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -363,6 +384,8 @@ pub struct Rete {
     free_nodes: Vec<NodeId>,
     pub(crate) tokens: Vec<Token>,
     free_tokens: Vec<TokId>,
+    /// Each token's result links, by token id (see [`ResultLinks`]).
+    pub(crate) links: Vec<ResultLinks>,
     /// Every token's WMEs by depth, from the root's (depth 0) to its own, in one row: a
     /// join test or a key reads any depth at once instead of walking up the parents (a
     /// hot walk: rules join a dozen conditions and test the first one's state last).
@@ -436,6 +459,7 @@ impl Rete {
             free_nodes: Vec::new(),
             tokens: Vec::new(),
             free_tokens: Vec::new(),
+            links: Vec::new(),
             rows: Vec::new(),
             free_rows: Vec::new(),
             amems: Blocks::default(),
@@ -778,7 +802,7 @@ impl Rete {
             }
             let owner = self.neg[r as usize].owner;
             self.remove_neg_result(r);
-            if self.tokens[owner as usize].alive && self.tokens[owner as usize].results == NIL {
+            if self.tokens[owner as usize].alive && self.links[owner as usize].results == NIL {
                 let node = self.tokens[owner as usize].node;
                 self.activate_children(node, owner, NIL_WME, syms, sink);
             }

@@ -4,7 +4,8 @@
 
 use super::hash::NO_VALUE;
 use super::{
-    alloc, Kind, LeftMode, MatchSink, NegResult, NodeId, Rete, TokId, Token, NIL, NIL_WME,
+    alloc, Kind, LeftMode, MatchSink, NegResult, NodeId, ResultLinks, Rete, TokId, Token, NIL,
+    NIL_WME,
 };
 use crate::symbols::Symbols;
 use crate::wm::WmeId;
@@ -33,11 +34,7 @@ impl Rete {
             prev_in_node: NIL,
             next_of_wme: NIL,
             prev_of_wme: NIL,
-            results: NIL,
             hfirst: NIL,
-            owner: NIL,
-            next_result: NIL,
-            prev_result: NIL,
             row: 0,
             key: NO_VALUE,
             alive: true,
@@ -45,6 +42,9 @@ impl Rete {
         };
         let row = self.alloc_row(parent, depth, wme);
         let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
+        if self.links.len() <= t as usize {
+            self.links.resize(t as usize + 1, ResultLinks::NONE);
+        }
         self.tokens[t as usize].row = row;
         if head != NIL {
             self.tokens[head as usize].prev_in_node = t;
@@ -155,7 +155,7 @@ impl Rete {
         match self.nodes[node as usize].kind {
             Kind::Negative { .. } => {
                 loop {
-                    let r = self.tokens[t as usize].results;
+                    let r = self.links[t as usize].results;
                     if r == NIL {
                         break;
                     }
@@ -166,12 +166,12 @@ impl Rete {
                 }
             }
             Kind::Ncc { .. } => loop {
-                let r = self.tokens[t as usize].results;
+                let r = self.links[t as usize].results;
                 if r == NIL {
                     break;
                 }
                 self.unlink_ncc_result(t, r);
-                self.tokens[r as usize].owner = NIL;
+                self.links[r as usize].owner = NIL;
                 self.delete_token_and_descendants(r, syms, sink);
             },
             Kind::Production { prod } => sink.unmatched(prod, t),
@@ -187,14 +187,18 @@ impl Rete {
                 }
             }
         }
-        if tok.owner != NIL && self.tokens[tok.owner as usize].alive {
-            let owner = tok.owner;
-            self.unlink_ncc_result(owner, t);
-            if self.tokens[owner as usize].results == NIL {
-                // The conjunction no longer matches: the owner's match goes on (§2.8).
-                let onode = self.tokens[owner as usize].node;
-                self.activate_children(onode, owner, NIL_WME, syms, sink);
+        // Only an NCC partner's tokens have an owner (its links go with it).
+        if matches!(self.nodes[node as usize].kind, Kind::NccPartner { .. }) {
+            let owner = self.links[t as usize].owner;
+            if owner != NIL && self.tokens[owner as usize].alive {
+                self.unlink_ncc_result(owner, t);
+                if self.links[owner as usize].results == NIL {
+                    // The conjunction no longer matches: the owner's match goes on (§2.8).
+                    let onode = self.tokens[owner as usize].node;
+                    self.activate_children(onode, owner, NIL_WME, syms, sink);
+                }
             }
+            self.links[t as usize] = ResultLinks::NONE;
         }
         self.tokens[t as usize].alive = false;
         self.free_row(tok.row, tok.depth);
@@ -202,7 +206,7 @@ impl Rete {
     }
 
     pub(crate) fn add_neg_result(&mut self, owner: TokId, w: WmeId) {
-        let tok_head = self.tokens[owner as usize].results;
+        let tok_head = self.links[owner as usize].results;
         let wme_head = self.wmes[w.0 as usize]
             .as_ref()
             .map_or(NIL, |x| x.neg_results);
@@ -218,7 +222,7 @@ impl Rete {
         if tok_head != NIL {
             self.neg[tok_head as usize].prev_tok = id;
         }
-        self.tokens[owner as usize].results = id;
+        self.links[owner as usize].results = id;
         if wme_head != NIL {
             self.neg[wme_head as usize].prev_wme = id;
         }
@@ -239,7 +243,7 @@ impl Rete {
         if prev_tok != NIL {
             self.neg[prev_tok as usize].next_tok = next_tok;
         } else {
-            self.tokens[owner as usize].results = next_tok;
+            self.links[owner as usize].results = next_tok;
         }
         if next_tok != NIL {
             self.neg[next_tok as usize].prev_tok = prev_tok;
@@ -256,31 +260,31 @@ impl Rete {
     }
 
     pub(crate) fn add_ncc_result(&mut self, owner: TokId, r: TokId) {
-        let head = self.tokens[owner as usize].results;
-        let rt = &mut self.tokens[r as usize];
+        let head = self.links[owner as usize].results;
+        let rt = &mut self.links[r as usize];
         rt.owner = owner;
         rt.next_result = head;
         rt.prev_result = NIL;
         if head != NIL {
-            self.tokens[head as usize].prev_result = r;
+            self.links[head as usize].prev_result = r;
         }
-        self.tokens[owner as usize].results = r;
+        self.links[owner as usize].results = r;
     }
 
     fn unlink_ncc_result(&mut self, owner: TokId, r: TokId) {
         let (prev, next) = (
-            self.tokens[r as usize].prev_result,
-            self.tokens[r as usize].next_result,
+            self.links[r as usize].prev_result,
+            self.links[r as usize].next_result,
         );
         if prev != NIL {
-            self.tokens[prev as usize].next_result = next;
+            self.links[prev as usize].next_result = next;
         } else {
-            self.tokens[owner as usize].results = next;
+            self.links[owner as usize].results = next;
         }
         if next != NIL {
-            self.tokens[next as usize].prev_result = prev;
+            self.links[next as usize].prev_result = prev;
         }
-        self.tokens[r as usize].next_result = NIL;
-        self.tokens[r as usize].prev_result = NIL;
+        self.links[r as usize].next_result = NIL;
+        self.links[r as usize].prev_result = NIL;
     }
 }
