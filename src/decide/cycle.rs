@@ -502,6 +502,7 @@ impl Agent {
     }
 
     /// A pending match with its goal level and support, for the waterfall.
+    #[inline]
     fn queued_match(&mut self, prod: ProdId, tok: TokId, one_goal: bool) -> Queued {
         let level = if one_goal {
             1
