@@ -17,8 +17,9 @@ const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
         "learn-lookahead",
         4,
         "the order of `<=WM:` lines when a GDS change removes the lookahead substate (9.6: \
-         i-supported WMEs newest first, then o-supported ones oldest first), and three WMEs \
-         of the selection state that go untraced when the top operator is replaced",
+         i-supported WMEs newest first, then o-supported ones oldest first), and where the \
+         selection state's objects (its evaluation and operator) are listed when the top \
+         operator is replaced",
     ),
     ("learn-lookahead", 5, "as at level 4"),
 ];

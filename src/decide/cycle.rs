@@ -1255,8 +1255,34 @@ impl Agent {
     /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
     /// WMEs (each group oldest first; seen on 9.6).
     fn trace_substate_wmes_removed(&mut self, gi: usize) {
-        for (_, wme) in self.substate_lines(gi) {
+        let lines = self.substate_lines(gi);
+        let memories = lines.iter().take_while(|(group, _)| *group <= 2).count();
+        for (_, wme) in &lines[..memories] {
+            self.trace_wme("<=WM: ", wme);
+        }
+        // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
+        // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
+        // agent learn-lookahead: `^name selection`, `^evaluation`, then `^operator E5 +`).
+        let op = self.operator_sym();
+        let mut made = Vec::new();
+        for g in &self.decider.goals[gi + 1..] {
+            for key in self.decider.slots.keys_of(g.state) {
+                let Some(slot) = self.decider.slots.get(&key) else {
+                    continue;
+                };
+                for (_, acc, w) in slot.wmes.iter() {
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        made.push((acc && key.1 == op, wme.timetag, wme));
+                    }
+                }
+            }
+        }
+        made.sort_by_key(|&(plus, tt, _)| (plus, tt));
+        for (_, _, wme) in made {
             self.trace_wme("<=WM: ", &wme);
+        }
+        for (_, wme) in &lines[memories..] {
+            self.trace_wme("<=WM: ", wme);
         }
     }
 
