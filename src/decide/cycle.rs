@@ -468,19 +468,19 @@ impl Agent {
     }
 
     /// The rules' retractions (`retractions`, as the matcher reported them) with the
-    /// justifications' (`justified`: each with the place it goes before), as instantiations
-    /// in that order, after those already in `retracted`.
+    /// justifications' (`justified`: each with the place it goes before, past the end for
+    /// after them all), as instantiations in that order, after those already in `retracted`.
     fn merge_justification_retractions(
         &mut self,
         retractions: &[(ProdId, TokId)],
         justified: &mut [(InstId, u64, usize)],
         retracted: &mut Vec<InstId>,
     ) {
-        justified.sort_by_key(|&(_, _, at)| at);
+        let end = retractions.len();
+        justified.sort_by_key(|&(_, _, at)| at.min(end));
         let mut next = justified.iter().peekable();
-        for at in 0..=retractions.len() {
-            while let Some(&&(i, serial, _)) = next.peek().filter(|j| j.2 <= at) {
-                next.next();
+        for at in 0..=end {
+            while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(end) <= at) {
                 let inst = &self.decider.insts[i as usize];
                 if inst.alive && inst.serial == serial && !retracted.contains(&i) {
                     retracted.push(i);
@@ -490,12 +490,6 @@ impl Agent {
                 .get(at)
                 .and_then(|k| self.decider.inst_by_token.remove(k))
             {
-                retracted.push(i);
-            }
-        }
-        for &(i, serial, _) in next {
-            let inst = &self.decider.insts[i as usize];
-            if inst.alive && inst.serial == serial && !retracted.contains(&i) {
                 retracted.push(i);
             }
         }
@@ -1263,22 +1257,9 @@ impl Agent {
         // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
         // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
         // agent learn-lookahead: `^name selection`, `^evaluation`, then `^operator E5 +`).
-        let op = self.operator_sym();
-        let mut made = Vec::new();
-        for g in &self.decider.goals[gi + 1..] {
-            for key in self.decider.slots.keys_of(g.state) {
-                let Some(slot) = self.decider.slots.get(&key) else {
-                    continue;
-                };
-                for (_, acc, w) in slot.wmes.iter() {
-                    if let Some(wme) = self.wm.get(w).copied() {
-                        made.push((acc && key.1 == op, wme.timetag, wme));
-                    }
-                }
-            }
-        }
-        made.sort_by_key(|&(plus, tt, _)| (plus, tt));
-        for (_, _, wme) in made {
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        for (_, wme) in made {
             self.trace_wme("<=WM: ", &wme);
         }
         for (_, wme) in &lines[memories..] {
@@ -1291,7 +1272,6 @@ impl Agent {
     /// `trace_removed_wmes` to put in 9.6's place.
     pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
         use crate::trace::SubstateLine;
-        let op = self.operator_sym();
         let mut out = Vec::new();
         for (group, wme) in self.substate_lines(gi) {
             let place = if group <= 2 {
@@ -1301,22 +1281,13 @@ impl Agent {
             };
             out.push((place, wme));
         }
-        for g in self.decider.goals[gi + 1..].iter().rev() {
-            for key in self.decider.slots.keys_of(g.state) {
-                let Some(slot) = self.decider.slots.get(&key) else {
-                    continue;
-                };
-                for (_, acc, w) in slot.wmes.iter() {
-                    if let Some(wme) = self.wm.get(w).copied() {
-                        let place = if acc && key.1 == op {
-                            SubstateLine::OperatorPlus
-                        } else {
-                            SubstateLine::Other
-                        };
-                        out.push((place, wme));
-                    }
-                }
-            }
+        for (plus, wme) in self.substate_slot_wmes(gi) {
+            let place = if plus {
+                SubstateLine::OperatorPlus
+            } else {
+                SubstateLine::Other
+            };
+            out.push((place, wme));
         }
         for g in self.decider.goals[gi + 1..].iter().rev() {
             if let Some(wme) = g.operator.and_then(|(_, w)| self.wm.get(w).copied()) {
@@ -1324,6 +1295,26 @@ impl Agent {
             }
         }
         self.substate_removals.extend(out);
+    }
+
+    /// The WMEs in the slots of the goals below `gi` (those rules made on them), lowest
+    /// goal first, each with whether it is an operator `+` WME.
+    fn substate_slot_wmes(&self, gi: usize) -> Vec<(bool, crate::wm::Wme)> {
+        let op = self.operator_sym();
+        let mut out = Vec::new();
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            for key in self.decider.slots.keys_of(g.state) {
+                let Some(slot) = self.decider.slots.get(&key) else {
+                    continue;
+                };
+                for (_, acc, w) in slot.wmes.iter() {
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        out.push((acc && key.1 == op, wme));
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// The architecture WMEs of the goals below `gi` in 9.6's order, each with its group

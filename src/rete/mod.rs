@@ -48,7 +48,7 @@ pub struct ProdId(pub u32);
 pub trait MatchSink {
     fn matched(&mut self, prod: ProdId, token: TokId);
     fn unmatched(&mut self, prod: ProdId, token: TokId);
-    /// How many retractions the sink holds (see [`Rete::alpha_marks`]).
+    /// How many retractions the sink holds (see `Rete::alpha_marks`).
     fn retraction_count(&self) -> usize {
         0
     }
