@@ -7,7 +7,7 @@
 //! The copy keeps the old snapshot semantics exactly (a list that changes during the
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
-use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
+use super::tests::{relation_holds, Field, JoinTest, Operand};
 use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::{SymData, Symbols};
 use crate::wm::WmeId;
@@ -23,31 +23,26 @@ impl Rete {
         new_depth: u32,
         syms: &Symbols,
     ) -> bool {
-        self.tests_pass_but(tests, None, t, w, new_depth, syms)
+        self.tests_pass_but(tests, usize::MAX, t, w, new_depth, syms)
     }
 
-    /// `tests_pass`, leaving out the first identifier equality on `skip`: the pair came
-    /// from the hash index on that key, so it holds.
+    /// `tests_pass`, leaving out the test at `skip`: the identifier equality the pair's
+    /// hash index lookup already made.
     fn tests_pass_but(
         &self,
         tests: &[JoinTest],
-        mut skip: Option<(u32, Field)>,
+        skip: usize,
         t: TokId,
         w: WmeId,
         new_depth: u32,
         syms: &Symbols,
     ) -> bool {
-        for test in tests {
+        for (i, test) in tests.iter().enumerate() {
+            if i == skip {
+                continue;
+            }
             let ok = match test {
                 JoinTest::Compare { field, op, operand } => {
-                    if let (Field::Id, Op::Eq, Operand::Bound { depth, field: bf }) =
-                        (field, op, operand)
-                    {
-                        if skip == Some((*depth, *bf)) {
-                            skip = None;
-                            continue;
-                        }
-                    }
                     let a = self.field(w, *field);
                     let b = match operand {
                         Operand::Const(c) => *c,
@@ -103,8 +98,8 @@ impl Rete {
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
     /// candidate lists gave.
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
-        let hash = self.nodes[n as usize].hash.get();
-        self.tests_pass_but(self.join_tests(n), hash, t, w, new_depth, s)
+        let skip = self.nodes[n as usize].hash_test as usize;
+        self.tests_pass_but(self.join_tests(n), skip, t, w, new_depth, s)
     }
 
     /// The WME of the ancestor token (of `t`, inclusive) at `depth`.

@@ -1,5 +1,5 @@
-//! A growable array kept in fixed-size blocks, for the network's arenas that grow with the
-//! rules loaded (nodes, alpha memories, productions). A doubling `Vec` copies everything
+//! A growable array kept in fixed-size blocks, for the tables that grow with the rules
+//! loaded (productions, the symbol table). A doubling `Vec` copies everything
 //! when it grows and for a moment holds both copies: at 100,000 rules that is most of the
 //! load's page faults. Blocks are never moved, so each item is written once, in place.
 
@@ -45,10 +45,6 @@ impl<T> Blocks<T> {
 
     pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
         self.blocks.get_mut(i >> SHIFT)?.get_mut(i & (BLOCK - 1))
-    }
-
-    pub fn iter(&self) -> impl Iterator<Item = &T> + '_ {
-        self.blocks.iter().flatten()
     }
 }
 
@@ -104,6 +100,5 @@ mod tests {
         b[BLOCK * 2] = 7;
         assert_eq!(b.get(BLOCK * 2), Some(&7));
         assert_eq!(b.get(BLOCK * 2 + 3), None);
-        assert_eq!(b.iter().count(), BLOCK * 2 + 3);
     }
 }

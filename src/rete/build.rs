@@ -6,6 +6,7 @@
 use super::tests::{Field, JoinTest, Op, Operand};
 use super::{
     AlphaKey, AmemId, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, Shared, NIL, NIL_WME,
+    NO_HASH_TEST,
 };
 use crate::ast::Head;
 use crate::production::{Cond, Condition, Production, Term, Test};
@@ -453,8 +454,9 @@ impl Rete {
         );
         self.attach(h, j, true);
         self.add_shared(h, 0, amem, j);
-        if let Some((d, f)) = hash_key_of(tests, depth + 1) {
+        if let Some((i, (d, f))) = hash_test_of(tests, depth + 1) {
             self.nodes[j as usize].hash = super::HashKey::new(Some((d, f)));
+            self.nodes[j as usize].hash_test = u8::try_from(i).unwrap_or(NO_HASH_TEST);
             self.add_left_key(h, d, f);
         }
         self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
@@ -500,8 +502,9 @@ impl Rete {
         );
         self.attach(parent, n, true);
         self.add_shared(parent, 1, amem, n);
-        if let Some((d, f)) = hash_key_of(tests, depth + 1) {
+        if let Some((i, (d, f))) = hash_test_of(tests, depth + 1) {
             self.nodes[n as usize].hash = super::HashKey::new(Some((d, f)));
+            self.nodes[n as usize].hash_test = u8::try_from(i).unwrap_or(NO_HASH_TEST);
             self.add_left_key(n, d, f);
         }
         self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
@@ -643,12 +646,17 @@ impl Rete {
 /// bound above it (Soar hashes both memories on it, so a WME meets only the tokens it can
 /// join). `new_depth` is the depth of the new WME.
 fn hash_key_of(tests: &[JoinTest], new_depth: u32) -> Option<(u32, Field)> {
-    tests.iter().find_map(|t| match t {
+    hash_test_of(tests, new_depth).map(|(_, key)| key)
+}
+
+/// [`hash_key_of`] with the test's place in `tests` (the test a hashed pair need not run).
+fn hash_test_of(tests: &[JoinTest], new_depth: u32) -> Option<(usize, (u32, Field))> {
+    tests.iter().enumerate().find_map(|(i, t)| match t {
         JoinTest::Compare {
             field: Field::Id,
             op: Op::Eq,
             operand: Operand::Bound { depth, field },
-        } if *depth < new_depth => Some((*depth, *field)),
+        } if *depth < new_depth => Some((i, (*depth, *field))),
         _ => None,
     })
 }
