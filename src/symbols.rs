@@ -18,6 +18,13 @@ pub enum SymData {
     Id(IdData),
 }
 
+/// The filler of the symbol table's slots not yet used (see `Blocks`).
+impl Default for SymData {
+    fn default() -> Self {
+        SymData::Int(0)
+    }
+}
+
 /// An identifier: `letter` + `number`, plus what the architecture knows of it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IdData {

@@ -1,7 +1,8 @@
 //! A growable array kept in fixed-size blocks, for the tables that grow with the rules
-//! loaded (productions, the symbol table). A doubling `Vec` copies everything
-//! when it grows and for a moment holds both copies: at 100,000 rules that is most of the
-//! load's page faults. Blocks are never moved, so each item is written once, in place.
+//! loaded (productions, the symbol table). A doubling `Vec` copies everything when it grows
+//! and for a moment holds both copies: at 100,000 rules that is most of the load's page
+//! faults. Blocks are never moved. Each block is a whole array, filled with `T::default()`
+//! when it is made, so an index needs one bounds check (the block), not two.
 
 use std::ops::{Index, IndexMut};
 
@@ -11,7 +12,8 @@ const BLOCK: usize = 1 << SHIFT;
 
 #[derive(Debug, Clone)]
 pub(crate) struct Blocks<T> {
-    blocks: Vec<Vec<T>>,
+    /// Items `0..len`; the rest of the last block holds fillers.
+    blocks: Vec<Box<[T; BLOCK]>>,
     len: usize,
 }
 
@@ -24,33 +26,39 @@ impl<T> Default for Blocks<T> {
     }
 }
 
+impl<T: Default + Clone> Blocks<T> {
+    pub fn push(&mut self, value: T) {
+        if self.len.is_multiple_of(BLOCK) {
+            let block: Box<[T]> = vec![T::default(); BLOCK].into_boxed_slice();
+            let Ok(block) = <Box<[T; BLOCK]>>::try_from(block) else {
+                unreachable!("a block has BLOCK items");
+            };
+            self.blocks.push(block);
+        }
+        let i = self.len;
+        self[i] = value;
+        self.len += 1;
+    }
+}
+
 impl<T> Blocks<T> {
     pub fn len(&self) -> usize {
         self.len
     }
 
-    pub fn push(&mut self, value: T) {
-        if self.len.is_multiple_of(BLOCK) {
-            self.blocks.push(Vec::with_capacity(BLOCK));
-        }
-        if let Some(last) = self.blocks.last_mut() {
-            last.push(value);
-        }
-        self.len += 1;
-    }
-
     pub fn get(&self, i: usize) -> Option<&T> {
-        self.blocks.get(i >> SHIFT)?.get(i & (BLOCK - 1))
+        (i < self.len).then(|| &self[i])
     }
 
     pub fn get_mut(&mut self, i: usize) -> Option<&mut T> {
-        self.blocks.get_mut(i >> SHIFT)?.get_mut(i & (BLOCK - 1))
+        (i < self.len).then(|| &mut self[i])
     }
 }
 
 impl<T> Index<usize> for Blocks<T> {
     type Output = T;
     fn index(&self, i: usize) -> &T {
+        debug_assert!(i < self.len, "index past the end");
         &self.blocks[i >> SHIFT][i & (BLOCK - 1)]
     }
 }
@@ -76,7 +84,7 @@ impl<T> Arena<T> for Vec<T> {
     }
 }
 
-impl<T> Arena<T> for Blocks<T> {
+impl<T: Default + Clone> Arena<T> for Blocks<T> {
     fn push_item(&mut self, value: T) {
         self.push(value);
     }
