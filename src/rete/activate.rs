@@ -28,6 +28,7 @@ impl Rete {
 
     /// `tests_pass`, leaving out the test at `skip`: the identifier equality the pair's
     /// hash index lookup already made.
+    #[inline(always)]
     fn tests_pass_but(
         &self,
         tests: &[JoinTest],
@@ -97,6 +98,7 @@ impl Rete {
 
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
     /// candidate lists gave.
+    #[inline(always)]
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
         let skip = self.nodes[n as usize].hash_test as usize;
         self.tests_pass_but(self.join_tests(n), skip, t, w, new_depth, s)

@@ -107,6 +107,7 @@ impl Rete {
     /// Pushes onto the scratch stack the WMEs of an alpha memory that node `n` must try
     /// with token `t`, newest first: only those whose identifier is the token's value at
     /// `n`'s key, when it has one.
+    #[inline(always)]
     pub(crate) fn push_amem_candidates(&mut self, a: AmemId, n: NodeId, t: TokId) {
         let Some((d, f)) = self.nodes[n as usize].hash.get() else {
             let mut e = self.amems[a as usize].first;
