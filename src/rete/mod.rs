@@ -68,6 +68,22 @@ pub(crate) struct AlphaKey {
     pub acceptable: bool,
 }
 
+/// See `Rete::attr_amems`.
+#[derive(Debug, Clone, Copy)]
+struct AttrAmems {
+    /// `(attr, any value)`, by `acceptable as usize`; NIL when there is none.
+    open_value: [AmemId; 2],
+    /// How many memories test `(attr, constant value)`.
+    valued: u32,
+}
+
+impl AttrAmems {
+    const NONE: AttrAmems = AttrAmems {
+        open_value: [NIL; 2],
+        valued: 0,
+    };
+}
+
 #[derive(Debug)]
 pub(crate) struct Amem {
     pub key: AlphaKey,
@@ -402,6 +418,12 @@ pub struct Rete {
     pub(crate) amems: Vec<Amem>,
     free_amems: Vec<AmemId>,
     amem_index: FxHashMap<AlphaKey, AmemId>,
+    /// The alpha memories with a constant attribute, by the attribute's symbol index: the
+    /// one that leaves the value open (for non-acceptable and acceptable WMEs), and how many
+    /// test a constant value too. A new WME finds its memories here without hashing its
+    /// key, and looks up `(attr, value)` only when some memory tests a value with its
+    /// attribute (most attributes have none).
+    attr_amems: Vec<AttrAmems>,
     /// How many alpha memories leave the attribute open: most networks have none, and then
     /// a new WME looks up two keys, not four.
     attrless_amems: u32,
@@ -472,6 +494,7 @@ impl Rete {
             amems: Vec::new(),
             free_amems: Vec::new(),
             amem_index: FxHashMap::default(),
+            attr_amems: Vec::new(),
             attrless_amems: 0,
             rm: Vec::new(),
             free_rm: Vec::new(),
@@ -569,8 +592,19 @@ impl Rete {
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
         self.amem_index.insert(key, id);
-        if key.attr.is_none() {
-            self.attrless_amems += 1;
+        match key.attr {
+            None => self.attrless_amems += 1,
+            Some(attr) => {
+                let i = attr.0 as usize;
+                if self.attr_amems.len() <= i {
+                    self.attr_amems.resize(i + 1, AttrAmems::NONE);
+                }
+                let e = &mut self.attr_amems[i];
+                match key.value {
+                    None => e.open_value[usize::from(key.acceptable)] = id,
+                    Some(_) => e.valued += 1,
+                }
+            }
         }
         // A new alpha memory starts with every WME that passes its constant tests.
         let matching: Vec<WmeId> = self
@@ -612,8 +646,15 @@ impl Rete {
             e = next;
         }
         self.amem_index.remove(&key);
-        if key.attr.is_none() {
-            self.attrless_amems -= 1;
+        match key.attr {
+            None => self.attrless_amems -= 1,
+            Some(attr) => {
+                let e = &mut self.attr_amems[attr.0 as usize];
+                match key.value {
+                    None => e.open_value[usize::from(key.acceptable)] = NIL,
+                    Some(_) => e.valued -= 1,
+                }
+            }
         }
         let am = &mut self.amems[a as usize];
         am.first = NIL;
@@ -740,23 +781,33 @@ impl Rete {
     pub(crate) fn alpha_targets(&self, attr: Sym, value: Sym, acceptable: bool) -> [AmemId; 4] {
         let mut targets = [NIL; 4];
         let mut n = 0;
-        for (a, v) in [
-            (None, None),
-            (None, Some(value)),
-            (Some(attr), None),
-            (Some(attr), Some(value)),
-        ] {
-            if a.is_none() && self.attrless_amems == 0 {
-                continue;
-            }
+        let lookup = |a: Option<Sym>, v: Option<Sym>| {
             let key = AlphaKey {
                 attr: a,
                 value: v,
                 acceptable,
             };
-            if let Some(&am) = self.amem_index.get(&key) {
+            self.amem_index.get(&key).copied()
+        };
+        if self.attrless_amems > 0 {
+            for v in [None, Some(value)] {
+                if let Some(am) = lookup(None, v) {
+                    targets[n] = am;
+                    n += 1;
+                }
+            }
+        }
+        let Some(e) = self.attr_amems.get(attr.0 as usize) else {
+            return targets;
+        };
+        let open = e.open_value[usize::from(acceptable)];
+        if open != NIL {
+            targets[n] = open;
+            n += 1;
+        }
+        if e.valued > 0 {
+            if let Some(am) = lookup(Some(attr), Some(value)) {
                 targets[n] = am;
-                n += 1;
             }
         }
         targets
