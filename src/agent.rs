@@ -577,7 +577,8 @@ impl Agent {
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
         self.justification_wme_removed(w, wme.timetag);
-        if let Some(goal) = self.decider.gds.remove(&w) {
+        let in_gds = !self.decider.gds.is_empty();
+        if let Some(goal) = in_gds.then(|| self.decider.gds.remove(&w)).flatten() {
             self.decider.gds_invalid.push(goal);
         }
         // What it pointed at may now be unlinked: garbage collection looks there (spec §2).

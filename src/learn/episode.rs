@@ -570,6 +570,10 @@ impl Agent {
 
     /// A justification's instantiation lost a WME: its retraction is queued.
     pub(crate) fn justification_wme_removed(&mut self, w: crate::wm::WmeId, timetag: u64) {
+        // Most removals meet no justification: skip the hash probe then.
+        if self.learn.justified_by_wme.is_empty() {
+            return;
+        }
         if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
             let after_rules = usize::MAX;
             self.decider
