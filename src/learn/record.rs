@@ -35,13 +35,11 @@ impl Agent {
     ) -> Option<Arc<InstTrace>> {
         let mut vars: FxHashMap<String, (Ident, Sym)> = FxHashMap::default();
         if let Some(info) = self.rete.production(p) {
-            let names: Vec<String> = info.bindings.keys().map(str::to_string).collect();
-            let mut names = names;
-            names.sort();
-            let first = self.learn.new_idents(names.len() + new_ids.len());
-            for (k, v) in names.into_iter().enumerate() {
-                if let Some(s) = self.rete.binding(p, t, &v) {
-                    vars.insert(v, (first + k as u64, s));
+            // The bindings are in name order, as the identities are numbered.
+            let first = self.learn.new_idents(info.bindings.len() + new_ids.len());
+            for (k, (v, (depth, field))) in info.bindings.iter().enumerate() {
+                if let Some(s) = self.rete.bound_value(t, depth, field) {
+                    vars.insert(v.to_string(), (first + k as u64, s));
                 }
             }
             let mut made_ids: Vec<(&String, &Sym)> = new_ids.iter().collect();

@@ -1271,6 +1271,11 @@ impl Rete {
     pub fn binding(&self, p: ProdId, token: TokId, var: &str) -> Option<Sym> {
         let info = self.production(p)?;
         let &(depth, field) = info.bindings.get(var)?;
+        self.bound_value(token, depth, field)
+    }
+
+    /// The value a match `token` binds at `(depth, field)` (see `VarBindings`).
+    pub fn bound_value(&self, token: TokId, depth: u32, field: Field) -> Option<Sym> {
         let w = self.wme_at_depth(token, depth);
         if w == NIL_WME {
             return None;

@@ -29,6 +29,11 @@ impl VarBindings {
         self.0.iter().map(|(k, _)| &**k)
     }
 
+    /// Each variable with where it is bound, in name order.
+    pub fn iter(&self) -> impl Iterator<Item = (&str, (u32, Field))> {
+        self.0.iter().map(|(k, b)| (&**k, *b))
+    }
+
     pub fn len(&self) -> usize {
         self.0.len()
     }
