@@ -424,9 +424,9 @@ pub struct Rete {
     /// key, and looks up `(attr, value)` only when some memory tests a value with its
     /// attribute (most attributes have none).
     attr_amems: Vec<AttrAmems>,
-    /// How many alpha memories leave the attribute open: most networks have none, and then
-    /// a new WME looks up two keys, not four.
-    attrless_amems: u32,
+    /// The alpha memories that leave the attribute open, as `attr_amems` keeps them by
+    /// attribute: most networks have none, and then a new WME makes no lookup for them.
+    attrless_amems: AttrAmems,
     pub(crate) rm: Vec<RmEntry>,
     free_rm: Vec<u32>,
     pub(crate) wmes: Vec<Option<RWme>>,
@@ -495,7 +495,7 @@ impl Rete {
             free_amems: Vec::new(),
             amem_index: FxHashMap::default(),
             attr_amems: Vec::new(),
-            attrless_amems: 0,
+            attrless_amems: AttrAmems::NONE,
             rm: Vec::new(),
             free_rm: Vec::new(),
             wmes: Vec::new(),
@@ -592,19 +592,10 @@ impl Rete {
         };
         let id = alloc(&mut self.amems, &mut self.free_amems, amem);
         self.amem_index.insert(key, id);
-        match key.attr {
-            None => self.attrless_amems += 1,
-            Some(attr) => {
-                let i = attr.0 as usize;
-                if self.attr_amems.len() <= i {
-                    self.attr_amems.resize(i + 1, AttrAmems::NONE);
-                }
-                let e = &mut self.attr_amems[i];
-                match key.value {
-                    None => e.open_value[usize::from(key.acceptable)] = id,
-                    Some(_) => e.valued += 1,
-                }
-            }
+        let e = self.attr_amems_mut(key.attr);
+        match key.value {
+            None => e.open_value[usize::from(key.acceptable)] = id,
+            Some(_) => e.valued += 1,
         }
         // A new alpha memory starts with every WME that passes its constant tests.
         let matching: Vec<WmeId> = self
@@ -646,15 +637,10 @@ impl Rete {
             e = next;
         }
         self.amem_index.remove(&key);
-        match key.attr {
-            None => self.attrless_amems -= 1,
-            Some(attr) => {
-                let e = &mut self.attr_amems[attr.0 as usize];
-                match key.value {
-                    None => e.open_value[usize::from(key.acceptable)] = NIL,
-                    Some(_) => e.valued -= 1,
-                }
-            }
+        let e = self.attr_amems_mut(key.attr);
+        match key.value {
+            None => e.open_value[usize::from(key.acceptable)] = NIL,
+            Some(_) => e.valued -= 1,
         }
         let am = &mut self.amems[a as usize];
         am.first = NIL;
@@ -781,36 +767,43 @@ impl Rete {
     pub(crate) fn alpha_targets(&self, attr: Sym, value: Sym, acceptable: bool) -> [AmemId; 4] {
         let mut targets = [NIL; 4];
         let mut n = 0;
-        let lookup = |a: Option<Sym>, v: Option<Sym>| {
-            let key = AlphaKey {
-                attr: a,
-                value: v,
-                acceptable,
-            };
-            self.amem_index.get(&key).copied()
-        };
-        if self.attrless_amems > 0 {
-            for v in [None, Some(value)] {
-                if let Some(am) = lookup(None, v) {
+        // Least specific first: open attribute (then its constant values), then the
+        // constant attribute (then its constant values).
+        let attrless = Some(&self.attrless_amems);
+        let with_attr = self.attr_amems.get(attr.0 as usize);
+        for (a, e) in [(None, attrless), (Some(attr), with_attr)] {
+            let Some(e) = e else { continue };
+            let open = e.open_value[usize::from(acceptable)];
+            if open != NIL {
+                targets[n] = open;
+                n += 1;
+            }
+            if e.valued > 0 {
+                let key = AlphaKey {
+                    attr: a,
+                    value: Some(value),
+                    acceptable,
+                };
+                if let Some(&am) = self.amem_index.get(&key) {
                     targets[n] = am;
                     n += 1;
                 }
             }
         }
-        let Some(e) = self.attr_amems.get(attr.0 as usize) else {
-            return targets;
-        };
-        let open = e.open_value[usize::from(acceptable)];
-        if open != NIL {
-            targets[n] = open;
-            n += 1;
-        }
-        if e.valued > 0 {
-            if let Some(am) = lookup(Some(attr), Some(value)) {
-                targets[n] = am;
-            }
-        }
         targets
+    }
+
+    /// The `attr_amems` entry of a constant attribute (made if need be), or the attribute-
+    /// open memories' entry.
+    fn attr_amems_mut(&mut self, attr: Option<Sym>) -> &mut AttrAmems {
+        let Some(attr) = attr else {
+            return &mut self.attrless_amems;
+        };
+        let i = attr.0 as usize;
+        if self.attr_amems.len() <= i {
+            self.attr_amems.resize(i + 1, AttrAmems::NONE);
+        }
+        &mut self.attr_amems[i]
     }
 
     fn alpha_activation(&mut self, a: AmemId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
