@@ -281,12 +281,9 @@ impl HashKey {
         if self == HashKey::NONE {
             return None;
         }
-        let field = match self.0 & 3 {
-            0 => Field::Id,
-            1 => Field::Attr,
-            _ => Field::Value,
-        };
-        Some((self.0 >> 2, field))
+        // A table read, not a branch: this runs for every hashed activation.
+        const FIELDS: [Field; 4] = [Field::Id, Field::Attr, Field::Value, Field::Value];
+        Some((self.0 >> 2, FIELDS[(self.0 & 3) as usize]))
     }
 }
 
