@@ -577,9 +577,11 @@ impl Agent {
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
         self.justification_wme_removed(w, wme.timetag);
-        let in_gds = !self.decider.gds.is_empty();
-        if let Some(goal) = in_gds.then(|| self.decider.gds.remove(&w)).flatten() {
-            self.decider.gds_invalid.push(goal);
+        // Most removals happen with no substate, so with an empty GDS: no hash probe then.
+        if !self.decider.gds.is_empty() {
+            if let Some(goal) = self.decider.gds.remove(&w) {
+                self.decider.gds_invalid.push(goal);
+            }
         }
         // What it pointed at may now be unlinked: garbage collection looks there (spec §2).
         for x in [wme.value, wme.attr] {

@@ -381,7 +381,6 @@ impl Agent {
     /// at one goal of an elaboration cycle (spec §3b); `None` when only retractions of
     /// goals that are gone are pending (9.6 has no active goal then).
     pub(crate) fn trace_inner_elaboration(&mut self, level: Option<u32>) {
-        self.decider.inner_e_cycles += 1;
         if !self.settings.trace.waterfall {
             return;
         }

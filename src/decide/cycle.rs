@@ -380,11 +380,11 @@ impl Agent {
         let mut level = top;
         let mut next_change = top.unwrap_or(0);
         if top.is_none() {
-            self.trace_inner_elaboration(None);
+            self.inner_elaboration_pass(None);
         }
         while let Some(l) = level {
             let change_level = next_change;
-            self.trace_inner_elaboration(Some(l));
+            self.inner_elaboration_pass(Some(l));
             let mut exist = false;
             for q in queued.iter_mut() {
                 if q.fired || q.level != l || q.o_support != o_support {
@@ -495,6 +495,14 @@ impl Agent {
         }
     }
 
+    /// One pass of the waterfall over a goal level (`None`: no active goal): counted for
+    /// `stats` ("inner elaboration cycles", which 9.6 counts exactly as the pass headers its
+    /// trace prints) and traced.
+    fn inner_elaboration_pass(&mut self, level: Option<u32>) {
+        self.decider.inner_e_cycles += 1;
+        self.trace_inner_elaboration(level);
+    }
+
     /// A pending match with its goal level and support, for the waterfall.
     #[inline]
     fn queued_match(&mut self, prod: ProdId, tok: TokId, one_goal: bool) -> Queued {
@@ -526,7 +534,9 @@ impl Agent {
         queued: &mut Vec<Queued>,
         levels: &mut Vec<u32>,
     ) {
-        if !self.matches.has_assertions() {
+        // Goal levels run 1..=goals.len(): below the lowest goal there is nothing to queue,
+        // and the matches stay for the next cycle, which classifies them anyway.
+        if l as usize >= self.decider.goals.len() || !self.matches.has_assertions() {
             return;
         }
         self.matches.compact();
