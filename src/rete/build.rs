@@ -454,11 +454,7 @@ impl Rete {
         );
         self.attach(h, j, true);
         self.add_shared(h, 0, amem, j);
-        if let Some((i, (d, f))) = hash_test_of(tests, depth + 1) {
-            self.nodes[j as usize].hash = super::HashKey::new(Some((d, f)));
-            self.nodes[j as usize].hash_test = u8::try_from(i).unwrap_or(NO_HASH_TEST);
-            self.add_left_key(h, d, f);
-        }
+        self.hash_node(j, h, tests, depth + 1);
         self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
@@ -502,11 +498,7 @@ impl Rete {
         );
         self.attach(parent, n, true);
         self.add_shared(parent, 1, amem, n);
-        if let Some((i, (d, f))) = hash_test_of(tests, depth + 1) {
-            self.nodes[n as usize].hash = super::HashKey::new(Some((d, f)));
-            self.nodes[n as usize].hash_test = u8::try_from(i).unwrap_or(NO_HASH_TEST);
-            self.add_left_key(n, d, f);
-        }
+        self.hash_node(n, n, tests, depth + 1);
         self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
         self.link_to_amem(n, amem, syms);
         self.fill_new_node(n, syms, &mut super::NullSink);
@@ -638,6 +630,24 @@ impl Rete {
                 return;
             }
             n = parent;
+        }
+    }
+
+    /// Hashes join or negative node `n` on its identifier equality test, if it has one
+    /// (`new_depth`: the depth of its WME): both its memories are then indexed on that
+    /// key (`holder`: the node whose tokens it joins), and a pair the index gives skips
+    /// the test (`Node::hash_test`).
+    fn hash_node(&mut self, n: NodeId, holder: NodeId, tests: &[JoinTest], new_depth: u32) {
+        if let Some((i, (d, f))) = hash_test_of(tests, new_depth) {
+            let node = &mut self.nodes[n as usize];
+            node.hash = super::HashKey::new(Some((d, f)));
+            // Past 255 the place saturates to NO_HASH_TEST (255), and the pair skips test
+            // 255 instead: harmless, since only a goal test and identifier equalities with
+            // this same WME (`{<x> <x> ...}`, always true) can come before the hash test
+            // (`cond_tests` puts identifier equalities first; constants on an identifier
+            // are rejected at load).
+            node.hash_test = u8::try_from(i).unwrap_or(NO_HASH_TEST);
+            self.add_left_key(holder, d, f);
         }
     }
 }
