@@ -10,7 +10,7 @@
 //! Run with `cargo bench --bench parse`. Before divan's statistics, `main` times one full run
 //! of each with `Instant` and prints lines per second and productions per second.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use rusoar::parser::parse_production;
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};

@@ -50,7 +50,7 @@
 //! `scripts/bench_official.py --ours FILE`); `RETE_BENCH_DUMP=DIR` writes the generated rule
 //! files to DIR. Under `cargo test --benches` every size is divided by 100.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use rusoar::symbols::Sym;
 use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;

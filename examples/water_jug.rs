@@ -1,7 +1,7 @@
 //! Embedding the kernel from Rust: load an agent, register a Rust function the rules can call,
 //! run it, and read what it printed. Run with `cargo run --release --example water_jug`.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn main() {
     let root = env!("CARGO_MANIFEST_DIR");

@@ -34,7 +34,7 @@ def official(path, decisions, repeat):
 def ours(path, decisions, repeat):
     """The same in rusoar: median seconds, decisions, production firings."""
     out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "--example", "time_run", "--", str(repeat),
+        ["cargo", "run", "--release", "--quiet", "-p", "rusoar-cli", "--example", "time_run", "--", str(repeat),
          "--run", str(decisions), path],
         capture_output=True, text=True, cwd=ROOT, check=True).stdout
     _, dec, fir, secs = out.split()

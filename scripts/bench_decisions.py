@@ -24,7 +24,7 @@ AGENTS = os.path.join(ROOT, "tests", "agents")
 
 def ours_all(paths, repeat):
     out = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "--example", "time_run", "--", str(repeat)]
+        ["cargo", "run", "--release", "--quiet", "-p", "rusoar-cli", "--example", "time_run", "--", str(repeat)]
         + paths,
         capture_output=True, text=True, cwd=ROOT, check=True).stdout
     res = {}

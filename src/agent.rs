@@ -494,7 +494,7 @@ impl Agent {
     pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
         match self.matches.support.get(&(p, t)) {
             Some(&o) => o,
-            None => crate::support::match_support(self, p, t).o_support,
+            None => crate::decide::support::match_support(self, p, t).o_support,
         }
     }
 

@@ -337,7 +337,7 @@ mod tests {
     /// input, `=>WM` lines newest first, then `<=WM` lines).
     #[test]
     fn input_changes_reach_the_matcher_at_the_input_phase_newest_first() {
-        let mut i = crate::cli::Interpreter::new();
+        let mut i = crate::commands::Interpreter::new();
         i.run_text(
             "t",
             "sp {p (state <s> ^io.input-link <il>) (<il> ^obj <o> ^crd <c>) (<o> ^a <a>) \

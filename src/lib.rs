@@ -1,7 +1,7 @@
 //! rusoar: the Soar cognitive architecture in Rust, and Soar-SLAM.
 pub mod agent;
 pub mod ast;
-pub mod cli;
+pub mod commands;
 pub mod decide;
 pub mod io;
 pub mod learn;
@@ -11,13 +11,9 @@ pub mod printer;
 pub mod production;
 pub mod rete;
 pub mod rhs;
-pub mod rhs_functions;
 pub mod rng;
-pub mod robot;
 pub mod source;
 pub mod stdlib;
-pub mod support;
 pub mod symbols;
-pub mod tokenizer;
 pub mod trace;
 pub mod wm;

@@ -3,7 +3,7 @@
 //! and the load-time checks Soar makes are applied (spec §1c–§1g).
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
-use crate::rhs_functions::{self, Use};
+use crate::rhs::table::{self, Use};
 use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -804,7 +804,7 @@ fn compile_call(
     rule: &str,
 ) -> Result<FuncCall, Diagnostic> {
     let mut args = Vec::with_capacity(f.args.len() + 1);
-    let name = match rhs_functions::lookup(&f.name) {
+    let name = match table::lookup(&f.name) {
         Some(info) => {
             if let Some(n) = info.arity {
                 if n != f.args.len() {

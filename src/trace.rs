@@ -241,7 +241,7 @@ pub fn pending_matches(agent: &Agent) -> String {
 }
 
 fn goal_text(agent: &Agent, p: crate::rete::ProdId, t: crate::rete::TokId) -> String {
-    match crate::support::match_goal(agent, p, t) {
+    match crate::decide::support::match_goal(agent, p, t) {
         Some(g) => agent.symbols.text(g),
         None => "NIL".into(),
     }

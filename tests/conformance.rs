@@ -13,7 +13,7 @@
 //! reason. The test fails if any other agent differs, and also if a listed agent has started
 //! to match (so the list has to shrink as the kernel improves).
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use std::path::{Path, PathBuf};
 
 /// Agents whose trace or counts still differ from the official kernel, with the reason.

@@ -4,7 +4,7 @@
 //! (file, line, column) and the interpreter must report failure. Where Soar 9.6 has a
 //! message for the mistake, the message is Soar's text (checked against soar-sml 9.6).
 
-use rusoar::cli::{Event, Interpreter};
+use rusoar::commands::{Event, Interpreter};
 use rusoar::source::{Diagnostic, Severity};
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! gets the arguments' texts concatenated; a numeric form, when registered, gets the numbers
 //! instead whenever the arguments are numbers between comma separators.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn run_with(rule_rhs: &str) -> String {
     let mut i = Interpreter::new();

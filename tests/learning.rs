@@ -1,7 +1,7 @@
 //! Chunking (issue 5), beyond the goldens of tests/conformance.rs: the embedded stdlib
 //! loads by name, and a learning agent's second run after `init-soar` uses its chunks.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn run(interp: &mut Interpreter, cmd: &str) -> String {
     interp

@@ -1,7 +1,7 @@
 //! `output` (spec §6a): its status listing and the settings 9.6 reports as `NAME is VALUE`;
 //! the expected texts were observed on soar-sml 9.6.5 through `ExecuteCommandLine`.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn out(i: &mut Interpreter, cmd: &str) -> String {
     i.run_text("t", cmd).unwrap();

@@ -9,10 +9,10 @@ use rusoar::ast::{
     Action, Atom, AttrMake, AttrValueTests, CondForOneId, Condition, Constant, FuncCall, Head,
     Pref, RhsValue, Test, ValueTest,
 };
-use rusoar::cli::{Event, Interpreter};
+use rusoar::commands::tokenizer::{Tokenizer, WordKind};
+use rusoar::commands::{Event, Interpreter};
 use rusoar::parser::parse_production;
 use rusoar::printer::production_text;
-use rusoar::tokenizer::{Tokenizer, WordKind};
 use std::fmt::Write as _;
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! the selection probabilities of the operator slot. The expected text is what soar-sml
 //! 9.6.5 prints for the same rule.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 const RULE: &str = "sp {p (state <s> ^superstate nil) --> (<s> ^operator <a> + = > <b>) \
     (<s> ^operator <b> + < ) (<s> ^operator <c> + ~ = 3) (<s> ^operator <d> + - >) \

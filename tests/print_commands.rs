@@ -1,7 +1,7 @@
 //! `print --stack` and `print --tree`, against texts the official 9.6 kernel printed for the
 //! same agent and commands (`tests/data/traces/substate.soar`).
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn session(commands: &str) -> Interpreter {
     let mut i = Interpreter::new();

@@ -2,7 +2,7 @@
 //! `print` shows afterwards, as the official kernel (soar-sml 9.6.5) printed it for the
 //! same rules loaded in the same order into a fresh agent.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn printed(rules: &[&str], name: &str) -> String {
     let mut i = Interpreter::new();

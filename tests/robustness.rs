@@ -3,7 +3,7 @@
 //! fail with a located diagnostic.
 
 use proptest::prelude::*;
-use rusoar::cli::{Event, Interpreter};
+use rusoar::commands::{Event, Interpreter};
 use rusoar::parser::parse_production;
 use rusoar::source::Severity;
 use std::path::{Path, PathBuf};

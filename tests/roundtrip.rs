@@ -20,7 +20,7 @@ use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use rusoar::ast::Head;
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use rusoar::parser::parse_production;
 use rusoar::printer::production_text;
 use rusoar::production::{self, Action, CompileOutput, Condition, FuncCall, Production, RhsTerm};

@@ -1,7 +1,7 @@
 //! `run`'s report, against what the official 9.6 kernel printed for the same commands: the
 //! decision-cycle count (with its quirks) and the texts after a halt.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 fn out(i: &mut Interpreter, cmd: &str) -> String {
     i.run_text("t", cmd).unwrap();
@@ -146,7 +146,7 @@ fn max_goal_depth_interrupts_the_run_without_halting() {
 /// two rules after `run 2`: `fc 25` lists both, `fc 1` only `a`).
 #[test]
 fn firing_counts_takes_a_count_of_rules_to_list() {
-    let mut i = rusoar::cli::Interpreter::new();
+    let mut i = rusoar::commands::Interpreter::new();
     i.run_text(
         "setup",
         "watch 0\nsp {a (state <s> ^superstate nil) --> (<s> ^x 1)}\n\

@@ -2,7 +2,7 @@
 //! as the official kernel does (checked with soar-sml 9.6.5: the first `run 1 -e` ends the
 //! input phase, each later one fires one cycle's rules).
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 
 #[test]
 fn run_e_stops_after_each_elaboration_cycle() {

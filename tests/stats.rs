@@ -8,7 +8,7 @@
 mod common;
 
 use common::mask_decimals;
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use std::path::PathBuf;
 
 fn stats_after(commands: &[&str]) -> String {

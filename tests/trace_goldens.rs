@@ -8,7 +8,7 @@
 //!
 //! `python3 scripts/trace_compare.py` compares the same way on every agent and level.
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use std::path::PathBuf;
 
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.

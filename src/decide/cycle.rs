@@ -271,7 +271,7 @@ impl Agent {
                 continue;
             }
             self.compiled_rule(key.0);
-            let s = crate::support::match_support(self, key.0, key.1);
+            let s = crate::decide::support::match_support(self, key.0, key.1);
             if s.mixed && self.settings.warnings {
                 let name = self.production_name(key.0).to_string();
                 self.out(&format!(
@@ -509,7 +509,7 @@ impl Agent {
         let level = if one_goal {
             1
         } else {
-            crate::support::match_goal(self, prod, tok)
+            crate::decide::support::match_goal(self, prod, tok)
                 .and_then(|g| self.symbols.id_data(g))
                 .map_or(1, |d| d.level)
         };
@@ -617,7 +617,7 @@ impl Agent {
         let mut args = std::mem::take(&mut self.decider.rhs_args);
         self.rete.token_wmes(t, &mut wmes);
         // The match goal (spec §3b), from the WMEs the actions read anyway.
-        let goal = crate::support::goal_among(
+        let goal = crate::decide::support::goal_among(
             self,
             rule.id_places
                 .iter()

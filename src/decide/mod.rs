@@ -9,3 +9,4 @@ mod gds;
 pub mod procedure;
 mod slot;
 pub mod state;
+pub(crate) mod support;

@@ -215,11 +215,11 @@ impl Agent {
             .map(|((p, prod), t)| (*p, t, prod.clone()));
         let (inst_id, o_support, name) = match (&chunk, refracted) {
             (Some((pid, prod)), Some(tok)) => {
-                let o = crate::support::match_support(self, *pid, tok).o_support;
+                let o = crate::decide::support::match_support(self, *pid, tok).o_support;
                 let inst = Instantiation {
                     prod: *pid,
                     token: tok,
-                    goal: crate::support::match_goal(self, *pid, tok),
+                    goal: crate::decide::support::match_goal(self, *pid, tok),
                     o_support: o,
                     prefs: Vec::new(),
                     alive: true,
@@ -448,7 +448,8 @@ impl Agent {
         // Its match goal is the lowest goal among its conditions' identifiers, as for a
         // rule: 9.6 holds justifications in the network (spec §3b: the waterfall retracts
         // them at that goal).
-        let goal = crate::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
+        let goal =
+            crate::decide::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
         let inst = Instantiation {
             prod: ProdId(u32::MAX),
             token: 0,

@@ -4,8 +4,8 @@
 //! and `parse_production` must return exactly what the lalrpop parser alone returns.
 
 use super::{descent, parse_production, parse_with_lalrpop};
+use crate::commands::tokenizer::{Tokenizer, WordKind};
 use crate::lexer::Lexer;
-use crate::tokenizer::{Tokenizer, WordKind};
 use std::path::{Path, PathBuf};
 
 /// Compares the two parsers on one body; returns whether the grammar accepts it.

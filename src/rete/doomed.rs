@@ -247,7 +247,7 @@ impl Rete {
 
 #[cfg(test)]
 mod tests {
-    use crate::cli::Interpreter;
+    use crate::commands::Interpreter;
     use crate::io::Value;
     use crate::rng::Mt19937;
     use crate::wm::WmeId;

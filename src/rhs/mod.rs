@@ -31,6 +31,7 @@
 
 mod math;
 mod numeric;
+pub mod table;
 mod text;
 mod wmefns;
 mod xml;

@@ -1043,12 +1043,12 @@ fn c_conversions() {
     assert_eq!(c_fixed(f64::NEG_INFINITY, 6), "-inf");
 }
 
-/// Every name in the parse-time table (`crate::rhs_functions`) is evaluated here, except
+/// Every name in the parse-time table (`crate::rhs::table`) is evaluated here, except
 /// the three the 9.6 binary lacks (they fall through to `exec`, as in 9.6).
 #[test]
 fn every_parse_time_builtin_is_implemented() {
     const NOT_IN_96: [&str; 3] = ["predict-x", "predict-y", "compute-closest-intercept"];
-    for f in crate::rhs_functions::BUILTINS {
+    for f in crate::rhs::table::BUILTINS {
         assert!(
             is_builtin(f.name) || NOT_IN_96.contains(&f.name),
             "{} is in the parse-time table but not implemented",

@@ -9,9 +9,9 @@
 //! `checkwallrelation`, `getwalldistance`) are registered too, so the thesis rules can be
 //! tested as they run in the experiment.
 
-use super::{Event, Interpreter};
-use crate::source::Diagnostic;
-use crate::tokenizer::{Tokenizer, WordKind};
+use rusoar::commands::tokenizer::{Tokenizer, WordKind};
+use rusoar::commands::{Event, Interpreter};
+use rusoar::source::Diagnostic;
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -53,6 +53,9 @@ pub struct Options {
     pub decision_limit: u64,
     /// Print each test's transcript, not only a failing one's.
     pub verbose: bool,
+    /// Registers the host's RHS functions on each test's fresh agent, as any embedding
+    /// program does before it sources rules (the `rusoar` binary registers Soar-SLAM's).
+    pub host_functions: fn(&mut Interpreter),
 }
 
 impl Default for Options {
@@ -60,6 +63,7 @@ impl Default for Options {
         Options {
             decision_limit: 10_000,
             verbose: false,
+            host_functions: |_| {},
         }
     }
 }
@@ -191,7 +195,7 @@ pub fn run_test(file: &TestFile, test: &TestCase, opts: &Options) -> TestResult 
         };
         interp.set_cwd(dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf()));
     }
-    crate::robot::functions::register(&mut interp.agent);
+    (opts.host_functions)(&mut interp);
     let outcome: Rc<RefCell<Option<Outcome>>> = Rc::new(RefCell::new(None));
     {
         let o = Rc::clone(&outcome);
@@ -325,7 +329,7 @@ fn run_file(path: &Path, opts: &Options, out: &mut dyn std::io::Write, summary: 
     let file = match parse(path, &text) {
         Ok(f) => f,
         Err(d) => {
-            let mut map = crate::source::SourceMap::new();
+            let mut map = rusoar::source::SourceMap::new();
             map.add(path.display().to_string(), text.as_str());
             let _ = write!(out, "{}", map.render(&d));
             summary.broken_files += 1;
@@ -419,7 +423,7 @@ mod tests {
     fn pass_fail_limit_and_halt() {
         let opts = Options {
             decision_limit: 20,
-            verbose: false,
+            ..Options::default()
         };
         let pass = run_one(
             "test p { sp {p (state <s> ^superstate nil) --> (pass)} }",

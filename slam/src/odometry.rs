@@ -202,7 +202,7 @@ mod tests {
     fn no_drift_follows_truth_exactly() {
         let mut rng = Rng::seed_from_u64(1);
         let mut odo = Odometry::new(DriftParams::NONE, Pose::default(), &mut rng);
-        let mut truth = crate::robot::pioneer::Pioneer::new(Pose::default());
+        let mut truth = crate::pioneer::Pioneer::new(Pose::default());
         truth.set_vel_mm_s(300.0);
         truth.set_rot_vel_deg_s(17.0);
         for _ in 0..500 {

@@ -20,7 +20,7 @@
 //!
 //! [`register`] puts all three on an agent under the names the rules use.
 
-use crate::agent::Agent;
+use rusoar::agent::Agent;
 
 use super::fixed::fixed;
 use super::sonar::{Transducer, P2DX_SONARS};
@@ -213,7 +213,7 @@ fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decide::cycle::RunUnit;
+    use rusoar::decide::cycle::RunUnit;
 
     #[test]
     fn parses_soar_argument_strings() {
@@ -395,7 +395,7 @@ mod tests {
         for name in FUNCTION_NAMES {
             assert!(agent.rhs_registry.is_registered(name), "{name}");
         }
-        let mut interp = crate::cli::Interpreter::new();
+        let mut interp = rusoar::commands::Interpreter::new();
         interp.agent = agent;
         interp
             .run_text(

@@ -4,8 +4,8 @@
 //! goes on over several lines while a brace, quote or `|` is open, Ctrl-C that stops a
 //! running `run` (and clears the line at the prompt), Ctrl-D to quit.
 
-use super::{Event, Interpreter, COMMANDS};
-use crate::tokenizer::Tokenizer;
+use rusoar::commands::tokenizer::Tokenizer;
+use rusoar::commands::{Event, Interpreter, COMMANDS};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
@@ -430,7 +430,7 @@ mod tests {
     #[test]
     fn completes_file_names_from_the_interpreters_directory() {
         let mut i = Interpreter::new();
-        i.set_cwd(PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+        i.set_cwd(PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")));
         let h = ReplHelper::new(&i);
         let (start, c) = h.candidates("source rules/Co", 15);
         assert_eq!((start, c), (7, vec!["rules/CopyWall.soar".to_string()]));

@@ -2,11 +2,12 @@
 //! (`tests/data/repl/*.txt`), and the trace and final state of short runs of small agents
 //! (`tests/data/traces/*.soar`). One snapshot per input file.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use common::mask_decimals;
-use rusoar::cli::repl::transcript;
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
+use rusoar_cli::repl::transcript;
 use std::path::Path;
 
 /// An interpreter working in `path`'s directory, as if started there.
@@ -47,7 +48,7 @@ fn mask_stats_timings(text: &str) -> String {
 
 #[test]
 fn repl_sessions() {
-    insta::glob!("data/repl/*.txt", |path| {
+    insta::glob!("../../tests/data/repl", "*.txt", |path| {
         let script = std::fs::read_to_string(path).unwrap();
         let mut interp = interpreter_at(path);
         insta::assert_snapshot!(mask_stats_timings(&transcript(&mut interp, &script)));
@@ -65,7 +66,7 @@ fn decisions_to_run(agent: &str) -> u64 {
 
 #[test]
 fn traces_of_short_runs() {
-    insta::glob!("data/traces/*.soar", |path| {
+    insta::glob!("../../tests/data/traces", "*.soar", |path| {
         let agent = std::fs::read_to_string(path).unwrap();
         let name = path.file_name().unwrap().to_string_lossy();
         let script = format!(

@@ -495,7 +495,7 @@ mod tests {
     fn scattered_noise_gives_no_walls() {
         // 60 pseudo-random returns in a 6 m square: no line gathers more than k votes.
         let mut state = 12345u64;
-        let mut next = || crate::robot::rng::splitmix64(&mut state);
+        let mut next = || crate::rng::splitmix64(&mut state);
         let pts: Vec<SonarPoint> = (0..60)
             .map(|_| {
                 let (x, y) = (

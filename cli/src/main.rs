@@ -4,7 +4,8 @@
 //! given). `rusoar test FILE_OR_DIR` runs SoarUnit files; `rusoar slam` the experiment.
 
 use clap::{Arg, ArgAction, Command as ClapCommand};
-use rusoar::cli::{Event, Interpreter};
+use rusoar::commands::{Event, Interpreter};
+use rusoar_cli::{repl, soarunit};
 use std::io::{BufRead, IsTerminal, Read, Write};
 use std::process::ExitCode;
 
@@ -176,7 +177,7 @@ fn main() -> ExitCode {
     // `rusoar slam ...`: the Soar-SLAM experiment (issue 6); its options live in experiment.rs.
     let args: Vec<String> = std::env::args().collect();
     if args.get(1).map(String::as_str) == Some("slam") {
-        return rusoar::robot::experiment::main(&args[2..]);
+        return soar_slam::experiment::main(&args[2..]);
     }
     if args.get(1).map(String::as_str) == Some("test") {
         return soarunit_main(&args[2..]);
@@ -207,7 +208,7 @@ fn run(interp: &mut Interpreter) -> ExitCode {
             "rusoar {} — Soar 9.6 commands; `help` lists them, Tab completes, Ctrl-D quits.",
             env!("CARGO_PKG_VERSION")
         );
-        if rusoar::cli::repl::run(interp) {
+        if repl::run(interp) {
             return ExitCode::SUCCESS;
         }
         return interactive(interp);
@@ -294,11 +295,12 @@ fn soarunit_main(args: &[String]) -> ExitCode {
         .flatten()
         .map(std::path::PathBuf::from)
         .collect();
-    let opts = rusoar::cli::soarunit::Options {
+    let opts = soarunit::Options {
         decision_limit: m.get_one::<u64>("max-decisions").copied().unwrap_or(10_000),
         verbose: m.get_flag("verbose"),
+        host_functions: |interp| soar_slam::functions::register(&mut interp.agent),
     };
-    let summary = rusoar::cli::soarunit::run_paths(&paths, &opts, &mut std::io::stdout());
+    let summary = soarunit::run_paths(&paths, &opts, &mut std::io::stdout());
     if summary.ok() {
         ExitCode::SUCCESS
     } else {

@@ -3,9 +3,9 @@
 use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::Added;
+use crate::commands::tokenizer::WordKind;
 use crate::production::{self, CompileOutput};
 use crate::source::Diagnostic;
-use crate::tokenizer::WordKind;
 
 impl Interpreter {
     /// `sp {...}`: parse, compile with Soar's checks, add. `*` per rule, `#*` on redefinition.

@@ -2,10 +2,10 @@
 //! file given, `repeat` fresh interpreters each run `srand 1`, `watch 0`, `source FILE`,
 //! then `run 1000` under the clock; prints `NAME decisions firings median_seconds`.
 //!
-//! usage: cargo run --release --example time_run -- REPEAT [--run N] FILE...
+//! usage: cargo run --release -p rusoar-cli --example time_run -- REPEAT [--run N] FILE...
 //! (`--run N`: time `run N` instead of `run 1000`)
 
-use rusoar::cli::Interpreter;
+use rusoar::commands::Interpreter;
 use std::time::Instant;
 
 // The allocator the rusoar binary uses, so the figures are the binary's.

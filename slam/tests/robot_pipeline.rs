@@ -2,11 +2,9 @@
 //! thesis's sonar-to-walls pipeline over the simulated scans, and the extracted walls checked
 //! against the room's true walls.
 
-use rusoar::robot::pioneer::{CRUISE_SPEED_M_S, DEFAULT_DT_S, TURN_RATE_DEG_S};
-use rusoar::robot::pipeline::{self, Scan, ScanWindow, Settings, VoteMode, Wall};
-use rusoar::robot::{
-    DriftParams, NoisePreset, Simulator, SonarModel, World, NUM_SONARS, P2DX_SONARS,
-};
+use soar_slam::pioneer::{CRUISE_SPEED_M_S, DEFAULT_DT_S, TURN_RATE_DEG_S};
+use soar_slam::pipeline::{self, Scan, ScanWindow, Settings, VoteMode, Wall};
+use soar_slam::{DriftParams, NoisePreset, Simulator, SonarModel, World, NUM_SONARS, P2DX_SONARS};
 
 /// The empty room's walls as (r mm, θ deg) in the world frame, which is also the believed frame
 /// when odometry is perfect.

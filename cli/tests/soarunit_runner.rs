@@ -7,7 +7,7 @@ fn rusoar_test(args: &[&str]) -> (String, i32) {
     let out = Command::new(env!("CARGO_BIN_EXE_rusoar"))
         .arg("test")
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .output()
         .expect("run rusoar");
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();

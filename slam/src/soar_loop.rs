@@ -46,12 +46,12 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 
-use crate::agent::Agent;
-use crate::cli::Interpreter;
-use crate::decide::cycle::RunUnit;
-use crate::io::Value;
-use crate::symbols::Sym;
-use crate::wm::WmeId;
+use rusoar::agent::Agent;
+use rusoar::commands::Interpreter;
+use rusoar::decide::cycle::RunUnit;
+use rusoar::io::Value;
+use rusoar::symbols::Sym;
+use rusoar::wm::WmeId;
 
 use super::fixed::{push_fixed, push_u64};
 use super::geom::{deg_0_360, Pose};
@@ -120,7 +120,9 @@ impl LoopConfig {
 
 /// `rules/` of this source tree, or `./rules` when the tree is gone.
 pub fn default_rules_dir() -> PathBuf {
-    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("rules");
+    // The workspace root, above this crate.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent();
+    let built = root.unwrap_or(Path::new(".")).join("rules");
     if built.join("robotagent.soar").is_file() {
         built
     } else {

@@ -1,14 +1,14 @@
 //! The `rusoar` binary without a terminal (`--source`, `-c`, standard input), and the thesis
 //! rules loading through the library with no error.
 
-use rusoar::cli::{Event, Interpreter};
+use rusoar::commands::{Event, Interpreter};
 use rusoar::source::Severity;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("..")
 }
 
 fn rusoar(args: &[&str]) -> Output {

@@ -10,16 +10,15 @@ mod memory;
 pub mod options;
 mod prefs;
 mod printing;
-pub mod repl;
 mod rules;
 mod running;
 mod settings;
-pub mod soarunit;
+pub mod tokenizer;
 mod tracing;
 
 use crate::agent::{Agent, PhaseCallback};
+use crate::commands::tokenizer::{Command, Tokenizer, WordKind};
 use crate::source::{Diagnostic, SourceMap, Span};
-use crate::tokenizer::{Command, Tokenizer, WordKind};
 use aliases::Aliases;
 use indexmap::IndexMap;
 use std::cell::{Cell, RefCell};
