@@ -371,8 +371,6 @@ pub struct Agent {
     /// Whether the print stream stood at the start of a line when `output` was last taken
     /// (9.6 starts some trace lines on a fresh line only).
     pub output_line_start: bool,
-    /// The newest output-link timetag [`Agent::new_output_commands`] has reported.
-    pub(crate) output_reported: u64,
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
@@ -385,8 +383,9 @@ pub struct Agent {
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
     pub input_callback: Option<PhaseCallback>,
-    /// Input-link changes waiting for the next input phase (`io.rs`).
-    pub(crate) input_queue: Vec<crate::io::InputChange>,
+    /// The program's input WMEs and the input-link changes waiting for the next input
+    /// phase (`io.rs`).
+    pub(crate) inputs: crate::io::InputTable,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters (spec §4).
@@ -399,7 +398,7 @@ impl Agent {
         let mut wm = WorkingMemory::new();
         let mut rete = Rete::new();
         let mut matches = MatchSet::default();
-        let top = create_top_state(&mut symbols, &mut wm, &mut rete, &mut matches);
+        let top = create_top_state(&mut symbols, &mut wm, &mut rete, &mut matches, None);
         Agent {
             name: name.into(),
             symbols,
@@ -416,13 +415,12 @@ impl Agent {
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
             output_line_start: false,
-            output_reported: 0,
             removed_wmes: None,
             substate_removals: Vec::new(),
             substates_by_gds: false,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
-            input_queue: Vec::new(),
+            inputs: crate::io::InputTable::default(),
             output_callback: None,
             learn: crate::learn::LearnState::default(),
         }
@@ -550,6 +548,12 @@ impl Agent {
         self.rhs_registry.register_numeric(name, Box::new(f))
     }
 
+    /// Seeds the agent's random numbers, as `srand N` does.
+    pub fn seed_rng(&mut self, seed: u32) {
+        self.seed = Some(seed);
+        self.rng.seed(seed);
+    }
+
     /// Adds a WME now (as `wm add` and the input phase do) and matches it.
     pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
@@ -594,16 +598,23 @@ impl Agent {
 }
 
 /// Creates the top state as Soar does (spec §2): `I1`–`I3` first, then `S1` and its WMEs
-/// with timetags 1–13 in Soar's order.
+/// with timetags 1–13 in Soar's order. After `init-soar` (`old` is the top state before it),
+/// the io link's identifiers are the same symbols, numbered again, so that a program's
+/// handles on them stay valid.
 pub(crate) fn create_top_state(
     symbols: &mut Symbols,
     wm: &mut WorkingMemory,
     rete: &mut Rete,
     sink: &mut MatchSet,
+    old: Option<TopState>,
 ) -> TopState {
-    let io = symbols.new_id('I', 1);
-    let input_link = symbols.new_id('I', 1);
-    let output_link = symbols.new_id('I', 1);
+    let [io, input_link, output_link] = match old {
+        Some(old) => [old.io, old.input_link, old.output_link].map(|id| {
+            symbols.renumber_id(id);
+            id
+        }),
+        None => [(); 3].map(|()| symbols.new_id('I', 1)),
+    };
     let state = symbols.new_id('S', 1);
     if let Some(d) = symbols.id_data_mut(state) {
         d.is_goal = true;

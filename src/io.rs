@@ -1,24 +1,45 @@
-//! Input and output for programs that embed the kernel (issue 4, item 5; spec §2 I/O link):
-//! add, change and remove input-link WMEs between decisions, read the commands the rules put
-//! on the output-link, and mark them done. The Soar-SLAM loop uses only this API.
+//! The input and output links as an embedding program uses them (Soar manual, 2.7 "Input and
+//! output"): input WMEs are added, changed and removed between decisions through handles that
+//! stay valid until removed, also across `init-soar`; commands the rules put on the
+//! output-link are read and marked done.
+//!
+//! What an SML client sees is the model (the official kernel's `soar_sml` 9.6.5 was run on
+//! each case):
+//! - an added WME gets its timetag at once and reaches the matcher at the next input phase;
+//! - at the input phase the pending additions are applied newest first, then the removals,
+//!   newest first, each traced as `=>WM:` or `<=WM:`;
+//! - changing a value removes the WME and adds a new one with the new value; with the
+//!   default [`InputUpdate::BlinkIfNoChange`] this happens even when the value is the same;
+//! - `init-soar` keeps the client's input WMEs: they are added again, walking the tree from
+//!   the input-link depth first (each identifier's WMEs in the order they were first made),
+//!   and their identifiers are numbered again in that order.
 
 use crate::agent::Agent;
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
+use rustc_hash::FxHashSet;
 
 /// A value to put on the input-link.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Value {
+    /// An integer constant.
     Int(i64),
+    /// A floating-point constant.
     Float(f64),
+    /// A string constant.
     Str(String),
-    /// An existing identifier.
+    /// An identifier that already exists.
     Id(Sym),
 }
 
 impl From<i64> for Value {
     fn from(v: i64) -> Self {
         Value::Int(v)
+    }
+}
+impl From<i32> for Value {
+    fn from(v: i32) -> Self {
+        Value::Int(i64::from(v))
     }
 }
 impl From<f64> for Value {
@@ -31,10 +52,90 @@ impl From<&str> for Value {
         Value::Str(v.to_string())
     }
 }
+impl From<String> for Value {
+    fn from(v: String) -> Self {
+        Value::Str(v)
+    }
+}
 impl From<Sym> for Value {
     fn from(v: Sym) -> Self {
         Value::Id(v)
     }
+}
+
+impl Value {
+    /// The value as a number: an integer or a float, or a string that reads as one (an SML
+    /// client reads a command's parameters from their text).
+    pub fn as_number(&self) -> Option<f64> {
+        match self {
+            Value::Int(i) => Some(*i as f64),
+            Value::Float(f) => Some(*f),
+            Value::Str(s) => s.trim().parse().ok(),
+            Value::Id(_) => None,
+        }
+    }
+}
+
+/// What changing an input WME to the value it already has does (SML's
+/// `SetBlinkIfNoChange`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InputUpdate {
+    /// Remove the WME and add it again with a new timetag, so rules that test it match
+    /// again: the official kernel's default.
+    #[default]
+    BlinkIfNoChange,
+    /// Leave the WME alone.
+    SkipIfNoChange,
+}
+
+/// A handle on an input WME made through [`Agent::add_input`] or
+/// [`Agent::add_input_object`]. It stays valid when its value changes and across
+/// `init-soar`, until the WME is removed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct InputWme(u32);
+
+/// A misuse of the input and output links.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum IoError {
+    /// A WME needs an identifier to hang from, and this symbol is a constant.
+    #[error("`{0}` is a constant, not an identifier: input WMEs hang from identifiers")]
+    NotAnIdentifier(String),
+    /// The handle's WME was removed (by [`Agent::remove_input`], or with the object it hung
+    /// from).
+    #[error("the input WME was removed: its handle is no longer valid")]
+    StaleHandle,
+    /// The handle belongs to no input WME of this agent.
+    #[error("no input WME has this handle")]
+    UnknownHandle,
+    /// [`Agent::mark_done`] was called twice for one command.
+    #[error("output command `{0}` is already marked done")]
+    AlreadyDone(String),
+}
+
+/// One input WME the program made, as the input table remembers it.
+#[derive(Debug, Clone)]
+struct InputEntry {
+    id: Sym,
+    attr: Sym,
+    value: Sym,
+    /// The WME in working memory now; `None` once removed.
+    wme: Option<WmeId>,
+    /// The value is an identifier this table made (`add_input_object`).
+    object: bool,
+}
+
+/// The program's input WMEs, in the order they were made, and what the output side has
+/// reported and marked.
+#[derive(Debug, Default)]
+pub(crate) struct InputTable {
+    entries: Vec<InputEntry>,
+    /// Input-link changes waiting for the next input phase.
+    pub(crate) queue: Vec<InputChange>,
+    pub(crate) update_mode: InputUpdate,
+    /// The newest output-link timetag [`Agent::new_output_commands`] has reported.
+    pub(crate) output_reported: u64,
+    /// Commands marked done since the last `init-soar`.
+    done: FxHashSet<Sym>,
 }
 
 /// An input-link change the embedding program made, waiting for the next input phase.
@@ -47,48 +148,231 @@ pub(crate) enum InputChange {
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputCommand {
+    /// The command's identifier (the value of its output-link WME).
     pub id: Sym,
+    /// The command's name (the attribute of its output-link WME).
     pub name: String,
-    /// (attribute, value) pairs of the command object, as plain text.
-    pub params: Vec<(String, Sym)>,
+    /// The command object's (attribute, value) pairs, oldest first.
+    pub params: Vec<(String, Value)>,
+}
+
+impl OutputCommand {
+    /// The value of parameter `name`, if the command has it.
+    pub fn param(&self, name: &str) -> Option<&Value> {
+        self.params.iter().find(|(a, _)| a == name).map(|(_, v)| v)
+    }
+
+    /// Parameter `name` as an integer.
+    pub fn int(&self, name: &str) -> Option<i64> {
+        match self.param(name)? {
+            Value::Int(i) => Some(*i),
+            _ => None,
+        }
+    }
+
+    /// Parameter `name` as a float; an integer is converted.
+    pub fn float(&self, name: &str) -> Option<f64> {
+        match self.param(name)? {
+            Value::Int(i) => Some(*i as f64),
+            Value::Float(f) => Some(*f),
+            _ => None,
+        }
+    }
+
+    /// Parameter `name` as a number: an integer, a float, or a string that reads as one.
+    pub fn number(&self, name: &str) -> Option<f64> {
+        self.param(name)?.as_number()
+    }
+
+    /// Parameter `name` as a string constant.
+    pub fn str(&self, name: &str) -> Option<&str> {
+        match self.param(name)? {
+            Value::Str(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// Parameter `name` as an identifier.
+    pub fn id(&self, name: &str) -> Option<Sym> {
+        match self.param(name)? {
+            Value::Id(s) => Some(*s),
+            _ => None,
+        }
+    }
 }
 
 impl Agent {
+    /// The top state's `^io.input-link` identifier (it keeps its handle across `init-soar`).
     pub fn input_link(&self) -> Sym {
         self.top.input_link
     }
 
+    /// The top state's `^io.output-link` identifier.
     pub fn output_link(&self) -> Sym {
         self.top.output_link
     }
 
-    fn value_sym(&mut self, v: &Value) -> Sym {
-        match v {
-            Value::Int(i) => self.symbols.int(*i),
-            Value::Float(f) => self.symbols.float(*f),
-            Value::Str(s) => self.symbols.str(s),
-            Value::Id(s) => *s,
+    /// A symbol as a [`Value`].
+    pub fn value_of(&self, s: Sym) -> Value {
+        match self.symbols.get(s) {
+            SymData::Int(i) => Value::Int(*i),
+            SymData::Float(f) => Value::Float(*f),
+            SymData::Str(x) => Value::Str(x.to_string()),
+            SymData::Id(_) => Value::Id(s),
         }
     }
 
-    /// A new identifier for input structure (letter as Soar would choose for `^attr`).
-    pub fn new_input_id(&mut self, letter: char) -> Sym {
-        self.symbols.new_id(letter, 1)
+    fn value_sym(&mut self, v: &Value) -> Result<Sym, IoError> {
+        Ok(match v {
+            Value::Int(i) => self.symbols.int(*i),
+            Value::Float(f) => self.symbols.float(*f),
+            Value::Str(s) => self.symbols.str(s),
+            Value::Id(s) => self.identifier(*s)?,
+        })
+    }
+
+    /// `s` if it is an identifier.
+    fn identifier(&self, s: Sym) -> Result<Sym, IoError> {
+        if self.symbols.is_id(s) {
+            Ok(s)
+        } else {
+            Err(IoError::NotAnIdentifier(self.symbols.text(s)))
+        }
     }
 
     /// Adds `(id ^attr value)`: it gets its timetag now and reaches the matcher at the next
     /// input phase (see [`Agent::apply_input_changes`]), as an SML client's WMEs do.
-    pub fn add_input(&mut self, id: Sym, attr: &str, value: impl Into<Value>) -> WmeId {
-        let a = self.symbols.str(attr);
-        let v = self.value_sym(&value.into());
-        self.queue_input_add(id, a, v)
+    pub fn add_input(
+        &mut self,
+        id: Sym,
+        attr: &str,
+        value: impl Into<Value>,
+    ) -> Result<InputWme, IoError> {
+        let id = self.identifier(id)?;
+        let value = self.value_sym(&value.into())?;
+        let attr = self.symbols.str(attr);
+        Ok(self.push_input(id, attr, value, false))
+    }
+
+    /// Adds `(id ^attr <new id>)` and returns the new identifier. Its letter is the
+    /// attribute's first letter, or `I` when that is not a letter or is `s` (9.6 names an
+    /// SML client's `^sonar` object `I4`, keeping `S` for states; soar-sml 9.6.5).
+    pub fn add_input_object(&mut self, id: Sym, attr: &str) -> Result<(InputWme, Sym), IoError> {
+        let id = self.identifier(id)?;
+        let child = self.symbols.new_id(input_letter(attr), 1);
+        let attr = self.symbols.str(attr);
+        Ok((self.push_input(id, attr, child, true), child))
+    }
+
+    fn push_input(&mut self, id: Sym, attr: Sym, value: Sym, object: bool) -> InputWme {
+        let wme = self.queue_input_add(id, attr, value);
+        let table = &mut self.inputs;
+        table.entries.push(InputEntry {
+            id,
+            attr,
+            value,
+            wme: Some(wme),
+            object,
+        });
+        InputWme(table.entries.len() as u32 - 1)
     }
 
     fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
         let w = self.wm.add_typed(id, attr, value, false, links);
-        self.input_queue.push(InputChange::Add(w));
+        self.inputs.queue.push(InputChange::Add(w));
         w
+    }
+
+    fn live_entry(&self, h: InputWme) -> Result<&InputEntry, IoError> {
+        let e = self
+            .inputs
+            .entries
+            .get(h.0 as usize)
+            .ok_or(IoError::UnknownHandle)?;
+        if e.wme.is_none() {
+            return Err(IoError::StaleHandle);
+        }
+        Ok(e)
+    }
+
+    /// The value an input WME holds now.
+    pub fn input_value(&self, h: InputWme) -> Result<Value, IoError> {
+        let e = self.live_entry(h)?;
+        Ok(self.value_of(e.value))
+    }
+
+    /// The working-memory element an input WME is now.
+    pub fn input_wme(&self, h: InputWme) -> Result<WmeId, IoError> {
+        let e = self.live_entry(h)?;
+        e.wme.ok_or(IoError::StaleHandle)
+    }
+
+    /// How [`Agent::update_input`] treats an unchanged value.
+    pub fn set_input_update(&mut self, mode: InputUpdate) {
+        self.inputs.update_mode = mode;
+    }
+
+    /// Changes the value of an input WME: a removal and an addition, applied at the next
+    /// input phase, as SML does. Returns whether the WME was replaced (not when the value is
+    /// unchanged and the mode is [`InputUpdate::SkipIfNoChange`]).
+    pub fn update_input(&mut self, h: InputWme, value: impl Into<Value>) -> Result<bool, IoError> {
+        let new = self.value_sym(&value.into())?;
+        let e = self.live_entry(h)?;
+        let (id, attr, old_value) = (e.id, e.attr, e.value);
+        let old = e.wme.ok_or(IoError::StaleHandle)?;
+        if new == old_value && self.inputs.update_mode == InputUpdate::SkipIfNoChange {
+            return Ok(false);
+        }
+        self.inputs.queue.push(InputChange::Remove(old));
+        let w = self.queue_input_add(id, attr, new);
+        let e = &mut self.inputs.entries[h.0 as usize];
+        e.wme = Some(w);
+        e.value = new;
+        // A value that was an object of this table is one no longer.
+        e.object = false;
+        Ok(true)
+    }
+
+    /// Removes an input WME at the next input phase; what hangs below it goes with it (the
+    /// garbage collection after the input phase takes it from working memory, and the
+    /// handles of the WMEs made under it become stale).
+    pub fn remove_input(&mut self, h: InputWme) -> Result<(), IoError> {
+        let e = self.live_entry(h)?;
+        let (old, object, value) = (e.wme.ok_or(IoError::StaleHandle)?, e.object, e.value);
+        self.inputs.queue.push(InputChange::Remove(old));
+        self.inputs.entries[h.0 as usize].wme = None;
+        if object && !self.still_linked(value) {
+            self.drop_entries_below(value);
+        }
+        Ok(())
+    }
+
+    /// Whether a live input WME still points at `id`.
+    fn still_linked(&self, id: Sym) -> bool {
+        self.inputs
+            .entries
+            .iter()
+            .any(|e| e.wme.is_some() && e.value == id)
+    }
+
+    /// Marks the input WMEs under `root` (made by this table) removed, without queueing
+    /// their removal: garbage collection takes them from working memory.
+    fn drop_entries_below(&mut self, root: Sym) {
+        let mut below = vec![root];
+        while let Some(id) = below.pop() {
+            for i in 0..self.inputs.entries.len() {
+                let e = &self.inputs.entries[i];
+                if e.id != id || e.wme.is_none() {
+                    continue;
+                }
+                let (object, value) = (e.object, e.value);
+                self.inputs.entries[i].wme = None;
+                if object && !self.still_linked(value) {
+                    below.push(value);
+                }
+            }
+        }
     }
 
     /// Applies the input-link changes made since the last input phase, as 9.6 applies an
@@ -97,10 +381,10 @@ impl Agent {
     /// each traced as `=>WM:` or `<=WM:`. The order decides the order of new matches, so
     /// of firings, identifiers and random choices (`scripts/slam_oracle.py`).
     pub(crate) fn apply_input_changes(&mut self) {
-        if self.input_queue.is_empty() {
+        if self.inputs.queue.is_empty() {
             return;
         }
-        let queue = std::mem::take(&mut self.input_queue);
+        let queue = std::mem::take(&mut self.inputs.queue);
         // The passing tokens of the additions with the removals are left out where that
         // changes nothing (rete/doomed.rs).
         let (mut added, mut removed) = (Vec::new(), Vec::new());
@@ -136,54 +420,67 @@ impl Agent {
         }
     }
 
-    /// Adds `(id ^attr <new id>)` and returns the new identifier. Its letter is the
-    /// attribute's first letter, or `I` when that is not a letter or is `s` (9.6 names an
-    /// SML client's `^sonar` object `I4`, keeping `S` for states; soar-sml 9.6.5).
-    pub fn add_input_object(&mut self, id: Sym, attr: &str) -> (WmeId, Sym) {
-        let letter = attr
-            .chars()
-            .next()
-            .filter(|c| c.is_ascii_alphabetic() && !c.eq_ignore_ascii_case(&'s'))
-            .unwrap_or('I');
-        let child = self.new_input_id(letter);
-        (self.add_input(id, attr, child), child)
+    /// After `init-soar` made the top state again: the program's input WMEs are added
+    /// again, as an SML client adds them, walking from the input-link depth first, each identifier's WMEs in the order they were made; the objects this table
+    /// made are numbered again in that order. WMEs that hung from identifiers the rules
+    /// made (a command's `^status`) are gone with them.
+    pub(crate) fn reinstate_inputs(&mut self) {
+        self.inputs.done.clear();
+        self.inputs.output_reported = 0;
+        let root = self.top.input_link;
+        let mut visited: FxHashSet<Sym> = [root].into_iter().collect();
+        let mut kept = vec![false; self.inputs.entries.len()];
+        self.reinstate_below(root, &mut visited, &mut kept);
+        for (e, kept) in self.inputs.entries.iter_mut().zip(kept) {
+            if !kept {
+                e.wme = None;
+            }
+        }
     }
 
-    /// Replaces the value of an input WME if it differs (a removal and an addition, applied
-    /// at the next input phase, as SML does); returns the WME that holds the new value.
-    pub fn update_input(&mut self, w: WmeId, value: impl Into<Value>) -> WmeId {
-        let v = value.into();
-        let Some(old) = self.wm.get(w).copied() else {
-            return w;
-        };
-        // A WME already on its way out is not replaced twice (its holder was updated or
-        // removed before in this phase: the caller holds a stale handle).
-        if self.input_queue.contains(&InputChange::Remove(w)) {
-            return w;
+    fn reinstate_below(&mut self, root: Sym, visited: &mut FxHashSet<Sym>, kept: &mut [bool]) {
+        // An explicit stack of (identifier, next entry to look at), so deep input
+        // structures cannot overflow the call stack.
+        let mut stack = vec![(root, 0usize)];
+        while let Some((id, from)) = stack.pop() {
+            let next = (from..self.inputs.entries.len()).find(|&i| {
+                let e = &self.inputs.entries[i];
+                e.id == id && e.wme.is_some()
+            });
+            let Some(i) = next else { continue };
+            stack.push((id, i + 1));
+            let (attr, value, object) = {
+                let e = &self.inputs.entries[i];
+                (e.attr, e.value, e.object)
+            };
+            let first_visit = visited.insert(value);
+            if object && first_visit {
+                self.symbols.renumber_id(value);
+            }
+            kept[i] = true;
+            let w = self.queue_input_add(id, attr, value);
+            self.inputs.entries[i].wme = Some(w);
+            if first_visit && self.symbols.is_id(value) {
+                stack.push((value, 0));
+            }
         }
-        let new = self.value_sym(&v);
-        if new == old.value {
-            return w;
-        }
-        self.input_queue.push(InputChange::Remove(w));
-        self.queue_input_add(old.id, old.attr, new)
     }
 
-    /// [`Agent::update_input`] for several values, in the order given. Returns, for each
-    /// change, the WME that now holds the value.
-    pub fn update_inputs(&mut self, changes: &[(WmeId, Value)]) -> Vec<WmeId> {
-        changes
-            .iter()
-            .map(|(w, v)| self.update_input(*w, v.clone()))
-            .collect()
-    }
-
-    /// Removes an input WME at the next input phase and, with the garbage collection
-    /// after it, what hangs below it.
-    pub fn remove_input(&mut self, w: WmeId) {
-        if !self.input_queue.contains(&InputChange::Remove(w)) {
-            self.input_queue.push(InputChange::Remove(w));
+    /// A mark that changes when the output-link or a command on it changes: the newest
+    /// timetag there and the number of WMEs (for running until output).
+    pub(crate) fn output_link_stamp(&self) -> (u64, usize) {
+        let mut newest = 0;
+        let mut count = 0;
+        for w in self.wm.of_id(self.top.output_link) {
+            let Some(wme) = self.wm.get(w) else { continue };
+            count += 1;
+            newest = newest.max(wme.timetag);
+            for x in self.wm.of_id(wme.value).filter_map(|x| self.wm.get(x)) {
+                count += 1;
+                newest = newest.max(x.timetag);
+            }
         }
+        (newest, count)
     }
 
     /// Commands on the output-link: each `(I3 ^name <obj>)` object with its parameters.
@@ -194,14 +491,14 @@ impl Agent {
     /// The commands put on the output-link since the last call (or since `init-soar`), as
     /// SML reports new output commands: each once, however long it stays there.
     pub fn new_output_commands(&mut self) -> Vec<OutputCommand> {
-        let after = self.output_reported;
+        let after = self.inputs.output_reported;
         if let Some(tt) = self
             .wm
             .of_id(self.top.output_link)
             .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
             .max()
         {
-            self.output_reported = self.output_reported.max(tt);
+            self.inputs.output_reported = self.inputs.output_reported.max(tt);
         }
         self.output_commands_after(after)
     }
@@ -218,7 +515,7 @@ impl Agent {
                 .wm
                 .of_id(wme.value)
                 .filter_map(|x| self.wm.get(x))
-                .map(|x| (self.symbols.plain(x.attr), x.value))
+                .map(|x| (self.symbols.plain(x.attr), self.value_of(x.value)))
                 .collect();
             out.push(OutputCommand {
                 id: wme.value,
@@ -229,48 +526,62 @@ impl Agent {
         out
     }
 
-    /// Marks a command done with `^status complete`, as SML environments do.
-    pub fn mark_done(&mut self, cmd: Sym) -> WmeId {
+    /// Marks a command done with `^status complete`, as SML environments do; a second call
+    /// for the same command is an error.
+    pub fn mark_done(&mut self, cmd: Sym) -> Result<InputWme, IoError> {
+        let cmd = self.identifier(cmd)?;
+        if !self.inputs.done.insert(cmd) {
+            return Err(IoError::AlreadyDone(self.symbols.text(cmd)));
+        }
         self.add_input(cmd, "status", "complete")
     }
 
-    /// A number from a symbol (ints and floats), for reading command parameters.
+    /// A number from a symbol (ints and floats, and strings that read as numbers), for
+    /// reading command parameters.
     pub fn number(&self, s: Sym) -> Option<f64> {
-        match self.symbols.get(s) {
-            SymData::Int(i) => Some(*i as f64),
-            SymData::Float(f) => Some(*f),
-            SymData::Str(x) => x.parse().ok(),
-            SymData::Id(_) => None,
-        }
+        self.value_of(s).as_number()
     }
+}
+
+/// The letter of an input object's identifier for `^attr` (see [`Agent::add_input_object`]).
+fn input_letter(attr: &str) -> char {
+    attr.chars()
+        .next()
+        .filter(|c| c.is_ascii_alphabetic() && !c.eq_ignore_ascii_case(&'s'))
+        .unwrap_or('I')
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn text(a: &Agent, h: InputWme) -> String {
+        let w = a.input_wme(h).unwrap();
+        a.symbols.text(a.wm.get(w).unwrap().value)
+    }
+
     #[test]
     fn input_is_matched_and_output_is_read() {
         let mut a = Agent::new("t");
         let il = a.input_link();
-        let (_, data) = a.add_input_object(il, "currentrobotdata");
-        let x = a.add_input(data, "X", 100i64);
-        assert_eq!(a.symbols.text(a.wm.get(x).map(|w| w.value).unwrap()), "100");
-        let tt = a.wm.get(x).map(|w| w.timetag);
-        let x2 = a.update_input(x, 120i64);
-        // A changed value is a new WME (a new timetag), as SML makes it.
-        assert_ne!(tt, a.wm.get(x2).map(|w| w.timetag));
-        assert_eq!(
-            a.wm.get(x2).map(|w| a.symbols.text(w.value)),
-            Some("120".into())
-        );
+        let (_, data) = a.add_input_object(il, "currentrobotdata").unwrap();
+        let x = a.add_input(data, "X", 100i64).unwrap();
+        assert_eq!(text(&a, x), "100");
+        let tt = a.wm.get(a.input_wme(x).unwrap()).map(|w| w.timetag);
+        assert!(a.update_input(x, 120i64).unwrap());
+        // A changed value is a new WME (a new timetag), as SML makes it; the handle stays.
+        let tt2 = a.wm.get(a.input_wme(x).unwrap()).map(|w| w.timetag);
+        assert_ne!(tt, tt2);
+        assert_eq!(text(&a, x), "120");
         let ol = a.output_link();
-        let (_, cmd) = a.add_input_object(ol, "move");
-        a.add_input(cmd, "param1", 300i64);
+        let (_, cmd) = a.add_input_object(ol, "move").unwrap();
+        a.add_input(cmd, "param1", 300i64).unwrap();
         let cmds = a.output_commands();
         assert_eq!(cmds.len(), 1);
         assert_eq!(cmds[0].name, "move");
-        assert_eq!(a.number(cmds[0].params[0].1), Some(300.0));
+        assert_eq!(cmds[0].int("param1"), Some(300));
+        assert_eq!(cmds[0].float("param1"), Some(300.0));
+        assert_eq!(cmds[0].str("param1"), None);
     }
 
     #[test]
@@ -278,7 +589,7 @@ mod tests {
         let mut a = Agent::new("t");
         let il = a.input_link();
         let name = |a: &mut Agent, attr: &str| {
-            let (_, id) = a.add_input_object(il, attr);
+            let (_, id) = a.add_input_object(il, attr).unwrap();
             a.symbols.text(id)
         };
         // What soar-sml 9.6.5 printed for the same objects on a fresh agent's input-link.
@@ -294,42 +605,122 @@ mod tests {
     fn new_output_commands_are_reported_once() {
         let mut a = Agent::new("t");
         let ol = a.output_link();
-        let (_, c1) = a.add_input_object(ol, "move");
-        a.add_input(c1, "param1", 300i64);
+        let (_, c1) = a.add_input_object(ol, "move").unwrap();
+        a.add_input(c1, "param1", 300i64).unwrap();
         let first = a.new_output_commands();
         assert_eq!(first.len(), 1);
         assert_eq!(first[0].name, "move");
         assert!(a.new_output_commands().is_empty());
-        let (_, c2) = a.add_input_object(ol, "turn");
-        a.add_input(c2, "param1", 40i64);
+        let (_, c2) = a.add_input_object(ol, "turn").unwrap();
+        a.add_input(c2, "param1", 40i64).unwrap();
         let second = a.new_output_commands();
         assert_eq!(second.len(), 1);
         assert_eq!(second[0].name, "turn");
         // Both are still on the output-link.
         assert_eq!(a.output_commands().len(), 2);
+        // WMEs a program put under the output-link do not outlive `init-soar`.
         a.init_soar();
+        a.reinstate_inputs();
         assert!(a.new_output_commands().is_empty());
     }
 
     #[test]
-    fn update_inputs_changes_only_what_differs() {
+    fn updates_blink_by_default_and_skip_when_asked() {
         let mut a = Agent::new("t");
         let il = a.input_link();
-        let (_, data) = a.add_input_object(il, "pose");
-        let x = a.add_input(data, "X", 1i64);
-        let y = a.add_input(data, "Y", 2i64);
-        let tt_y = a.wm.get(y).map(|w| w.timetag);
-        let now = a.update_inputs(&[(x, Value::Int(5)), (y, Value::Int(2))]);
-        assert_eq!(now[1], y, "an equal value is left alone");
-        assert_eq!(a.wm.get(now[1]).map(|w| w.timetag), tt_y);
-        let text = |a: &Agent, w: WmeId| a.wm.get(w).map(|w| a.symbols.text(w.value));
-        assert_eq!(text(&a, now[0]), Some("5".into()));
-        // The old value goes at the input phase; a stale handle is not replaced again.
-        assert_eq!(a.wm.of_id(data).count(), 3);
-        assert_eq!(a.update_input(x, 7i64), x);
-        assert_eq!(a.wm.of_id(data).count(), 3);
+        let (_, data) = a.add_input_object(il, "pose").unwrap();
+        let x = a.add_input(data, "X", 1i64).unwrap();
+        let y = a.add_input(data, "Y", 2i64).unwrap();
+        let wme_y = a.input_wme(y).unwrap();
+        // SML's default: the same value is removed and added again.
+        assert!(a.update_input(y, 2i64).unwrap());
+        assert_ne!(a.input_wme(y).unwrap(), wme_y);
+        a.set_input_update(InputUpdate::SkipIfNoChange);
+        let wme_y = a.input_wme(y).unwrap();
+        assert!(!a.update_input(y, 2i64).unwrap());
+        assert_eq!(a.input_wme(y).unwrap(), wme_y);
+        assert!(a.update_input(x, 5i64).unwrap());
+        assert_eq!(text(&a, x), "5");
+        // The old values go at the input phase.
+        assert_eq!(a.wm.of_id(data).count(), 4);
         a.apply_input_changes();
         assert_eq!(a.wm.of_id(data).count(), 2);
+    }
+
+    #[test]
+    fn misuse_is_an_error() {
+        let mut a = Agent::new("t");
+        let il = a.input_link();
+        let five = a.symbols.int(5);
+        assert!(matches!(
+            a.add_input(five, "x", 1i64),
+            Err(IoError::NotAnIdentifier(_))
+        ));
+        assert!(matches!(
+            a.add_input(il, "x", Value::Id(five)),
+            Err(IoError::NotAnIdentifier(_))
+        ));
+        let (obj, o) = a.add_input_object(il, "obj").unwrap();
+        let below = a.add_input(o, "a", 1i64).unwrap();
+        a.remove_input(obj).unwrap();
+        assert_eq!(a.remove_input(obj), Err(IoError::StaleHandle));
+        assert_eq!(a.update_input(below, 2i64), Err(IoError::StaleHandle));
+        assert_eq!(a.input_value(InputWme(99)), Err(IoError::UnknownHandle));
+        let ol = a.output_link();
+        let (_, cmd) = a.add_input_object(ol, "move").unwrap();
+        a.mark_done(cmd).unwrap();
+        assert!(matches!(a.mark_done(cmd), Err(IoError::AlreadyDone(_))));
+    }
+
+    /// soar-sml 9.6.5 adds a client's input WMEs again after `init-soar`, depth first from
+    /// the input-link, each identifier's WMEs in the order they were made (an updated WME
+    /// keeps its place), and names the objects again: `(I2 ^obj O1)`, `(O1 ^a 1)`,
+    /// `(I2 ^name m)`, `(I2 ^pos P1)` with timetags 14 to 17.
+    #[test]
+    fn init_soar_keeps_input_wmes_and_their_handles() {
+        let mut a = Agent::new("t");
+        let il = a.input_link();
+        let (_, o) = a.add_input_object(il, "obj").unwrap();
+        let name = a.add_input(il, "name", "n").unwrap();
+        let x = a.add_input(o, "a", 1i64).unwrap();
+        let (_, p) = a.add_input_object(il, "pos").unwrap();
+        a.apply_input_changes();
+        a.update_input(name, "m").unwrap();
+        a.apply_input_changes();
+        a.init_soar();
+        a.reinstate_inputs();
+        assert_eq!(a.input_link(), il);
+        let listed: Vec<String> = a
+            .inputs
+            .queue
+            .iter()
+            .map(|c| {
+                let InputChange::Add(w) = *c else {
+                    return "removal".into();
+                };
+                let w = a.wm.get(w).unwrap();
+                format!(
+                    "({}: {} ^{} {})",
+                    w.timetag,
+                    a.symbols.text(w.id),
+                    a.symbols.text(w.attr),
+                    a.symbols.text(w.value)
+                )
+            })
+            .collect();
+        assert_eq!(
+            listed,
+            [
+                "(14: I2 ^obj O1)",
+                "(15: O1 ^a 1)",
+                "(16: I2 ^name m)",
+                "(17: I2 ^pos P1)"
+            ]
+        );
+        assert_eq!(a.symbols.text(o), "O1");
+        assert_eq!(a.symbols.text(p), "P1");
+        assert!(a.update_input(x, 2i64).unwrap());
+        assert_eq!(text(&a, x), "2");
     }
 
     /// 9.6 applies an SML client's changes at the input phase, the added WMEs newest first
@@ -347,12 +738,12 @@ mod tests {
         let a = &mut i.agent;
         let il = a.input_link();
         for v in [1i64, 2] {
-            let (_, o) = a.add_input_object(il, "obj");
-            a.add_input(o, "a", v);
+            let (_, o) = a.add_input_object(il, "obj").unwrap();
+            a.add_input(o, "a", v).unwrap();
         }
-        let (_, c) = a.add_input_object(il, "crd");
-        let x = a.add_input(c, "X", 10i64);
-        let y = a.add_input(c, "Y", 20i64);
+        let (_, c) = a.add_input_object(il, "crd").unwrap();
+        let x = a.add_input(c, "X", 10i64).unwrap();
+        let y = a.add_input(c, "Y", 20i64).unwrap();
         // Nothing is matched before the input phase.
         assert!(a.matches.assertions.is_empty());
         i.run_text("t", "watch 4\nrun 1").unwrap();
@@ -365,7 +756,8 @@ mod tests {
             "{first}"
         );
         let a = &mut i.agent;
-        a.update_inputs(&[(x, Value::Int(11)), (y, Value::Int(21))]);
+        a.update_input(x, 11i64).unwrap();
+        a.update_input(y, 21i64).unwrap();
         i.run_text("t", "run 1").unwrap();
         let second = i.take_output();
         let input: Vec<&str> = second

@@ -177,6 +177,20 @@ impl Symbols {
         x
     }
 
+    /// Gives an existing identifier the next number for its letter (after `init-soar`, the
+    /// identifiers a program keeps are numbered again as they are added again).
+    pub fn renumber_id(&mut self, id: Sym) {
+        let Some(d) = self.id_data(id) else { return };
+        let slot = (d.letter - b'A') as usize;
+        let number = self.counters[slot];
+        self.counters[slot] += 1;
+        if let Some(d) = self.id_data_mut(id) {
+            d.number = number;
+        }
+        debug_assert_eq!(self.ids[slot].len() as u64 + 1, number);
+        self.ids[slot].push(id);
+    }
+
     /// The identifier named `S1`, `i2`... if it exists.
     pub fn find_id(&self, name: &str) -> Option<Sym> {
         let b = name.as_bytes();

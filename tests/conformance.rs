@@ -13,7 +13,7 @@
 //! reason. The test fails if any other agent differs, and also if a listed agent has started
 //! to match (so the list has to shrink as the kernel improves).
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 use std::path::{Path, PathBuf};
 
 /// Agents whose trace or counts still differ from the official kernel, with the reason.
@@ -130,23 +130,23 @@ fn learned_count(run: &str) -> String {
         .unwrap_or_else(|| "0".into())
 }
 
-fn command(interp: &mut Interpreter, cmd: &str) -> String {
-    match interp.run_text("<conformance>", cmd) {
+fn command(interp: &mut Agent, cmd: &str) -> String {
+    match interp.source_text("<conformance>", cmd) {
         Ok(()) => interp.take_output(),
-        Err(d) => format!("[{cmd} failed: {}]", d.message),
+        Err(d) => format!("[{cmd} failed: {}]", d.message()),
     }
 }
 
 /// Runs one agent in rusoar as the goldens script runs it in the official kernel: the
 /// golden text, and for a learning agent (`learn-*`) its learned rules.
 fn run_agent(path: &Path) -> (String, Option<String>) {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(root());
+    let mut interp = Agent::default();
+    interp.set_working_directory(root());
     let script = format!("srand 1\nwatch 1\nsource {}\nrun 1000", path.display());
-    let failed = interp.run_text("<conformance>", &script).err();
+    let failed = interp.source_text("<conformance>", &script).err();
     let mut output = interp.take_output();
     if let Some(d) = failed {
-        output.push_str(&format!("\n[command failed: {}]\n", d.message));
+        output.push_str(&format!("\n[command failed: {}]\n", d.message()));
     }
     let stats = command(&mut interp, "stats");
     let mut text = golden_text(&output, &stats);

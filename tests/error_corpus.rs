@@ -4,8 +4,7 @@
 //! (file, line, column) and the interpreter must report failure. Where Soar 9.6 has a
 //! message for the mistake, the message is Soar's text (checked against soar-sml 9.6).
 
-use rusoar::commands::{Event, Interpreter};
-use rusoar::source::{Diagnostic, Severity};
+use rusoar::{Agent, Error, Printed};
 use std::path::Path;
 
 #[test]
@@ -19,7 +18,7 @@ fn error_corpus() {
     });
 }
 
-/// The corpus is big enough to be worth counting: the issue asks for at least 40.
+/// The corpus is big enough to be worth counting: at least 45 kinds of mistake.
 #[test]
 fn error_corpus_has_enough_cases() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/errors");
@@ -31,67 +30,55 @@ fn error_corpus_has_enough_cases() {
     assert!(n >= 45, "only {n} error cases");
 }
 
-fn assert_located(interp: &Interpreter, d: &Diagnostic, file: &str) {
-    let span = d
-        .span
-        .unwrap_or_else(|| panic!("{file}: error without a location: {}", d.message));
-    let text = interp.sources.text(span.file);
-    assert!(
-        span.start <= span.end && span.end <= text.len(),
-        "{file}: span {span:?} outside its text ({} bytes) for: {}",
-        text.len(),
-        d.message
-    );
-    let (line, col) = interp.sources.line_col(span.file, span.start);
-    assert!(line >= 1 && col >= 1, "{file}: no line/column");
-    assert!(
-        !interp.sources.name(span.file).is_empty(),
-        "{file}: no file name"
-    );
+fn assert_located(e: &Error, file: &str) {
+    let at = e
+        .location()
+        .unwrap_or_else(|| panic!("{file}: error without a location: {}", e.message()));
+    assert!(at.line >= 1 && at.column >= 1, "{file}: no line/column");
+    assert!(!at.name.is_empty(), "{file}: no file name");
 }
 
 fn run_file(path: &Path) -> String {
     let root = env!("CARGO_MANIFEST_DIR");
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
-    let mut interp = Interpreter::new();
-    interp.set_cwd(path.parent().unwrap().to_path_buf());
-    let result = interp.run_text("<test>", &format!("source {name}"));
-    let events = interp.take_events();
+    let mut agent = Agent::default();
+    agent.set_working_directory(path.parent().unwrap().to_path_buf());
+    let result = agent.source_text("<test>", &format!("source {name}"));
+    let printed = agent.take_printed();
 
     // Every error printed on the way, and the failure itself, is located.
-    for e in &events {
-        if let Event::Diag(d) = e {
-            if d.severity == Severity::Error {
-                assert_located(&interp, d, &name);
+    for p in &printed {
+        if let Printed::Diagnostic(e) = p {
+            if !e.is_warning() {
+                assert_located(e, &name);
             }
         }
     }
     let failure = match &result {
         Ok(()) => panic!("{name}: sourcing it succeeded, but it holds a mistake"),
-        Err(d) => d,
+        Err(e) => e,
     };
-    assert_eq!(failure.severity, Severity::Error, "{name}");
-    assert_located(&interp, failure, &name);
+    assert!(!failure.is_warning(), "{name}");
+    assert_located(failure, &name);
     // The failure points into the erroneous file (or a file it sources), not at the
     // `source` command of the test itself.
-    let in_file = interp.sources.name(failure.span.unwrap().file);
+    let in_file = &failure.location().unwrap().name;
     assert!(
         in_file.contains("/tests/data/errors/"),
         "{name}: the error points at {in_file}"
     );
 
     let mut out = String::from("== output ==\n");
-    for e in &events {
-        let r = interp.render(e);
-        if matches!(e, Event::Diag(_)) && !out.ends_with('\n') {
+    for p in &printed {
+        if matches!(p, Printed::Diagnostic(_)) && !out.ends_with('\n') {
             out.push('\n');
         }
-        out.push_str(&r);
+        out.push_str(&p.to_string());
     }
     if !out.ends_with('\n') {
         out.push('\n');
     }
     out.push_str("\n== failure ==\n");
-    out.push_str(&interp.sources.render(failure));
+    out.push_str(&failure.render());
     out.replace(root, "[ROOT]")
 }

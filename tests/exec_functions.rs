@@ -2,16 +2,15 @@
 //! gets the arguments' texts concatenated; a numeric form, when registered, gets the numbers
 //! instead whenever the arguments are numbers between comma separators.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
 fn run_with(rule_rhs: &str) -> String {
-    let mut i = Interpreter::new();
-    i.agent
-        .register_rhs_function("f", |_, args| format!("text[{args}]"));
-    assert!(i.agent.register_rhs_numeric("f", |n| {
+    let mut i = Agent::default();
+    i.register_sml_rhs_function("f", |_, args| format!("text[{args}]"));
+    assert!(i.register_sml_rhs_numeric_form("f", |n| {
         (n.len() == 2).then(|| format!("num[{},{}]", n[0], n[1]))
     }));
-    i.run_text(
+    i.source_text(
         "t",
         &format!(
             "watch 0\nsp {{t (state <s> ^superstate nil) --> (<s> ^r {rule_rhs})}}\nrun 1\n\
@@ -39,13 +38,13 @@ fn other_arguments_go_to_the_text_form() {
 
 #[test]
 fn a_numeric_form_needs_a_registered_function_and_goes_with_it() {
-    let mut i = Interpreter::new();
-    assert!(!i.agent.register_rhs_numeric("g", |_| Some("num".into())));
-    i.agent.register_rhs_function("g", |_, _| "text".into());
-    assert!(i.agent.register_rhs_numeric("g", |_| Some("num".into())));
+    let mut i = Agent::default();
+    assert!(!i.register_sml_rhs_numeric_form("g", |_| Some("num".into())));
+    i.register_sml_rhs_function("g", |_, _| "text".into());
+    assert!(i.register_sml_rhs_numeric_form("g", |_| Some("num".into())));
     // Registering the text form again drops the old numeric form.
-    i.agent.register_rhs_function("g", |_, _| "new".into());
-    i.run_text(
+    i.register_sml_rhs_function("g", |_, _| "new".into());
+    i.source_text(
         "t",
         "watch 0\nsp {t (state <s> ^superstate nil) --> (<s> ^r (exec g 1 |, | 2))}\nrun 1\n\
          print s1",

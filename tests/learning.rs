@@ -1,18 +1,18 @@
 //! Chunking (issue 5), beyond the goldens of tests/conformance.rs: the embedded stdlib
 //! loads by name, and a learning agent's second run after `init-soar` uses its chunks.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
-fn run(interp: &mut Interpreter, cmd: &str) -> String {
+fn run(interp: &mut Agent, cmd: &str) -> String {
     interp
-        .run_text("<learning>", cmd)
-        .unwrap_or_else(|d| panic!("`{cmd}` failed: {}", d.message));
+        .source_text("<learning>", cmd)
+        .unwrap_or_else(|d| panic!("`{cmd}` failed: {}", d.message()));
     interp.take_output()
 }
 
 #[test]
 fn stdlib_selection_loads_by_name() {
-    let mut interp = Interpreter::new();
+    let mut interp = Agent::default();
     let out = run(&mut interp, "source <stdlib>/selection.soar");
     assert!(out.contains("Total: 11 productions sourced."), "{out}");
     let rules = run(&mut interp, "print --all");
@@ -24,8 +24,8 @@ fn stdlib_selection_loads_by_name() {
 
 #[test]
 fn lookahead_chunks_remove_the_tie_on_the_second_run() {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    let mut interp = Agent::default();
+    interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
     run(&mut interp, "srand 1");
     run(&mut interp, "source tests/agents/learn-lookahead.soar");
     let first = run(&mut interp, "run 100");
@@ -54,8 +54,8 @@ fn lookahead_chunks_remove_the_tie_on_the_second_run() {
 
 #[test]
 fn learning_off_gives_justifications_that_keep_i_supported_results() {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    let mut interp = Agent::default();
+    interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
     run(&mut interp, "source tests/agents/learn-justification.soar");
     let out = run(&mut interp, "run 100");
     assert!(out.contains("isup kept by its justification"), "{out}");
@@ -68,8 +68,8 @@ fn learning_off_gives_justifications_that_keep_i_supported_results() {
 /// same agent and commands (9.6 resets the counts at `init-soar`).
 #[test]
 fn chunk_summary_counts_since_init_soar() {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    let mut interp = Agent::default();
+    interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
     run(&mut interp, "source tests/agents/learn-lookahead.soar");
     run(&mut interp, "run 100");
     let rows = |s: &str| -> Vec<String> {
@@ -101,7 +101,7 @@ fn chunk_summary_counts_since_init_soar() {
 /// values right-aligned (text from the official kernel after the same commands).
 #[test]
 fn chunk_settings_listing() {
-    let mut interp = Interpreter::new();
+    let mut interp = Agent::default();
     run(&mut interp, "chunk always");
     run(&mut interp, "chunk max-dupes 12");
     run(&mut interp, "chunk max-chunks 7");
@@ -123,7 +123,7 @@ fn chunk_settings_listing() {
 /// one behind a conjunctive negation goes when the conjunction comes to match.
 #[test]
 fn justification_retracts_when_its_negated_superstate_wme_appears() {
-    let mut interp = Interpreter::new();
+    let mut interp = Agent::default();
     run(
         &mut interp,
         "sp {init (state <s> ^superstate nil) --> (<s> ^a 1)}\n\
@@ -161,8 +161,8 @@ fn justification_retracts_when_its_negated_superstate_wme_appears() {
 /// first, before the substate's `<=WM:` lines (soar-sml 9.6.5's trace of this agent).
 #[test]
 fn removed_substate_lists_its_results_at_trace_5() {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(env!("CARGO_MANIFEST_DIR").into());
+    let mut interp = Agent::default();
+    interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
     run(&mut interp, "srand 1");
     run(
         &mut interp,

@@ -1,16 +1,16 @@
 //! `output` (spec §6a): its status listing and the settings 9.6 reports as `NAME is VALUE`;
 //! the expected texts were observed on soar-sml 9.6.5 through `ExecuteCommandLine`.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
-fn out(i: &mut Interpreter, cmd: &str) -> String {
-    i.run_text("t", cmd).unwrap();
+fn out(i: &mut Agent, cmd: &str) -> String {
+    i.source_text("t", cmd).unwrap();
     i.take_output()
 }
 
 #[test]
 fn output_lists_its_status_and_reports_its_settings() {
-    let mut i = Interpreter::new();
+    let mut i = Agent::default();
     let status = out(&mut i, "output");
     assert!(status.starts_with(
         "=======================================================\n-                   Output Status                     -\n"
@@ -32,12 +32,12 @@ fn output_lists_its_status_and_reports_its_settings() {
     );
     assert!(out(&mut i, "output")
         .contains("Agent RHS write output                              off   \n"));
-    assert!(i.run_text("t", "output bogus").is_err());
+    assert!(i.source_text("t", "output bogus").is_err());
 }
 
 #[test]
 fn agent_writes_off_silences_write_and_print_depth_sets_prints_default() {
-    let mut i = Interpreter::new();
+    let mut i = Agent::default();
     out(&mut i, "watch 0");
     out(
         &mut i,

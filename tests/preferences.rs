@@ -2,7 +2,7 @@
 //! the selection probabilities of the operator slot. The expected text is what soar-sml
 //! 9.6.5 prints for the same rule.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
 const RULE: &str = "sp {p (state <s> ^superstate nil) --> (<s> ^operator <a> + = > <b>) \
     (<s> ^operator <b> + < ) (<s> ^operator <c> + ~ = 3) (<s> ^operator <d> + - >) \
@@ -10,11 +10,13 @@ const RULE: &str = "sp {p (state <s> ^superstate nil) --> (<s> ^operator <a> + =
     (<e> ^name e) (<s> ^thing x + -)}";
 
 fn session(commands: &str) -> String {
-    let mut interp = Interpreter::new();
-    interp.run_text("<test>", RULE).expect("rule loads");
-    interp.run_text("<test>", "run 1").expect("run");
+    let mut interp = Agent::default();
+    interp.source_text("<test>", RULE).expect("rule loads");
+    interp.source_text("<test>", "run 1").expect("run");
     let _ = interp.take_output();
-    interp.run_text("<test>", commands).expect("command runs");
+    interp
+        .source_text("<test>", commands)
+        .expect("command runs");
     interp.take_output()
 }
 
@@ -38,11 +40,11 @@ fn names_add_the_rule_under_each_preference() {
 
 #[test]
 fn unknown_slot_is_an_error() {
-    let mut interp = Interpreter::new();
+    let mut interp = Agent::default();
     let err = interp
-        .run_text("<test>", "preferences S1 foo")
+        .source_text("<test>", "preferences S1 foo")
         .expect_err("no such slot");
     assert!(err
-        .message
+        .message()
         .starts_with("Could not find prefs for the id,attribute pair: S1 foo"));
 }

@@ -1,12 +1,14 @@
 //! `print --stack` and `print --tree`, against texts the official 9.6 kernel printed for the
 //! same agent and commands (`tests/data/traces/substate.soar`).
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
-fn session(commands: &str) -> Interpreter {
-    let mut i = Interpreter::new();
-    i.set_cwd(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/traces"));
-    i.run_text(
+fn session(commands: &str) -> Agent {
+    let mut i = Agent::default();
+    i.set_working_directory(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/traces"),
+    );
+    i.source_text(
         "setup",
         &format!("source substate.soar\nwatch 0\n{commands}"),
     )
@@ -15,8 +17,8 @@ fn session(commands: &str) -> Interpreter {
     i
 }
 
-fn output(i: &mut Interpreter, command: &str) -> String {
-    i.run_text("t", command).unwrap();
+fn output(i: &mut Agent, command: &str) -> String {
+    i.source_text("t", command).unwrap();
     i.take_output()
 }
 
@@ -51,8 +53,8 @@ fn stack_options_are_checked() {
         ("print -S", "Options --operators (-o) and --states (-S) are only valid when printing the stack."),
         ("print -s s1", "No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack."),
     ] {
-        let err = i.run_text("t", cmd).unwrap_err();
-        assert_eq!(err.message, msg, "{cmd}");
+        let err = i.source_text("t", cmd).unwrap_err();
+        assert_eq!(err.message(), msg, "{cmd}");
     }
 }
 
@@ -82,9 +84,9 @@ fn tree_prints_one_wme_per_line_under_its_parent() {
 /// and an item that would reach column 79 goes to the next line.
 #[test]
 fn print_wraps_from_the_stream_column_as_9_6_does() {
-    let mut i = Interpreter::new();
-    let out = |i: &mut Interpreter, cmd: &str| {
-        i.run_text("t", cmd).unwrap();
+    let mut i = Agent::default();
+    let out = |i: &mut Agent, cmd: &str| {
+        i.source_text("t", cmd).unwrap();
         i.take_output()
     };
     out(
@@ -110,7 +112,7 @@ fn print_wraps_from_the_stream_column_as_9_6_does() {
         (7, format!("(I4 ^a {v} ^b wwwwwww)\n")),
         (8, format!("(I4 ^a {v}\n       ^b wwwwwwww)\n")),
     ] {
-        let mut i = Interpreter::new();
+        let mut i = Agent::default();
         let b = "w".repeat(w);
         out(
             &mut i,

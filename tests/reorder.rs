@@ -2,15 +2,15 @@
 //! `print` shows afterwards, as the official kernel (soar-sml 9.6.5) printed it for the
 //! same rules loaded in the same order into a fresh agent.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
 fn printed(rules: &[&str], name: &str) -> String {
-    let mut i = Interpreter::new();
+    let mut i = Agent::default();
     for r in rules {
-        i.run_text("rule", r).unwrap();
+        i.source_text("rule", r).unwrap();
     }
     i.take_output();
-    i.run_text("print", &format!("print {name}")).unwrap();
+    i.source_text("print", &format!("print {name}")).unwrap();
     // The `*` each rule printed leaves the column off 0, so print starts a fresh line.
     i.take_output().trim_start_matches('\n').to_string()
 }

@@ -3,9 +3,8 @@
 //! fail with a located diagnostic.
 
 use proptest::prelude::*;
-use rusoar::commands::{Event, Interpreter};
 use rusoar::parser::parse_production;
-use rusoar::source::Severity;
+use rusoar::{Agent, Printed};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -16,24 +15,24 @@ fn root() -> PathBuf {
 /// Runs `text` as commands from `dir`; checks that every error it reports is located.
 /// Returns whether it succeeded.
 fn run(text: &str, dir: &Path) -> bool {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(dir.to_path_buf());
-    let result = interp.run_text("input.soar", text);
-    let events = interp.take_events();
+    let mut interp = Agent::default();
+    interp.set_working_directory(dir.to_path_buf());
+    let result = interp.source_text("input.soar", text);
+    let events = interp.take_printed();
     for e in &events {
-        if let Event::Diag(d) = e {
-            if d.severity == Severity::Error {
-                assert!(d.span.is_some(), "unlocated error: {}", d.message);
+        if let Printed::Diagnostic(d) = e {
+            if !d.is_warning() {
+                assert!(d.location().is_some(), "unlocated error: {}", d.message());
             }
         }
         // Rendering must not panic either (odd spans, odd characters).
-        let _ = interp.render(e);
+        let _ = e.to_string();
     }
     match result {
         Ok(()) => true,
         Err(d) => {
-            assert!(d.span.is_some(), "unlocated failure: {}", d.message);
-            let _ = interp.sources.render(&d);
+            assert!(d.location().is_some(), "unlocated failure: {}", d.message());
+            let _ = d.render();
             false
         }
     }

@@ -1,14 +1,14 @@
 //! `run`'s report, against what the official 9.6 kernel printed for the same commands: the
 //! decision-cycle count (with its quirks) and the texts after a halt.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
-fn out(i: &mut Interpreter, cmd: &str) -> String {
-    i.run_text("t", cmd).unwrap();
+fn out(i: &mut Agent, cmd: &str) -> String {
+    i.source_text("t", cmd).unwrap();
     i.take_output()
 }
 
-fn report(i: &mut Interpreter, cmd: &str) -> String {
+fn report(i: &mut Agent, cmd: &str) -> String {
     let text = out(i, cmd);
     let start = text.find("--> ").expect("a run report");
     text[start..].trim_end().to_string()
@@ -16,7 +16,7 @@ fn report(i: &mut Interpreter, cmd: &str) -> String {
 
 #[test]
 fn the_cycle_count_follows_the_cycle_counter() {
-    let mut i = Interpreter::new();
+    let mut i = Agent::default();
     out(&mut i, "watch 0");
     // (command, what 9.6 reported), in one session.
     for (cmd, n) in [
@@ -52,8 +52,10 @@ fn the_cycle_count_follows_the_cycle_counter() {
 
 #[test]
 fn a_halt_is_reported_and_a_halted_agent_does_not_run() {
-    let mut i = Interpreter::new();
-    i.set_cwd(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/traces"));
+    let mut i = Agent::default();
+    i.set_working_directory(
+        std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/traces"),
+    );
     out(&mut i, "source counter.soar");
     assert_eq!(
         out(&mut i, "run"),
@@ -80,7 +82,7 @@ fn a_halt_is_reported_and_a_halted_agent_does_not_run() {
 /// Misused `run`, `trace` and `print`: 9.6's messages (the official kernel's, one by one).
 #[test]
 fn misuse_gets_9_6_messages() {
-    let mut i = Interpreter::new();
+    let mut i = Agent::default();
     for (cmd, msg) in [
         ("run x", "Integer count expected."),
         ("run -1", "Count must be positive."),
@@ -100,8 +102,8 @@ fn misuse_gets_9_6_messages() {
             "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
         ),
     ] {
-        let err = i.run_text("t", cmd).unwrap_err();
-        assert_eq!(err.message, msg, "{cmd}");
+        let err = i.source_text("t", cmd).unwrap_err();
+        assert_eq!(err.message(), msg, "{cmd}");
     }
     assert_eq!(out(&mut i, "print"), "");
     assert_eq!(
@@ -124,8 +126,8 @@ fn misuse_gets_9_6_messages() {
 /// goes one state deeper, with the same message (observed on soar-sml 9.6.5).
 #[test]
 fn max_goal_depth_interrupts_the_run_without_halting() {
-    let mut i = Interpreter::new();
-    i.set_cwd(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    let mut i = Agent::default();
+    i.set_working_directory(std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")));
     out(&mut i, "srand 1");
     out(&mut i, "source tests/agents/max-goal-depth.soar");
     out(&mut i, "trace 1");
@@ -146,18 +148,18 @@ fn max_goal_depth_interrupts_the_run_without_halting() {
 /// two rules after `run 2`: `fc 25` lists both, `fc 1` only `a`).
 #[test]
 fn firing_counts_takes_a_count_of_rules_to_list() {
-    let mut i = rusoar::commands::Interpreter::new();
-    i.run_text(
+    let mut i = rusoar::Agent::default();
+    i.source_text(
         "setup",
         "watch 0\nsp {a (state <s> ^superstate nil) --> (<s> ^x 1)}\n\
          sp {b (state <s> ^superstate nil) --> (<s> ^y 1)}\nrun 2",
     )
     .unwrap();
     i.take_output();
-    i.run_text("t", "fc 25").unwrap();
+    i.source_text("t", "fc 25").unwrap();
     assert_eq!(i.take_output(), "     1:  a\n     1:  b\n");
-    i.run_text("t", "fc 1").unwrap();
+    i.source_text("t", "fc 1").unwrap();
     assert_eq!(i.take_output(), "     1:  a\n");
-    i.run_text("t", "fc b").unwrap();
+    i.source_text("t", "fc b").unwrap();
     assert_eq!(i.take_output(), "     1:  b\n");
 }

@@ -2,13 +2,13 @@
 //! as the official kernel does (checked with soar-sml 9.6.5: the first `run 1 -e` ends the
 //! input phase, each later one fires one cycle's rules).
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 
 #[test]
 fn run_e_stops_after_each_elaboration_cycle() {
-    let mut interp = Interpreter::new();
+    let mut interp = Agent::default();
     interp
-        .run_text(
+        .source_text(
             "<test>",
             "sp {init (state <s> ^superstate nil -^name) --> (<s> ^name x)}\n\
              sp {show (state <s> ^name x) --> (write |seen|)}",
@@ -16,13 +16,10 @@ fn run_e_stops_after_each_elaboration_cycle() {
         .expect("rules load");
     let mut firings = Vec::new();
     for _ in 0..4 {
-        interp.run_text("<test>", "run 1 -e").expect("run");
-        firings.push(interp.agent.decider.firings);
+        interp.source_text("<test>", "run 1 -e").expect("run");
+        firings.push(interp.firings());
     }
     // Input phase, then init, then show (and init retracts), then init again.
     assert_eq!(firings, vec![0, 1, 2, 3]);
-    assert_eq!(
-        interp.agent.decider.decisions, 0,
-        "still in the first propose phase"
-    );
+    assert_eq!(interp.decisions(), 0, "still in the first propose phase");
 }

@@ -8,19 +8,19 @@
 mod common;
 
 use common::mask_decimals;
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 use std::path::PathBuf;
 
 fn stats_after(commands: &[&str]) -> String {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(PathBuf::from(env!("CARGO_MANIFEST_DIR")));
+    let mut interp = Agent::default();
+    interp.set_working_directory(PathBuf::from(env!("CARGO_MANIFEST_DIR")));
     for c in commands {
         interp
-            .run_text("<stats>", c)
-            .unwrap_or_else(|d| panic!("`{c}` failed: {}", d.message));
+            .source_text("<stats>", c)
+            .unwrap_or_else(|d| panic!("`{c}` failed: {}", d.message()));
         interp.take_output();
     }
-    interp.run_text("<stats>", "stats").expect("stats runs");
+    interp.source_text("<stats>", "stats").expect("stats runs");
     interp.take_output()
 }
 

@@ -8,7 +8,7 @@
 //!
 //! `python3 scripts/trace_compare.py` compares the same way on every agent and level.
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 use std::path::PathBuf;
 
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.
@@ -30,18 +30,18 @@ fn root() -> PathBuf {
 
 /// rusoar's text for one golden: what `run 50` printed, the result included.
 fn ours(agent: &str, level: u8) -> String {
-    let mut interp = Interpreter::new();
-    interp.set_cwd(root());
+    let mut interp = Agent::default();
+    interp.set_working_directory(root());
     let path = root().join("tests/agents").join(format!("{agent}.soar"));
     let setup = format!("srand 1\nsource {}\ntrace {level}", path.display());
-    if let Err(d) = interp.run_text("<trace-goldens>", &setup) {
-        return format!("[setup failed: {}]\n", d.message);
+    if let Err(d) = interp.source_text("<trace-goldens>", &setup) {
+        return format!("[setup failed: {}]\n", d.message());
     }
     interp.take_output();
-    let failed = interp.run_text("<trace-goldens>", "run 50").err();
+    let failed = interp.source_text("<trace-goldens>", "run 50").err();
     let mut text = interp.take_output();
     if let Some(d) = failed {
-        text.push_str(&format!("[run failed: {}]\n", d.message));
+        text.push_str(&format!("[run failed: {}]\n", d.message()));
     }
     if !text.ends_with('\n') {
         text.push('\n');

@@ -4,7 +4,7 @@
 //! given). `rusoar test FILE_OR_DIR` runs SoarUnit files; `rusoar slam` the experiment.
 
 use clap::{Arg, ArgAction, Command as ClapCommand};
-use rusoar::commands::{Event, Interpreter};
+use rusoar::{Agent, Printed};
 use rusoar_cli::{repl, soarunit};
 use std::io::{BufRead, IsTerminal, Read, Write};
 use std::process::ExitCode;
@@ -53,66 +53,65 @@ fn ordered_steps(m: &clap::ArgMatches) -> Vec<(usize, bool, String)> {
     steps
 }
 
-fn flush(interp: &mut Interpreter) {
-    let events = interp.take_events();
+/// Prints what the agent printed: text to standard output, diagnostics to standard error.
+fn flush(agent: &mut Agent) {
+    let printed = agent.take_printed();
     let mut out = std::io::stdout().lock();
-    for e in &events {
-        match e {
-            Event::Text(t) => {
+    for p in &printed {
+        match p {
+            Printed::Text(t) => {
                 let _ = out.write_all(t.as_bytes());
             }
-            Event::Diag(_) => {
+            Printed::Diagnostic(e) => {
                 let _ = out.flush();
-                let r = interp.render(e);
-                let _ = std::io::stderr().write_all(r.as_bytes());
+                let _ = std::io::stderr().write_all(e.render().as_bytes());
             }
         }
     }
     let _ = out.flush();
 }
 
-fn report_failure(interp: &mut Interpreter, d: rusoar::source::Diagnostic) {
-    flush(interp);
-    let text = interp.sources.render(&d);
-    let _ = std::io::stderr().write_all(text.as_bytes());
+fn report_failure(agent: &mut Agent, e: rusoar::Error) {
+    flush(agent);
+    let _ = std::io::stderr().write_all(e.render().as_bytes());
 }
 
 /// The per-file summary printed after `--source`.
-fn load_report(interp: &Interpreter) -> String {
-    let r = &interp.report;
+fn load_report(agent: &Agent) -> String {
+    let r = agent.load_report();
     let cwd = std::env::current_dir().unwrap_or_default();
+    let files: Vec<(&std::path::Path, usize)> = r.files().collect();
     let mut s = format!(
         "Loaded {} production{} from {} file{}:\n",
-        r.added,
-        if r.added == 1 { "" } else { "s" },
-        r.per_file.len(),
-        if r.per_file.len() == 1 { "" } else { "s" }
+        r.added(),
+        if r.added() == 1 { "" } else { "s" },
+        files.len(),
+        if files.len() == 1 { "" } else { "s" }
     );
-    let names: Vec<String> = r
-        .per_file
-        .keys()
-        .map(|p| {
-            let p = p.canonicalize().unwrap_or(p.clone());
+    let names: Vec<String> = files
+        .iter()
+        .map(|(p, _)| {
+            let p = p.canonicalize().unwrap_or(p.to_path_buf());
             p.strip_prefix(&cwd)
                 .map(|q| q.display().to_string())
                 .unwrap_or(p.display().to_string())
         })
         .collect();
     let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
-    for (name, count) in names.iter().zip(r.per_file.values()) {
+    for (name, (_, count)) in names.iter().zip(&files) {
         s.push_str(&format!("  {name:<width$}  {count:>5}\n"));
     }
-    if r.excised > 0 {
-        s.push_str(&format!("  ({} redefined rule(s) excised)\n", r.excised));
+    if r.excised() > 0 {
+        s.push_str(&format!("  ({} redefined rule(s) excised)\n", r.excised()));
     }
-    if r.ignored > 0 {
-        s.push_str(&format!("  ({} duplicate rule(s) ignored)\n", r.ignored));
+    if r.ignored() > 0 {
+        s.push_str(&format!("  ({} duplicate rule(s) ignored)\n", r.ignored()));
     }
     s
 }
 
 /// Reads commands line by line; waits for more lines while a brace is open.
-fn interactive(interp: &mut Interpreter) -> ExitCode {
+fn interactive(agent: &mut Agent) -> ExitCode {
     let stdin = std::io::stdin();
     let mut pending = String::new();
     let mut failed = false;
@@ -138,12 +137,12 @@ fn interactive(interp: &mut Interpreter) -> ExitCode {
             continue;
         }
         let text = std::mem::take(&mut pending);
-        if let Err(d) = interp.run_text("<stdin>", &text) {
-            report_failure(interp, d);
+        if let Err(e) = agent.source_text("<stdin>", &text) {
+            report_failure(agent, e);
             failed = true;
         }
-        flush(interp);
-        if interp.exit_requested {
+        flush(agent);
+        if agent.exit_requested() {
             break;
         }
     }
@@ -182,36 +181,35 @@ fn main() -> ExitCode {
     if args.get(1).map(String::as_str) == Some("test") {
         return soarunit_main(&args[2..]);
     }
-    let mut interp = Interpreter::new();
-    let code = run(&mut interp);
+    let mut agent = Agent::new("soar");
+    let code = run(&mut agent);
     // The process ends here: freeing a large agent piece by piece only costs time.
-    std::mem::forget(interp);
+    std::mem::forget(agent);
     code
 }
 
-fn run(interp: &mut Interpreter) -> ExitCode {
-    let interp = &mut *interp;
+fn run(agent: &mut Agent) -> ExitCode {
     let matches = cli().get_matches();
     let steps = ordered_steps(&matches);
     let terminal = std::io::stdin().is_terminal();
     if terminal && steps.iter().all(|(_, is_source, _)| *is_source) {
         // The REPL, after the `--source` files.
         for (_, _, file) in &steps {
-            let r = interp.run_text("--source", &format!("source {{{file}}}"));
-            flush(interp);
+            let r = agent.source_text("--source", &format!("source {{{file}}}"));
+            flush(agent);
             match r {
-                Ok(()) => print!("{}", load_report(interp)),
-                Err(d) => report_failure(interp, d),
+                Ok(()) => print!("{}", load_report(agent)),
+                Err(e) => report_failure(agent, e),
             }
         }
         println!(
             "rusoar {} — Soar 9.6 commands; `help` lists them, Tab completes, Ctrl-D quits.",
             env!("CARGO_PKG_VERSION")
         );
-        if repl::run(interp) {
+        if repl::run(agent) {
             return ExitCode::SUCCESS;
         }
-        return interactive(interp);
+        return interactive(agent);
     }
     if steps.is_empty() {
         let mut text = String::new();
@@ -219,30 +217,30 @@ fn run(interp: &mut Interpreter) -> ExitCode {
             eprintln!("error: standard input is not valid UTF-8");
             return ExitCode::FAILURE;
         }
-        let result = interp.run_text("<stdin>", &text);
-        return finish(interp, result);
+        let result = agent.source_text("<stdin>", &text);
+        return finish(agent, result);
     }
     for (_, is_source, value) in steps {
         let result = if is_source {
             let cmd = format!("source {{{value}}}");
-            let r = interp.run_text("--source", &cmd);
-            flush(interp);
+            let r = agent.source_text("--source", &cmd);
+            flush(agent);
             if r.is_ok() {
-                print!("{}", load_report(interp));
+                print!("{}", load_report(agent));
             }
             r
         } else {
-            interp.run_text("-c", &value)
+            agent.source_text("-c", &value)
         };
-        if let Err(d) = result {
+        if let Err(e) = result {
             if is_source {
-                eprint!("{}", load_report(interp));
+                eprint!("{}", load_report(agent));
             }
-            report_failure(interp, d);
+            report_failure(agent, e);
             return ExitCode::FAILURE;
         }
-        flush(interp);
-        if interp.exit_requested {
+        flush(agent);
+        if agent.exit_requested() {
             break;
         }
     }
@@ -298,7 +296,7 @@ fn soarunit_main(args: &[String]) -> ExitCode {
     let opts = soarunit::Options {
         decision_limit: m.get_one::<u64>("max-decisions").copied().unwrap_or(10_000),
         verbose: m.get_flag("verbose"),
-        host_functions: |interp| soar_slam::functions::register(&mut interp.agent),
+        host_functions: soar_slam::functions::register,
     };
     let summary = soarunit::run_paths(&paths, &opts, &mut std::io::stdout());
     if summary.ok() {
@@ -308,14 +306,14 @@ fn soarunit_main(args: &[String]) -> ExitCode {
     }
 }
 
-fn finish(interp: &mut Interpreter, result: Result<(), rusoar::source::Diagnostic>) -> ExitCode {
+fn finish(agent: &mut Agent, result: Result<(), rusoar::Error>) -> ExitCode {
     match result {
         Ok(()) => {
-            flush(interp);
+            flush(agent);
             ExitCode::SUCCESS
         }
-        Err(d) => {
-            report_failure(interp, d);
+        Err(e) => {
+            report_failure(agent, e);
             ExitCode::FAILURE
         }
     }

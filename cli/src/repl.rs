@@ -4,8 +4,8 @@
 //! goes on over several lines while a brace, quote or `|` is open, Ctrl-C that stops a
 //! running `run` (and clears the line at the prompt), Ctrl-D to quit.
 
-use rusoar::commands::tokenizer::Tokenizer;
-use rusoar::commands::{Event, Interpreter, COMMANDS};
+use rusoar::syntax::Tokenizer;
+use rusoar::{Agent, Printed};
 use rustyline::completion::{Completer, Pair};
 use rustyline::error::ReadlineError;
 use rustyline::highlight::Highlighter;
@@ -13,12 +13,12 @@ use rustyline::hint::Hinter;
 use rustyline::history::DefaultHistory;
 use rustyline::validate::{ValidationContext, ValidationResult, Validator};
 use rustyline::{CompletionType, Config, Context, Editor, Helper};
-use std::cell::{Cell, RefCell};
+use std::cell::Cell;
 use std::io::Write;
 use std::panic::AssertUnwindSafe;
 use std::path::PathBuf;
 use std::rc::Rc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::sync::Arc;
 
 /// Whether `text` stops in the middle of a command: an open brace, quote or `|`, or a
@@ -41,8 +41,8 @@ pub fn is_incomplete(text: &str) -> bool {
 }
 
 /// The prompt: the agent's name and how many decisions it has made, as in `soar 12> `.
-pub fn prompt(interp: &Interpreter) -> String {
-    format!("{} {}> ", interp.agent.name, interp.agent.decider.decisions)
+pub fn prompt(agent: &Agent) -> String {
+    format!("{} {}> ", agent.name(), agent.decisions())
 }
 
 /// Where the history lives: `$RUSOAR_HISTORY`, else `~/.rusoar_history`.
@@ -57,7 +57,7 @@ pub fn history_path() -> Option<PathBuf> {
 /// several while a brace or quote is open) is shown after the prompt it was typed at,
 /// followed by what it printed; errors are rendered as the REPL shows them. For transcript
 /// tests and for replaying a session.
-pub fn transcript(interp: &mut Interpreter, script: &str) -> String {
+pub fn transcript(agent: &mut Agent, script: &str) -> String {
     let mut out = String::new();
     let mut entry = String::new();
     let mut entry_prompt = String::new();
@@ -67,7 +67,7 @@ pub fn transcript(interp: &mut Interpreter, script: &str) -> String {
             if line.trim().is_empty() {
                 continue;
             }
-            entry_prompt = prompt(interp);
+            entry_prompt = prompt(agent);
         } else {
             entry.push('\n');
         }
@@ -79,19 +79,19 @@ pub fn transcript(interp: &mut Interpreter, script: &str) -> String {
         out.push_str(&entry_prompt);
         out.push_str(&text.replace('\n', "\n... "));
         out.push('\n');
-        let result = interp.run_text("<stdin>", &text);
-        let mut shown = interp.take_output();
-        if let Err(d) = result {
+        let result = agent.source_text("<stdin>", &text);
+        let mut shown = agent.take_output();
+        if let Err(e) = result {
             if !shown.is_empty() && !shown.ends_with('\n') {
                 shown.push('\n');
             }
-            shown.push_str(&interp.sources.render(&d));
+            shown.push_str(&e.render());
         }
         out.push_str(&shown);
         if !out.ends_with('\n') {
             out.push('\n');
         }
-        if interp.exit_requested {
+        if agent.exit_requested() {
             break;
         }
     }
@@ -143,27 +143,29 @@ fn path_candidates(cwd: &std::path::Path, word: &str) -> Vec<String> {
 }
 
 impl ReplHelper {
-    pub fn new(interp: &Interpreter) -> Self {
+    pub fn new(agent: &Agent) -> Self {
         let mut h = ReplHelper::default();
-        h.refresh(interp);
+        h.refresh(agent);
         h
     }
 
     /// Takes the current commands, aliases, rules and identifiers from the interpreter.
-    pub fn refresh(&mut self, interp: &Interpreter) {
-        let mut commands: Vec<String> = COMMANDS.iter().map(|c| c.to_string()).collect();
-        commands.extend(interp.aliases().names().map(str::to_string));
+    pub fn refresh(&mut self, agent: &Agent) {
+        let mut commands = agent.command_names();
         commands.sort();
         commands.dedup();
         self.commands = commands;
-        let agent = &interp.agent;
-        let mut things: Vec<String> = agent.productions().map(|p| p.name.clone()).collect();
-        let mut ids: Vec<String> = agent.wm.ids().map(|s| agent.symbols.text(s)).collect();
+        let mut things = agent.production_names();
+        let mut ids: Vec<String> = agent
+            .identifiers()
+            .into_iter()
+            .map(|s| agent.text(s))
+            .collect();
         ids.sort();
         ids.dedup();
         things.extend(ids);
         self.things = things;
-        self.cwd = interp.cwd().to_path_buf();
+        self.cwd = agent.working_directory().to_path_buf();
     }
 
     /// The candidates for the word that ends at `pos`: (start of the word, candidates).
@@ -243,27 +245,25 @@ impl Validator for ReplHelper {
 
 impl Helper for ReplHelper {}
 
-/// Prints events: text to standard output, diagnostics rendered to standard error. Tracks
-/// whether the last text ended a line, so the prompt starts on a fresh one.
-fn print_events(interp: &mut Interpreter, at_line_start: &Cell<bool>) {
-    let events = interp.take_events();
+/// Prints what the agent printed: text to standard output (as it comes, also during a
+/// run), diagnostics rendered to standard error. Tracks whether the last text ended a
+/// line, so the prompt starts on a fresh one.
+fn print(p: &Printed, at_line_start: &Cell<bool>) {
     let mut out = std::io::stdout().lock();
-    for e in &events {
-        match e {
-            Event::Text(t) => {
-                let _ = out.write_all(t.as_bytes());
-                if !t.is_empty() {
-                    at_line_start.set(t.ends_with('\n'));
-                }
+    match p {
+        Printed::Text(t) => {
+            let _ = out.write_all(t.as_bytes());
+            if !t.is_empty() {
+                at_line_start.set(t.ends_with('\n'));
             }
-            Event::Diag(_) => {
-                if !at_line_start.get() {
-                    let _ = out.write_all(b"\n");
-                    at_line_start.set(true);
-                }
-                let _ = out.flush();
-                let _ = std::io::stderr().write_all(interp.render(e).as_bytes());
+        }
+        Printed::Diagnostic(e) => {
+            if !at_line_start.get() {
+                let _ = out.write_all(b"\n");
+                at_line_start.set(true);
             }
+            let _ = out.flush();
+            let _ = std::io::stderr().write_all(e.render().as_bytes());
         }
     }
     let _ = out.flush();
@@ -271,7 +271,7 @@ fn print_events(interp: &mut Interpreter, at_line_start: &Cell<bool>) {
 
 /// Runs the REPL until Ctrl-D or `exit`. Returns false if the editor could not start (no
 /// terminal): the caller then reads standard input plainly.
-pub fn run(interp: &mut Interpreter) -> bool {
+pub fn run(agent: &mut Agent) -> bool {
     let config = Config::builder()
         .auto_add_history(false)
         .completion_type(CompletionType::List)
@@ -280,7 +280,7 @@ pub fn run(interp: &mut Interpreter) -> bool {
         Ok(e) => e,
         Err(_) => return false,
     };
-    editor.set_helper(Some(ReplHelper::new(interp)));
+    editor.set_helper(Some(ReplHelper::new(agent)));
     let history = history_path();
     if let Some(h) = &history {
         // A missing or unreadable history file only means an empty history.
@@ -289,7 +289,7 @@ pub fn run(interp: &mut Interpreter) -> bool {
 
     // Ctrl-C while a command runs: the handler sets the flag and `run` stops at the next
     // decision. At the prompt the terminal is in raw mode and rustyline sees Ctrl-C itself.
-    let interrupt = Arc::new(AtomicBool::new(false));
+    let interrupt = agent.interrupt_flag();
     {
         let flag = Arc::clone(&interrupt);
         // A second Ctrl-C before the run has stopped (a decision that never ends) leaves.
@@ -303,29 +303,21 @@ pub fn run(interp: &mut Interpreter) -> bool {
             eprintln!("warning: Ctrl-C will not interrupt a run ({e})");
         }
     }
-    interp.set_interrupt(Arc::clone(&interrupt));
     let at_line_start = Rc::new(Cell::new(true));
     {
         let at = Rc::clone(&at_line_start);
-        interp.set_live_output(Rc::new(RefCell::new(move |text: &str| {
-            let mut out = std::io::stdout().lock();
-            let _ = out.write_all(text.as_bytes());
-            let _ = out.flush();
-            if !text.is_empty() {
-                at.set(text.ends_with('\n'));
-            }
-        })));
+        agent.on_print(move |p| print(p, &at));
     }
 
     loop {
         if let Some(h) = editor.helper_mut() {
-            h.refresh(interp);
+            h.refresh(agent);
         }
         if !at_line_start.get() {
             println!();
             at_line_start.set(true);
         }
-        match editor.readline(&prompt(interp)) {
+        match editor.readline(&prompt(agent)) {
             Ok(line) => {
                 if line.trim().is_empty() {
                     continue;
@@ -335,10 +327,10 @@ pub fn run(interp: &mut Interpreter) -> bool {
                 // A bug in rusoar must not end the session: the panic is reported (by the
                 // panic hook, then here) and the REPL goes on.
                 let result = std::panic::catch_unwind(AssertUnwindSafe(|| {
-                    interp.run_text("<stdin>", &line)
+                    agent.source_text("<stdin>", &line)
                 }));
                 let failure = match result {
-                    Ok(r) => r.err().map(|d| interp.sources.render(&d)),
+                    Ok(r) => r.err().map(|e| e.render()),
                     Err(_) => Some(
                         "internal error: rusoar panicked running this command (a bug: please \
                          report it); the agent may be inconsistent, `init-soar` resets it\n"
@@ -346,15 +338,13 @@ pub fn run(interp: &mut Interpreter) -> bool {
                     ),
                 };
                 if let Some(text) = failure {
-                    print_events(interp, &at_line_start);
                     if !at_line_start.get() {
                         println!();
                     }
                     eprint!("{text}");
                     at_line_start.set(true);
                 }
-                print_events(interp, &at_line_start);
-                if interp.exit_requested {
+                if agent.exit_requested() {
                     break;
                 }
             }
@@ -400,16 +390,16 @@ mod tests {
 
     #[test]
     fn prompt_shows_agent_and_decisions() {
-        let mut i = Interpreter::new();
+        let mut i = Agent::default();
         assert_eq!(prompt(&i), "soar 0> ");
-        i.run_text("t", "watch 0\nrun 3").unwrap();
+        i.source_text("t", "watch 0\nrun 3").unwrap();
         assert_eq!(prompt(&i), "soar 3> ");
     }
 
     #[test]
     fn completes_commands_aliases_rules_and_identifiers() {
-        let mut i = Interpreter::new();
-        i.run_text(
+        let mut i = Agent::default();
+        i.source_text(
             "t",
             "sp {my*rule (state <s> ^superstate nil) --> (<s> ^a b)}",
         )
@@ -429,8 +419,8 @@ mod tests {
 
     #[test]
     fn completes_file_names_from_the_interpreters_directory() {
-        let mut i = Interpreter::new();
-        i.set_cwd(PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")));
+        let mut i = Agent::default();
+        i.set_working_directory(PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/..")));
         let h = ReplHelper::new(&i);
         let (start, c) = h.candidates("source rules/Co", 15);
         assert_eq!((start, c), (7, vec!["rules/CopyWall.soar".to_string()]));

@@ -9,9 +9,9 @@
 //! `checkwallrelation`, `getwalldistance`) are registered too, so the thesis rules can be
 //! tested as they run in the experiment.
 
-use rusoar::commands::tokenizer::{Tokenizer, WordKind};
-use rusoar::commands::{Event, Interpreter};
-use rusoar::source::Diagnostic;
+use rusoar::syntax::Diagnostic;
+use rusoar::syntax::{Tokenizer, WordKind};
+use rusoar::{Agent, Printed};
 use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -55,7 +55,7 @@ pub struct Options {
     pub verbose: bool,
     /// Registers the host's RHS functions on each test's fresh agent, as any embedding
     /// program does before it sources rules (the `rusoar` binary registers Soar-SLAM's).
-    pub host_functions: fn(&mut Interpreter),
+    pub host_functions: fn(&mut Agent),
 }
 
 impl Default for Options {
@@ -167,11 +167,11 @@ pub fn parse(path: &Path, text: &str) -> Result<TestFile, Diagnostic> {
 
 /// Everything printed so far, rendered, appended to `out`; without the parser's "Adding
 /// exec" warnings for `(pass)` and `(fail)`, which every test would show.
-fn drain(interp: &mut Interpreter, out: &mut String) {
-    for e in interp.take_events() {
-        if let Event::Diag(d) = &e {
+fn drain(agent: &mut Agent, out: &mut String) {
+    for p in agent.take_printed() {
+        if let Printed::Diagnostic(e) = &p {
             if matches!(
-                d.message.as_str(),
+                e.message().as_str(),
                 "Adding exec to RHS function: pass" | "Adding exec to RHS function: fail"
             ) {
                 continue;
@@ -180,33 +180,33 @@ fn drain(interp: &mut Interpreter, out: &mut String) {
                 out.push('\n');
             }
         }
-        out.push_str(&interp.render(&e));
+        out.push_str(&p.to_string());
     }
 }
 
 /// Runs one test on a fresh agent.
 pub fn run_test(file: &TestFile, test: &TestCase, opts: &Options) -> TestResult {
-    let mut interp = Interpreter::new();
+    let mut agent = Agent::new("soar");
     if let Some(dir) = file.path.parent() {
         let dir = if dir.as_os_str().is_empty() {
             Path::new(".")
         } else {
             dir
         };
-        interp.set_cwd(dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf()));
+        agent.set_working_directory(dir.canonicalize().unwrap_or_else(|_| dir.to_path_buf()));
     }
-    (opts.host_functions)(&mut interp);
+    (opts.host_functions)(&mut agent);
     let outcome: Rc<RefCell<Option<Outcome>>> = Rc::new(RefCell::new(None));
     {
         let o = Rc::clone(&outcome);
         // (9.6's built-in `(succeeded)` and `(failed)` only halt, so a test cannot tell
         // them apart: a halt without `(pass)` or `(fail)` fails the test.)
-        interp.agent.register_rhs_function("pass", move |_, _| {
+        agent.register_sml_rhs_function("pass", move |_, _| {
             o.borrow_mut().get_or_insert(Outcome::Passed);
             String::new()
         });
         let o = Rc::clone(&outcome);
-        interp.agent.register_rhs_function("fail", move |_, args| {
+        agent.register_sml_rhs_function("fail", move |_, args| {
             let why = if args.is_empty() {
                 "(fail) was called".to_string()
             } else {
@@ -217,39 +217,39 @@ pub fn run_test(file: &TestFile, test: &TestCase, opts: &Options) -> TestResult 
         });
         // Stop at the end of the decision in which a rule called (pass) or (fail).
         let o = Rc::clone(&outcome);
-        interp.agent.output_callback = Some(Box::new(move |a| {
+        agent.on_output_phase(move |io| {
             if o.borrow().is_some() {
-                a.decider.stop_requested = true;
+                io.stop();
             }
-        }));
+        });
     }
     let name = file.path.display().to_string();
     let mut transcript = String::new();
     let blocks = file.setup.iter().chain(std::iter::once(&test.body));
     for block in blocks {
-        let result = interp.run_text(&name, &block.text);
-        drain(&mut interp, &mut transcript);
-        if let Err(d) = result {
-            transcript.push_str(&interp.sources.render(&d));
+        let result = agent.source_text(&name, &block.text);
+        drain(&mut agent, &mut transcript);
+        if let Err(e) = result {
+            transcript.push_str(&e.render());
             return TestResult {
-                outcome: Outcome::Failed(format!("error while loading: {}", d.message)),
-                decisions: interp.agent.decider.decisions,
+                outcome: Outcome::Failed(format!("error while loading: {}", e.message())),
+                decisions: agent.decisions(),
                 transcript,
             };
         }
     }
     // A block may already have run the agent to its end.
     if outcome.borrow().is_none() {
-        let result = interp.run_text("soarunit", &format!("run {}", opts.decision_limit));
-        drain(&mut interp, &mut transcript);
-        if let Err(d) = result {
-            transcript.push_str(&interp.sources.render(&d));
+        let result = agent.source_text("soarunit", &format!("run {}", opts.decision_limit));
+        drain(&mut agent, &mut transcript);
+        if let Err(e) = result {
+            transcript.push_str(&e.render());
         }
     }
-    let decisions = interp.agent.decider.decisions;
+    let decisions = agent.decisions();
     let outcome = match outcome.borrow().clone() {
         Some(o) => o,
-        None if interp.agent.decider.halted => {
+        None if agent.is_halted() => {
             Outcome::Failed("the agent halted without calling (pass) or (fail)".into())
         }
         None => Outcome::Failed(format!(
@@ -329,7 +329,7 @@ fn run_file(path: &Path, opts: &Options, out: &mut dyn std::io::Write, summary: 
     let file = match parse(path, &text) {
         Ok(f) => f,
         Err(d) => {
-            let mut map = rusoar::source::SourceMap::new();
+            let mut map = rusoar::syntax::SourceMap::new();
             map.add(path.display().to_string(), text.as_str());
             let _ = write!(out, "{}", map.render(&d));
             summary.broken_files += 1;

@@ -1,8 +1,7 @@
 //! The `rusoar` binary without a terminal (`--source`, `-c`, standard input), and the thesis
 //! rules loading through the library with no error.
 
-use rusoar::commands::{Event, Interpreter};
-use rusoar::source::Severity;
+use rusoar::{Agent, Printed};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -165,18 +164,18 @@ fn soar_files(dir: &Path, out: &mut Vec<PathBuf>) {
 }
 
 /// Sources `rel` (relative to the repository) and returns the error diagnostics it printed.
-fn source_errors(interp: &mut Interpreter, rel: &str) -> Vec<String> {
-    let result = interp.run_text("<test>", &format!("source {{{rel}}}"));
+fn source_errors(interp: &mut Agent, rel: &str) -> Vec<String> {
+    let result = interp.source_text("<test>", &format!("source {{{rel}}}"));
     let mut errors: Vec<String> = interp
-        .take_events()
+        .take_printed()
         .into_iter()
         .filter_map(|e| match e {
-            Event::Diag(d) if d.severity == Severity::Error => Some(d.message),
+            Printed::Diagnostic(d) if !d.is_warning() => Some(d.message()),
             _ => None,
         })
         .collect();
     if let Err(d) = result {
-        errors.push(d.message);
+        errors.push(d.message());
     }
     errors
 }
@@ -184,13 +183,13 @@ fn source_errors(interp: &mut Interpreter, rel: &str) -> Vec<String> {
 #[test]
 fn all_of_rules_loads_with_zero_errors() {
     // The whole agent, as the thesis loads it.
-    let mut interp = Interpreter::new();
-    interp.set_cwd(root());
+    let mut interp = Agent::default();
+    interp.set_working_directory(root());
     let errors = source_errors(&mut interp, "rules/robotagent.soar");
     assert!(errors.is_empty(), "{errors:#?}");
-    assert_eq!(interp.report.added, 36);
-    assert_eq!(interp.report.per_file.len(), 8);
-    assert_eq!(interp.agent.production_count(), 36);
+    assert_eq!(interp.load_report().added(), 36);
+    assert_eq!(interp.load_report().files().count(), 8);
+    assert_eq!(interp.production_count(), 36);
 
     // And every file on its own.
     let mut files = Vec::new();
@@ -203,8 +202,8 @@ fn all_of_rules_loads_with_zero_errors() {
             .unwrap()
             .to_string_lossy()
             .into_owned();
-        let mut interp = Interpreter::new();
-        interp.set_cwd(root());
+        let mut interp = Agent::default();
+        interp.set_working_directory(root());
         let errors = source_errors(&mut interp, &rel);
         assert!(errors.is_empty(), "{rel}: {errors:#?}");
     }

@@ -6,15 +6,15 @@
 mod common;
 
 use common::mask_decimals;
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 use rusoar_cli::repl::transcript;
 use std::path::Path;
 
 /// An interpreter working in `path`'s directory, as if started there.
-fn interpreter_at(path: &Path) -> Interpreter {
-    let mut interp = Interpreter::new();
+fn interpreter_at(path: &Path) -> Agent {
+    let mut interp = Agent::default();
     let dir = path.parent().expect("a file in a directory");
-    interp.set_cwd(dir.canonicalize().expect("the data directory exists"));
+    interp.set_working_directory(dir.canonicalize().expect("the data directory exists"));
     interp
 }
 

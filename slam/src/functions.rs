@@ -20,7 +20,7 @@
 //!
 //! [`register`] puts all three on an agent under the names the rules use.
 
-use rusoar::agent::Agent;
+use rusoar::Agent;
 
 use super::fixed::fixed;
 use super::sonar::{Transducer, P2DX_SONARS};
@@ -31,17 +31,17 @@ pub const FUNCTION_NAMES: [&str; 3] = ["getlength", "checkwallrelation", "getwal
 /// Registers [`getlength`], [`checkwallrelation`] and [`getwalldistance`] (with the Pioneer
 /// 2-DX sonar table, the one the simulator reads with) on `agent`.
 pub fn register(agent: &mut Agent) {
-    agent.register_rhs_function("getlength", |_, args| getlength(args));
-    agent.register_rhs_function("checkwallrelation", |_, args| checkwallrelation(args));
-    agent.register_rhs_function("getwalldistance", |_, args| getwalldistance(args));
+    agent.register_sml_rhs_function("getlength", |_, args| getlength(args));
+    agent.register_sml_rhs_function("checkwallrelation", |_, args| checkwallrelation(args));
+    agent.register_sml_rhs_function("getwalldistance", |_, args| getwalldistance(args));
     // The same functions on the numbers themselves, which `exec` passes when the rules
     // separate their numeric arguments with commas, as the thesis's rules do (no printing
     // and reading back of 360,000 argument strings in a 600-s run).
-    agent.register_rhs_numeric("getlength", |n| Some(getlength_of(n.try_into().ok()?)));
-    agent.register_rhs_numeric("checkwallrelation", |n| {
+    agent.register_sml_rhs_numeric_form("getlength", |n| Some(getlength_of(n.try_into().ok()?)));
+    agent.register_sml_rhs_numeric_form("checkwallrelation", |n| {
         Some(checkwallrelation_of(n.try_into().ok()))
     });
-    agent.register_rhs_numeric("getwalldistance", |n| {
+    agent.register_sml_rhs_numeric_form("getwalldistance", |n| {
         Some(getwalldistance_of(n.try_into().ok(), &P2DX_SONARS))
     });
 }
@@ -213,7 +213,7 @@ fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rusoar::decide::cycle::RunUnit;
+    use rusoar::RunUnit;
 
     #[test]
     fn parses_soar_argument_strings() {
@@ -393,13 +393,10 @@ mod tests {
         let mut agent = Agent::new("t");
         register(&mut agent);
         for name in FUNCTION_NAMES {
-            assert!(agent.rhs_registry.is_registered(name), "{name}");
+            assert!(agent.has_rhs_function(name), "{name}");
         }
-        let mut interp = rusoar::commands::Interpreter::new();
-        interp.agent = agent;
-        interp
-            .run_text(
-                "test",
+        agent
+            .execute(
                 "sp {t (state <s> ^superstate nil) -->
                    (<s> ^len (int (exec getlength 3025 |, | -900 |, | 3025.000000 |, | 1100))
                         ^rel (exec checkwallrelation 0 |, | 0 |, | 0 |, | 3000 |, | -895 |, | 3000 |, | 1105)
@@ -407,14 +404,14 @@ mod tests {
                         ^miss (int (exec getwalldistance 0 |, | 0 |, | 0 |, | 0 |, | -500 |, | -1136 |, | 500 |, | -1136)))}",
             )
             .unwrap();
-        interp.agent.settings.trace.set_level(0);
-        interp.agent.run(1, RunUnit::Decisions);
-        let a = &interp.agent;
+        agent.set_trace_level(0);
+        agent.run(1, RunUnit::Decisions).unwrap();
+        let a = &agent;
         let value = |attr: &str| -> String {
-            a.wm.of_id(a.top.state)
-                .filter_map(|w| a.wm.get(w))
-                .find(|w| a.symbols.plain(w.attr) == attr)
-                .map(|w| a.symbols.plain(w.value))
+            a.children(a.top_state())
+                .iter()
+                .find(|w| a.text(w.attr) == attr)
+                .map(|w| a.text(w.value))
                 .unwrap_or_default()
         };
         assert_eq!(value("len"), "2000");

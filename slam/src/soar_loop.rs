@@ -46,12 +46,7 @@ use std::path::{Path, PathBuf};
 use std::rc::Rc;
 use std::time::{Duration, Instant};
 
-use rusoar::agent::Agent;
-use rusoar::commands::Interpreter;
-use rusoar::decide::cycle::RunUnit;
-use rusoar::io::Value;
-use rusoar::symbols::Sym;
-use rusoar::wm::WmeId;
+use rusoar::{Agent, InputUpdate, InputWme, Io, RunUnit, Symbol as Sym};
 
 use super::fixed::{push_fixed, push_u64};
 use super::geom::{deg_0_360, Pose};
@@ -379,18 +374,18 @@ impl RunResult {
     }
 }
 
-/// Ids of the `^currentrobotdata` WMEs that change every step.
+/// The `^currentrobotdata` WMEs that change every step.
 struct RobotIo {
-    x: WmeId,
-    y: WmeId,
-    th: WmeId,
-    ranges: [WmeId; NUM_SONARS],
+    x: InputWme,
+    y: InputWme,
+    th: InputWme,
+    ranges: [InputWme; NUM_SONARS],
 }
 
 /// A wall on the input-link.
 struct InputWall {
     /// `(wallData ^Wall <id>)`.
-    wme: WmeId,
+    wme: InputWme,
     id: Sym,
     /// The extraction that made it.
     extraction: u64,
@@ -413,6 +408,8 @@ struct Env {
     stats: RunStats,
     sample_at: Option<u64>,
     sample: Option<(f64, Box<Extraction>)>,
+    /// What went wrong in an input or output phase (the run then stops).
+    io_error: Option<String>,
 }
 
 fn heading_0_359(p: &Pose) -> i64 {
@@ -429,7 +426,7 @@ fn range_int(r: f64) -> i64 {
 
 impl Env {
     /// The input phase: step the simulator, run the pipeline when due, write the input-link.
-    fn input(&mut self, agent: &mut Agent) {
+    fn input(&mut self, agent: &mut Io) -> Result<(), rusoar::Error> {
         let s = self.sim.tick();
         self.steps += 1;
         if let Some(log) = &mut self.log {
@@ -444,17 +441,17 @@ impl Env {
         match &mut self.robot {
             None => {
                 let il = agent.input_link();
-                let (_, data) = agent.add_input_object(il, "currentrobotdata");
-                let xw = agent.add_input(data, "X", x);
-                let yw = agent.add_input(data, "Y", y);
-                let thw = agent.add_input(data, "Th", th);
-                let mut ranges = [WmeId(0); NUM_SONARS];
+                let (_, data) = agent.add_object(il, "currentrobotdata")?;
+                let xw = agent.add(data, "X", x)?;
+                let yw = agent.add(data, "Y", y)?;
+                let thw = agent.add(data, "Th", th)?;
+                let mut ranges = [xw; NUM_SONARS];
                 for (i, slot) in ranges.iter_mut().enumerate() {
-                    let (_, so) = agent.add_input_object(data, "sonar");
-                    agent.add_input(so, "index", i as i64);
-                    *slot = agent.add_input(so, "range", range_int(s.ranges_mm[i]));
+                    let (_, so) = agent.add_object(data, "sonar")?;
+                    agent.add(so, "index", i as i64)?;
+                    *slot = agent.add(so, "range", range_int(s.ranges_mm[i]))?;
                 }
-                let (_, wd) = agent.add_input_object(il, "wallData");
+                let (_, wd) = agent.add_object(il, "wallData")?;
                 self.wall_data = Some(wd);
                 if let Some(log) = &mut self.log {
                     let ranges = s.ranges_mm.map(range_int);
@@ -469,25 +466,15 @@ impl Env {
             }
             Some(io) => {
                 // In one input phase, as SML sends them; the kernel applies them in 9.6's
-                // order (new values first, then the old ones go).
-                let mut changes = vec![
-                    (io.x, Value::Int(x)),
-                    (io.y, Value::Int(y)),
-                    (io.th, Value::Int(th)),
-                ];
+                // order (new values first, then the old ones go). An unchanged value is left
+                // alone (the agent is set to skip it).
+                let mut changes = vec![(io.x, x), (io.y, y), (io.th, th)];
                 for (i, w) in io.ranges.iter().enumerate() {
-                    changes.push((*w, Value::Int(range_int(s.ranges_mm[i]))));
+                    changes.push((*w, range_int(s.ranges_mm[i])));
                 }
-                let now = agent.update_inputs(&changes);
-                if let Some(log) = &mut self.log {
-                    let old = [io.x, io.y, io.th].into_iter().chain(io.ranges);
-                    for (i, (before, after)) in old.zip(now.iter()).enumerate() {
-                        if before == *after {
-                            continue;
-                        }
-                        let Value::Int(v) = changes[i].1 else {
-                            continue;
-                        };
+                for (i, (w, v)) in changes.into_iter().enumerate() {
+                    let changed = agent.update(w, v)?;
+                    if let (true, Some(log)) = (changed, &mut self.log) {
                         match i {
                             0 => log.update("X", v),
                             1 => log.update("Y", v),
@@ -496,11 +483,9 @@ impl Env {
                         }
                     }
                 }
-                (io.x, io.y, io.th) = (now[0], now[1], now[2]);
-                io.ranges.copy_from_slice(&now[3..]);
             }
         }
-        self.tidy_input_walls(agent);
+        self.tidy_input_walls(agent)?;
         if self.window.len() == self.settings.scan_window.max(1) {
             self.window.pop_front();
         }
@@ -514,7 +499,7 @@ impl Env {
             let out = pipeline::run(&self.window, &P2DX_SONARS, &self.settings, time);
             self.stats.extractions += 1;
             for wall in &out.walls {
-                self.add_wall(agent, wall);
+                self.add_wall(agent, wall)?;
             }
             self.stats.extracted.extend(out.walls.iter().cloned());
             let wanted = self
@@ -524,23 +509,18 @@ impl Env {
                 self.sample = Some((self.sim.time_s(), Box::new(out)));
             }
         }
+        Ok(())
     }
 
     /// Removes input walls CopyWall has copied, and those nobody copied in time.
-    fn tidy_input_walls(&mut self, agent: &mut Agent) {
+    fn tidy_input_walls(&mut self, agent: &mut Io) -> Result<(), rusoar::Error> {
         if self.input_walls.is_empty() {
-            return;
+            return Ok(());
         }
-        let copied_attr = agent.symbols.find_str("Copied");
         let now = self.stats.extractions;
         let mut keep = Vec::with_capacity(self.input_walls.len());
         for w in std::mem::take(&mut self.input_walls) {
-            let copied = copied_attr.is_some_and(|a| {
-                agent
-                    .wm
-                    .of_id(w.id)
-                    .any(|x| agent.wm.get(x).is_some_and(|m| m.attr == a))
-            });
+            let copied = agent.has_attribute(w.id, "Copied");
             let log_removal = |log: &mut Option<IoLog>| {
                 if let Some(log) = log {
                     log.remove_wall(w.serial);
@@ -548,40 +528,43 @@ impl Env {
             };
             if copied {
                 log_removal(&mut self.log);
-                agent.remove_input(w.wme);
+                agent.remove(w.wme)?;
                 self.stats.walls_copied += 1;
             } else if self
                 .expire_after
                 .is_some_and(|n| now.saturating_sub(w.extraction) >= n.max(1))
             {
                 log_removal(&mut self.log);
-                agent.remove_input(w.wme);
+                agent.remove(w.wme)?;
                 self.stats.walls_expired += 1;
             } else {
                 keep.push(w);
             }
         }
         self.input_walls = keep;
+        Ok(())
     }
 
     /// Puts one extracted wall on the input-link (README §1.3).
-    fn add_wall(&mut self, agent: &mut Agent, wall: &Wall) {
-        let Some(wd) = self.wall_data else { return };
-        let (wme, id) = agent.add_input_object(wd, "Wall");
-        let (_, start) = agent.add_input_object(id, "Start");
-        agent.add_input(start, "X", wall.start.x);
-        agent.add_input(start, "Y", wall.start.y);
-        let (_, end) = agent.add_input_object(id, "End");
-        agent.add_input(end, "X", wall.end.x);
-        agent.add_input(end, "Y", wall.end.y);
-        let (_, reference) = agent.add_input_object(id, "Ref");
-        agent.add_input(reference, "X", wall.reference.x);
-        agent.add_input(reference, "Y", wall.reference.y);
-        agent.add_input(reference, "Th", wall.reference.th);
-        agent.add_input(id, "Length", wall.length);
-        agent.add_input(id, "R", wall.r);
-        agent.add_input(id, "Th", wall.th);
-        agent.add_input(id, "Time", wall.time);
+    fn add_wall(&mut self, agent: &mut Io, wall: &Wall) -> Result<(), rusoar::Error> {
+        let Some(wd) = self.wall_data else {
+            return Ok(());
+        };
+        let (wme, id) = agent.add_object(wd, "Wall")?;
+        let (_, start) = agent.add_object(id, "Start")?;
+        agent.add(start, "X", wall.start.x)?;
+        agent.add(start, "Y", wall.start.y)?;
+        let (_, end) = agent.add_object(id, "End")?;
+        agent.add(end, "X", wall.end.x)?;
+        agent.add(end, "Y", wall.end.y)?;
+        let (_, reference) = agent.add_object(id, "Ref")?;
+        agent.add(reference, "X", wall.reference.x)?;
+        agent.add(reference, "Y", wall.reference.y)?;
+        agent.add(reference, "Th", wall.reference.th)?;
+        agent.add(id, "Length", wall.length)?;
+        agent.add(id, "R", wall.r)?;
+        agent.add(id, "Th", wall.th)?;
+        agent.add(id, "Time", wall.time)?;
         self.stats.walls_extracted += 1;
         let serial = self.stats.walls_extracted;
         if let Some(log) = &mut self.log {
@@ -593,29 +576,24 @@ impl Env {
             extraction: self.stats.extractions,
             serial,
         });
+        Ok(())
     }
 
     /// The output phase: carry out each new command once and mark it done.
-    fn output(&mut self, agent: &mut Agent) {
+    fn output(&mut self, agent: &mut Io) -> Result<(), rusoar::Error> {
         for cmd in agent.new_output_commands() {
-            if cmd.params.iter().any(|(a, _)| a == "status") {
+            if cmd.param("status").is_some() {
                 continue;
             }
             if let Some(log) = &mut self.log {
                 let params: Vec<(String, String)> = cmd
                     .params
                     .iter()
-                    .map(|(a, v)| (a.clone(), agent.symbols.text(*v)))
+                    .map(|(a, v)| (a.clone(), agent.value_text(v)))
                     .collect();
                 log.command(&cmd.name, &params);
             }
-            let param = |name: &str| -> Option<f64> {
-                cmd.params
-                    .iter()
-                    .find(|(a, _)| a == name)
-                    .and_then(|(_, v)| agent.number(*v))
-                    .filter(|v| v.is_finite())
-            };
+            let param = |name: &str| -> Option<f64> { cmd.number(name).filter(|v| v.is_finite()) };
             let done = match cmd.name.as_str() {
                 "move" => param("param1").map(|v| {
                     self.sim.set_vel_mm_s(v);
@@ -645,7 +623,7 @@ impl Env {
                         let params: Vec<String> = cmd
                             .params
                             .iter()
-                            .map(|(a, v)| format!("^{a} {}", agent.symbols.text(*v)))
+                            .map(|(a, v)| format!("^{a} {}", agent.value_text(v)))
                             .collect();
                         self.stats.bad_commands.push(format!(
                             "step {}: ({} {})",
@@ -656,8 +634,9 @@ impl Env {
                     }
                 }
             }
-            agent.mark_done(cmd.id);
+            agent.mark_done(&cmd)?;
         }
+        Ok(())
     }
 
     /// `setOdometry`: overwrite the believed pose and carry the scan window into the new frame.
@@ -738,7 +717,7 @@ struct Names {
 /// The agent with the thesis rules, the simulator and the pipeline, stepped one decision at a
 /// time.
 pub struct SoarRobot {
-    interp: Interpreter,
+    agent: Agent,
     env: Rc<RefCell<Env>>,
     names: Names,
     productions: usize,
@@ -747,7 +726,7 @@ pub struct SoarRobot {
 
 /// Loads `robotagent.soar` from `rules_dir` into `interp`, without its `source slam.soar` line
 /// when `slam` is off (the file itself is never changed). Returns the productions loaded.
-pub fn load_rules(interp: &mut Interpreter, rules_dir: &Path, slam: bool) -> Result<usize, String> {
+pub fn load_rules(agent: &mut Agent, rules_dir: &Path, slam: bool) -> Result<usize, String> {
     let path = rules_dir.join("robotagent.soar");
     let text = std::fs::read_to_string(&path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
@@ -769,29 +748,30 @@ pub fn load_rules(interp: &mut Interpreter, rules_dir: &Path, slam: bool) -> Res
             path.display()
         ));
     }
-    interp.set_cwd(rules_dir.to_path_buf());
-    let before = interp.agent.production_count();
+    agent.set_working_directory(rules_dir);
+    let before = agent.production_count();
     let name = path.display().to_string();
-    interp
-        .run_text(&name, &kept)
-        .map_err(|d| format!("loading the rules failed:\n{}", interp.sources.render(&d)))?;
-    Ok(interp.agent.production_count() - before)
+    agent
+        .source_text(&name, &kept)
+        .map_err(|e| format!("loading the rules failed:\n{}", e.render()))?;
+    Ok(agent.production_count() - before)
 }
 
 impl SoarRobot {
     /// Loads the rules, registers the `exec` functions, seeds the agent and hooks the
     /// simulator to the agent's input and output phases.
     pub fn new(cfg: &LoopConfig) -> Result<Self, String> {
-        let mut interp = Interpreter::new();
-        let productions = load_rules(&mut interp, &cfg.rules_dir, cfg.slam)?;
-        interp
-            .run_text("srand", &format!("srand {}", cfg.seed % (1 << 32)))
-            .map_err(|d| interp.sources.render(&d))?;
-        let load_log = interp.take_output();
-        let agent = &mut interp.agent;
-        agent.output.clear();
-        agent.settings.trace.set_level(1);
-        super::functions::register(agent);
+        let mut agent = Agent::new("soar");
+        let productions = load_rules(&mut agent, &cfg.rules_dir, cfg.slam)?;
+        agent
+            .source_text("srand", &format!("srand {}", cfg.seed % (1 << 32)))
+            .map_err(|e| e.render())?;
+        let load_log = agent.take_output();
+        agent.set_trace_level(1);
+        // The input-link changes only what changed, as the replay in the official kernel
+        // (scripts/slam_oracle.py) sends it.
+        agent.set_input_update(InputUpdate::SkipIfNoChange);
+        super::functions::register(&mut agent);
         let env = Rc::new(RefCell::new(Env {
             log: cfg.io_log.then(IoLog::default),
             sim: Simulator::new(cfg.world.clone(), cfg.seed),
@@ -806,13 +786,26 @@ impl SoarRobot {
             stats: RunStats::default(),
             sample_at: cfg.sample_extraction_at,
             sample: None,
+            io_error: None,
         }));
         let e = Rc::clone(&env);
-        agent.input_callback = Some(Box::new(move |a: &mut Agent| e.borrow_mut().input(a)));
+        agent.on_input_phase(move |io| {
+            let mut env = e.borrow_mut();
+            if let Err(why) = env.input(io) {
+                env.io_error.get_or_insert(format!("input phase: {why}"));
+                io.stop();
+            }
+        });
         let e = Rc::clone(&env);
-        agent.output_callback = Some(Box::new(move |a: &mut Agent| e.borrow_mut().output(a)));
+        agent.on_output_phase(move |io| {
+            let mut env = e.borrow_mut();
+            if let Err(why) = env.output(io) {
+                env.io_error.get_or_insert(format!("output phase: {why}"));
+                io.stop();
+            }
+        });
         Ok(SoarRobot {
-            interp,
+            agent,
             env,
             names: Names::default(),
             productions,
@@ -822,12 +815,12 @@ impl SoarRobot {
 
     /// The agent.
     pub fn agent(&self) -> &Agent {
-        &self.interp.agent
+        &self.agent
     }
 
     /// The agent, to inspect or change it between steps.
     pub fn agent_mut(&mut self) -> &mut Agent {
-        &mut self.interp.agent
+        &mut self.agent
     }
 
     /// Productions loaded.
@@ -853,25 +846,30 @@ impl SoarRobot {
     /// Counters so far (decisions and firings filled in).
     pub fn stats(&self) -> RunStats {
         let mut s = self.env.borrow().stats.clone();
-        s.decisions = self.interp.agent.decider.decisions;
-        s.firings = self.interp.agent.decider.firings;
+        s.decisions = self.agent.decisions();
+        s.firings = self.agent.firings();
         s
     }
 
     /// One decision cycle and one simulator step; the step's record, or how the run ended.
     pub fn step(&mut self) -> Result<StepRecord, Outcome> {
-        let agent = &mut self.interp.agent;
-        if agent.decider.halted {
+        let agent = &mut self.agent;
+        if agent.is_halted() {
             return Err(self.halted("the agent was already halted"));
         }
         let steps_before = self.env.borrow().steps;
-        agent.run(1, RunUnit::Decisions);
-        let text = std::mem::take(&mut agent.output);
+        agent
+            .run(1, RunUnit::Decisions)
+            .map_err(|e| Outcome::Failed(e.to_string()))?;
+        let text = agent.take_output();
         let trace = parse_trace(&text);
-        let halted = agent.decider.halted;
+        let halted = agent.is_halted();
+        if let Some(why) = self.env.borrow_mut().io_error.take() {
+            return Err(Outcome::Failed(why));
+        }
         {
             let mut env = self.env.borrow_mut();
-            let firings = agent.decider.firings;
+            let firings = agent.firings();
             if let Some(log) = &mut env.log {
                 log.decided(firings, &trace.operators);
             }
@@ -913,7 +911,7 @@ impl SoarRobot {
             walls_input: env.input_walls.len(),
             walls_extracted: env.stats.walls_extracted,
             corrections: env.corrections,
-            wm_size: self.interp.agent.wm.len(),
+            wm_size: self.agent.wme_count(),
             operators: trace.operators.join(" "),
         })
     }
@@ -929,15 +927,15 @@ impl SoarRobot {
 
     /// The top state's `^wallData` identifier, once the rules made it.
     fn wall_data(&mut self) -> Option<Sym> {
-        let a = &self.interp.agent;
+        let a = &self.agent;
         if self.names.wall_data.is_none() {
-            self.names.wall_data = a.symbols.find_str("wallData");
+            self.names.wall_data = a.find_string("wallData");
         }
         if self.names.wall.is_none() {
-            self.names.wall = a.symbols.find_str("Wall");
+            self.names.wall = a.find_string("Wall");
         }
         let attr = self.names.wall_data?;
-        child(a, a.top.state, attr)
+        child(a, a.top_state(), attr)
     }
 
     /// `^Wall` objects under the top state's `^wallData`.
@@ -946,9 +944,9 @@ impl SoarRobot {
         let Some(wall) = self.names.wall else {
             return 0;
         };
-        let a = &self.interp.agent;
-        a.wm.of_id(wd)
-            .filter_map(|w| a.wm.get(w))
+        self.agent
+            .children(wd)
+            .iter()
             .filter(|w| w.attr == wall && !w.acceptable)
             .count()
     }
@@ -958,16 +956,15 @@ impl SoarRobot {
         let Some(wd) = self.wall_data() else {
             return Vec::new();
         };
-        let a = &self.interp.agent;
+        let a = &self.agent;
         let num = |id: Sym, attr: &str| -> f64 {
-            a.symbols
-                .find_str(attr)
+            a.find_string(attr)
                 .and_then(|s| child(a, id, s))
-                .and_then(|v| a.number(v))
+                .and_then(|v| a.value_of(v).as_number())
                 .unwrap_or(f64::NAN)
         };
         let point = |id: Sym, attr: &str| -> (f64, f64) {
-            match a.symbols.find_str(attr).and_then(|s| child(a, id, s)) {
+            match a.find_string(attr).and_then(|s| child(a, id, s)) {
                 Some(p) => (num(p, "X"), num(p, "Y")),
                 None => (f64::NAN, f64::NAN),
             }
@@ -975,9 +972,9 @@ impl SoarRobot {
         let Some(wall) = self.names.wall else {
             return Vec::new();
         };
-        a.wm.of_id(wd)
-            .filter_map(|w| a.wm.get(w))
-            .filter(|w| w.attr == wall && !w.acceptable && a.symbols.is_id(w.value))
+        a.children(wd)
+            .iter()
+            .filter(|w| w.attr == wall && !w.acceptable && a.is_identifier(w.value))
             .map(|w| MemoryWall {
                 r: num(w.value, "R"),
                 th: num(w.value, "Th"),
@@ -992,8 +989,8 @@ impl SoarRobot {
 
 /// The first non-acceptable value of `(id ^attr ...)`.
 fn child(a: &Agent, id: Sym, attr: Sym) -> Option<Sym> {
-    a.wm.of_id(id)
-        .filter_map(|w| a.wm.get(w))
+    a.children(id)
+        .iter()
         .find(|w| w.attr == attr && !w.acceptable)
         .map(|w| w.value)
 }
@@ -1159,13 +1156,11 @@ mod tests {
 
     #[test]
     fn slam_off_loads_only_the_moving_rules() {
-        let mut interp = Interpreter::new();
-        let n = load_rules(&mut interp, &default_rules_dir(), false).unwrap();
+        let n = load_rules(&mut Agent::default(), &default_rules_dir(), false).unwrap();
         assert_eq!(n, 9);
-        let mut interp = Interpreter::new();
-        let n = load_rules(&mut interp, &default_rules_dir(), true).unwrap();
+        let n = load_rules(&mut Agent::default(), &default_rules_dir(), true).unwrap();
         assert_eq!(n, 36);
-        let err = load_rules(&mut Interpreter::new(), Path::new("/nonexistent"), true);
+        let err = load_rules(&mut Agent::default(), Path::new("/nonexistent"), true);
         assert!(err.unwrap_err().contains("cannot read"));
     }
 
@@ -1265,9 +1260,9 @@ mod tests {
     /// on (`rules/README.md` §4): the reject is a result with o-support (spec §3c).
     #[test]
     fn o_reject_from_a_substate_retires_the_operator() {
-        let mut interp = Interpreter::new();
-        interp
-            .run_text(
+        let mut agent = Agent::default();
+        agent
+            .source_text(
                 "repro",
                 "sp {top*propose*check (state <s> ^superstate nil)
                   --> (<s> ^operator <o> + =) (<o> ^name check)}
@@ -1281,10 +1276,9 @@ mod tests {
                   --> (<top> ^operator <o> -)}",
             )
             .unwrap();
-        let agent = &mut interp.agent;
-        agent.output.clear();
-        agent.run(10, RunUnit::Decisions);
-        let t = parse_trace(&agent.output);
+        agent.take_output();
+        agent.run(10, RunUnit::Decisions).unwrap();
+        let t = parse_trace(&agent.take_output());
         assert_eq!(
             t.operators.iter().filter(|o| *o == "check").count(),
             1,

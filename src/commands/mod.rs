@@ -74,13 +74,35 @@ pub enum Event {
     Diag(Diagnostic),
 }
 
-/// Productions loaded per file by `source`, for the load report.
+/// What `source` has loaded: the rules per file, and how many replaced or repeated a rule.
 #[derive(Debug, Default, Clone)]
 pub struct LoadReport {
-    pub per_file: IndexMap<PathBuf, usize>,
-    pub added: usize,
-    pub excised: usize,
-    pub ignored: usize,
+    pub(crate) per_file: IndexMap<PathBuf, usize>,
+    pub(crate) added: usize,
+    pub(crate) excised: usize,
+    pub(crate) ignored: usize,
+}
+
+impl LoadReport {
+    /// Each sourced file with the rules it added, in the order the files were first read.
+    pub fn files(&self) -> impl Iterator<Item = (&std::path::Path, usize)> {
+        self.per_file.iter().map(|(p, n)| (p.as_path(), *n))
+    }
+
+    /// Rules added.
+    pub fn added(&self) -> usize {
+        self.added
+    }
+
+    /// Rules that replaced a rule of the same name (which was excised).
+    pub fn excised(&self) -> usize {
+        self.excised
+    }
+
+    /// Rules ignored because an identical rule was already loaded.
+    pub fn ignored(&self) -> usize {
+        self.ignored
+    }
 }
 
 pub struct Interpreter {
@@ -166,6 +188,21 @@ impl Interpreter {
     /// was printed before the run first, so a terminal shows a long run while it goes on.
     pub fn set_live_output(&mut self, sink: LiveSink) {
         self.live = Some(sink);
+    }
+
+    /// Stops sending the trace to a live sink: it stays on the print stream.
+    pub fn clear_live_output(&mut self) {
+        self.live = None;
+    }
+
+    /// How many printed events are waiting.
+    pub(crate) fn event_count(&self) -> usize {
+        self.events.len()
+    }
+
+    /// Takes the printed events from place `start` on.
+    pub(crate) fn take_events_from(&mut self, start: usize) -> Vec<Event> {
+        self.events.split_off(start.min(self.events.len()))
     }
 
     /// The alias table (for completion and `help`).

@@ -18,6 +18,21 @@ fn run_count(word: &str) -> Result<u64, &'static str> {
     u64::try_from(n).map_err(|_| "Count must be positive.")
 }
 
+/// How a run went (see [`Interpreter::run_agent`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub(crate) struct RunReport {
+    /// Decision cycles, as `run` reports them.
+    pub decisions: u64,
+    /// Rule firings.
+    pub fired: u64,
+    /// The agent is halted (now, whether or not it halted in this run).
+    pub halted: bool,
+    /// A stop request, an interrupt flag or the `interrupt` RHS function ended the run.
+    pub interrupted: bool,
+    /// The goal stack reached `max-goal-depth`.
+    pub depth_exceeded: bool,
+}
+
 impl Interpreter {
     /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
     /// decisions; a unit alone is one of it (spec §6a).
@@ -58,6 +73,37 @@ impl Interpreter {
         };
         // 9.6 runs one unit for a count of 0 (checked on the official kernel).
         let n = count.unwrap_or(1).max(1);
+        let RunReport {
+            decisions, fired, ..
+        } = self.run_agent(n, unit);
+        let dc = match decisions {
+            0 | 1 => format!("{decisions} decision cycle executed."),
+            d => format!("{d} decision cycles executed."),
+        };
+        let rules = match fired {
+            0 => "No rules fired.".to_string(),
+            1 => "1 rule fired.".to_string(),
+            f => format!("{f} rules fired."),
+        };
+        let halted = if self.agent.decider.halted {
+            "\nAn agent halted during the run."
+        } else if self.agent.decider.depth_exceeded || self.agent.decider.rhs_interrupted {
+            "\nRun stopped (interrupted)."
+        } else {
+            ""
+        };
+        // 9.6 adds how many rules the run learned (spec §4, E:t13).
+        let learned = match self.agent.learn.learned_this_run {
+            0 => String::new(),
+            1 => "1 new rule learned.".to_string(),
+            n => format!("{n} new rules learned."),
+        };
+        Ok(format!("\n\n--> {dc} {rules} {learned}{halted}"))
+    }
+
+    /// Runs the agent `n` units as `run` does: the trace goes to the print stream, with
+    /// 9.6's notices of a halt or an interrupt; the report says how it ended.
+    pub(crate) fn run_agent(&mut self, n: u64, unit: RunUnit) -> RunReport {
         let dc_before = self.agent.decider.d_cycle_count;
         let halted_before = self.agent.decider.halted;
         // A halted agent does not run (and 9.6 prints no second "System halted.").
@@ -100,29 +146,15 @@ impl Interpreter {
         // reports "0 decision cycle" (singular, as printed by 9.6).
         let last_dc = if dc_before > 1 { dc_before } else { 0 };
         let decisions = self.agent.decider.d_cycle_count.saturating_sub(last_dc);
-        let dc = match decisions {
-            0 | 1 => format!("{decisions} decision cycle executed."),
-            d => format!("{d} decision cycles executed."),
-        };
-        let rules = match fired {
-            0 => "No rules fired.".to_string(),
-            1 => "1 rule fired.".to_string(),
-            f => format!("{f} rules fired."),
-        };
-        let halted = if self.agent.decider.halted {
-            "\nAn agent halted during the run."
-        } else if self.agent.decider.depth_exceeded || self.agent.decider.rhs_interrupted {
-            "\nRun stopped (interrupted)."
-        } else {
-            ""
-        };
-        // 9.6 adds how many rules the run learned (spec §4, E:t13).
-        let learned = match self.agent.learn.learned_this_run {
-            0 => String::new(),
-            1 => "1 new rule learned.".to_string(),
-            n => format!("{n} new rules learned."),
-        };
-        Ok(format!("\n\n--> {dc} {rules} {learned}{halted}"))
+        RunReport {
+            decisions,
+            fired,
+            halted: self.agent.decider.halted,
+            interrupted: interrupted
+                || self.agent.decider.rhs_interrupted
+                || (self.agent.decider.stop_requested && !self.agent.decider.halted),
+            depth_exceeded: self.agent.decider.depth_exceeded,
+        }
     }
 
     /// Moves the agent's trace output into the event stream.
@@ -137,6 +169,7 @@ impl Interpreter {
     pub(super) fn cmd_init(&mut self) -> CmdResult {
         self.agent.init_soar();
         self.agent.print_initial_state();
+        self.agent.reinstate_inputs();
         self.flush_agent_output();
         Ok("\nAgent reinitialized.\n".into())
     }

@@ -1929,7 +1929,7 @@ impl Agent {
     /// counters and timetags start again; rules (and chunks) stay.
     pub fn init_soar(&mut self) {
         // Input changes not applied yet go with the rest of working memory.
-        self.input_queue.clear();
+        self.inputs.queue.clear();
         let all = self.wm.all();
         for w in all.into_iter().rev() {
             self.remove_wme(w);
@@ -1940,12 +1940,13 @@ impl Agent {
         self.learn.reset_for_init();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
-        self.output_reported = 0;
+        let old = self.top;
         self.top = crate::agent::create_top_state(
             &mut self.symbols,
             &mut self.wm,
             &mut self.rete,
             &mut self.matches,
+            Some(old),
         );
     }
 

@@ -248,9 +248,8 @@ impl Rete {
 #[cfg(test)]
 mod tests {
     use crate::commands::Interpreter;
-    use crate::io::Value;
+    use crate::io::{InputWme, Value};
     use crate::rng::Mt19937;
-    use crate::wm::WmeId;
 
     /// Rules in the SLAM agent's shape (the pose tested last, below many objects) and
     /// around it: negations, a conjunctive negation, shared prefixes, and a rule on the
@@ -283,57 +282,64 @@ sp {mark-th (state <s> ^io.input-link <il>) (<il> ^crd <c> ^obj <o>) (<c> ^Th <t
         let mut rng = Mt19937::new(seed);
         let mut below = move |n: u32| rng.next_u32() % n;
         let a = &mut i.agent;
+        a.set_input_update(crate::io::InputUpdate::SkipIfNoChange);
         let il = a.input_link();
-        let (_, c) = a.add_input_object(il, "crd");
-        let mut pose: Vec<WmeId> = ["X", "Y", "Th"]
+        let (_, c) = a.add_input_object(il, "crd").unwrap();
+        let pose: Vec<InputWme> = ["X", "Y", "Th"]
             .iter()
-            .map(|attr| a.add_input(c, attr, 0i64))
+            .map(|attr| a.add_input(c, attr, 0i64).unwrap())
             .collect();
-        type Obj = (WmeId, crate::symbols::Sym, Option<WmeId>, Option<WmeId>);
+        type Obj = (
+            InputWme,
+            crate::symbols::Sym,
+            Option<InputWme>,
+            Option<InputWme>,
+        );
         let mut objs: Vec<Obj> = Vec::new();
         let mut out = String::new();
         i.run_text("t", "watch 5").unwrap();
         for _ in 0..steps {
             let a = &mut i.agent;
             if objs.len() < 2 || below(4) == 0 {
-                let (w, o) = a.add_input_object(il, "obj");
-                a.add_input(o, "a", i64::from(below(3)));
+                let (w, o) = a.add_input_object(il, "obj").unwrap();
+                a.add_input(o, "a", i64::from(below(3))).unwrap();
                 objs.push((w, o, None, None));
             } else if below(5) == 0 {
                 let k = below(objs.len() as u32) as usize;
-                a.remove_input(objs.remove(k).0);
+                a.remove_input(objs.remove(k).0).unwrap();
             }
             if below(6) == 0 {
                 // Added and removed before one input phase: it passes through the matcher.
-                let (w, o) = a.add_input_object(il, "obj");
-                a.add_input(o, "a", i64::from(below(3)));
-                a.remove_input(w);
+                let (w, o) = a.add_input_object(il, "obj").unwrap();
+                a.add_input(o, "a", i64::from(below(3))).unwrap();
+                a.remove_input(w).unwrap();
             }
             for (_, o, flag, mark) in objs.iter_mut() {
                 if below(3) == 0 {
                     let v = Value::Int(i64::from(below(3)));
                     *mark = Some(match *mark {
-                        Some(m) => a.update_input(m, v),
-                        None => a.add_input(*o, "mark", v),
+                        Some(m) => {
+                            a.update_input(m, v).unwrap();
+                            m
+                        }
+                        None => a.add_input(*o, "mark", v).unwrap(),
                     });
                 } else if let (0, Some(m)) = (below(4), *mark) {
-                    a.remove_input(m);
+                    a.remove_input(m).unwrap();
                     *mark = None;
                 }
                 match (below(4), *flag) {
-                    (0, None) => *flag = Some(a.add_input(*o, "flag", "yes")),
+                    (0, None) => *flag = Some(a.add_input(*o, "flag", "yes").unwrap()),
                     (0, Some(f)) => {
-                        a.remove_input(f);
+                        a.remove_input(f).unwrap();
                         *flag = None;
                     }
                     _ => {}
                 }
             }
-            let changes: Vec<(WmeId, Value)> = pose
-                .iter()
-                .map(|&w| (w, Value::Int(i64::from(below(3)))))
-                .collect();
-            pose = a.update_inputs(&changes);
+            for &w in &pose {
+                a.update_input(w, Value::Int(i64::from(below(3)))).unwrap();
+            }
             i.run_text("t", "run 1").unwrap();
             out.push_str(&i.take_output());
         }
@@ -371,19 +377,20 @@ sp {mark-th (state <s> ^io.input-link <il>) (<il> ^crd <c> ^obj <o>) (<c> ^Th <t
         a.rete.doom.off = off;
         let il = a.input_link();
         for v in 0..10i64 {
-            let (_, o) = a.add_input_object(il, "obj");
-            a.add_input(o, "a", v);
+            let (_, o) = a.add_input_object(il, "obj").unwrap();
+            a.add_input(o, "a", v).unwrap();
         }
-        let (_, c) = a.add_input_object(il, "crd");
-        let pose: Vec<WmeId> = ["X", "Y", "Th"]
+        let (_, c) = a.add_input_object(il, "crd").unwrap();
+        let pose: Vec<InputWme> = ["X", "Y", "Th"]
             .iter()
-            .map(|attr| a.add_input(c, attr, 0i64))
+            .map(|attr| a.add_input(c, attr, 0i64).unwrap())
             .collect();
         i.run_text("t", "run 1").unwrap();
         let a = &mut i.agent;
         let before = a.rete.tokens_made;
-        let changes: Vec<(WmeId, Value)> = pose.iter().map(|&w| (w, Value::Int(1))).collect();
-        a.update_inputs(&changes);
+        for &w in &pose {
+            a.update_input(w, Value::Int(1)).unwrap();
+        }
         a.apply_input_changes();
         let queued = a.matches.assertions.iter();
         assert_eq!(

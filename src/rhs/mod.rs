@@ -29,6 +29,7 @@
 //! [`MAX_DICE`] dice (9.6 allocates and loops for ever; here an error), `timestamp` (local
 //! time in 9.6; UTC here, the same when `TZ` is UTC).
 
+pub mod host;
 mod math;
 mod numeric;
 pub mod table;
@@ -51,10 +52,12 @@ pub use text::{c_fixed, c_strtod, c_strtol, value_text, Erange};
 /// A function registered by the embedding program: `(agent name, argument string) -> result`.
 pub type RhsFn = Box<dyn FnMut(&str, &str) -> String>;
 
-/// Functions added by the embedding program, and the per-agent state of the built-ins
+/// Functions added by the embedding program (SML's string form, [`RhsFn`], or typed,
+/// [`host::TypedRhsFn`]), and the per-agent state of the built-ins
 /// that outlives one call (`make-constant-symbol`'s counter, `count`'s counters).
 pub struct Registry {
     functions: BTreeMap<String, RhsFn>,
+    typed: BTreeMap<String, host::TypedRhsFn>,
     /// Numeric forms of some of `functions` (see `numeric.rs`).
     numeric: BTreeMap<String, NumericRhsFn>,
     /// The numbers of the current numeric call (a reused buffer).
@@ -86,6 +89,7 @@ impl Registry {
     pub fn new() -> Self {
         Registry {
             functions: BTreeMap::new(),
+            typed: BTreeMap::new(),
             numeric: BTreeMap::new(),
             numbers: Vec::new(),
             mcs_counter: 1,
@@ -100,7 +104,14 @@ impl Registry {
     /// function.
     pub fn register(&mut self, name: &str, f: RhsFn) -> Option<RhsFn> {
         self.numeric.remove(name);
+        self.typed.remove(name);
         self.functions.insert(name.to_string(), f)
+    }
+
+    /// Registers a typed function under `name`, in place of any function of that name.
+    pub fn register_typed(&mut self, name: &str, f: host::TypedRhsFn) {
+        self.unregister(name);
+        self.typed.insert(name.to_string(), f);
     }
 
     /// Adds a numeric form to the function registered as `name` (false, and nothing added,
@@ -115,22 +126,22 @@ impl Registry {
         true
     }
 
-    pub fn unregister(&mut self, name: &str) -> Option<RhsFn> {
+    /// Removes the function registered as `name`; false when there was none.
+    pub fn unregister(&mut self, name: &str) -> bool {
         self.numeric.remove(name);
-        self.functions.remove(name)
+        let typed = self.typed.remove(name).is_some();
+        self.functions.remove(name).is_some() || typed
     }
 
-    pub fn lookup(&mut self, name: &str) -> Option<&mut RhsFn> {
-        self.functions.get_mut(name)
-    }
-
+    /// Whether a function of either kind is registered as `name`.
     pub fn is_registered(&self, name: &str) -> bool {
-        self.functions.contains_key(name)
+        self.functions.contains_key(name) || self.typed.contains_key(name)
     }
 
-    /// Calls the function registered as `name`, if any.
-    pub fn call(&mut self, name: &str, agent: &str, args: &str) -> Option<String> {
-        self.functions.get_mut(name).map(|f| f(agent, args))
+    /// Calls the string function registered as `name`, if any (a panic in it is an error).
+    pub fn call(&mut self, name: &str, agent: &str, args: &str) -> Option<Result<String, String>> {
+        let f = self.functions.get_mut(name)?;
+        Some(host::guarded(name, || Ok(f(agent, args))))
     }
 }
 
@@ -508,6 +519,27 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         }
     };
     let registry = &mut *ctx.registry;
+    if let Some(f) = registry.typed.get_mut(function) {
+        let call = host::RhsCall {
+            agent_name: ctx.agent_name,
+            decision: ctx.decision_count,
+            symbols: ctx.symbols,
+        };
+        let args = host::args(ctx.symbols, rest);
+        let result = host::guarded(function, || f(&call, &args));
+        let function = function.to_string();
+        let function = function.as_str();
+        return match result {
+            Ok(crate::io::Value::Int(i)) => ctx.symbols.int(i),
+            Ok(crate::io::Value::Float(x)) => ctx.symbols.float(x),
+            Ok(crate::io::Value::Str(s)) => ctx.str_sym(&s),
+            Ok(crate::io::Value::Id(s)) if ctx.symbols.is_id(s) => s,
+            Ok(crate::io::Value::Id(_)) => {
+                host_error(ctx, function, "it returned a constant as an identifier")
+            }
+            Err(why) => host_error(ctx, function, &why),
+        };
+    }
     let fast = match registry.numeric.get_mut(function) {
         Some(numeric_form) => numeric::numbers(ctx.symbols, rest, &mut registry.numbers)
             .and_then(|()| numeric_form(&registry.numbers)),
@@ -518,13 +550,36 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         for a in rest {
             text::push_value_text(ctx.symbols, *a, &mut argument);
         }
-        registry
-            .call(function, ctx.agent_name, &argument)
-            .unwrap_or_else(|| {
-                format!("Error: Nobody was registered to implement rhs function {function}")
-            })
+        match registry.call(function, ctx.agent_name, &argument) {
+            Some(Ok(r)) => r,
+            Some(Err(why)) => {
+                report_host_error(ctx.output, &why);
+                format!("Error: {why}")
+            }
+            None => format!("Error: Nobody was registered to implement rhs function {function}"),
+        }
     });
     ctx.str_sym(&result)
+}
+
+/// A host function failed: the trace says why, and the call's value is the error's text.
+fn host_error(ctx: &mut RhsContext, function: &str, why: &str) -> Sym {
+    let why = if why.contains(function) {
+        why.to_string()
+    } else {
+        format!("rhs function {function} failed: {why}")
+    };
+    report_host_error(ctx.output, &why);
+    ctx.str_sym(&format!("Error: {why}"))
+}
+
+fn report_host_error(output: &mut String, why: &str) {
+    if !output.is_empty() && !output.ends_with('\n') {
+        output.push('\n');
+    }
+    output.push_str("Error: ");
+    output.push_str(why);
+    output.push('\n');
 }
 
 /// `cmd` (SML): every argument is preceded by a space (9.6's `first` flag is never set,

@@ -996,13 +996,19 @@ fn registry_registers_replaces_and_unregisters() {
     assert!(r
         .register("f", Box::new(|_: &str, a: &str| a.to_uppercase()))
         .is_none());
-    assert_eq!(r.call("f", "agent", "abc").as_deref(), Some("ABC"));
+    assert_eq!(r.call("f", "agent", "abc"), Some(Ok("ABC".into())));
     assert!(r
         .register("f", Box::new(|ag: &str, _: &str| ag.to_string()))
         .is_some());
-    assert_eq!(r.lookup("f").map(|f| f("me", "")).as_deref(), Some("me"));
-    assert!(r.unregister("f").is_some());
+    assert_eq!(r.call("f", "me", ""), Some(Ok("me".into())));
+    assert!(r.unregister("f"));
     assert_eq!(r.call("f", "agent", "abc"), None);
+    // A panic in a function is an error, not the end of the program.
+    r.register("boom", Box::new(|_: &str, _: &str| panic!("no way")));
+    assert_eq!(
+        r.call("boom", "a", ""),
+        Some(Err("rhs function boom panicked: no way".into()))
+    );
     // A registered function may keep state.
     let mut n = 0;
     r.register(
@@ -1012,8 +1018,8 @@ fn registry_registers_replaces_and_unregisters() {
             n.to_string()
         }),
     );
-    assert_eq!(r.call("counter", "a", "").as_deref(), Some("1"));
-    assert_eq!(r.call("counter", "a", "").as_deref(), Some("2"));
+    assert_eq!(r.call("counter", "a", ""), Some(Ok("1".into())));
+    assert_eq!(r.call("counter", "a", ""), Some(Ok("2".into())));
 }
 
 #[test]
