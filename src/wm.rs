@@ -1,6 +1,6 @@
 //! Working memory (Soar manual, ch. 3, "Working Memory"): WMEs with timetags, indexed by
-//! identifier for printing and garbage collection. Acceptable-preference WMEs (`(S1
-//! ^operator O1 +)`) carry a flag.
+//! identifier for printing and garbage collection. Acceptable-preference WMEs
+//! (`(S1 ^operator O1 +)`) carry a flag.
 
 use crate::symbols::Sym;
 use rustc_hash::FxHashMap;
