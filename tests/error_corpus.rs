@@ -19,7 +19,7 @@ fn error_corpus() {
     });
 }
 
-/// The corpus is big enough to be worth counting: the issue asks for at least 40.
+/// The corpus must keep covering many kinds of mistakes: at least 40 files.
 #[test]
 fn error_corpus_has_enough_cases() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/errors");
