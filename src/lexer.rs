@@ -489,7 +489,7 @@ fn classify(word: &str, offset: usize, file: FileId, warnings: &mut Vec<Diagnost
         return Tok::Ident(word.to_string());
     }
     if word.starts_with('<') || word.ends_with('>') {
-        // Probably a mistyped variable (spec 1b).
+        // Probably a mistyped variable; Soar warns about it the same way.
         warnings.push(
             Diagnostic::warning(format!("Warning: Suspicious string constant \"{word}\""))
                 .at(Span::new(file, offset, offset + word.len()))
