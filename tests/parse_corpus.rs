@@ -24,9 +24,7 @@ fn parse_corpus() {
         let dump = run_file(path);
         let mut settings = insta::Settings::clone_current();
         settings.set_prepend_module_to_snapshot(false);
-        settings.set_description(
-            "tests/data/parse: input, output, syntax trees and printed rules",
-        );
+        settings.set_description("tests/data/parse: input, output, syntax trees and printed rules");
         settings.bind(|| insta::assert_snapshot!(dump));
     });
 }
