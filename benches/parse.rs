@@ -1,6 +1,6 @@
-//! Parsing speed (issue 2, item 12): a generated file of 100,000 productions, 5–10 lines
-//! each and varied (proposals, applications with removals, elaborations with conjunctive
-//! negations, preference rules, structured values, dot paths, RHS arithmetic).
+//! Parsing speed: a generated file of 100,000 productions, 5–10 lines each and varied
+//! (proposals, applications with removals, elaborations with conjunctive negations,
+//! preference rules, structured values, dot paths, RHS arithmetic).
 //!
 //! - `sp_path`: the whole file through `Interpreter::run_text`: the command tokenizer, the
 //!   parser, the compiler with Soar's load-time checks, and storing each rule (duplicate check

@@ -1,8 +1,8 @@
-//! Matcher benchmarks (issue 3, item 7), on the rules of `scripts/gen_rules.py nomatch N`
-//! (generated here, byte for byte the same text): N rules in 100 groups that share the prefix
+//! Matcher benchmarks, on the rules of `scripts/gen_rules.py nomatch N` (generated here,
+//! byte for byte the same text): N rules in 100 groups that share the prefix
 //! `(state <s> ^superstate nil ^task <t>) (<t> ^name task-G ^step <st>)` and then test
-//! `(<st> ^kind kI ^value <v>)` (`kI` reads as the string `K<I>`): no WME carries `^kind` and
-//! `^value` together, so no rule can match.
+//! `(<st> ^kind kI ^value <v>)` (`kI` reads as the string `K<I>`): no WME carries `^kind`
+//! and `^value` together, so no rule can match.
 //!
 //! Working memory, the same for every size and for the official kernel
 //! (`scripts/bench_official.py` sends the same commands):

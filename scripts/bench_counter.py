@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 3's "joins really run" workload, side by side: a counting agent (an operator adds 1
+"""A "joins really run" workload, side by side: a counting agent (an operator adds 1
 to ^counter.value each decision) plus N generated rules that each test the counter against
 their own threshold (`gen_rules.py counter N`), so that at decision d about d of them match
 anew. The same file runs in the official Soar 9.6 kernel (pip package soar-sml) and in

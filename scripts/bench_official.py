@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Times the official Soar 9.6 kernel (pip package soar-sml) on the matcher benchmarks of
-issue 3, with the same generated rules and the same working-memory changes as
+"""Times the official Soar 9.6 kernel (pip package soar-sml) on the matcher benchmarks,
+with the same generated rules and the same working-memory changes as
 benches/rete.rs, so the README can show both side by side.
 
 For each size (1,000 / 10,000 / 100,000 `nomatch` rules from scripts/gen_rules.py, written

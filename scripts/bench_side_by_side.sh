@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 3's matcher benchmarks, rusoar and the official Soar 9.6 kernel, one after the other
+# The matcher benchmarks, rusoar and the official Soar 9.6 kernel, one after the other
 # on this machine, ending with the side-by-side table (scripts/bench_official.py --ours).
 #   1. cargo bench --bench rete, its figures also written as JSON (RETE_BENCH_JSON);
 #   2. the official kernel on the same generated rules and changes;

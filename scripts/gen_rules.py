@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generates N Soar rules for the matcher benchmarks (issue 3), identical input for rusoar
+"""Generates N Soar rules for the matcher benchmarks, identical input for rusoar
 and the official kernel.
 
 kinds:

@@ -21,7 +21,7 @@ Conventions (tests/conformance.rs follows the same ones):
                 stats
             The print callback's text during `run 1000` is the trace; `run`'s result text
             gives the run summary; `stats`'s result text gives the statistics.
-  Decisions The trace's lines that match `^\\s+\\d+: ` (spec §6c: every decision line starts
+  Decisions The trace's lines that match `^\\s+\\d+: ` (every decision line starts
             with a newline, then the cycle number right-aligned in 6 columns, then ": "),
             kept whole: a `write` without a leading `(crlf)` lands on the decision line
             before it, so such writes are compared too. Other trace text (`System halted.`,
@@ -37,17 +37,17 @@ Conventions (tests/conformance.rs follows the same ones):
             All of these are exact integers in 9.6 (stats' timings, means and ratios are
             not used; `wme changes` is not used either).
   Golden    tests/golden/NAME.txt: the decision lines, then `--- counts ---` and the counts.
-  Learning  agents named learn-*.soar (issue 5) add `chunks learned: N` (from run's
+  Learning  agents named learn-*.soar add `chunks learned: N` (from run's
             `N new rule(s) learned.`, 0 without it) to their counts, then
             `--- after init-soar ---` and the same text for a second `init-soar` +
             `run 1000` + `stats` in the same agent (chunks are kept). Their learned rules go
             to tests/golden/NAME.rules.txt: `print --chunks` after the first run, then
             `print NAME` of each chunk listed.
-  rusoar    tests/conformance.rs gives rusoar::cli::Interpreter (cwd: the repository)
+  rusoar    tests/conformance.rs gives rusoar::commands::Interpreter (cwd: the repository)
             "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
             (trace and run summary together), then runs `stats`, and builds the same text.
 
-  Traces    (issue 4, deliverable 6) for the agents in TRACE_AGENTS and each trace level
+  Traces    for the agents in TRACE_AGENTS and each trace level
             in TRACE_LEVELS, in a fresh agent of the official kernel:
                 srand 1
                 source /abs/path/tests/agents/NAME.soar

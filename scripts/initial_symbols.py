@@ -3,8 +3,9 @@
 order it created them, and writes them to src/initial_symbols.txt.
 
 Why: 9.6's condition reorderer breaks cost ties by the order in which constants were created
-(spec §3i, §8 risk 1). Constants first seen in a rule are created as the rule is parsed, so
-their order follows the text; the constants the kernel makes when an agent is created
+(`production_reorder.cpp`), and the condition order decides which of several new matches
+fires first. Constants first seen in a rule are created as the rule is parsed, so their
+order follows the text; the constants the kernel makes when an agent is created
 (predefined symbols, RHS function names, small integers, ...) come before all of them, in an
 order only the kernel knows. This script asks it: `debug internal-symbols` gives the set, and
 one rule testing every constant against the same attribute gives the order, because the

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """`print` of every rule of some .soar files, in the official Soar 9.6 kernel (pip package
 soar-sml) and in rusoar (target/release/rusoar, build it first), compared rule by rule.
-The reorderer (spec §3i) and the printer's grouping and wrapping are checked this way.
+The reorderer and the printer's grouping and wrapping are checked this way.
 
 usage: python3 scripts/print_compare.py FILE.soar ...
 """

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Replays a Soar-SLAM run of rusoar in the official Soar 9.6 kernel (pip package soar-sml)
-and compares the two agents decision by decision (issue 6: the thesis rules on our kernel).
+and compares the two agents decision by decision (the thesis rules on both kernels).
 
 `rusoar slam --io-log` writes each run's input-link and output-link traffic to
-`io-<on|off>-<seed>.log` (format: src/robot/io_log.rs). This script loads the same rules
+`io-<on|off>-<seed>.log` (format: slam/src/io_log.rs). This script loads the same rules
 into the official kernel (robotagent.soar line by line; its Soar 8 `learn -off`, which 9.6
 rejects, is given as `chunk never`; with a SLAM-off log the `source slam.soar` line is left
 out, as rusoar does), seeds it with `srand SEED`, registers Python versions of the Rust
@@ -44,7 +44,7 @@ LIBM.hypot.argtypes = [ctypes.c_double, ctypes.c_double]
 # f64::to_degrees multiplies by this constant (Rust's core::f64), not by 180 / pi.
 RAD_TO_DEG = 57.2957795130823208767981548141051703
 
-# The Pioneer 2-DX sonar ring: x mm, y mm, heading degrees (src/robot/sonar.rs P2DX_SONARS).
+# The Pioneer 2-DX sonar ring: x mm, y mm, heading degrees (slam/src/sonar.rs P2DX_SONARS).
 P2DX_SONARS = [
     (69.0, 136.0, 90.0), (114.0, 119.0, 50.0), (148.0, 78.0, 30.0), (166.0, 27.0, 10.0),
     (166.0, -27.0, -10.0), (148.0, -78.0, -30.0), (114.0, -119.0, -50.0),

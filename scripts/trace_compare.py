@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Compares the trace text of rusoar with the official Soar 9.6 kernel (pip package
-soar-sml), agent by agent and trace level by trace level (issue 4, deliverable 6).
+soar-sml), agent by agent and trace level by trace level.
 
 For each agent and level, both kernels get, in a fresh agent:
 

@@ -1,5 +1,6 @@
-//! The syntax tree of one `sp` production, as written (spec §1c–§1e). Dot paths and
-//! structured values are kept as written here; `production::compile` flattens them.
+//! The syntax tree of one `sp` production, as written (Soar manual, ch. 3, "Production
+//! Memory"). Dot paths and structured values are kept as written here; `production::compile`
+//! flattens them.
 
 use crate::source::Span;
 
@@ -166,7 +167,7 @@ pub struct FuncCall {
     pub span: Span,
 }
 
-/// Preferences after a value (spec §1e).
+/// Preferences after a value (Soar manual, ch. 3, "The syntax of preferences").
 #[derive(Debug, Clone, PartialEq)]
 pub enum Pref {
     Acceptable,

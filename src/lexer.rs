@@ -1,6 +1,7 @@
-//! The production lexer (spec §1b): a logos enum for raw lexemes plus a thin iterator that
-//! classifies constituent runs (variables, integers, identifier-shaped tokens, relations)
-//! and joins `1` `.` `5` into the float `1.5` the way Soar's lexer reads numbers.
+//! The production lexer (Soar's `parsing/lexer.cpp`): a logos enum for raw lexemes plus a
+//! thin iterator that classifies constituent runs (variables, integers, identifier-shaped
+//! tokens, relations) and joins `1` `.` `5` into the float `1.5` the way Soar's lexer reads
+//! numbers.
 
 use crate::source::{Diagnostic, FileId, Span};
 use logos::Logos;
@@ -10,7 +11,7 @@ use logos::Logos;
 #[logos(skip r"[ \t\r\n\x0B\x0C;]+")]
 #[logos(skip(r"#[^\n]*", allow_greedy = true))]
 enum Raw {
-    /// Letters, digits and `$ % & * + - / : < = > ? _ @` (spec §1b constituents).
+    /// Letters, digits and `$ % & * + - / : < = > ? _ @` (Soar manual, ch. 3, "Symbols").
     #[regex(r"[A-Za-z0-9$%&*+\-/:<=>?_@]+")]
     Constituent,
     #[token(".")]
@@ -437,7 +438,7 @@ fn float_tok(lexeme: &str) -> Tok {
 }
 
 /// `[A-Za-z][0-9]+`: lexes as an identifier in Soar; a constant with its letter upper-cased
-/// inside productions (spec §1b).
+/// inside productions, as Soar's parser makes it.
 pub fn is_identifier_shaped(s: &str) -> bool {
     let b = s.as_bytes();
     b.len() >= 2 && b[0].is_ascii_alphabetic() && b[1..].iter().all(|c| c.is_ascii_digit())
@@ -488,7 +489,7 @@ fn classify(word: &str, offset: usize, file: FileId, warnings: &mut Vec<Diagnost
         return Tok::Ident(word.to_string());
     }
     if word.starts_with('<') || word.ends_with('>') {
-        // Probably a mistyped variable (spec 1b).
+        // Probably a mistyped variable; Soar warns about it the same way.
         warnings.push(
             Diagnostic::warning(format!("Warning: Suspicious string constant \"{word}\""))
                 .at(Span::new(file, offset, offset + word.len()))

@@ -1,5 +1,5 @@
 //! The production parser: one entry point, [`parse_production`], over the lalrpop grammar in
-//! `grammar/soar.lalrpop`. Grammar errors are translated to Soar's own messages (spec §1g).
+//! `grammar/soar.lalrpop`. Grammar errors are translated to Soar's own messages.
 //!
 //! Two parsers read that grammar. The hand-written recursive descent in `descent` is the
 //! fast path: it builds the tree in less than half the time of the LR state machine, which
@@ -168,7 +168,7 @@ fn paren_depth(tokens: &[lexer::Spanned], location: usize) -> i64 {
         .sum()
 }
 
-/// Soar's message for a syntax error (spec §1g), chosen from what the grammar expected.
+/// Soar's message for a syntax error, chosen from what the grammar expected.
 fn soar_message(expected: &[String], tokens: &[lexer::Spanned], location: usize) -> String {
     let has = |t: &str| expected.iter().any(|e| e == t);
     if on_rhs(tokens, location) {
@@ -212,9 +212,10 @@ fn soar_message(expected: &[String], tokens: &[lexer::Spanned], location: usize)
     "Syntax error in production".into()
 }
 
-/// Attaches preference symbols to the values they follow (spec §1e). `= > <` take the next
-/// item as referent when it is a value; before `,` `)` `^` or another preference they are
-/// unary. So `<o1> + = <o2> + =` makes `<o1>` binary-indifferent to `<o2>` (spec §1e pitfall).
+/// Attaches preference symbols to the values they follow (Soar manual, ch. 3, "Shorthand
+/// notations for preference creation"). `= > <` take the next item as referent when it is a
+/// value; before `,` `)` `^` or another preference they are unary. So `<o1> + = <o2> + =`
+/// makes `<o1>` binary-indifferent to `<o2>` (a pitfall).
 pub fn attach_preferences(first: RhsValue, rest: Vec<ValueItem>) -> Vec<ValueMake> {
     let mut out = vec![ValueMake {
         value: first,

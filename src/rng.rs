@@ -1,6 +1,7 @@
-//! Soar's random numbers (spec §3h): MT19937 seeded by `srand n` (`init_genrand(n)`),
-//! `randInt()` the 32-bit output, `randInt(n)` a value in `0..=n` by masking to the next
-//! power of two minus one and rejecting larger values, and `rand()` in `[0, 1]`.
+//! Soar's random numbers (`shared/soar_rand.cpp` in the kernel's sources): MT19937 seeded
+//! by `srand n` (`init_genrand(n)`), `randInt()` the 32-bit output, `randInt(n)` a value in
+//! `0..=n` by masking to the next power of two minus one and rejecting larger values, and
+//! `rand()` in `[0, 1]`.
 
 const N: usize = 624;
 const M: usize = 397;
@@ -93,7 +94,7 @@ impl Default for Mt19937 {
 mod tests {
     use super::*;
 
-    /// E:t11 and `experiments/mt.py`: with 4 tied candidates, seeds 1/2/3/4 pick 1/0/2/2.
+    /// As on the official 9.6 kernel: with 4 tied candidates, `srand` 1/2/3/4 picks 1/0/2/2.
     #[test]
     fn matches_the_official_kernel_choices() {
         let picks: Vec<u32> = (1..=4).map(|s| Mt19937::new(s).rand_int(3)).collect();

@@ -225,7 +225,7 @@ impl Severity {
     }
 }
 
-/// A located message. `message` is Soar's own wording where Soar has one (spec §1g), so that
+/// A located message. `message` is Soar's own wording where Soar has one, so that
 /// users searching for the official text find it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {

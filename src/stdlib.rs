@@ -1,4 +1,4 @@
-//! Soar's default rules as rusoar ships them (issue 5): embedded in the binary, so
+//! Soar's default rules as rusoar ships them: embedded in the binary, so
 //! `source <stdlib>/selection.soar` works from anywhere. The files live in `stdlib/`.
 
 /// The embedded files, by name.

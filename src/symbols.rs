@@ -1,6 +1,7 @@
-//! Symbols (spec §2): interned string constants, 64-bit integers and floats, and
-//! identifiers named by a letter and a number with one counter per letter. Equality of
-//! symbols is equality of [`Sym`] handles, so int 1 and float 1.0 differ (E:t15).
+//! Symbols (Soar manual, ch. 3, "Symbols"): interned string constants, 64-bit integers and
+//! floats, and identifiers named by a letter and a number with one counter per letter.
+//! Equality of symbols is equality of [`Sym`] handles, so int 1 and float 1.0 differ, as in
+//! Soar.
 
 use crate::rete::blocks::Blocks;
 use rustc_hash::FxHashMap;
@@ -59,10 +60,9 @@ pub struct Symbols {
 }
 
 impl Symbols {
-    /// A symbol table holding the constants the official kernel creates when an agent is
-    /// made, in its order (`src/initial_symbols.txt`, read off Soar 9.6.5 by
-    /// `scripts/initial_symbols.py`): the condition reorderer breaks ties by creation order
-    /// (spec §3i).
+    /// A symbol table holding the constants the official kernel creates when an agent is made,
+    /// in its order (`src/initial_symbols.txt`, read off Soar 9.6.5 by
+    /// `scripts/initial_symbols.py`): the condition reorderer breaks ties by creation order.
     pub fn new() -> Self {
         let mut s = Symbols {
             counters: [1; 26],
@@ -203,7 +203,7 @@ impl Symbols {
         self.ids[slot].get(index).copied()
     }
 
-    /// `init-soar`: identifier counters start again at 1 (spec §2, E:t8).
+    /// `init-soar`: identifier counters start again at 1, as in the official kernel.
     pub fn reset_id_counters(&mut self) {
         self.counters = [1; 26];
         for list in &mut self.ids {
@@ -241,7 +241,8 @@ impl Symbols {
         self.id_data(s).is_some_and(|d| d.is_impasse)
     }
 
-    /// Rereadable text, as `print` shows a symbol (spec §2: `|P1|`, floats with 6 decimals).
+    /// Rereadable text, as `print` shows a symbol (`|P1|`, floats with 6 decimals; Soar
+    /// manual, ch. 3, "Symbols").
     pub fn text(&self, s: Sym) -> String {
         match self.get(s) {
             SymData::Str(x) => crate::printer::rereadable(x),
@@ -251,7 +252,8 @@ impl Symbols {
         }
     }
 
-    /// Plain text with no bars, as `write` and `exec` see a symbol (spec §1f).
+    /// Plain text with no bars, as `write` and `exec` see a symbol (Soar manual, ch. 3,
+    /// "Right-hand side Functions").
     pub fn plain(&self, s: Sym) -> String {
         match self.get(s) {
             SymData::Str(x) => x.to_string(),
@@ -259,7 +261,7 @@ impl Symbols {
         }
     }
 
-    /// Soar's `compare_symbols` (spec §3g): numbers numerically, strings by strcmp,
+    /// Soar's `compare_symbols` (rete.cpp): numbers numerically, strings by strcmp,
     /// identifiers by letter then number; any type mismatch is "less" (`Less`).
     pub fn compare(&self, a: Sym, b: Sym) -> Ordering {
         use SymData::*;

@@ -1,5 +1,6 @@
-//! Working memory (spec §2): WMEs with timetags, indexed by identifier for printing and
-//! garbage collection. Acceptable-preference WMEs (`(S1 ^operator O1 +)`) carry a flag.
+//! Working memory (Soar manual, ch. 3, "Working Memory"): WMEs with timetags, indexed by
+//! identifier for printing and garbage collection. Acceptable-preference WMEs
+//! (`(S1 ^operator O1 +)`) carry a flag.
 
 use crate::symbols::Sym;
 use rustc_hash::FxHashMap;
@@ -78,7 +79,7 @@ impl WorkingMemory {
         }
     }
 
-    /// Adds a WME with the next timetag (one global counter, spec §2).
+    /// Adds a WME with the next timetag (one global counter; Soar manual, ch. 3, "Timetags").
     pub fn add(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
         self.add_typed(id, attr, value, acceptable, [true, true])
     }
@@ -274,7 +275,7 @@ impl WorkingMemory {
         self.count == 0
     }
 
-    /// `init-soar`: timetags start again at 1 (spec §2, E:t21).
+    /// `init-soar`: timetags start again at 1, as in the official kernel.
     pub fn reset_timetags(&mut self) {
         self.next_timetag = 1;
     }

@@ -1,4 +1,4 @@
-//! Conformance with the official Soar 9.6 kernel (issue 4, item 7).
+//! Conformance with the official Soar 9.6 kernel.
 //!
 //! Every agent in `tests/agents/` runs here exactly as `scripts/goldens.py` ran it in the
 //! official kernel (`srand 1`, `watch 1`, `source AGENT`, `run 1000`, then `stats`), and its
@@ -17,15 +17,15 @@ use rusoar::Agent;
 use std::path::{Path, PathBuf};
 
 /// Agents whose trace or counts still differ from the official kernel, with the reason.
-/// "Match order" is the order in which one rule's several new matches fire (spec §3i and
-/// §8 risk 1): it sets operator ids and the candidate order, hence seeded random choices.
+/// "Match order" is the order in which one rule's several new matches fire: it sets
+/// operator ids and the candidate order, hence seeded random choices.
 const KNOWN_DIFFERENCES: &[(&str, &str)] = &[];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// A decision line of spec §6c: whitespace, the cycle number, `": "` (`^\s+\d+: `).
+/// A decision line of the trace: whitespace, the cycle number, `": "` (`^\s+\d+: `).
 fn is_decision_line(line: &str) -> bool {
     let rest = line.trim_start();
     if rest.len() == line.len() {

@@ -1,6 +1,7 @@
-//! `exec` calling functions that the embedding program registers (spec §1f): the text form
-//! gets the arguments' texts concatenated; a numeric form, when registered, gets the numbers
-//! instead whenever the arguments are numbers between comma separators.
+//! `exec` calling functions that the embedding program registers (Soar manual, ch. 3,
+//! "User-defined functions and interface commands as RHS actions"): the text form gets the
+//! arguments' texts concatenated; a numeric form, when registered, gets the numbers instead
+//! whenever the arguments are numbers between comma separators.
 
 use rusoar::Agent;
 

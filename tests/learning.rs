@@ -1,5 +1,5 @@
-//! Chunking (issue 5), beyond the goldens of tests/conformance.rs: the embedded stdlib
-//! loads by name, and a learning agent's second run after `init-soar` uses its chunks.
+//! Chunking, beyond the goldens of tests/conformance.rs: the embedded stdlib loads by name,
+//! and a learning agent's second run after `init-soar` uses its chunks.
 
 use rusoar::Agent;
 

@@ -1,5 +1,6 @@
-//! `output` (spec §6a): its status listing and the settings 9.6 reports as `NAME is VALUE`;
-//! the expected texts were observed on soar-sml 9.6.5 through `ExecuteCommandLine`.
+//! `output` (Soar manual, ch. 9, `output`): its status listing and the settings 9.6 reports
+//! as `NAME is VALUE`; the expected texts were observed on soar-sml 9.6.5 through
+//! `ExecuteCommandLine`.
 
 use rusoar::Agent;
 

@@ -1,9 +1,11 @@
-//! The parse corpus (spec §1a–§1e): every file in `tests/data/parse/` runs through an
-//! [`Interpreter`]; the snapshot shows the input, what the interpreter printed (diagnostics
-//! rendered with their carets), whether it failed, the syntax tree of every `sp` as parsed,
-//! and every loaded rule as `print` shows it. Each file is named after the spec row it
-//! covers (`1d_dot_paths.soar`). The expected behaviour was checked against the official
-//! kernel (soar-sml 9.6); see the comment at the top of each file.
+//! The parse corpus: every file in `tests/data/parse/` runs through an [`Interpreter`]; the
+//! snapshot shows the input, what the interpreter printed (diagnostics rendered with their
+//! carets), whether it failed, the syntax tree of every `sp` as parsed, and every loaded
+//! rule as `print` shows it. Each file is named after the feature it covers, with a prefix
+//! for its group (`1a` the command tokenizer, `1b` the production lexer, `1c` the `sp`
+//! command, `1d` conditions, `1e` actions: `1d_dot_paths.soar`). The expected behaviour was
+//! checked against the official kernel (soar-sml 9.6); see the comment at the top of each
+//! file.
 
 use rusoar::ast::{
     Action, Atom, AttrMake, AttrValueTests, CondForOneId, Condition, Constant, FuncCall, Head,
@@ -22,9 +24,7 @@ fn parse_corpus() {
         let dump = run_file(path);
         let mut settings = insta::Settings::clone_current();
         settings.set_prepend_module_to_snapshot(false);
-        settings.set_description(
-            "tests/data/parse: input, output, syntax trees and printed rules (spec §1)",
-        );
+        settings.set_description("tests/data/parse: input, output, syntax trees and printed rules");
         settings.bind(|| insta::assert_snapshot!(dump));
     });
 }

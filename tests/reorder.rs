@@ -1,6 +1,6 @@
-//! The condition reorderer (spec §3i): rules whose conditions 9.6 reorders, and the order
-//! `print` shows afterwards, as the official kernel (soar-sml 9.6.5) printed it for the
-//! same rules loaded in the same order into a fresh agent.
+//! The condition reorderer: rules whose conditions 9.6 reorders, and the order `print`
+//! shows afterwards, as the official kernel (soar-sml 9.6.5) printed it for the same rules
+//! loaded in the same order into a fresh agent.
 
 use rusoar::Agent;
 

@@ -1,7 +1,7 @@
-//! The RETE against a brute-force matcher (issue 3, item 6): random productions (negations,
-//! conjunctive negations, relational and disjunction tests, shared prefixes) and random
-//! sequences of WME adds and removes, production adds and excises; after every step the
-//! network's match set must equal the naive one, and the sink's events must agree with it.
+//! The RETE against a brute-force matcher: random productions (negations, conjunctive
+//! negations, relational and disjunction tests, shared prefixes) and random sequences of
+//! WME adds and removes, production adds and excises; after every step the network's match
+//! set must equal the naive one, and the sink's events must agree with it.
 
 use proptest::prelude::*;
 use rusoar::ast::{Constant, Head, Relation};
@@ -342,8 +342,9 @@ impl Naive<'_> {
     }
 }
 
-/// Spec §3g written again, independently of the rete: numbers compare numerically, strings
-/// by bytes, identifiers by letter then number, and any mix of kinds is "less".
+/// Soar's symbol comparison written again, independently of the rete: numbers compare
+/// numerically, strings by bytes, identifiers by letter then number, and any mix of kinds
+/// is "less".
 fn naive_relation(syms: &Symbols, r: Relation, a: Sym, b: Sym) -> bool {
     use rusoar::symbols::SymData::*;
     use std::cmp::Ordering::*;
@@ -489,14 +490,14 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
             }
             Step::AddProd(g) => {
                 let p = build(&format!("p{n}"), g);
-                // The network joins conditions in the reorderer's order (spec §3i), as the
-                // agent adds them; the naive matcher reads the rule as written.
+                // The network joins conditions in the reorderer's order, as the agent adds
+                // them; the naive matcher reads the rule as written.
                 let mut joined = p.clone();
                 reorder::intern_in_text_order(&p, &mut syms);
                 joined.conditions = reorder::reorder(&p.conditions, &syms);
                 match rete.add_production(&joined, &mut syms, &mut sink) {
                     Ok(id) => prods.push((id, p, joined)),
-                    // Identical to a rule already there: not added (spec §1c).
+                    // Identical to a rule already there: not added, as in Soar.
                     Err(rusoar::rete::BuildError::Duplicate(_)) => {}
                     Err(e) => return Err(TestCaseError::fail(e.to_string())),
                 }
@@ -527,7 +528,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
             };
             // Except where 9.6 itself changes it: a `<`/`>` test between two variables may be
             // turned round (`<x> < <y>` becoming `<y> > <x>`), which is not the same test when
-            // the two symbols differ in type (§3g: a mismatch compares as "less").
+            // the two symbols differ in type (a mismatch compares as "less").
             if !has_ordering_test_between_variables(&written.conditions) {
                 let as_written = matches_naive(written, &syms, &wm);
                 prop_assert_eq!(
@@ -633,7 +634,7 @@ fn regression_relational_test_on_a_variable_bound_by_an_unconnected_condition() 
 }
 
 proptest! {
-    // 10,000 cases in CI (issue 3); PROPTEST_CASES overrides for quick local runs.
+    // 10,000 cases by default, as CI runs them; PROPTEST_CASES overrides for quick local runs.
     #![proptest_config(ProptestConfig {
         cases: std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(10_000),
         max_shrink_iters: std::env::var("PROPTEST_MAX_SHRINK_ITERS").ok().and_then(|v| v.parse().ok()).unwrap_or(20_000),

@@ -1,10 +1,10 @@
-//! Round trip of productions through the printer (issue 2, item 7): generated Soar source is
-//! parsed and compiled (P1), printed with `production_text`, and the printed text is parsed
-//! and compiled again (P2). The printer groups conditions on one identifier (as Soar's
-//! `print` does), so P2 must equal P1 *regrouped*, every span ignored; after that first
-//! regrouping the round trip must be exact: `text(P2) == text(P1)` and P3 == P2. The printed
-//! text and the generated source must also load to the same rules through the real `sp`
-//! command (`Interpreter::run_text`), which adds the command tokenizer to the path.
+//! Round trip of productions through the printer: generated Soar source is parsed and
+//! compiled (P1), printed with `production_text`, and the printed text is parsed and
+//! compiled again (P2). The printer groups conditions on one identifier (as Soar's `print`
+//! does), so P2 must equal P1 *regrouped*, every span ignored; after that first regrouping
+//! the round trip must be exact: `text(P2) == text(P1)` and P3 == P2. The printed text and
+//! the generated source must also load to the same rules through the real `sp` command
+//! (`Interpreter::run_text`), which adds the command tokenizer to the path.
 //!
 //! The generator builds a plain-data description of a rule with proptest combinators (no
 //! filtering), then renders it as text, so a failure shrinks to a small rule. Variables that
@@ -965,7 +965,7 @@ impl Renderer {
                 let p = if is_operator {
                     p.clone()
                 } else {
-                    // Only + and - are allowed on other attributes (spec §1e).
+                    // Only + and - are allowed on other attributes, as in Soar.
                     match p {
                         PrefSpec::Minus | PrefSpec::Tilde | PrefSpec::Lt | PrefSpec::Worse(_) => {
                             PrefSpec::Minus
@@ -1000,7 +1000,7 @@ impl Renderer {
                     }
                 }
             }
-            // `<o1> = <o2>` would make `=` binary: a comma keeps it unary (spec §1e).
+            // `<o1> = <o2>` would make `=` binary: a comma keeps it unary.
             if last_unary_binary_symbol && i + 1 < am.values.len() && !am.commas {
                 self.tok(",");
             }
@@ -1108,10 +1108,10 @@ fn strip(p: &Production) -> Production {
     p
 }
 
-/// The condition order `print` produces (spec §6a, as Soar's `print_condition_list`): at
-/// each level, conditions with the same id test gather at the place of the first one, and
-/// a `state`/`impasse` test on a positive condition of the group applies to all of them
-/// (it tests the identifier, so it is the same test). A negated condition whose goal test no
+/// The condition order `print` produces (as Soar's `print_condition_list`): at each level,
+/// conditions with the same id test gather at the place of the first one, and a
+/// `state`/`impasse` test on a positive condition of the group applies to all of them (it
+/// tests the identifier, so it is the same test). A negated condition whose goal test no
 /// positive condition on its id repeats must keep it, in a group of its own,
 /// `(state <x> -^a v)` (the printer does not do this yet: `NEGATED_GOAL_TESTS`). Conjunctive
 /// negations stay in place.
@@ -1231,7 +1231,7 @@ fn load(text: &str, name: &str) -> Result<Production, String> {
 }
 
 /// A compiled rule as a fresh agent stores it: its conditions in the reorderer's order
-/// (spec §3i), ranked by a fresh symbol table.
+/// ranked by a fresh symbol table.
 fn as_loaded(p: &Production) -> Production {
     let mut syms = rusoar::symbols::Symbols::new();
     reorder::intern_in_text_order(p, &mut syms);

@@ -18,7 +18,7 @@ fn report(i: &mut Agent, cmd: &str) -> String {
 fn the_cycle_count_follows_the_cycle_counter() {
     let mut i = Agent::default();
     out(&mut i, "watch 0");
-    // (command, what 9.6 reported), in one session.
+    // (command, what 9.6 reported), all in one interpreter.
     for (cmd, n) in [
         ("run 1", "1 decision cycle"),
         ("run 1", "2 decision cycles"),

@@ -1,9 +1,9 @@
-//! `stats` prints 9.6's report (issue 4, deliverable 6). The expected text below was
-//! observed on the official kernel (soar_sml 9.6.5, through `ExecuteCommandLine`) for
-//! `srand 1`, `source tests/agents/NAME.soar`, `run 1000`, `stats`, and pasted here. The
-//! first line (host and date) and the times are not compared: each time (`N.NNN` in the
-//! table, the single timers and before `msec/`) is masked as `#.###`; all counts and
-//! ratios are compared.
+//! `stats` prints 9.6's report. The expected text below was observed on the official kernel
+//! (soar_sml 9.6.5, through `ExecuteCommandLine`) for `srand 1`,
+//! `source tests/agents/NAME.soar`, `run 1000`, `stats`, and pasted here. The first line
+//! (host and date) and the times are not compared: each time (`N.NNN` in the table, the
+//! single timers and before `msec/`) is masked as `#.###`; all counts and ratios are
+//! compared.
 
 mod common;
 

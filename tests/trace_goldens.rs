@@ -1,4 +1,4 @@
-//! Trace levels 2 to 5 against the official Soar 9.6 kernel (issue 4, deliverable 6).
+//! Trace levels 2 to 5 against the official Soar 9.6 kernel.
 //!
 //! `scripts/goldens.py` wrote `tests/golden/traces/NAME.LEVEL.txt`: everything the official
 //! kernel printed for `srand 1`, `source tests/agents/NAME.soar`, `trace LEVEL`, `run 50`

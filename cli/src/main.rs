@@ -173,7 +173,7 @@ fn brace_depth(text: &str) -> i64 {
 }
 
 fn main() -> ExitCode {
-    // `rusoar slam ...`: the Soar-SLAM experiment (issue 6); its options live in experiment.rs.
+    // `rusoar slam ...`: the Soar-SLAM experiment; its options live in experiment.rs.
     let args: Vec<String> = std::env::args().collect();
     if args.get(1).map(String::as_str) == Some("slam") {
         return soar_slam::experiment::main(&args[2..]);

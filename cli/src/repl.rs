@@ -1,4 +1,4 @@
-//! The interactive front end (STYLE habit 10): a rustyline editor over the [`Interpreter`]
+//! The interactive front end: a rustyline editor over the [`Interpreter`]
 //! backend. Line editing and persistent history, tab completion of command names, aliases,
 //! rule names and identifiers, a prompt with the agent's name and decision count, input that
 //! goes on over several lines while a brace, quote or `|` is open, Ctrl-C that stops a

@@ -1,4 +1,4 @@
-//! Snapshots of what a user sees (STYLE habit 9): REPL sessions typed without a terminal
+//! Snapshots of what a user sees: REPL sessions typed without a terminal
 //! (`tests/data/repl/*.txt`), and the trace and final state of short runs of small agents
 //! (`tests/data/traces/*.soar`). One snapshot per input file.
 

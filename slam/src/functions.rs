@@ -1,5 +1,6 @@
-//! The Rust functions the Soar-SLAM rules call through `exec` (issue 6, item 5; the contract
-//! is `rules/README.md` §1.6, "let Java do the math for Soar" in the thesis).
+//! The Rust functions the Soar-SLAM rules call through `exec` (the contract is
+//! `rules/README.md`, section 1.6; "let Java do the math for Soar" in the thesis's
+//! §Synchronization).
 //!
 //! A rule writes `(exec f a1 |, | a2 |, | ...)`; Soar concatenates the arguments' texts with no
 //! separator, so each function receives **one string** such as `3000, -895, 3000, 1105`
@@ -97,10 +98,10 @@ impl Relation {
 }
 
 /// The relation of the wall `(sx, sy)–(ex, ey)` to a robot at `(rx, ry)` heading `rth_deg`
-/// (README §1.6): F is the foot of the perpendicular from the robot to the wall's line;
-/// `None` for a zero-length wall, when F lies outside the segment (t < 0 or t > 1 along
-/// Start→End) or when F is the robot's position; otherwise the bearing
-/// b = atan2(F − robot) − rth, normalised to [−180, 180), gives `Front` for −45 ≤ b ≤ 45,
+/// (`rules/README.md`, section 1.6): F is the foot of the perpendicular from the robot to
+/// the wall's line; `None` for a zero-length wall, when F lies outside the segment (t < 0
+/// or t > 1 along Start→End) or when F is the robot's position; otherwise the bearing b =
+/// atan2(F − robot) − rth, normalised to [−180, 180), gives `Front` for −45 ≤ b ≤ 45,
 /// `Left` for 45 < b < 135, `Right` for −135 < b < −45 and `Back` otherwise.
 pub fn wall_relation(rx: f64, ry: f64, rth_deg: f64, s: (f64, f64), e: (f64, f64)) -> Relation {
     let (dx, dy) = (e.0 - s.0, e.1 - s.1);
@@ -145,11 +146,12 @@ fn checkwallrelation_of(n: Option<[f64; 7]>) -> String {
     }
 }
 
-/// The range transducer `t` would read, mm, if the segment `(sx, sy)–(ex, ey)` were the only
-/// wall, for a robot at `(rx, ry)` heading `rth_deg` (README §1.6): the transducer sits at
-/// P = robot + Rot(rth)·(x, y) and looks along rth + its heading; the result is the distance
-/// t ≥ 0 along that ray to the segment (ends included), not clipped to the sonar's range.
-/// `None` when the ray is parallel to the segment, misses it or hits it only behind P.
+/// The range transducer `t` would read, mm, if the segment `(sx, sy)–(ex, ey)` were the
+/// only wall, for a robot at `(rx, ry)` heading `rth_deg` (`rules/README.md`, section 1.6):
+/// the transducer sits at P = robot + Rot(rth)·(x, y) and looks along rth + its heading;
+/// the result is the distance t ≥ 0 along that ray to the segment (ends included), not
+/// clipped to the sonar's range. `None` when the ray is parallel to the segment, misses it
+/// or hits it only behind P.
 pub fn sonar_distance(
     rx: f64,
     ry: f64,

@@ -1,10 +1,10 @@
 //! Plane geometry shared by the simulator and the pipeline: poses, points, wall segments,
-//! ray–segment intersection (the sonar rays of `robotics-anchors.md` §1.4 are cast with it)
-//! and point–segment distance (the Pioneer's collision test).
+//! ray–segment intersection (the sonar rays are cast with it) and point–segment distance
+//! (the Pioneer's collision test).
 //!
-//! Simulator units are metres and radians, x forward / y left as in ARIA and Stage
-//! (`robotics-anchors.md` §1.3). The thesis's units (mm and degrees 0–359) are produced by the
-//! conversion helpers on [`Pose`].
+//! Simulator units are metres and radians, x forward / y left as in ARIA (`params/p2dx.p`)
+//! and Stage. The thesis's units (mm and degrees 0–359) are produced by the conversion
+//! helpers on [`Pose`].
 
 use std::f64::consts::{PI, TAU};
 

@@ -1,5 +1,5 @@
-//! Soar-SLAM's robot side (issue 6): the simulated Pioneer 2-DX, its sonar ring and odometry
-//! drift, the world it drives in, and the thesis's sonar-to-walls Hough pipeline.
+//! Soar-SLAM's robot side: the simulated Pioneer 2-DX, its sonar ring and odometry drift, the
+//! world it drives in, and the thesis's sonar-to-walls Hough pipeline.
 //!
 //! - [`world`]: world files (TOML) and the built-in empty room and partition box;
 //! - [`pioneer`]: differential-drive body with wall collision;
@@ -13,8 +13,9 @@
 //! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share;
 //! - [`fixed`]: fast fixed-decimal printing for the step records and `exec` results.
 //!
-//! Sources: the thesis's "Hough-Transform Java" section (`soar-slam-thesis.txt`) and
-//! `robotics-anchors.md` (Pioneer geometry, Stage's sonar and odometry models).
+//! Sources: the thesis's "Hough-Transform Java" section (C. Jamroendararasame, *SoarSLAM*,
+//! M.S. thesis, Pace University, 2007), ARIA's `params/p2dx.p` (Pioneer geometry) and Stage
+//! 2.0.x's `model_ranger.c` and `model_position.c` (sonar and odometry models).
 
 pub mod experiment;
 pub mod fixed;

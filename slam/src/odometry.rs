@@ -1,11 +1,11 @@
 //! Odometry drift: the pose the robot believes, integrated from noisy odometry.
 //!
-//! The model is Stage 2.0.x's differential-drive error model (Konolige's, `model_position.c`),
-//! as written out in `robotics-anchors.md` §1.5: three biases drawn once per run, uniform in
-//! ±MAX/2 with MAX = 0.03 (distance), 0.03 (distance into heading) and 0.05 (rotation), so
-//! ±1.5 %, ±1.5 % and ±2.5 %; and Gaussian noise with standard deviations of 0.03 m per √m
-//! travelled and 0.05 rad per √revolution. For a step that truly moved `odx` metres and turned
-//! `oda` radians:
+//! The model is Stage 2.0.x's differential-drive error model (Konolige's,
+//! `model_position.c`): three biases drawn once per run, uniform in ±MAX/2 with MAX = 0.03
+//! (distance), 0.03 (distance into heading) and 0.05 (rotation), so ±1.5 %, ±1.5 % and
+//! ±2.5 %; and Gaussian noise with standard deviations of 0.03 m per √m travelled and
+//! 0.05 rad per √revolution. For a step that truly moved `odx` metres and turned `oda`
+//! radians:
 //!
 //! ```text
 //! da = oda + |oda|·bias_a + |odx|·bias_y + sqrt(|oda|/2π · std_a² + |odx| · std_y²) · N(0,1)

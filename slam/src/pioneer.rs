@@ -1,10 +1,10 @@
 //! The Pioneer 2-DX body: differential drive kinematics and collision with walls.
 //!
-//! Parameters (issue 6, item 2; `robotics-anchors.md` §1.3 and §6 "Robot"): body radius
-//! 0.25 m (ARIA `RobotRadius 250`), cruise 0.3 m/s, in-place turns at 40°/s, time step 0.1 s
-//! (Stage's `interval_sim 100`). Commands follow ARIA / the thesis's output-link: set the
-//! translational velocity in mm/s, the rotational velocity in °/s, or stop. Commands are
-//! clamped to ARIA's `MaxVelocity 2200` mm/s and `MaxRVelocity 500` °/s.
+//! Parameters: body radius 0.25 m (ARIA `RobotRadius 250`), cruise 0.3 m/s, in-place turns
+//! at 40°/s, time step 0.1 s (Stage's `interval_sim 100`). Commands follow ARIA / the
+//! thesis's output-link: set the translational velocity in mm/s, the rotational velocity in
+//! °/s, or stop. Commands are clamped to ARIA's `MaxVelocity 2200` mm/s and
+//! `MaxRVelocity 500` °/s.
 //!
 //! Collision: the body is a disc. A motion that would bring the disc closer than its radius to
 //! any wall (deeper than it already is) is cut short where it touches, and the step reports a

@@ -1,7 +1,8 @@
 //! A small deterministic, seeded pseudo-random number generator for the simulator.
 //!
-//! The project has no `rand` dependency, and the experiment must be exactly reproducible from
-//! one run seed (issue 6, item 3; `robotics-anchors.md` §6 "Protocol"). So this module provides:
+//! The project has no `rand` dependency, and the experiment must be exactly reproducible
+//! from one run seed, so that runs with and without SLAM pair up seed by seed. So this
+//! module provides:
 //!
 //! - SplitMix64, used only to expand a 64-bit seed into generator state;
 //! - xoshiro256** (Blackman & Vigna), the generator itself: fast, 256 bits of state, and

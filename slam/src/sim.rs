@@ -1,8 +1,8 @@
 //! The simulator: a world, a Pioneer 2-DX, its sonar ring and its drifting odometry.
 //!
-//! Issue 6, items 2–3 and `robotics-anchors.md` §6: each [`Simulator::step`] advances the true
-//! pose under the current command (Stage's 100 ms tick by default), updates the believed pose
-//! from noisy odometry and reads all 16 sonars at the new true pose, as Stage does at 10 Hz.
+//! Each [`Simulator::step`] advances the true pose under the current command (Stage's
+//! 100 ms tick by default), updates the believed pose from noisy odometry and reads all 16
+//! sonars at the new true pose, as Stage does at 10 Hz.
 //!
 //! The believed pose starts equal to the true start pose, so belief and truth share one frame
 //! (the world's) and the position error is simply the distance between them.

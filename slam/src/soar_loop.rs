@@ -1,6 +1,6 @@
-//! The SoarRobot loop (issue 6, item 6; thesis §SoarRobot): the simulated Pioneer, the
-//! sonar-to-walls pipeline and the thesis rules, joined through the kernel's embedding API
-//! (input-link WMEs, output-link commands, registered `exec` functions) and nothing else.
+//! The SoarRobot loop (thesis §SoarRobot): the simulated Pioneer, the sonar-to-walls pipeline
+//! and the thesis rules, joined through the kernel's embedding API (input-link WMEs,
+//! output-link commands, registered `exec` functions) and nothing else.
 //!
 //! One loop step is one decision cycle of the agent and one simulator step (0.1 s):
 //!
@@ -13,20 +13,20 @@
 //!    phase, as 9.6 does);
 //! 3. apply, then the **output phase** (the output callback) of the same decision cycle, at the
 //!    start of the next `run(1)`: carry out every command the rules added to the output-link
-//!    once, as it appears, and mark it `^status complete` (`rules/README.md` §1.4).
+//!    once, as it appears, and mark it `^status complete` (`rules/README.md`, section 1.4).
 //!
 //! So a command takes effect on the simulator step right after the decision that created it,
 //! and a `setOdometry` shows up in `^currentrobotdata` at the very next input phase, as the
 //! contract asks.
 //!
-//! Input-link layout and churn (README §1.2–1.3): `^currentrobotdata` holds `^X ^Y` (mm) and
-//! `^Th` (0..359), integers, and 16 `^sonar` objects with `^index` and `^range` (mm, integers);
-//! their values are updated in place (`update_input` leaves an equal value alone). Each wall is
-//! added once. An input wall that carries `^Copied true` (CopyWall has copied it into the top
-//! state's `^wallData`) is removed at the next input phase, as the contract allows. With the
-//! SLAM rules off nobody copies walls (no rule reads `wallData`), so there a wall is removed
-//! after [`LoopConfig::expire_after`] further extractions to keep the input-link bounded; with
-//! them on, a wall stays until it is copied. Both counts are reported.
+//! Input-link layout and churn (`rules/README.md`, sections 1.2 and 1.3): `^currentrobotdata`
+//! holds `^X ^Y` (mm) and `^Th` (0..359), integers, and 16 `^sonar` objects with `^index` and
+//! `^range` (mm, integers); their values are updated in place (`update_input` leaves an equal
+//! value alone). Each wall is added once. An input wall that carries `^Copied true` (CopyWall
+//! has copied it into the top state's `^wallData`) is removed at the next input phase, as the
+//! contract allows. With the SLAM rules off nobody copies walls (no rule reads `wallData`), so
+//! there a wall is removed after [`LoopConfig::expire_after`] further extractions to keep the
+//! input-link bounded; with them on, a wall stays until it is copied. Both counts are reported.
 //!
 //! `setOdometry` and the scan window: the window's scans carry the believed pose of their time.
 //! When the rules reset the odometry, the loop re-expresses every stored scan pose in the new
@@ -545,7 +545,7 @@ impl Env {
         Ok(())
     }
 
-    /// Puts one extracted wall on the input-link (README §1.3).
+    /// Puts one extracted wall on the input-link (`rules/README.md`, section 1.3).
     fn add_wall(&mut self, agent: &mut Io, wall: &Wall) -> Result<(), rusoar::Error> {
         let Some(wd) = self.wall_data else {
             return Ok(());
@@ -1254,10 +1254,11 @@ mod tests {
         );
     }
 
-    /// Kernel issue found by the SLAM runs (Soar 9.6.5 gives `check` once, then only `wait`):
-    /// an o-supported reject made in a substate for the top state's selected operator must
-    /// remove that operator's acceptable preference for good, as `relation*not*found` relies
-    /// on (`rules/README.md` §4): the reject is a result with o-support (spec §3c).
+    /// Kernel behaviour the SLAM rules depend on (Soar 9.6.5 gives `check` once, then only
+    /// `wait`): an o-supported reject made in a substate for the top state's selected operator
+    /// must remove that operator's acceptable preference for good, as `relation*not*found`
+    /// relies on (`rules/README.md`, section 4): the reject is a result with o-support
+    /// (Soar manual, ch. 2, "Justifications: Support for results").
     #[test]
     fn o_reject_from_a_substate_retires_the_operator() {
         let mut agent = Agent::default();

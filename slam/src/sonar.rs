@@ -1,13 +1,12 @@
 //! The Pioneer 2-DX sonar ring and its range models.
 //!
-//! Geometry: the 16 transducer poses of ARIA's `params/p2dx.p` (`SonarUnit n x y heading`),
-//! copied from the table in `robotics-anchors.md` §1.3 (front ring 0–7 at 90, 50, 30, 10, −10,
-//! −30, −50, −90°, rear ring 8–15 mirrored; numbering clockwise seen from above).
+//! Geometry: the 16 transducer poses of ARIA's `params/p2dx.p` (`SonarUnit n x y heading`):
+//! front ring 0–7 at 90, 50, 30, 10, −10, −30, −50, −90°, rear ring 8–15 mirrored;
+//! numbering clockwise seen from above.
 //!
-//! Range model: each transducer casts a few rays spread evenly over its beam cone and reports the
-//! nearest echo, clamped to `[0.15, 5] m`, as Stage 2.0.x's `model_ranger.c` does
-//! (`robotics-anchors.md` §1.4). No echo reads as the maximum range. Three noise presets
-//! (issue 6, item 2; anchors §6 "Sonar model"):
+//! Range model: each transducer casts a few rays spread evenly over its beam cone and
+//! reports the nearest echo, clamped to `[0.15, 5] m`, as Stage 2.0.x's `model_ranger.c`
+//! does. No echo reads as the maximum range. Three noise presets:
 //!
 //! - [`NoisePreset::Ideal`]: Stage-like, 3 rays over 15°, no noise (what the thesis saw);
 //! - [`NoisePreset::Realistic`]: 7 rays over 25°, Gaussian noise of 1 cm + 1 % of the range,
@@ -45,7 +44,7 @@ impl Transducer {
     }
 }
 
-/// ARIA `p2dx.p` sonar table (`robotics-anchors.md` §1.3), indexed by sonar number.
+/// ARIA `params/p2dx.p` sonar table, indexed by sonar number.
 pub const P2DX_SONARS: [Transducer; NUM_SONARS] = [
     Transducer::new(69.0, 136.0, 90.0),
     Transducer::new(114.0, 119.0, 50.0),
@@ -65,7 +64,7 @@ pub const P2DX_SONARS: [Transducer; NUM_SONARS] = [
     Transducer::new(-157.0, 136.0, 90.0),
 ];
 
-/// The sensor-noise presets of issue 6, item 2.
+/// The sensor-noise presets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum NoisePreset {
     /// Stage 2.0.x: 3 rays over 15°, no noise.

@@ -1,5 +1,5 @@
-//! World descriptions: wall segments, the robot's start pose and the run's settings, read from
-//! TOML (issue 6, item 1).
+//! World descriptions: wall segments, the robot's start pose and the run's settings, read
+//! from TOML.
 //!
 //! ```toml
 //! name = "empty room"        # optional
@@ -25,10 +25,9 @@
 //! y2 = -3.0
 //! ```
 //!
-//! Built-in worlds: [`World::empty_room`], the experiment's empty 8 m × 6 m room
-//! (`robotics-anchors.md` §6 "World"), and [`World::box_partition`], the partition box of the
-//! thesis's Figures 11 and 14, sized so that a robot at its origin reads the sonar values the
-//! thesis lists for Figure 14.
+//! Built-in worlds: [`World::empty_room`], the experiment's empty 8 m × 6 m room, and
+//! [`World::box_partition`], the partition box of the thesis's Figures 11 and 14, sized so
+//! that a robot at its origin reads the sonar values the thesis lists for Figure 14.
 //!
 //! A bad file gives a [`WorldError`] naming the field (`wall[2].x1`, `pipeline.k`, …) and, when
 //! known, its line and column. Loading never panics.

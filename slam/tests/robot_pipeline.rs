@@ -1,6 +1,6 @@
-//! Soar-SLAM simulator and pipeline together (issue 6): a seeded wander in the empty room, the
-//! thesis's sonar-to-walls pipeline over the simulated scans, and the extracted walls checked
-//! against the room's true walls.
+//! Soar-SLAM simulator and pipeline together: a seeded wander in the empty room, the thesis's
+//! sonar-to-walls pipeline over the simulated scans, and the extracted walls checked against
+//! the room's true walls.
 
 use soar_slam::pioneer::{CRUISE_SPEED_M_S, DEFAULT_DT_S, TURN_RATE_DEG_S};
 use soar_slam::pipeline::{self, Scan, ScanWindow, Settings, VoteMode, Wall};

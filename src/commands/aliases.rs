@@ -1,5 +1,5 @@
-//! Soar 9.6's default alias table (spec §6b; `alias` on the official kernel). Only the first
-//! word of a command is looked up, by exact match.
+//! Soar 9.6's default alias table (as `alias` lists it on the official kernel). Only the
+//! first word of a command is looked up, by exact match.
 
 use indexmap::IndexMap;
 

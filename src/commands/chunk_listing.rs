@@ -1,5 +1,5 @@
-//! `chunk` with no arguments and `chunk ?`: 9.6's summary and settings listing (spec §4, §6a),
-//! with this agent's settings and counts filled in.
+//! `chunk` with no arguments and `chunk ?`: 9.6's summary and settings listing
+//! (Soar manual, ch. 9, `chunk`), with this agent's settings and counts filled in.
 
 use crate::agent::{Agent, LearnMode};
 

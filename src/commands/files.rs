@@ -1,4 +1,5 @@
-//! `source` (`load file`), `pushd`, `popd`, `cd`, `dirs`, `ls` (spec §6a, §6d, §7).
+//! `source` (`load file`), `pushd`, `popd`, `cd`, `dirs`, `ls` (Soar manual, ch. 9, "File
+//! System I/O Commands").
 
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
@@ -83,7 +84,7 @@ impl Interpreter {
                 "source: nested more than {MAX_SOURCE_DEPTH} files deep"
             )));
         }
-        // `<stdlib>/NAME`: the default rules embedded in the binary (issue 5).
+        // `<stdlib>/NAME`: the default rules embedded in the binary.
         if let Some(text) = crate::stdlib::lookup(name) {
             let file = self.sources.add(name.to_string(), text.to_string());
             let path = std::path::PathBuf::from(name);
@@ -104,7 +105,8 @@ impl Interpreter {
             .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
         let shown = path.display().to_string();
         let file = self.sources.add(shown, text);
-        // `source dir/f` runs in `dir` (spec §6a): push it now, pop it afterwards, even on error.
+        // `source dir/f` runs in `dir`, as in 9.6: push it now, pop it afterwards, even on
+        // error.
         let changes_dir = name.contains('/');
         if changes_dir {
             let dir = path

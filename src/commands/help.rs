@@ -1,5 +1,5 @@
 //! `help` and `help <command>`: the command list of 9.6 and a short usage per command,
-//! written for rusoar (spec §6a, §6b). An alias is explained by its expansion.
+//! written for rusoar. An alias is explained by its expansion.
 
 use super::aliases::Aliases;
 use super::COMMANDS;

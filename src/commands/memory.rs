@@ -1,5 +1,5 @@
 //! `wm add`, `wm remove`, `production matches` and `print` of identifiers and timetags
-//! (spec §2, §6a).
+//! (Soar manual, ch. 9, `wm`, `production`, `print`).
 
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};

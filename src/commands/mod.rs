@@ -1,6 +1,7 @@
 //! Soar's command language over an [`Agent`]: alias expansion, unique-prefix command names,
-//! option clusters, `source` with its directory handling and first-error abort (spec §1a,
-//! §6, §6d, §7). The interpreter runs without a terminal; front ends drain its [`Event`]s.
+//! option clusters, `source` with its directory handling and first-error abort
+//! (Soar manual, ch. 9, "The Soar User Interface"). The interpreter runs without a
+//! terminal; front ends drain its [`Event`]s.
 
 pub mod aliases;
 mod chunk_listing;
@@ -390,7 +391,7 @@ impl Interpreter {
         }
         let mut words: Vec<String> = cmd.words.iter().map(|w| w.text.clone()).collect();
         let first = cmd.words.first().map(|w| w.span).unwrap_or(cmd.span);
-        // Alias expansion: only the first word, by exact match (spec §1a).
+        // Alias expansion: only the first word, by exact match, as in Soar.
         let mut expanded_from = None;
         if cmd.words[0].kind == WordKind::Bare {
             if let Some(exp) = self.aliases.get(&words[0]) {
@@ -529,7 +530,7 @@ impl Ctx<'_> {
     }
 }
 
-/// A clear error for a command whose issue has not landed yet.
+/// A clear error for a command (or subcommand) that parses but that rusoar does not run.
 fn not_yet(ctx: &Ctx, name: &str) -> Diagnostic {
     let shown = ctx.alias.unwrap_or(name);
     Diagnostic::error(format!("{shown}: not yet supported by rusoar"))

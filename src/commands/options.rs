@@ -1,5 +1,5 @@
-//! Option parsing as Soar's command line does it (spec §1a): `--long` accepts any unique
-//! prefix, short options cluster (`-abc`), and an unknown letter is `No such option: x`.
+//! Option parsing as Soar's command line does it: `--long` accepts any unique prefix, short
+//! options cluster (`-abc`), and an unknown letter is `No such option: x`.
 
 /// One option a command accepts.
 #[derive(Debug, Clone, Copy)]

@@ -1,6 +1,7 @@
-//! `preferences [ID [ATTR]] [--names] [--wmes]` (spec §6a): one slot's preferences grouped
-//! by type in 9.6's order and format, and, for an operator slot that has a choice to make,
-//! each candidate's selection probability. Checked against soar-sml 9.6.5.
+//! `preferences [ID [ATTR]] [--names] [--wmes]` (Soar manual, ch. 9, `preferences`): one
+//! slot's preferences grouped by type in 9.6's order and format, and, for an operator slot
+//! that has a choice to make, each candidate's selection probability. Checked against
+//! soar-sml 9.6.5.
 
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};

@@ -1,6 +1,6 @@
 //! `print --stack` (`ps`) and `print --tree`: the goal stack as decision lines with a blank
-//! cycle field, and working memory one WME per line in a tree (spec §6a, §6c; checked
-//! against the official kernel's output).
+//! cycle field, and working memory one WME per line in a tree (Soar manual, ch. 9, `print`;
+//! checked against the official kernel's output).
 
 use crate::agent::Agent;
 use crate::symbols::Sym;

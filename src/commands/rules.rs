@@ -1,4 +1,4 @@
-//! `sp`, `print <rule>`, `production excise` (spec §1c, §6a).
+//! `sp`, `print <rule>`, `production excise` (Soar manual, ch. 9, `sp`, `print`, `production`).
 
 use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
@@ -105,8 +105,8 @@ impl Interpreter {
         }
     }
 
-    /// `print`: rules by name, `--all`/`-a` lists rule names newest first. Printing working
-    /// memory arrives with the working-memory issue.
+    /// `print`: rules by name, `--all`/`-a` lists rule names newest first, `--stack` the goal
+    /// stack; an identifier or timetag prints working memory (`print_memory`, memory.rs).
     pub(super) fn cmd_print(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let specs = [
             opt('a', "all"),
@@ -172,7 +172,7 @@ impl Interpreter {
             || parsed.has("defaults")
             || parsed.has("justifications")
         {
-            // Newest first, each kind as its option selects (spec §4: chunks, and the live
+            // Newest first, each kind as its option selects (chunks, and the live
             // justifications, which are not in the rule list).
             let all = parsed.has("all");
             let mut s = String::new();

@@ -1,4 +1,5 @@
-//! `run`, `soar init`, `firing-counts` and `stats` over the decision cycle (spec §3a, §6a).
+//! `run`, `soar init`, `firing-counts` and `stats` over the decision cycle (Soar manual,
+//! ch. 9, `run`, `soar`, `production`, `stats`).
 
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
@@ -35,7 +36,7 @@ pub(crate) struct RunReport {
 
 impl Interpreter {
     /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
-    /// decisions; a unit alone is one of it (spec §6a).
+    /// decisions; a unit alone is one of it (Soar manual, ch. 9, `run`).
     pub(super) fn cmd_run(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let specs = [
             opt('d', "decision"),
@@ -92,7 +93,7 @@ impl Interpreter {
         } else {
             ""
         };
-        // 9.6 adds how many rules the run learned (spec §4, E:t13).
+        // 9.6 adds how many rules the run learned.
         let learned = match self.agent.learn.learned_this_run {
             0 => String::new(),
             1 => "1 new rule learned.".to_string(),
@@ -141,9 +142,9 @@ impl Interpreter {
                 .push(super::Event::Text("\nInterrupted.".to_string()));
         }
         // 9.6 reports the change of the decision-cycle counter, measured from 0 while the
-        // counter is still at its initial 1 (spec §6a, E:t18): so the second `run 1` after
-        // `init-soar` reports 2 cycles, and a run that ends inside the cycle it started in
-        // reports "0 decision cycle" (singular, as printed by 9.6).
+        // counter is still at its initial 1 (as observed on the official kernel): so the
+        // second `run 1` after `init-soar` reports 2 cycles, and a run that ends inside the
+        // cycle it started in reports "0 decision cycle" (singular, as printed by 9.6).
         let last_dc = if dc_before > 1 { dc_before } else { 0 };
         let decisions = self.agent.decider.d_cycle_count.saturating_sub(last_dc);
         RunReport {
@@ -205,10 +206,10 @@ impl Interpreter {
             .collect())
     }
 
-    /// `stats`: 9.6's report (spec §6a): the production counts, the phase timing table,
-    /// the single timers, then the counts. The timings are rusoar's own (wall-clock time
-    /// per phase, `std::time::Instant`); the first line names rusoar, the host and the
-    /// time. WM size is sampled at the end of every phase, as 9.6 samples it.
+    /// `stats`: 9.6's report: the production counts, the phase timing table, the single
+    /// timers, then the counts. The timings are rusoar's own (wall-clock time per phase,
+    /// `std::time::Instant`); the first line names rusoar, the host and the time. WM size
+    /// is sampled at the end of every phase, as 9.6 samples it.
     pub(super) fn cmd_stats(&mut self) -> CmdResult {
         let (mut defaults, mut chunks) = (0, 0);
         for p in self.agent.productions() {
@@ -256,7 +257,7 @@ impl Interpreter {
     }
 }
 
-/// The counts `stats` prints (spec §6a).
+/// The counts `stats` prints.
 pub(crate) struct StatsCounts {
     pub decisions: u64,
     pub e_cycles: u64,

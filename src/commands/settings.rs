@@ -1,12 +1,12 @@
 //! Settings commands: `learn` (with Soar 8 spellings), `chunk`, `soar`, `trace`, `decide`,
-//! `output`, `alias` (spec §6a, §6b, §7).
+//! `output`, `alias` (Soar manual, ch. 9).
 
 use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
 use crate::source::Diagnostic;
 
-/// Soar 8 single-dash words and their 9.6 spellings (spec §7).
+/// Soar 8 single-dash words and their 9.6 spellings.
 const LEARN_SOAR8: &[(&str, &str)] = &[
     ("-off", "--off"),
     ("-on", "--on"),
@@ -19,7 +19,7 @@ const LEARN_SOAR8: &[(&str, &str)] = &[
 
 impl Interpreter {
     /// The deprecated `learn` command. Soar 8's `learn -off` is accepted with a warning
-    /// (9.6 reads it as `-o -f -f` and aborts the load: spec §7, E:t3).
+    /// (9.6 reads it as `-o -f -f` and aborts the load).
     pub(super) fn cmd_learn(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let mut args = args.to_vec();
         for (i, a) in args.iter_mut().enumerate() {
@@ -87,7 +87,7 @@ impl Interpreter {
             None => Ok(super::chunk_listing::summary(&self.agent)),
             Some("?" | "help") => Ok(super::chunk_listing::settings(&self.agent)),
             Some(w @ ("always" | "never" | "only" | "except" | "on" | "off")) => {
-                // `chunk on` means `only` in 9.6 (spec §4, E:t3).
+                // `chunk on` means `only` in 9.6.
                 s.learn = match w {
                     "always" => LearnMode::Always,
                     "never" | "off" => LearnMode::Never,

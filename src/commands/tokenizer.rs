@@ -1,6 +1,7 @@
 //! The command tokenizer: how a `.soar` file or a typed line splits into commands and words
-//! (spec §1a). Tcl-like but not Tcl: `#` starts a comment anywhere (also inside braces, not
-//! inside `|...|`), braces nest, there is no `$` or `[` substitution.
+//! (as Soar's `shared/tokenizer.h` does it). Tcl-like but not Tcl: `#` starts a comment
+//! anywhere (also inside braces, not inside `|...|`), braces nest, there is no `$` or `[`
+//! substitution.
 
 use crate::source::{Diagnostic, FileId, Span};
 
@@ -38,7 +39,7 @@ pub struct Command {
 }
 
 /// Splits text into commands lazily, so that commands before a tokenizing error still run,
-/// as they do in Soar (spec §6d).
+/// as they do in Soar.
 pub struct Tokenizer<'a> {
     text: &'a str,
     bytes: &'a [u8],
@@ -217,7 +218,7 @@ impl<'a> Tokenizer<'a> {
         }
     }
 
-    /// Backslash escapes outside braces (spec §1a).
+    /// Backslash escapes outside braces.
     fn read_escape(&mut self, out: &mut String) {
         self.pos += 1;
         let Some(c) = self.peek() else {
@@ -405,7 +406,7 @@ mod tests {
     #[test]
     fn hash_comments_anywhere_even_in_braces() {
         let w = words("sp {a # c }\n b}");
-        // The `}` on the comment line is commented out too (spec §1a).
+        // The `}` on the comment line is commented out too, as in Soar.
         assert_eq!(w[0][1], "a      \n b");
         assert_eq!(words("echo a # comment"), vec![vec!["echo", "a"]]);
     }

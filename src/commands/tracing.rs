@@ -1,6 +1,6 @@
 //! `trace` (alias `watch`): levels 0 to 5, the single flags (`-p`, `--wmes`, `-w remove`,
-//! ...), and the listing with no arguments, with 9.6's messages (spec §6a, §6c; checked on
-//! the official kernel).
+//! ...), and the listing with no arguments, with 9.6's messages (Soar manual, ch. 9,
+//! `trace`; checked on the official kernel).
 
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::{TraceFlags, WmeDetail};

@@ -1,7 +1,8 @@
-//! Backtracing (spec §4): from each result, through the firings that made the local WMEs it
-//! tested, to the superstate WMEs ("grounds") the reasoning depended on. Identities are
-//! joined where a condition tested what an action made, and a literal tested on such a WME
-//! fixes the identity to that literal (EBC's constraint propagation).
+//! Backtracing (Soar manual, ch. 4, "Procedural Knowledge Learning"): from each result,
+//! through the firings that made the local WMEs it tested, to the superstate WMEs
+//! ("grounds") the reasoning depended on. Identities are joined where a condition tested
+//! what an action made, and a literal tested on such a WME fixes the identity to that
+//! literal (EBC's constraint propagation).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
 use crate::symbols::Sym;

@@ -1,8 +1,8 @@
-//! Building the learned rule from a backtrace (spec §4): its conditions are the grounds
-//! (plus the negations on superstate objects the reasoning used), its actions the results.
-//! A chunk gets one variable per joined identity, named after the attribute it first sits
-//! under (`<o1>` for `^operator`), counted per letter; literals stay literals. A
-//! justification keeps the symbols themselves.
+//! Building the learned rule from a backtrace (Soar manual, ch. 4, "Procedural Knowledge
+//! Learning"): its conditions are the grounds (plus the negations on superstate objects the
+//! reasoning used), its actions the results. A chunk gets one variable per joined identity,
+//! named after the attribute it first sits under (`<o1>` for `^operator`), counted per
+//! letter; literals stay literals. A justification keeps the symbols themselves.
 
 use super::backtrace::Backtrace;
 use super::record::equality_var;

@@ -1,8 +1,9 @@
-//! One learning episode (spec §4): a substate firing made results; backtrace them, build a
-//! chunk (when learning is on for that state) or a justification, and give the results to
-//! that rule's instantiation, whose support they take (spec §3c, last row). A result that
-//! is still a result one level up (a level-3 firing returning to the top state) is learned
-//! again from that instantiation, as 9.6 does (`chunkx2*...`, E:c4).
+//! One learning episode (Soar manual, ch. 4, "Procedural Knowledge Learning"): a substate
+//! firing made results; backtrace them, build a chunk (when learning is on for that state)
+//! or a justification, and give the results to that rule's instantiation, whose support
+//! they take (Soar manual, ch. 2, "Justifications: Support for results"). A result that is
+//! still a result one level up (a level-3 firing returning to the top state) is learned
+//! again from that instantiation, as 9.6 does (`chunkx2*...`).
 
 use super::backtrace::Backtrace;
 use super::{InstTrace, Justification, PrefOrigin, TraceCond};
@@ -64,8 +65,9 @@ fn action_idents(trace: &InstTrace, prod: &Production, k: usize) -> [super::Iden
 }
 
 impl Agent {
-    /// The results among a firing's preferences (spec §4): those for objects of a higher
-    /// level, and everything on new objects they link up, which move up to that level.
+    /// The results among a firing's preferences (Soar manual, ch. 2, "Results"): those for
+    /// objects of a higher level, and everything on new objects they link up, which move up
+    /// to that level.
     pub(crate) fn find_results(&mut self, made: &[PrefId], level: u32) -> Vec<PrefId> {
         let mut queue: Vec<PrefId> = made
             .iter()
@@ -245,7 +247,7 @@ impl Agent {
             }
         };
         // The results' copies, owned by the learned rule's instantiation (the originals
-        // stay with the substate's firing, as 9.6 lists both, E:c3).
+        // stay with the substate's firing, as 9.6 lists both).
         // An o-supported result outlives the chunk's instantiation under the chunk's name
         // (9.6 names the chunk when an o-reject takes it: agent learn-negation, trace 5).
         let chunk_rule = chunk_match.as_ref().map(|(pid, _, _)| *pid);
@@ -330,7 +332,7 @@ impl Agent {
         }
     }
 
-    /// `chunk*<rule>*[<impasse>*]t[<init+1>-]<dc>-<n>` (spec §4, E:t13, E:c4).
+    /// `chunk*<rule>*[<impasse>*]t[<init+1>-]<dc>-<n>` as the official kernel names chunks.
     fn chunk_name(&mut self, source: &InstTrace, level: u32) -> String {
         let dc = self.decider.d_cycle_count;
         if self.learn.chunk_name_dc != dc {
@@ -399,8 +401,9 @@ impl Agent {
         Some(t)
     }
 
-    /// Spec §3c applied to a justification's conditions: it tests the selected operator of
-    /// the lowest goal it tests, and makes something other than that operator.
+    /// The o-support test (Soar manual, ch. 2, "The calculation of o-support") applied to a
+    /// justification's conditions: it tests the selected operator of the lowest goal it
+    /// tests, and makes something other than that operator.
     fn justification_support(&mut self, bt: &Backtrace, results: &[PrefId]) -> bool {
         let op = self.symbols.str("operator");
         let lowest = bt
@@ -434,7 +437,8 @@ impl Agent {
     }
 
     /// An instantiation for learned results that the network does not hold: it retracts
-    /// when one of its WMEs goes (spec §4, justifications).
+    /// when one of its WMEs goes (Soar manual, ch. 2, "Justifications: Support for
+    /// results").
     fn add_justification(
         &mut self,
         bt: &Backtrace,
@@ -446,8 +450,8 @@ impl Agent {
         self.learn.next_serial += 1;
         let serial = self.learn.next_serial;
         // Its match goal is the lowest goal among its conditions' identifiers, as for a
-        // rule: 9.6 holds justifications in the network (spec §3b: the waterfall retracts
-        // them at that goal).
+        // rule: 9.6 holds justifications in the network (the waterfall retracts them at
+        // that goal).
         let goal =
             crate::decide::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
         let inst = Instantiation {

@@ -1,7 +1,7 @@
-//! Learning from substate results (spec §4; issue 5): what a substate firing records so it
-//! can be backtraced later, the detection of results, and the justifications and chunks
-//! built from them. `backtrace.rs` walks from a result to the superstate WMEs it depended
-//! on, `build.rs` turns that into a rule.
+//! Learning from substate results (Soar manual, ch. 4, "Procedural Knowledge Learning"):
+//! what a substate firing records so it can be backtraced later, the detection of results,
+//! and the justifications and chunks built from them. `backtrace.rs` walks from a result to
+//! the superstate WMEs it depended on, `build.rs` turns that into a rule.
 
 mod backtrace;
 mod build;
@@ -86,15 +86,15 @@ pub struct LearnState {
     /// The count used in chunk names (`t<dc>-<n>`).
     pub chunk_name_count: u64,
     pub chunk_name_dc: u64,
-    /// The justification name counter (incremented twice per name, E:t22).
+    /// The justification name counter (incremented twice per name, as in 9.6).
     pub justification_counter: u64,
     pub justifications_learned: u64,
     /// Chunks learned during the current `run` (for its summary line).
     pub learned_this_run: u64,
-    /// Chunks learned in the current phase (max-chunks is per phase, spec §4).
+    /// Chunks learned in the current phase (max-chunks is per phase in 9.6).
     pub chunks_this_phase: i64,
     /// Duplicate chunks learned in the current phase, by the rule whose firing made the
-    /// result (max-dupes is per rule, per phase, spec §4).
+    /// result (max-dupes is per rule, per phase in 9.6).
     pub dupes_this_phase: FxHashMap<String, i64>,
     pub duplicates: u64,
     /// `chunk`'s counts since the last `init-soar` (9.6 resets them there): chunks,

@@ -1,9 +1,9 @@
-//! A justification's negated conditions (spec §4, justifications): 9.6 adds a justification
-//! to the rete like a rule, so a result whose justification negates a superstate WME (or a
-//! conjunction of them) retracts as soon as such a WME appears. Justifications are not in
-//! our network: their negations are kept here as patterns over symbols (the firing's
-//! bindings filled in, the negation's own variables left free), and each new WME whose
-//! attribute one of them tests is checked against them.
+//! A justification's negated conditions (Soar manual, ch. 2, "Justifications: Support for
+//! results"): 9.6 adds a justification to the rete like a rule, so a result whose
+//! justification negates a superstate WME (or a conjunction of them) retracts as soon as
+//! such a WME appears. Justifications are not in our network: their negations are kept here
+//! as patterns over symbols (the firing's bindings filled in, the negation's own variables
+//! left free), and each new WME whose attribute one of them tests is checked against them.
 
 use std::sync::Arc;
 

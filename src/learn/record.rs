@@ -1,6 +1,7 @@
-//! Recording substate firings (spec §4): a firing below the top state keeps its matched
-//! WMEs, the identities of its variables and, for each local WME, the preference that made
-//! it. Top-state firings are never backtraced and record nothing (speed).
+//! Recording substate firings (Soar manual, ch. 4, "Procedural Knowledge Learning"): a
+//! firing below the top state keeps its matched WMEs, the identities of its variables and,
+//! for each local WME, the preference that made it. Top-state firings are never backtraced
+//! and record nothing (speed).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
 use crate::agent::Agent;
@@ -62,7 +63,7 @@ impl Agent {
             };
             let wme_level = self.symbols.id_data(wme.id).map_or(0, |d| d.level);
             let ident = |t: &Test| equality_var(t).and_then(|v| vars.get(v)).map_or(0, |x| x.0);
-            // Any substate WME may be local to a later episode one level up (E:c4).
+            // Any substate WME may be local to a later episode one level up.
             let support = if wme_level >= 2 {
                 self.supporting_origin(&wme)
             } else {

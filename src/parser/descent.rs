@@ -3,7 +3,7 @@
 //!
 //! It only has to be right on well-formed rules: on anything the grammar rejects (or a
 //! lexing error) it gives up with `None`, and the lalrpop parser reads the text again to
-//! produce today's diagnostic. So it must never accept what the grammar rejects, and must
+//! produce the diagnostic. So it must never accept what the grammar rejects, and must
 //! build the same tree, spans included: a span runs from the start of its first token to
 //! the end of its last one (lalrpop's `@L` ... `@R`).
 //!

@@ -1,5 +1,6 @@
-//! Activations (Doorenbos §2.3–§2.8): right activations of joins and negative nodes by a new
-//! WME, left activations of every node kind by a new token, and the join tests.
+//! Activations (Doorenbos, sections 2.3 to 2.8): right activations of joins and negative
+//! nodes by a new WME, left activations of every node kind by a new token, and the join
+//! tests.
 //!
 //! This is the matcher's hot path, so it allocates nothing once warm: the lists an
 //! activation walks (children, alpha-memory candidates, token candidates) are copied onto
@@ -359,7 +360,7 @@ impl Rete {
             }
             Kind::Ncc { partner } => {
                 let nt = self.new_token(n, t, w);
-                // Results the subnetwork found before this token existed (Doorenbos §2.8):
+                // Results the subnetwork found before this token existed (Doorenbos, section 2.8):
                 // those whose ancestor above the subnetwork is this token's parent.
                 let owner_depth = match self.nodes[partner as usize].kind {
                     Kind::NccPartner { owner_depth, .. } => owner_depth,
@@ -410,7 +411,7 @@ impl Rete {
     }
 
     /// The tokens of a holder that its children see: a negative or NCC node's tokens that
-    /// have results are blocked (Doorenbos §2.7).
+    /// have results are blocked (Doorenbos, section 2.7).
     pub(crate) fn live_tokens(&self, n: NodeId) -> Vec<TokId> {
         let mut toks = self.node_tokens(n);
         if matches!(

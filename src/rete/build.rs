@@ -1,7 +1,7 @@
-//! Adding productions to the network and excising them (Doorenbos §2.4, §2.6, §4): conditions
-//! are ordered so each joins on bound variables, nodes are shared with existing productions,
-//! and a new node is filled with the matches already present (so a rule added while running
-//! fires at once where it should).
+//! Adding productions to the network and excising them (Doorenbos, sections 2.4 and 2.6,
+//! chapter 4): conditions are ordered so each joins on bound variables, nodes are shared
+//! with existing productions, and a new node is filled with the matches already present (so
+//! a rule added while running fires at once where it should).
 
 use super::tests::{Field, JoinTest, Op, Operand};
 use super::{
@@ -124,7 +124,7 @@ impl Rete {
         );
         let parent = cur_node(cur);
         // A rule whose conditions share every node with another rule, and whose actions are
-        // the same up to variable names, is a duplicate (spec §1c).
+        // the same up to variable names, is a duplicate, which Soar ignores with a message.
         let action_key = action_key(p, &bindings);
         let twin = self
             .all_children(parent)
@@ -262,7 +262,7 @@ impl Rete {
         syms: &mut Symbols,
         mut record: Option<(&mut Vec<NodeId>, &mut u32)>,
     ) -> Cur {
-        // Conditions come in join order: `reorder` put them there (spec §3i).
+        // Conditions come in join order: `reorder` put them there.
         for i in 0..conds.len() {
             match &conds[i] {
                 Condition::Positive(c) => {
@@ -315,7 +315,7 @@ impl Rete {
                     );
                     self.attach(sub_parent, partner, true);
                     let ncc = self.new_node(Kind::Ncc { partner }, h, owner_depth);
-                    // The subnetwork is activated before the NCC node (Doorenbos §2.8).
+                    // The subnetwork is activated before the NCC node (Doorenbos, section 2.8).
                     self.attach(h, ncc, false);
                     if let Kind::NccPartner { ncc: slot, .. } =
                         &mut self.nodes[partner as usize].kind
@@ -338,9 +338,10 @@ impl Rete {
     /// parent with few children is scanned; a wide one (the memory that thousands of rules
     /// branch from) has its children in the share index.
     fn shared(&self, parent: NodeId, kind: u8, amem: AmemId, tests: &[JoinTest]) -> Option<NodeId> {
-        // Equal test lists are stored once: no stored list, no node to share. The share index
-        // keys on the list too: thousands of rules can branch from one memory on one alpha
-        // memory, differing only in a constant (issue 3's counter rules).
+        // Equal test lists are stored once: no stored list, no node to share. The share
+        // index keys on the list too: thousands of rules can branch from one memory on one
+        // alpha memory, differing only in a constant (the rules of
+        // `scripts/gen_rules.py counter`).
         let list = self.test_lists.find(tests)?;
         let same = |n: NodeId| self.node_test_list(n) == Some(list);
         if !self.nodes[parent as usize].wide {
@@ -763,7 +764,8 @@ fn add_test<'a>(
         },
         Test::Relational(r, referent) => match &**referent {
             Term::Var(v) => {
-                // A relational test on a variable bound nowhere is dropped (spec §1g).
+                // A relational test on a variable bound nowhere is dropped, as Soar's
+                // reorderer does.
                 if let Some(&(d, f)) = bindings.get(&**v) {
                     tests.push(JoinTest::Compare {
                         field,

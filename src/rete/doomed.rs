@@ -1,4 +1,4 @@
-//! Batches of WME changes without their passing matches (spec §2 I/O order, §3i).
+//! Batches of WME changes without their passing matches.
 //!
 //! Soar 9.6 hands a batch of changes to the matcher additions first, then removals. When a
 //! batch replaces values (an input phase that moves the robot's `^X ^Y ^Th`), every new

@@ -1,5 +1,5 @@
-//! Hashed joins (Doorenbos §2.3, as Soar does): a join or negative node whose new WME's
-//! identifier must equal a variable bound above it looks up only the WMEs with that
+//! Hashed joins (Doorenbos, section 2.3, as Soar does): a join or negative node whose new
+//! WME's identifier must equal a variable bound above it looks up only the WMEs with that
 //! identifier (the right index, per alpha memory) and only the tokens with that value (the
 //! left index, per token holder). Both indexes are intrusive lists, newest first, so a
 //! lookup visits the same WMEs and tokens in the same order as a full scan would, and a

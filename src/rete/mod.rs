@@ -6,10 +6,11 @@
 //! are never constants) and the acceptable-preference flag. The beta network has beta
 //! memories, join nodes, negative nodes, conjunctive-negation (NCC) nodes with partners, and
 //! production nodes; nodes are shared between productions with equal prefixes. New matches
-//! and retractions go to a [`MatchSink`] (the seam between matcher and decider, spec §3i).
+//! and retractions go to a [`MatchSink`] (the seam between matcher and decider).
 //!
 //! Lists are head-inserted as in Soar (children, alpha-memory successors and items), which
-//! is what makes later-created nodes and newer WMEs come first (spec §3i, §8 risk 1).
+//! is what makes later-created nodes and newer WMEs come first (Soar's `rete.cpp` uses
+//! `insert_at_head_of_dll`); that order decides which of several new matches fires first.
 
 mod activate;
 pub(crate) mod blocks;
@@ -102,7 +103,8 @@ pub(crate) struct Amem {
 /// A linked successor of an alpha memory, with the first of its tests that reads the new
 /// WME alone (against a constant), copied here so that the right activations a WME cannot
 /// pass end without touching the node: an alpha memory can have thousands of successors
-/// that test one attribute against their own constants (issue 3's counter rules).
+/// that test one attribute against their own constants (the rules of
+/// `scripts/gen_rules.py counter`).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Succ {
     pub node: NodeId,
@@ -744,8 +746,8 @@ impl Rete {
         // Up to four alpha memories can hold it: attribute and value constant or not. They
         // are activated least specific first, as 9.6 walks its alpha hash tables; the order
         // decides which left-unlinked joins relink first, so the order of new matches and
-        // of firings (spec §3i, §8 risk 1; scripts/trace_compare.py: o-reject,
-        // random-tokens and missionaries match 9.6 at every trace level with it).
+        // of firings (scripts/trace_compare.py: o-reject, random-tokens and missionaries
+        // match 9.6 at every trace level with it).
         let targets = self.alpha_targets(attr, value, acceptable);
         if self.mark_alphas {
             self.alpha_marks.clear();
@@ -876,7 +878,7 @@ impl Rete {
     // ------------------------------------------------------------------ unlinking
 
     /// Marks a linked join left-unlinked; false if it was unlinked on either side already
-    /// (a join is never unlinked on both sides, Doorenbos §4.3).
+    /// (a join is never unlinked on both sides, Doorenbos, section 4.3).
     fn mark_left_unlinked(&mut self, n: NodeId) -> bool {
         match &mut self.nodes[n as usize].kind {
             Kind::Join {
@@ -1013,9 +1015,9 @@ impl Rete {
 
     /// Links a node into its alpha memory's successors where Soar's Rete/UL puts it, when
     /// it is built and whenever it is relinked: just before its nearest linked ancestor on
-    /// the same memory (so no descendant sees a new WME twice, Doorenbos §4.3.2), or else
-    /// at the tail. The order therefore follows linking history, which decides the firing
-    /// order of rules matched by one WME (spec §3i): 9.6 activates from the head.
+    /// the same memory (so no descendant sees a new WME twice, Doorenbos, section 4.3.2),
+    /// or else at the tail. The order therefore follows linking history, which decides the
+    /// firing order of rules matched by one WME: 9.6 activates from the head.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId, syms: &Symbols) {
         const GAP: u64 = 1 << 20;
         let mut a = self.nodes[n as usize].same_amem_ancestor;

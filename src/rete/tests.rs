@@ -1,5 +1,6 @@
-//! The tests a join node makes (spec §3g): equality and the relational tests between a field
-//! of the new WME and a bound variable or a constant, disjunctions, and goal/impasse tests.
+//! The tests a join node makes (Soar manual, ch. 3, "Predicates for values"): equality and
+//! the relational tests between a field of the new WME and a bound variable or a constant,
+//! disjunctions, and goal/impasse tests.
 
 use crate::ast::Relation;
 use crate::symbols::{Sym, Symbols};

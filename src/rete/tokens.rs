@@ -1,6 +1,7 @@
-//! Tokens and their bookkeeping: creation, the tree-based removal of Doorenbos §2.5, and the
-//! result lists of negative and NCC nodes (§2.7, §2.8). Every list is intrusive (indexes into
-//! arenas), so removal is constant time and order is kept.
+//! Tokens and their bookkeeping: creation, the tree-based removal of Doorenbos
+//! (section 2.5), and the result lists of negative and NCC nodes (sections 2.7 and 2.8).
+//! Every list is intrusive (indexes into arenas), so removal is constant time and order is
+//! kept.
 
 use super::hash::NO_VALUE;
 use super::{
@@ -193,7 +194,8 @@ impl Rete {
             if owner != NIL && self.tokens[owner as usize].alive {
                 self.unlink_ncc_result(owner, t);
                 if self.links[owner as usize].results == NIL {
-                    // The conjunction no longer matches: the owner's match goes on (§2.8).
+                    // The conjunction no longer matches: the owner's match goes on
+                    // (Doorenbos, section 2.8).
                     let onode = self.tokens[owner as usize].node;
                     self.activate_children(onode, owner, NIL_WME, syms, sink);
                 }

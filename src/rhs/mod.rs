@@ -1,6 +1,7 @@
-//! Evaluation of the built-in RHS functions (spec §1f) with Soar 9.6's exact results and
-//! error texts, and the [`Registry`] through which an embedding program adds its own
-//! functions by name (`exec`, and direct calls such as `(getlength a b)`).
+//! Evaluation of the built-in RHS functions (Soar manual, ch. 3, "Right-hand side
+//! Functions") with Soar 9.6's exact results and error texts, and the [`Registry`] through
+//! which an embedding program adds its own functions by name (`exec`, and direct calls such
+//! as `(getlength a b)`).
 //!
 //! The decision cycle evaluates a function call's arguments first (innermost calls first,
 //! left to right); if one of them failed, 9.6 does not call the outer function and the
@@ -10,9 +11,9 @@
 //! - `Ok(None)`: a stand-alone function (`write`, `halt`, ...) ran.
 //! - `Err(message)`: the function failed (9.6's NIL). The caller prints `message` followed
 //!   by a newline, starting on a fresh line first when [`RhsContext::error_fresh_line`] is
-//!   set (9.6's `%e`), and skips the make action (spec §1e). An **empty** message means 9.6
-//!   fails silently (`accept` at end of input, `from-st-xml` on bad XML, `ifeq` without an
-//!   else value): print nothing.
+//!   set (9.6's `%e`), and skips the make action. An **empty** message means 9.6 fails
+//!   silently (`accept` at end of input, `from-st-xml` on bad XML, `ifeq` without an else
+//!   value): print nothing.
 //!
 //! Besides its result, a call can leave things in the context for the caller:
 //! [`RhsContext::halt`], [`RhsContext::interrupt`], [`RhsContext::dont_learn`],
@@ -155,7 +156,8 @@ pub type WmeOrder<'a> = &'a dyn Fn(Sym) -> (Vec<WmeId>, Vec<WmeId>);
 pub struct RhsContext<'a> {
     pub symbols: &'a mut Symbols,
     pub wm: &'a WorkingMemory,
-    /// The process-global generator (`rand-int`, `rand-float`; spec §3h).
+    /// The process-global generator (`rand-int`, `rand-float`), one for all agents as in
+    /// Soar.
     pub rng: &'a mut Mt19937,
     pub registry: &'a mut Registry,
     /// `write`, `trace` and `log` append here.
@@ -477,7 +479,7 @@ pub fn call(name: &str, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym
         }
         "link-stm-to-ltm" => link_stm_to_ltm(args, ctx),
         _ => {
-            // An unknown name is an `exec` call (the parser's rewrite, spec §1e).
+            // An unknown name is an `exec` call (the parser's rewrite).
             let mut all = Vec::with_capacity(args.len() + 1);
             all.push(ctx.str_sym(name));
             all.extend_from_slice(args);

@@ -1,12 +1,13 @@
 //! The numeric fast path of `exec` for registered functions that read their argument string
 //! as comma-separated numbers (the thesis's `getlength`, `checkwallrelation`, ...).
 //!
-//! `exec` hands a registered function the text of its arguments, concatenated (spec §1f):
+//! `exec` hands a registered function the text of its arguments, concatenated (Soar manual,
+//! ch. 3, "User-defined functions and interface commands as RHS actions"):
 //! `(exec f <x>|, |<y>)` gives `"3000, -1.500000"`. A function that only splits that text
-//! on commas and parses each field as a number can also register a numeric form, which
-//! gets those numbers directly, without the text being printed and read back. Both forms
-//! must compute the same thing; [`numbers`] yields exactly the numbers the text form would
-//! read, or `None` when the arguments are not of that shape, and then the text form runs.
+//! on commas and parses each field as a number can also register a numeric form, which gets
+//! those numbers directly, without the text being printed and read back. Both forms must
+//! compute the same thing; [`numbers`] yields exactly the numbers the text form would read,
+//! or `None` when the arguments are not of that shape, and then the text form runs.
 
 use crate::symbols::{Sym, SymData, Symbols};
 

@@ -1,6 +1,7 @@
-//! The table of built-in RHS function names, arities and where each may appear (spec §1f).
-//! Evaluation lives with the decision cycle; the parser needs only this table to check
-//! argument counts and to rewrite unknown names to `exec` (spec §1e).
+//! The table of built-in RHS function names, arities and where each may appear (Soar
+//! manual, ch. 3, "Right-hand side Functions"). Evaluation lives with the decision cycle;
+//! the parser needs only this table to check argument counts and to rewrite unknown names
+//! to `exec`.
 
 /// Where a function may be used.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -24,7 +25,8 @@ const fn f(name: &'static str, arity: Option<usize>, usage: Use) -> FunctionInfo
     FunctionInfo { name, arity, usage }
 }
 
-/// The kernel's and the SML layer's functions, as registered in 9.6 (spec §1f).
+/// The kernel's and the SML layer's functions, as registered in 9.6 (its `add_rhs_function`
+/// calls).
 pub const BUILTINS: &[FunctionInfo] = &[
     f("+", None, Use::Value),
     f("*", None, Use::Value),

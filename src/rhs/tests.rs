@@ -1,8 +1,7 @@
 //! Expected values are the official kernel's outputs (soar-sml 9.6.5), obtained with rules
-//! that `(write |@n=| (f args) (crlf))` each call, run through
-//! `shared/spec/experiments/run.py`-style harnesses (the exec tests register Python RHS
-//! functions `echo` -> `<agent|name|args>` and `getlength` -> `len(args)`). An error line
-//! is the text the kernel printed instead.
+//! that `(write |@n=| (f args) (crlf))` each call, run through small Python harnesses over
+//! soar-sml (the exec tests register Python RHS functions `echo` -> `<agent|name|args>` and
+//! `getlength` -> `len(args)`). An error line is the text the kernel printed instead.
 
 use super::text::{self, accept_symbol, timestamp_text, Accepted};
 use super::*;

@@ -4,9 +4,9 @@
 //! transducer; "the converter will pair each sonar value with the angle of its transducer, then
 //! convert those pairs into x,y coordinates on the image space" (Figures 14 and 15). Here each
 //! range is placed along its transducer's beam axis, from the transducer's position (ARIA
-//! geometry, `robotics-anchors.md` §1.3), in the frame of the robot's **believed** pose, in mm.
-//! The sensor position and beam direction are kept with each point because the noise filter
-//! draws the return's visible arc from them.
+//! geometry, `params/p2dx.p`), in the frame of the robot's **believed** pose, in mm. The sensor
+//! position and beam direction are kept with each point because the noise filter draws the
+//! return's visible arc from them.
 
 use super::super::geom::{Point, Pose};
 use super::super::sonar::Transducer;

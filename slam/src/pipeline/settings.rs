@@ -1,10 +1,9 @@
 //! Settings of the sonar-to-walls pipeline, with the reasons for each default.
 //!
-//! The thesis's "Hough-Transform Java" section names the knobs (the filter's vote threshold,
-//! the critical value k, θ from 0 to 359 in 1° steps) but gives no numbers besides the θ grid;
-//! `robotics-anchors.md` §6 suggests r bins of about 5 cm. The other defaults were chosen on the
-//! simulator and are justified one by one below. Every field can be set in the `[pipeline]`
-//! table of a world file.
+//! The thesis's "Hough-Transform Java" section names the knobs (the filter's vote
+//! threshold, the critical value k, θ from 0 to 359 in 1° steps) but gives no numbers
+//! besides the θ grid. The defaults were chosen on the simulator and are justified one by
+//! one below. Every field can be set in the `[pipeline]` table of a world file.
 //!
 //! Measured with the defaults (`settings_sweep` in `tests/robot_pipeline.rs`, ignored by default:
 //! wander in the empty 8 × 6 m room with perfect odometry, 4 seeds × 300 s, 480 extractions; a
@@ -83,9 +82,8 @@ pub struct Settings {
     /// make short, tilted phantom walls whose peaks rarely reach 30. At k = 12 only 69 % of the
     /// walls were right (`ideal`, min length 300 mm), at 20 93 %, at 30 99 %.
     pub k: u32,
-    /// Hough r bin, mm. Default 50 mm: the "about 5 cm" of `robotics-anchors.md` §6. Finer bins
-    /// split a wall's votes between neighbours under range noise; coarser bins merge parallel
-    /// walls closer than a robot width.
+    /// Hough r bin, mm. Default 50 mm. Finer bins split a wall's votes between neighbours
+    /// under range noise; coarser bins merge parallel walls closer than a robot width.
     pub r_bin_mm: f64,
     /// Hough θ step, degrees. Default 1°: the thesis's "θ varies from 0 to 359" in whole degrees.
     pub theta_step_deg: u32,

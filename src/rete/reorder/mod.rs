@@ -1,6 +1,6 @@
-//! Soar 9.6's condition reorderer (spec §3i, §8 risk 1): the order in which a rule's
-//! conditions are joined, which is also the order `print` shows them in and the order that
-//! decides which of several new matches fires first.
+//! Soar 9.6's condition reorderer (`production_reorder.cpp` in the kernel's sources): the
+//! order in which a rule's conditions are joined, which is also the order `print` shows
+//! them in and the order that decides which of several new matches fires first.
 //!
 //! The method, as the Soar manual and the kernel's observable behaviour describe it:
 //! 1. only the root variables (ids tested but never bound as a value, normally `<s>`) keep
