@@ -150,14 +150,6 @@ pub enum RhsValue {
     Call(Box<FuncCall>),
 }
 
-impl RhsValue {
-    pub fn span(&self) -> Span {
-        match self {
-            RhsValue::Var(_, s) | RhsValue::Const(_, s) => *s,
-            RhsValue::Call(f) => f.span,
-        }
-    }
-}
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct FuncCall {

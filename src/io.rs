@@ -303,6 +303,7 @@ impl Agent {
     }
 
     /// The working-memory element an input WME is now.
+    #[cfg(test)]
     pub fn input_wme(&self, h: InputWme) -> Result<WmeId, IoError> {
         let e = self.live_entry(h)?;
         e.wme.ok_or(IoError::StaleHandle)
@@ -536,11 +537,6 @@ impl Agent {
         self.add_input(cmd, "status", "complete")
     }
 
-    /// A number from a symbol (ints and floats, and strings that read as numbers), for
-    /// reading command parameters.
-    pub fn number(&self, s: Sym) -> Option<f64> {
-        self.value_of(s).as_number()
-    }
 }
 
 /// The letter of an input object's identifier for `^attr` (see [`Agent::add_input_object`]).

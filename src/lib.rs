@@ -1,24 +1,30 @@
-//! rusoar: the Soar cognitive architecture in Rust, and Soar-SLAM.
-pub mod agent;
+//! rusoar: the Soar cognitive architecture (Soar 9.6's semantics) in Rust.
+//!
+//! An [`Agent`] loads Soar's rule language and command language, runs the decision cycle
+//! with impasses, substates and chunking, and talks to its environment through the input
+//! and output links ([`Io`]). Everything the kernel offers is reached from [`Agent`].
+
+/// Declares the kernel's modules: private, and public only under the `internals` feature,
+/// which the kernel's own benchmarks use to measure its parts (it promises no stable API).
+macro_rules! kernel_modules {
+    ($($name:ident),* $(,)?) => {$(
+        #[cfg(feature = "internals")]
+        #[doc(hidden)]
+        pub mod $name;
+        #[cfg(not(feature = "internals"))]
+        mod $name;
+    )*};
+}
+
+kernel_modules!(
+    agent, ast, commands, decide, io, learn, lexer, parser, printer, production, rete, rhs, rng,
+    source, stdlib, symbols, trace, wm,
+);
+
 mod api;
-pub mod ast;
-pub mod commands;
-pub mod decide;
-pub mod io;
-pub mod learn;
-pub mod lexer;
-pub mod parser;
-pub mod printer;
-pub mod production;
-pub mod rete;
-pub mod rhs;
-pub mod rng;
-pub mod source;
-pub mod stdlib;
-pub mod symbols;
 pub mod syntax;
-pub mod trace;
-pub mod wm;
+#[cfg(test)]
+mod tests;
 
 pub use api::{Agent, Error, Io, ListenerId, Location, Printed, RunResult, RunUnit, StopReason};
 pub use commands::LoadReport;

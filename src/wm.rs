@@ -176,13 +176,6 @@ impl WorkingMemory {
         self.parents.get(&x).map_or(&[], Vec::as_slice)
     }
 
-    pub fn parents_of(&self, x: Sym) -> impl Iterator<Item = WmeId> + '_ {
-        self.parents
-            .get(&x)
-            .into_iter()
-            .flat_map(|l| l.iter().map(|(w, _)| *w))
-    }
-
     pub fn remove(&mut self, w: WmeId) -> Option<Wme> {
         let wme = self.wmes.get_mut(w.0 as usize)?.take()?;
         if let Some(list) = self.by_id.get_mut(&wme.id) {
@@ -278,10 +271,6 @@ impl WorkingMemory {
     /// `init-soar`: timetags start again at 1, as in the official kernel.
     pub fn reset_timetags(&mut self) {
         self.next_timetag = 1;
-    }
-
-    pub fn next_timetag(&self) -> u64 {
-        self.next_timetag
     }
 }
 

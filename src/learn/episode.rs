@@ -270,7 +270,6 @@ impl Agent {
             None => Arc::new(InstTrace {
                 name: name.clone(),
                 prod: None,
-                level: owner_level,
                 conds: bt
                     .grounds
                     .iter()
@@ -501,7 +500,6 @@ impl Agent {
             }
             self.learn.justifications.push(Justification {
                 production: Arc::new(prod),
-                inst: id,
                 serial,
             });
         }

@@ -15,7 +15,6 @@ use crate::wm::{Wme, WmeId};
 use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
-pub use backtrace::Backtrace;
 
 /// An identity (EBC): one variable of one instantiation. Identities that backtracing shows
 /// to be the same thing are joined, and each joined set becomes one variable of a chunk.
@@ -45,7 +44,6 @@ pub struct InstTrace {
     pub name: String,
     /// The rule fired (none for a justification).
     pub prod: Option<Arc<Production>>,
-    pub level: u32,
     pub conds: Vec<TraceCond>,
     /// Each variable of the rule: its identity and what it was bound to (or made).
     pub vars: FxHashMap<String, (Ident, Sym)>,
@@ -69,8 +67,7 @@ pub struct PrefOrigin {
 #[derive(Debug, Clone)]
 pub struct Justification {
     pub production: Arc<Production>,
-    /// Its instantiation, and the serial that tells it from a reused slot.
-    pub inst: u32,
+    /// The serial that tells its instantiation from one in a reused slot.
     pub serial: u64,
 }
 

@@ -99,7 +99,6 @@ impl Agent {
             generation,
             name: prod.name.clone(),
             prod: Some(prod.clone()),
-            level,
             conds,
             vars,
         });

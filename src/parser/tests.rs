@@ -478,3 +478,17 @@ fn random_rules_parse_the_same() {
     );
     eprintln!("{accepted} of {total} accepted");
 }
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 300, ..Default::default() })]
+
+    /// The parser on any text, as a production body: an error, never a panic.
+    #[test]
+    fn random_bytes_as_a_production_do_not_panic(
+        bytes in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..2000)
+    ) {
+        let text = String::from_utf8_lossy(&bytes);
+        let mut warnings = Vec::new();
+        let _ = parse_production(&text, 0, 0, &mut warnings);
+    }
+}

@@ -24,11 +24,6 @@ impl VarBindings {
             .map(|i| &self.0[i].1)
     }
 
-    /// The variable names, in sorted order.
-    pub fn keys(&self) -> impl Iterator<Item = &str> {
-        self.0.iter().map(|(k, _)| &**k)
-    }
-
     /// Each variable with where it is bound, in name order.
     pub fn iter(&self) -> impl Iterator<Item = (&str, (u32, Field))> {
         self.0.iter().map(|(k, b)| (&**k, *b))

@@ -46,9 +46,8 @@ use crate::symbols::{Sym, SymData, Symbols};
 use crate::wm::{WmeId, WorkingMemory};
 use std::collections::BTreeMap;
 
-pub use math::MAX_DICE;
 pub use numeric::NumericRhsFn;
-pub use text::{c_fixed, c_strtod, c_strtol, value_text, Erange};
+pub use text::{c_fixed, value_text};
 
 /// A function registered by the embedding program: `(agent name, argument string) -> result`.
 pub type RhsFn = Box<dyn FnMut(&str, &str) -> String>;
@@ -270,6 +269,7 @@ pub fn trace_flags_for_level(level: u8) -> [bool; 6] {
 /// the SML layer's `concat`, `exec`, `cmd` and `interrupt`. (`predict-x`, `predict-y` and
 /// `compute-closest-intercept` are in newer kernel sources but not in the 9.6 binary: it
 /// reads them as `exec` calls of unregistered functions, as [`call`] does.)
+#[cfg(test)]
 pub const BUILTIN_NAMES: &[&str] = &[
     "+",
     "*",
@@ -334,6 +334,7 @@ pub const BUILTIN_NAMES: &[&str] = &[
     "from-st-xml",
 ];
 
+#[cfg(test)]
 pub fn is_builtin(name: &str) -> bool {
     BUILTIN_NAMES.contains(&name)
 }

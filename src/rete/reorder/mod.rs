@@ -35,6 +35,7 @@ type Bound = FxHashSet<String>;
 
 /// Reorders a rule's conditions as 9.6 does. `syms` must already hold every constant of the
 /// rule (see [`intern_in_text_order`]); an unknown constant ranks as a variable.
+#[cfg(test)]
 pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
     reorder_owned(conds.to_vec(), syms)
 }

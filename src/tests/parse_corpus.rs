@@ -7,23 +7,24 @@
 //! checked against the official kernel (soar-sml 9.6); see the comment at the top of each
 //! file.
 
-use rusoar::ast::{
+use crate::ast::{
     Action, Atom, AttrMake, AttrValueTests, CondForOneId, Condition, Constant, FuncCall, Head,
     Pref, RhsValue, Test, ValueTest,
 };
-use rusoar::commands::tokenizer::{Tokenizer, WordKind};
-use rusoar::commands::{Event, Interpreter};
-use rusoar::parser::parse_production;
-use rusoar::printer::production_text;
+use crate::commands::tokenizer::{Tokenizer, WordKind};
+use crate::commands::{Event, Interpreter};
+use crate::parser::parse_production;
+use crate::printer::production_text;
 use std::fmt::Write as _;
 use std::path::Path;
 
 #[test]
 fn parse_corpus() {
-    insta::glob!("data/parse/*.soar", |path| {
+    insta::glob!("../../tests/data/parse", "*.soar", |path| {
         let dump = run_file(path);
         let mut settings = insta::Settings::clone_current();
         settings.set_prepend_module_to_snapshot(false);
+        settings.set_snapshot_path("../../tests/snapshots");
         settings.set_description("tests/data/parse: input, output, syntax trees and printed rules");
         settings.bind(|| insta::assert_snapshot!(dump));
     });
@@ -110,7 +111,7 @@ fn run_file(path: &Path) -> String {
 // written: dot paths stay paths, structured values stay nested, preferences stay attached
 // to their values. Constants show their type: "string", 7 (integer), 7.0 (float).
 
-fn dump_production(p: &rusoar::ast::Production) -> String {
+fn dump_production(p: &crate::ast::Production) -> String {
     let mut s = format!("name {:?}", p.name);
     if let Some(doc) = &p.doc {
         let _ = write!(s, "  doc {doc:?}");

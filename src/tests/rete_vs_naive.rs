@@ -3,13 +3,13 @@
 //! WME adds and removes, production adds and excises; after every step the network's match
 //! set must equal the naive one, and the sink's events must agree with it.
 
+use crate::ast::{Constant, Head, Relation};
+use crate::production::{Cond, Condition, Flags, Production, Term, Test};
+use crate::rete::{reorder, MatchSink, ProdId, Rete, TokId};
+use crate::source::Span;
+use crate::symbols::{Sym, Symbols};
+use crate::wm::WmeId;
 use proptest::prelude::*;
-use rusoar::ast::{Constant, Head, Relation};
-use rusoar::production::{Cond, Condition, Flags, Production, Term, Test};
-use rusoar::rete::{reorder, MatchSink, ProdId, Rete, TokId};
-use rusoar::source::Span;
-use rusoar::symbols::{Sym, Symbols};
-use rusoar::wm::WmeId;
 use std::collections::{BTreeMap, BTreeSet};
 
 // ------------------------------------------------------------------ generation
@@ -346,7 +346,7 @@ impl Naive<'_> {
 /// numerically, strings by bytes, identifiers by letter then number, and any mix of kinds
 /// is "less".
 fn naive_relation(syms: &Symbols, r: Relation, a: Sym, b: Sym) -> bool {
-    use rusoar::symbols::SymData::*;
+    use crate::symbols::SymData::*;
     use std::cmp::Ordering::*;
     let kind = |s: Sym| match syms.get(s) {
         Str(_) => 0,
@@ -498,7 +498,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
                 match rete.add_production(&joined, &mut syms, &mut sink) {
                     Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added, as in Soar.
-                    Err(rusoar::rete::BuildError::Duplicate(_)) => {}
+                    Err(crate::rete::BuildError::Duplicate(_)) => {}
                     Err(e) => return Err(TestCaseError::fail(e.to_string())),
                 }
             }

@@ -15,17 +15,17 @@
 //! `PROPTEST_CASES=N` changes the case count (2,000 by default). Known printer bugs are kept
 //! as `#[ignore]`d tests at the end of the file.
 
+use crate::ast::Head;
+use crate::commands::Interpreter;
+use crate::parser::parse_production;
+use crate::printer::production_text;
+use crate::production::{self, Action, CompileOutput, Condition, FuncCall, Production, RhsTerm};
+use crate::rete::reorder;
+use crate::source::Span;
 use proptest::collection::vec;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
-use rusoar::ast::Head;
-use rusoar::commands::Interpreter;
-use rusoar::parser::parse_production;
-use rusoar::printer::production_text;
-use rusoar::production::{self, Action, CompileOutput, Condition, FuncCall, Production, RhsTerm};
-use rusoar::rete::reorder;
-use rusoar::source::Span;
 
 // ------------------------------------------------------------------ the rule description
 
@@ -1233,7 +1233,7 @@ fn load(text: &str, name: &str) -> Result<Production, String> {
 /// A compiled rule as a fresh agent stores it: its conditions in the reorderer's order
 /// ranked by a fresh symbol table.
 fn as_loaded(p: &Production) -> Production {
-    let mut syms = rusoar::symbols::Symbols::new();
+    let mut syms = crate::symbols::Symbols::new();
     reorder::intern_in_text_order(p, &mut syms);
     Production {
         conditions: reorder::reorder(&p.conditions, &syms),
