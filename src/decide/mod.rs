@@ -3,10 +3,18 @@
 
 pub mod by_token;
 pub(crate) mod compiled;
+mod consistency;
 pub mod cycle;
+mod decision;
+mod elaborate;
+mod fire;
 pub mod functions;
+mod gc;
 mod gds;
 pub mod procedure;
+mod scratch;
 mod slot;
 pub mod state;
+mod substates;
 pub(crate) mod support;
+mod wm_phase;

@@ -151,9 +151,9 @@ pub struct DecideState {
     /// o-supported reject: in 9.6 the result itself becomes that o-reject, so the original
     /// is neither traced nor asserted (spec §3a, §3c).
     pub(crate) results_taken_by_o_rejects: Vec<PrefId>,
-    pub(crate) gc_scratch: super::cycle::GcScratch,
-    pub(crate) cycle_scratch: super::cycle::CycleScratch,
-    pub(crate) slot_scratch: super::cycle::SlotScratch,
+    pub(crate) gc_scratch: super::scratch::GcScratch,
+    pub(crate) cycle_scratch: super::scratch::CycleScratch,
+    pub(crate) slot_scratch: super::scratch::SlotScratch,
     /// Emptied preference lists of freed instantiations, for the next firings.
     pub spare_pref_lists: Vec<Vec<PrefId>>,
     /// The identifiers a firing's actions make, by new-variable slot (scratch).
