@@ -378,7 +378,7 @@ pub struct Agent {
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
     /// The `<=WM:` lines of substates an operator removal takes away in this phase, each
     /// with its place in 9.6's listing (see `trace_removed_wmes`).
-    pub(crate) substate_removals: Vec<(crate::trace::SubstateLine, crate::wm::Wme)>,
+    pub(crate) substate_removals: Vec<(crate::decide::state::SubstateLine, crate::wm::Wme)>,
     /// Whether those substates went for their GDS (9.6 lists them in another order).
     pub(crate) substates_by_gds: bool,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
@@ -386,7 +386,7 @@ pub struct Agent {
     /// Called at the input phase of every decision (the environment's hook).
     pub input_callback: Option<PhaseCallback>,
     /// Input-link changes waiting for the next input phase (`io.rs`).
-    pub(crate) input_queue: Vec<crate::io::InputChange>,
+    pub(crate) input_queue: Vec<crate::inputs::InputChange>,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters (spec §4).
@@ -488,14 +488,6 @@ impl Agent {
 
     pub fn production(&self, name: &str) -> Option<&Production> {
         self.productions.get(name).map(|l| &*l.production)
-    }
-
-    /// The support of a pending match: decided when it was queued, or now (spec §3c).
-    pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
-        match self.matches.support.get(&(p, t)) {
-            Some(&o) => o,
-            None => crate::decide::support::match_support(self, p, t).o_support,
-        }
     }
 
     /// A rule, shared (for firing it while the agent changes).

@@ -3,6 +3,7 @@
 //! on the output-link, and mark them done. The Soar-SLAM loop uses only this API.
 
 use crate::agent::Agent;
+use crate::inputs::InputChange;
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 
@@ -35,13 +36,6 @@ impl From<Sym> for Value {
     fn from(v: Sym) -> Self {
         Value::Id(v)
     }
-}
-
-/// An input-link change the embedding program made, waiting for the next input phase.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum InputChange {
-    Add(WmeId),
-    Remove(WmeId),
 }
 
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.

@@ -3,6 +3,7 @@ pub mod agent;
 pub mod ast;
 pub mod commands;
 pub mod decide;
+mod inputs;
 pub mod io;
 pub mod learn;
 pub mod lexer;

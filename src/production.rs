@@ -3,6 +3,7 @@
 //! and the load-time checks Soar makes are applied (spec §1c–§1g).
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
+use crate::printer::constants::constant_text;
 use crate::rhs::table::{self, Use};
 use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -423,11 +424,77 @@ fn term(a: &ast::Atom) -> Term {
     }
 }
 
+// ---------------------------------------------------------------------------------- text
+
+// The text of one term, test or action as `print` shows it; the load-time messages below
+// quote rules with it, and the printer lays whole rules out from it.
+
 pub fn term_text(t: &Term) -> String {
     match t {
         Term::Var(v) => v.to_string(),
-        Term::Const(c) => crate::printer::constant_text(c),
+        Term::Const(c) => constant_text(c),
     }
+}
+
+pub fn test_text(t: &Test) -> String {
+    match t {
+        Test::Equal(term) => term_text(term),
+        Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
+        Test::Disjunction(cs) => {
+            let mut s = String::from("<< ");
+            for c in cs.iter() {
+                s.push_str(&constant_text(c));
+                s.push(' ');
+            }
+            s.push_str(">>");
+            s
+        }
+        Test::Conjunction(ts) => {
+            let items: Vec<String> = ts.iter().map(test_text).collect();
+            format!("{{ {} }}", items.join(" "))
+        }
+    }
+}
+
+pub fn rhs_term_text(t: &RhsTerm) -> String {
+    match t {
+        RhsTerm::Var(v) => v.clone(),
+        RhsTerm::Const(c) => constant_text(c),
+        RhsTerm::Call(f) => call_text(f),
+    }
+}
+
+pub fn call_text(f: &FuncCall) -> String {
+    // 9.6 prints the function names `+`, `-` and `*` bare but `/` in bars (observed).
+    let name = if f.name == "/" {
+        "|/|"
+    } else {
+        f.name.as_str()
+    };
+    let mut s = format!("({name}");
+    for a in &f.args {
+        s.push(' ');
+        s.push_str(&rhs_term_text(a));
+    }
+    s.push(')');
+    s
+}
+
+/// One make action alone, as in Soar's ungrounded-action message: `(<x> ^a 1 +)`.
+pub fn make_text(m: &Make) -> String {
+    let mut s = format!(
+        "({} ^{} {} {}",
+        rhs_term_text(&m.id),
+        rhs_term_text(&m.attr),
+        rhs_term_text(&m.value),
+        m.pref.symbol()
+    );
+    if let Some(r) = &m.referent {
+        s.push(' ');
+        s.push_str(&rhs_term_text(r));
+    }
+    s.push(')');
+    s
 }
 
 /// A test with an equality test: a placeholder variable is added when it binds nothing.
@@ -504,7 +571,7 @@ fn compile_cond_for_one_id(
             if let Some(k) = constant_equality(&test) {
                 return Err(Diagnostic::error(format!(
                     "Warning: Constant {} in id field test.\n         This will never match.",
-                    crate::printer::constant_text(&k)
+                    constant_text(&k)
                 ))
                 .at(t.span())
                 .with_label("identifiers are matched by variables, never by constants"));
@@ -859,7 +926,7 @@ fn compile_call(
 }
 
 fn rhs_text(t: &RhsTerm) -> String {
-    crate::printer::rhs_term_text(t)
+    rhs_term_text(t)
 }
 
 // --------------------------------------------------------------------------------- checks
@@ -1021,7 +1088,7 @@ fn drop_unbound_relational(
                     if let Some(rel) = members.iter().find(|m| unbound(m)) {
                         return Err(Diagnostic::error(format!(
                             "Error: production {name} has an unbound referent in negated relational test {}.",
-                            crate::printer::test_text(rel)
+                            test_text(rel)
                         ))
                         .at(c.span.span())
                         .with_label("no positive condition binds this variable")
@@ -1143,8 +1210,8 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
         }
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
-            Action::Make(m) => (crate::printer::make_text(m), m.span.span()),
-            Action::Call(f) => (crate::printer::call_text(f), f.span),
+            Action::Make(m) => (make_text(m), m.span.span()),
+            Action::Call(f) => (call_text(f), f.span),
         };
         if seen.insert(text.clone()) {
             bad.push((text, span));

@@ -3,8 +3,9 @@
 //! and `matches <rule>` partial-match listings.
 
 use crate::agent::Agent;
-use crate::printer::{cond_text, cond_text_with, test_text};
-use crate::production::Condition;
+use crate::decide::state::SubstateLine;
+use crate::printer::{cond_text, cond_text_with};
+use crate::production::{test_text, Condition};
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
 
@@ -605,21 +606,6 @@ impl Agent {
             self.output.push('\n');
         }
     }
-}
-
-/// Where a removed substate's WME goes in a phase's `<=WM:` listing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum SubstateLine {
-    /// The `^smem`/`^epmem`/`^reward-link` structure.
-    Memories,
-    /// Its slots' other WMEs.
-    Other,
-    /// Its operators' `+` WMEs.
-    OperatorPlus,
-    /// `^type`, `^superstate`, `^impasse` and the other impasse WMEs.
-    Impasse,
-    /// Its selected operator.
-    Selected,
 }
 
 impl Agent {

@@ -11,6 +11,7 @@ mod fire;
 pub mod functions;
 mod gc;
 mod gds;
+mod ids;
 pub mod procedure;
 mod scratch;
 mod slot;

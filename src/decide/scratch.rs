@@ -3,7 +3,7 @@
 //! the garbage collection's sets. Their owners fill and empty them (`elaborate.rs`,
 //! `wm_phase.rs`, `gc.rs`); [`super::state::DecideState`] holds them between uses.
 
-use super::state::{InstId, PrefId};
+use super::ids::{InstId, PrefId};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;

@@ -5,7 +5,7 @@
 //! large (one slot can hold thousands of values), and emptied slots are kept for reuse, so a
 //! decision cycle allocates nothing for its slots once it is warm.
 
-use super::state::PrefId;
+use super::ids::PrefId;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;

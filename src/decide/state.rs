@@ -1,14 +1,12 @@
 //! The decider's memory (spec §3): instantiations, preferences, slots and the goal stack.
 
+pub use super::ids::{InstId, PrefId};
 use super::procedure::PrefType;
 pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
-
-pub type InstId = u32;
-pub type PrefId = u32;
 
 /// A fired rule: the match it fired on and the preferences it made.
 #[derive(Debug, Clone)]
@@ -81,6 +79,21 @@ pub struct Goal {
     /// The preferences its firings made, oldest first, with what each says (handles are
     /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
     pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
+}
+
+/// Where a removed substate's WME goes in a phase's `<=WM:` listing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SubstateLine {
+    /// The `^smem`/`^epmem`/`^reward-link` structure.
+    Memories,
+    /// Its slots' other WMEs.
+    Other,
+    /// Its operators' `+` WMEs.
+    OperatorPlus,
+    /// `^type`, `^superstate`, `^impasse` and the other impasse WMEs.
+    Impasse,
+    /// Its selected operator.
+    Selected,
 }
 
 /// The phases of a decision cycle (spec §3a).

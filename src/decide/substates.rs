@@ -35,7 +35,7 @@ impl Agent {
     /// `<=WM:` lines join this phase's listing, each tagged with its kind, for
     /// `trace_removed_wmes` to put in 9.6's place.
     pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
-        use crate::trace::SubstateLine;
+        use super::state::SubstateLine;
         let mut out = Vec::new();
         for (group, wme) in self.substate_lines(gi) {
             let place = if group <= 2 {

@@ -100,6 +100,16 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
     support_of_actions(agent, on_operator)
 }
 
+impl Agent {
+    /// The support of a pending match: decided when it was queued, or now (spec §3c).
+    pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
+        match self.matches.support.get(&(p, t)) {
+            Some(&o) => o,
+            None => crate::decide::support::match_support(self, p, t).o_support,
+        }
+    }
+}
+
 /// Spec §3c's last step, given for each make action whether it is on the selected
 /// operator: applications are O, operator elaborations I, both I (with 9.6's warning).
 fn support_of_actions(agent: &Agent, on_operator: impl Iterator<Item = bool>) -> MatchSupport {

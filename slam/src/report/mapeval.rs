@@ -17,8 +17,8 @@
 //! within the gate (`|Δr|` ≤ [`Gate::r_mm`], Δθ ≤ [`Gate::th_deg`]). Unmatched walls are
 //! phantoms: misplaced copies of a wall or echoes.
 
-use super::super::experiment::quantile;
 use super::super::geom::{Point, Segment};
+use super::super::stats::quantile;
 
 /// How close a map wall must be to a true wall to count as that wall.
 #[derive(Debug, Clone, Copy, PartialEq)]
