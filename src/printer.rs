@@ -1,7 +1,7 @@
-//! Printing productions and symbols back in Soar 9.6's form (`print <rule>`, spec §6a):
-//! constants in rereadable form, conditions grouped by identifier, 80-column wrapping.
-//! Constants print as `constants.rs` says; a single test, term or action as the production
-//! types' own text functions do (`production.rs`, whose load-time messages quote them too).
+//! Printing productions and symbols back in Soar 9.6's form (`print <rule>`): constants in
+//! rereadable form, conditions grouped by identifier, 80-column wrapping. Constants print
+//! as `constants.rs` says; a single test, term or action as the production types' own text
+//! functions do (`production.rs`, whose load-time messages quote them too).
 
 pub(crate) mod constants;
 
@@ -246,7 +246,7 @@ pub fn production_text(p: &Production) -> String {
         (f.template, "   :template"),
         (f.interrupt, "    :interrupt"),
         // 9.6 does not print :explain back; we do, so that printing and re-reading a rule
-        // keeps it (the round-trip property of issue 2).
+        // keeps it (rules must survive a print and a reload unchanged).
         (f.explain, "    :explain"),
     ] {
         if on {

@@ -1,6 +1,7 @@
 //! Compiling a parsed `sp` into a production: dot paths and structured values are flattened
 //! into single conditions with placeholder variables, preferences become one action each,
-//! and the load-time checks Soar makes are applied (spec §1c–§1g).
+//! and the load-time checks Soar makes are applied (Soar manual, 3.3 "Production Memory";
+//! the messages are 9.6's).
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
 use crate::printer::constants::constant_text;
@@ -8,7 +9,7 @@ use crate::rhs::table::{self, Use};
 use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// Declared support and other `:flags` (spec §1c).
+/// Declared support and other `:flags` (Soar manual, 3.3, "Production type (optional)").
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Flags {
     pub o_support: bool,
@@ -18,7 +19,7 @@ pub struct Flags {
     pub template: bool,
     pub interrupt: bool,
     pub explain: bool,
-    /// A justification (spec §4): printed, never loaded.
+    /// A justification: printed, never loaded.
     pub justification: bool,
 }
 
@@ -366,8 +367,8 @@ fn collect_vars_ast<'a>(p: &'a ast::Production, used: &mut FxHashSet<&'a str>) {
     }
 }
 
-/// A simple test from the AST, applying the conjunction rules of spec §1d: one equality test
-/// at most (a second is dropped with Soar's message), non-equality tests first.
+/// A simple test from the AST, applying 9.6's conjunction rules: one equality test at most
+/// (a second is dropped with Soar's message), non-equality tests first.
 fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
     match t {
         ast::Test::Equal(a, _) => Test::Equal(term(a)),
@@ -617,7 +618,7 @@ fn compile_attr_value_tests(
     dest: &mut Vec<Condition>,
     out: &mut CompileOutput,
 ) -> Result<(), Diagnostic> {
-    // Conditions made here go to `local`; a negated chain becomes one negation (spec §1d).
+    // Conditions made here go to `local`; a negated chain becomes one negation.
     let mut local = Vec::new();
     let mut cur_id = id.clone();
     let mut goal = head;
@@ -778,8 +779,8 @@ fn compile_action(
                         &vm.prefs
                     };
                     // Non-operator attributes keep only `-` (one reject per `-`), else one
-                    // acceptable; other unary preferences warn each time (spec §1e; the
-                    // kernel's `parse_preferences_soar8_non_operator`).
+                    // acceptable; other unary preferences warn each time (the kernel's
+                    // `parse_preferences_soar8_non_operator`).
                     let mut rejects = 0usize;
                     for pref in prefs {
                         let (kind, referent) = match pref {
@@ -862,8 +863,8 @@ fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<Rh
     })
 }
 
-/// Checks a call against the built-in table; an unknown name becomes `exec name ...`
-/// with Soar's message (spec §1e).
+/// Checks a call against the built-in table; an unknown name becomes `exec name ...` with
+/// Soar's message.
 fn compile_call(
     f: &ast::FuncCall,
     standalone: bool,
@@ -939,11 +940,13 @@ fn equality_var(t: &Test) -> Option<&str> {
     }
 }
 
-/// Spec §1d, as the kernel's reorderer checks it (`collect_root_variables`, `reorder_lhs`):
-/// the roots are the variables in the id field of a positive condition that are not the
-/// value of another positive condition. A root with no `(state ...)`/`(impasse ...)` test
-/// warns; a rule with no root at all must have a positive goal test, or it is rejected.
-/// Conjunctive negations are checked the same way, with the outer variables counted bound.
+/// Conditions must hang from a state (Soar manual, 3.3, "The condition side of productions
+/// (or LHS)"), as the kernel's reorderer checks it (`collect_root_variables`,
+/// `reorder_lhs`): the roots are the variables in the id field of a positive condition that
+/// are not the value of another positive condition. A root with no `(state ...)` or
+/// `(impasse ...)` test warns; a rule with no root at all must have a positive goal test,
+/// or it is rejected. Conjunctive negations are checked the same way, with the outer
+/// variables counted bound.
 fn check_roots(
     p: &Production,
     ast: &ast::Production,
@@ -1030,9 +1033,9 @@ fn root_variables<'a>(
     roots
 }
 
-/// Spec §1g, as the kernel's reorderer does it: a relational test on a variable that no
-/// positive condition binds (at this level or outside it) can never be evaluated. In a
-/// positive condition it is dropped silently; in a negated condition it is an error
+/// As the kernel's reorderer does it: a relational test on a variable that no positive
+/// condition binds (at this level or outside it) can never be evaluated. In a positive
+/// condition it is dropped silently; in a negated condition it is an error
 /// (`check_negative_relational_test_bindings`).
 fn drop_unbound_relational(
     conds: &mut [Condition],
@@ -1174,8 +1177,8 @@ fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) 
     }
 }
 
-/// Spec §1g: RHS action ids and function arguments must be bound on the LHS or be new
-/// identifiers made by this rule (an unbound variable in value position).
+/// RHS action ids and function arguments must be bound on the LHS or be new identifiers
+/// made by this rule (an unbound variable in value position).
 fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
     let bound = bound_names(p);
     let mut new_ids: FxHashSet<&str> = FxHashSet::default();

@@ -1,7 +1,7 @@
-//! `rusoar slam`: the thesis's experiment (issue 6, item 8), repeated over many seeds. The
-//! robot wanders a room for `--duration` simulated seconds, driven by the thesis rules with
-//! the SLAM rules (`on`) and without them (`off`), paired by seed, and the gap between its
-//! true and believed position is measured.
+//! `rusoar slam`: the thesis's experiment, repeated over many seeds. The robot wanders a
+//! room for `--duration` simulated seconds, driven by the thesis rules with the SLAM rules
+//! (`on`) and without them (`off`), paired by seed, and the gap between its true and
+//! believed position is measured.
 //!
 //! Written to `--out` (default `slam-out/`):
 //!

@@ -12,8 +12,8 @@ use crate::wm::WmeId;
 
 impl Agent {
     /// The operator installed in a goal stays while it is still a candidate; otherwise it
-    /// goes at once, with every substate below (spec §3b).
-    /// Returns the operator WME to remove (buffered with the other removals).
+    /// goes at once, with every substate below. Returns the operator WME to remove
+    /// (buffered with the other removals).
     pub(super) fn check_operator_consistency(&mut self, key: (Sym, Sym)) -> Option<WmeId> {
         let gi = self.decider.goals.iter().position(|g| g.state == key.0)?;
         let (op, w) = self.decider.goals[gi].operator?;
@@ -46,9 +46,8 @@ impl Agent {
     }
 
     /// A goal without an operator whose impasse the preferences no longer give (another
-    /// impasse, other items, or a choice) loses its substates at once, as 9.6's
-    /// consistency check removes them; the next decision decides the slot again
-    /// (spec §3b).
+    /// impasse, other items, or a choice) loses its substates at once, as 9.6's consistency
+    /// check removes them; the next decision decides the slot again.
     pub(super) fn check_impasse_consistency(&mut self, key: (Sym, Sym)) {
         let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
             return;
@@ -118,7 +117,7 @@ impl Agent {
     /// A selected operator stays while the preferences still give it among the candidates;
     /// when another operator is now better (or an impasse would come instead), the operator
     /// and every substate below go at once, and the next decision decides the slot again
-    /// (consistency.cpp `decision_consistent_with_current_preferences`, spec §3b).
+    /// (consistency.cpp `decision_consistent_with_current_preferences`).
     fn check_selected_operator(&mut self, gi: usize, key: (Sym, Sym), op: Sym, w: WmeId) {
         if matches!(procedure::candidates(&self.slot_prefs(key)), Ok(c) if c.contains(&op)) {
             return;

@@ -45,7 +45,7 @@ impl Agent {
         }
     }
 
-    /// Runs `n` units (spec §3a, `run`): decisions stop before the apply phase, as 9.6's
+    /// Runs `n` units (the `run` command): decisions stop before the apply phase, as 9.6's
     /// default stop phase does. Returns (decisions executed, rules fired).
     pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
         self.decider.stop_requested = false;
@@ -75,7 +75,7 @@ impl Agent {
         {
             let phase = self.decider.phase.unwrap_or(Phase::Input);
             let e_before = self.decider.e_cycles;
-            // `run -e` stops after each elaboration cycle, inside the phase (spec §6a).
+            // `run -e` stops after each elaboration cycle, inside the phase.
             self.do_phase(phase, unit == RunUnit::Elaborations);
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
@@ -86,7 +86,7 @@ impl Agent {
                 RunUnit::Phases => done += 1,
                 RunUnit::Elaborations => done += (self.decider.e_cycles - e_before).max(1),
             }
-            // Endless state no-changes stop at max-goal-depth (spec §3a).
+            // Endless state no-changes stop at max-goal-depth.
             if unit == RunUnit::Forever && done > 1_000_000_000 {
                 break;
             }
@@ -129,7 +129,7 @@ impl Agent {
     }
 
     fn do_phase_timed(&mut self, phase: Phase, one_cycle: bool) {
-        // max-chunks counts per phase (spec §4).
+        // max-chunks counts per phase.
         self.learn.chunks_this_phase = 0;
         self.learn.dupes_this_phase.clear();
         match phase {
@@ -241,7 +241,8 @@ impl Agent {
 
     /// Is there an assertion (of i-support only, unless `any`) or a retraction to process?
     pub(super) fn has_pending(&self, any: bool) -> bool {
-        // Justifications that lost a WME retract like rules (spec §4).
+        // Justifications that lost a WME retract like rules (Soar manual, 2.7.4
+        // "Justifications: Support for results").
         if !self.matches.retractions.is_empty()
             || !self.decider.justification_retractions.is_empty()
             || !self.decider.waiting_retractions.is_empty()
@@ -275,7 +276,7 @@ impl Agent {
         }
     }
 
-    /// `init-soar` (spec §2, §3a): working memory, preferences, the goal stack, identifier
+    /// `init-soar` (`soar init`): working memory, preferences, the goal stack, identifier
     /// counters and timetags start again; rules (and chunks) stay.
     pub fn init_soar(&mut self) {
         // Input changes not applied yet go with the rest of working memory.

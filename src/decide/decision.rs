@@ -10,7 +10,7 @@ use crate::symbols::Sym;
 
 impl Agent {
     /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
-    /// top (spec §6c).
+    /// top (as 9.6's trace prints it).
     pub(super) fn decision_prefix(&self, level: u32) -> String {
         format!(
             "\n{:>6}: {}",
@@ -23,7 +23,7 @@ impl Agent {
         let Some(slot) = self.decider.slots.get(&key) else {
             return Vec::new();
         };
-        // Candidates come out oldest first: the reverse of Soar's head-inserted list (§3d).
+        // Candidates come out oldest first: the reverse of Soar's head-inserted list.
         slot.prefs
             .iter()
             .map(|&pid| {
@@ -38,8 +38,9 @@ impl Agent {
             .collect()
     }
 
-    /// Decides the first operator slot without an installed operator, from the top; if every
-    /// goal has one, the bottom goal has an operator no-change (spec §3e).
+    /// Decides the first operator slot without an installed operator, from the top; if
+    /// every goal has one, the bottom goal has an operator no-change (decide.cpp
+    /// `decide_context_slots`).
     pub(super) fn decide_context_slots(&mut self) {
         // The decision decides every changed slot anew.
         self.decider.consistency_pending.clear();
@@ -54,7 +55,8 @@ impl Agent {
         let n = self.decider.goals.len();
         for gi in 0..n {
             let goal = self.decider.goals[gi].clone();
-            // Decidable: no installed operator and the preferences changed (spec §3e).
+            // Decidable: no installed operator and the preferences changed (a selected
+            // operator is not decided again while it stays consistent).
             if goal.operator.is_some() || !goal.slot_changed {
                 continue;
             }
@@ -107,7 +109,7 @@ impl Agent {
             self.impasse(gi, kind, on_operator, items);
             return;
         }
-        // Nothing decidable: the bottom goal made no progress (spec §3e).
+        // Nothing decidable: the bottom goal made no progress.
         if let Some(last) = n.checked_sub(1) {
             let on_operator = self.decider.goals[last].operator.is_some();
             self.impasse(last, ImpasseKind::NoChange, on_operator, Vec::new());

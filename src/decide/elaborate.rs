@@ -13,7 +13,7 @@ use crate::rete::{ProdId, TokId};
 impl Agent {
     /// Decides the support of the matches made since the last call, as 9.6's matcher does
     /// when it queues them, with its warning for rules that both elaborate and apply the
-    /// operator (spec §3c, E:t24).
+    /// operator (observed on 9.6).
     pub(crate) fn classify_new_matches(&mut self) {
         self.matches.compact();
         let n = self.matches.assertions.len();
@@ -34,9 +34,9 @@ impl Agent {
         }
     }
 
-    /// One elaboration cycle (spec §3a, §3b): the pending matches of one support type fire
-    /// at the active goal and then at each lower goal with activity, the active goal's
-    /// retractions follow, then the working-memory changes happen together.
+    /// One elaboration cycle: the pending matches of one support type fire at the active
+    /// goal and then at each lower goal with activity, the active goal's retractions
+    /// follow, then the working-memory changes happen together.
     pub(super) fn elaboration_cycle(&mut self) -> bool {
         self.decider.e_cycles += 1;
         self.decider.e_cycles_this_phase += 1;
@@ -51,8 +51,8 @@ impl Agent {
         let mut retracted = std::mem::take(&mut sc.retracted);
         retracted.append(&mut self.decider.waiting_retractions);
         retracted.retain(|&i| self.decider.insts[i as usize].alive);
-        // Justifications that lost a WME retract with them (spec §4), each in its place
-        // among the rules' retractions (see `justification_wme_added`).
+        // Justifications that lost a WME retract with them, each in its place among the
+        // rules' retractions (see `justification_wme_added`).
         let mut justified = std::mem::take(&mut self.decider.justification_retractions);
         if justified.is_empty() {
             retracted.extend(
@@ -70,8 +70,8 @@ impl Agent {
         if self.matches.retractions.is_empty() {
             self.matches.retractions = retractions;
         }
-        // The waterfall (spec §3b): the pending matches by goal level, newest first (the
-        // order they fire in, spec §3i), with their support.
+        // The waterfall: the pending matches by goal level, newest first (the order 9.6
+        // fires them in), with their support.
         let mut queued = std::mem::take(&mut sc.queued);
         // With the top state alone every match is at level 1.
         let one_goal = self.decider.goals.len() <= 1;
@@ -106,8 +106,8 @@ impl Agent {
         levels.sort_unstable();
         levels.dedup();
         let top = levels.first().copied();
-        // The firing type: IE before PE (spec §3a). In the apply phase PE only when the
-        // active goal has no i-activity, where retractions count too (consistency.cpp
+        // The firing type: IE before PE. In the apply phase PE only when the active goal
+        // has no i-activity, where retractions count too (consistency.cpp
         // `i_activity_at_goal`); IE when only retractions of goals that are gone are left.
         let o_support = match (apply, top) {
             (true, Some(g)) => {
@@ -196,7 +196,7 @@ impl Agent {
         // 9.6 lists the retractions newest first and processes them in that order, each
         // instantiation's preferences newest first: that is the order their slots change
         // in, so the order of the `<=WM:` lines (checked with scripts/trace_compare.py:
-        // blocks-world now matches 9.6 at trace 4 and 5).
+        // blocks-world matches 9.6 at trace 4 and 5).
         if self.settings.trace.preferences || self.settings.trace.any_firings() {
             for &inst in now.iter().rev() {
                 self.trace_retraction(inst);

@@ -39,7 +39,7 @@ impl Agent {
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         let mut args = std::mem::take(&mut self.decider.rhs_args);
         self.rete.token_wmes(t, &mut wmes);
-        // The match goal (spec §3b), from the WMEs the actions read anyway.
+        // The match goal (the lowest goal it tests), from the WMEs the actions read anyway.
         let goal = crate::decide::support::goal_among(
             self,
             rule.id_places
@@ -158,8 +158,8 @@ impl Agent {
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }
-        // Results of a substate firing are learned from at once (spec §4): a justification
-        // or a chunk takes them over.
+        // Results of a substate firing are learned from at once (Soar manual, 2.7.3
+        // "Results"): a justification or a chunk takes them over.
         if level >= 2 {
             let new_ids: FxHashMap<String, Sym> = rule
                 .new_vars
@@ -201,8 +201,9 @@ impl Agent {
     }
 
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
-    /// identifier at its first use, shared by all its uses (spec §1e: its letter, `S` read
-    /// as `I`).
+    /// identifier at its first use, shared by all its uses (its letter is the variable's
+    /// first, `S` read as `I`; Soar manual, 3.3, "The action side of productions (or
+    /// RHS)").
     fn term_value(
         &mut self,
         rule: &CompiledRule,
@@ -264,7 +265,8 @@ impl Agent {
         for &pid in prefs.iter().rev() {
             let pref = &mut self.decider.prefs[pid as usize];
             pref.inst = None;
-            // O-supported preferences outlive their instantiation (spec §3a).
+            // O-supported preferences outlive their instantiation (Soar manual, 2.3.3
+            // "Production Actions and Persistence").
             if pref.o_support || !pref.alive {
                 continue;
             }
@@ -284,7 +286,8 @@ impl Agent {
         self.decider.free_inst(inst_id);
     }
 
-    /// A built-in or registered RHS function (spec §1f).
+    /// A built-in or registered RHS function (Soar manual, 3.3, "Right-hand side
+    /// Functions").
     fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
         crate::decide::functions::call(self, name, args)
     }

@@ -83,7 +83,7 @@ pub(crate) struct CycleScratch {
     pub(super) new_prefs: Vec<PrefId>,
 }
 
-/// A match pending at the start of an elaboration cycle (spec §3b).
+/// A match pending at the start of an elaboration cycle.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Queued {
     pub(super) prod: ProdId,

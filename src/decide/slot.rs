@@ -1,4 +1,4 @@
-//! Slots (spec §3): the preferences for one (id, attr) and the WMEs they support.
+//! Slots: the preferences for one (id, attr) and the WMEs they support.
 //!
 //! Most slots hold one or two values, and appear and go with every firing and retraction:
 //! their lists are plain vectors searched in place, indexed by value only once a slot grows

@@ -122,7 +122,8 @@ impl Agent {
         lines.into_iter().map(|(g, _, w)| (g, w)).collect()
     }
 
-    /// Creates (or keeps) the substate for an impasse at goal `gi` (spec §2, §3e).
+    /// Creates (or keeps) the substate for an impasse at goal `gi`, with its architecture
+    /// WMEs in 9.6's order.
     pub(super) fn impasse(
         &mut self,
         gi: usize,
@@ -139,7 +140,7 @@ impl Agent {
         let parent = self.decider.goals[gi].state;
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
-            // Waiting: the bottom state's own line again, impasse included (E:t12).
+            // Waiting: the bottom state's own line again, impasse included, as 9.6 prints.
             if self.settings.trace.decisions {
                 let what = self.decider.goals[gi]
                     .impasse

@@ -34,7 +34,7 @@ impl Agent {
     }
 
     /// O-supported rejects remove every preference for their value first; the other new
-    /// preferences join their slots, newest at the head (spec §3a).
+    /// preferences join their slots, newest at the head.
     pub(super) fn assert_preferences(&mut self, new_prefs: &[PrefId]) {
         if self.settings.trace.preferences {
             self.trace_new_preferences(new_prefs);
@@ -81,13 +81,13 @@ impl Agent {
         key.1 == op && self.symbols.is_goal(key.0)
     }
 
-    /// Brings working memory in line with the changed slots (spec §2, §3d): a non-context
-    /// slot shows each value with an acceptable and no reject preference; an operator slot
-    /// shows its acceptable preferences as `+` WMEs. Then unlinked structure goes.
+    /// Brings working memory in line with the changed slots: a non-context slot shows each
+    /// value with an acceptable and no reject preference; an operator slot shows its
+    /// acceptable preferences as `+` WMEs. Then unlinked structure goes.
     pub(super) fn update_slots(&mut self) {
         // Soar head-inserts changed slots as they are first marked, so they are decided in
-        // the reverse of marking order: the first action of the first firing gets the lowest
-        // timetag (spec §3i, E:t6).
+        // the reverse of marking order: the first action of the first firing gets the
+        // lowest timetag (observed on 9.6).
         let mut changed = std::mem::take(&mut self.decider.changed);
         changed.reverse();
         let mut sc = std::mem::take(&mut self.decider.slot_scratch);
@@ -185,9 +185,9 @@ impl Agent {
             self.trace_gds_removals(&removes[decided_removes..]);
         }
         // Timetags in action order, but the matcher gets the batch newest first, and the
-        // `=>WM:` lines come newest first too (spec §3i, E:t6). Additions reach the matcher
-        // before removals, which go in the reverse of the order they were found (9.6
-        // head-inserts both buffers).
+        // `=>WM:` lines come newest first too (observed on 9.6). Additions reach the
+        // matcher before removals, which go in the reverse of the order they were found
+        // (9.6 head-inserts both buffers).
         changed.clear();
         if self.decider.changed.is_empty() {
             self.decider.changed = changed;
@@ -240,8 +240,8 @@ impl Agent {
         self.trace_removed_wmes(decided);
         self.classify_new_matches();
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
-        // minor quiescence, spec §3b): a result that ends a tie removes the tie's substate
-        // before the phase ends.
+        // minor quiescence): a result that ends a tie removes the tie's substate before the
+        // phase ends.
         for &key in &context {
             if !self.decider.consistency_pending.contains(&key) {
                 self.decider.consistency_pending.push(key);

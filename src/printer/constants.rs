@@ -48,7 +48,7 @@ pub fn rereadable(s: &str) -> String {
     }
 }
 
-/// Floats print with 6 decimals as `std::fixed` does (spec §2).
+/// Floats print with 6 decimals as `std::fixed` does.
 pub fn float_text(f: f64) -> String {
     format!("{f:.6}")
 }

@@ -1,5 +1,5 @@
-//! The figures and `report.md` of `rusoar slam` (issue 6, item 8): the thesis's experiment
-//! (Experiment and Result, Figures 20 and 26–30) answered with numbers over seeds.
+//! The figures and `report.md` of `rusoar slam`: the thesis's experiment (Experiment and
+//! Result, Figures 20 and 26–30) answered with numbers over seeds.
 //!
 //! Written into the experiment's output folder, each figure as SVG and PNG:
 //!
