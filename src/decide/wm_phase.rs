@@ -314,9 +314,6 @@ impl Agent {
 /// Slots with more preferences than this get sets for their wanted and rejected values.
 const LARGE_SLOT: usize = 16;
 
-/// The values a non-context slot's WMEs should show: each acceptable value not rejected,
-/// oldest preference first. Linear in the slot, with sets only for large slots (one slot can
-/// hold thousands of values, most hold one).
 /// Brings a large non-context slot in line for its touched values alone, as the full pass
 /// of `update_slots` would: a value shows as a WME while it has an acceptable and no reject
 /// preference; removals go in newest-WME-first order, additions in the order of each
@@ -377,6 +374,9 @@ fn update_touched_values(
     }
 }
 
+/// The values a non-context slot's WMEs should show: each acceptable value not rejected,
+/// oldest preference first. Linear in the slot, with sets only for large slots (one slot can
+/// hold thousands of values, most hold one).
 fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> &'a Wanted {
     out.clear();
     let large = slot.prefs.len() > LARGE_SLOT;
