@@ -3,8 +3,10 @@
 
 A file depends on another when it names a path into it: `use crate::a::b`, `crate::a::b::f`,
 `super::x` or `self::x` (resolved against the file's own module). A module is a file, so a
-circle inside a module's own file is no circle; `mod tests` blocks and `tests.rs` files are
-left out (tests may look anywhere). Exit status 1 when a circle is found.
+circle inside a module's own file is no circle; `#[cfg(test)]` modules, inline (`mod tests
+{ ... }`) or in their own file (`mod tests;`), are left out (tests may look anywhere). A file
+named `tests.rs` that is not declared under `#[cfg(test)]` (the Rete's join tests) is a module
+like any other. Exit status 1 when a circle is found.
 
     python3 scripts/module_cycles.py src [more crate roots...]
 """
@@ -59,13 +61,23 @@ def resolve(modules, here, head, rest):
     return None
 
 
+TEST_MOD = re.compile(r"#\[cfg\(test\)\]\s*(?:pub(?:\([a-z]+\))?\s+)?mod\s+(\w+)\s*;")
+
+
 def graph(root):
     files = {}
     for d, _, names in os.walk(root):
         for n in names:
-            if n.endswith(".rs") and n != "tests.rs":
+            if n.endswith(".rs"):
                 p = os.path.join(d, n)
                 files[module_of(root, p)] = p
+    # Modules declared `#[cfg(test)] mod x;` (and everything below them) are tests.
+    tests = set()
+    for m, p in files.items():
+        with open(p, encoding="utf-8") as f:
+            text = re.sub(r"//[^\n]*", "", f.read())
+        tests.update(m + (name,) for name in TEST_MOD.findall(text))
+    files = {m: p for m, p in files.items() if not any(m[: len(t)] == t for t in tests)}
     edges = {m: set() for m in files}
     for m, p in files.items():
         with open(p, encoding="utf-8") as f:

@@ -45,8 +45,54 @@ pub struct Settings {
     pub agent_writes: bool,
     /// `output print-depth`: `print`'s depth when none is given.
     pub print_depth: usize,
-    /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too (spec §4).
+    /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too.
     pub learning_trace: u8,
+    /// `decide indifferent-selection`: how an indifferent tie is broken (Soar manual,
+    /// `decide` in "The Soar command language").
+    pub exploration: Exploration,
+    /// `decide numeric-indifferent-mode`: how numeric preferences for one operator combine.
+    pub numeric_mode: crate::decide::procedure::NumericMode,
+}
+
+/// The exploration policies of `decide indifferent-selection`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Exploration {
+    /// `--boltzmann`.
+    Boltzmann,
+    /// `--epsilon-greedy`.
+    EpsilonGreedy,
+    /// `--first`.
+    First,
+    /// `--last`.
+    Last,
+    /// `--softmax`, the default.
+    #[default]
+    Softmax,
+}
+
+impl Exploration {
+    /// The policy's name, as `decide indifferent-selection` prints it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Exploration::Boltzmann => "boltzmann",
+            Exploration::EpsilonGreedy => "epsilon-greedy",
+            Exploration::First => "first",
+            Exploration::Last => "last",
+            Exploration::Softmax => "softmax",
+        }
+    }
+
+    /// The policy named `name` (its long option without dashes).
+    pub fn from_name(name: &str) -> Option<Self> {
+        Some(match name {
+            "boltzmann" => Exploration::Boltzmann,
+            "epsilon-greedy" => Exploration::EpsilonGreedy,
+            "first" => Exploration::First,
+            "last" => Exploration::Last,
+            "softmax" => Exploration::Softmax,
+            _ => return None,
+        })
+    }
 }
 
 impl Default for Settings {
@@ -64,6 +110,8 @@ impl Default for Settings {
             agent_writes: true,
             print_depth: 1,
             learning_trace: 0,
+            exploration: Exploration::default(),
+            numeric_mode: crate::decide::procedure::NumericMode::Sum,
         }
     }
 }
@@ -357,8 +405,6 @@ pub struct Agent {
     /// The same rules by network id, for firing without a lookup by name.
     by_id: Vec<Option<std::sync::Arc<Production>>>,
     pub settings: Settings,
-    /// The exploration policy named by `indifferent-selection` (softmax by default, spec §3h).
-    pub settings_policy: String,
     /// The seed given to `srand`, if any.
     pub seed: Option<u32>,
     pub top: TopState,
@@ -376,7 +422,7 @@ pub struct Agent {
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
     /// The `<=WM:` lines of substates an operator removal takes away in this phase, each
     /// with its place in 9.6's listing (see `trace_removed_wmes`).
-    pub(crate) substate_removals: Vec<(crate::trace::SubstateLine, crate::wm::Wme)>,
+    pub(crate) substate_removals: Vec<(crate::decide::state::SubstateLine, crate::wm::Wme)>,
     /// Whether those substates went for their GDS (9.6 lists them in another order).
     pub(crate) substates_by_gds: bool,
     /// Rust functions the embedding program registered for `exec` (spec §1f).
@@ -385,7 +431,7 @@ pub struct Agent {
     pub input_callback: Option<PhaseCallback>,
     /// The program's input WMEs and the input-link changes waiting for the next input
     /// phase (`io.rs`).
-    pub(crate) inputs: crate::io::InputTable,
+    pub(crate) inputs: crate::inputs::InputTable,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters (spec §4).
@@ -408,7 +454,6 @@ impl Agent {
             productions: IndexMap::new(),
             by_id: Vec::new(),
             settings: Settings::default(),
-            settings_policy: "softmax".to_string(),
             seed: None,
             top,
             decider: crate::decide::state::DecideState::new(),
@@ -420,7 +465,7 @@ impl Agent {
             substates_by_gds: false,
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
-            inputs: crate::io::InputTable::default(),
+            inputs: crate::inputs::InputTable::default(),
             output_callback: None,
             learn: crate::learn::LearnState::default(),
         }
@@ -486,14 +531,6 @@ impl Agent {
 
     pub fn production(&self, name: &str) -> Option<&Production> {
         self.productions.get(name).map(|l| &*l.production)
-    }
-
-    /// The support of a pending match: decided when it was queued, or now (spec §3c).
-    pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
-        match self.matches.support.get(&(p, t)) {
-            Some(&o) => o,
-            None => crate::decide::support::match_support(self, p, t).o_support,
-        }
     }
 
     /// A rule, shared (for firing it while the agent changes).

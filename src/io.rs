@@ -15,84 +15,12 @@
 //!   and their identifiers are numbered again in that order.
 
 use crate::agent::Agent;
+pub use crate::inputs::{InputUpdate, InputWme};
+pub use crate::value::Value;
+use crate::inputs::{InputChange, InputEntry};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
-
-/// A value to put on the input-link.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Value {
-    /// An integer constant.
-    Int(i64),
-    /// A floating-point constant.
-    Float(f64),
-    /// A string constant.
-    Str(String),
-    /// An identifier that already exists.
-    Id(Sym),
-}
-
-impl From<i64> for Value {
-    fn from(v: i64) -> Self {
-        Value::Int(v)
-    }
-}
-impl From<i32> for Value {
-    fn from(v: i32) -> Self {
-        Value::Int(i64::from(v))
-    }
-}
-impl From<f64> for Value {
-    fn from(v: f64) -> Self {
-        Value::Float(v)
-    }
-}
-impl From<&str> for Value {
-    fn from(v: &str) -> Self {
-        Value::Str(v.to_string())
-    }
-}
-impl From<String> for Value {
-    fn from(v: String) -> Self {
-        Value::Str(v)
-    }
-}
-impl From<Sym> for Value {
-    fn from(v: Sym) -> Self {
-        Value::Id(v)
-    }
-}
-
-impl Value {
-    /// The value as a number: an integer or a float, or a string that reads as one (an SML
-    /// client reads a command's parameters from their text).
-    pub fn as_number(&self) -> Option<f64> {
-        match self {
-            Value::Int(i) => Some(*i as f64),
-            Value::Float(f) => Some(*f),
-            Value::Str(s) => s.trim().parse().ok(),
-            Value::Id(_) => None,
-        }
-    }
-}
-
-/// What changing an input WME to the value it already has does (SML's
-/// `SetBlinkIfNoChange`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum InputUpdate {
-    /// Remove the WME and add it again with a new timetag, so rules that test it match
-    /// again: the official kernel's default.
-    #[default]
-    BlinkIfNoChange,
-    /// Leave the WME alone.
-    SkipIfNoChange,
-}
-
-/// A handle on an input WME made through [`Agent::add_input`] or
-/// [`Agent::add_input_object`]. It stays valid when its value changes and across
-/// `init-soar`, until the WME is removed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub struct InputWme(u32);
 
 /// A misuse of the input and output links.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -110,39 +38,6 @@ pub enum IoError {
     /// [`Agent::mark_done`] was called twice for one command.
     #[error("output command `{0}` is already marked done")]
     AlreadyDone(String),
-}
-
-/// One input WME the program made, as the input table remembers it.
-#[derive(Debug, Clone)]
-struct InputEntry {
-    id: Sym,
-    attr: Sym,
-    value: Sym,
-    /// The WME in working memory now; `None` once removed.
-    wme: Option<WmeId>,
-    /// The value is an identifier this table made (`add_input_object`).
-    object: bool,
-}
-
-/// The program's input WMEs, in the order they were made, and what the output side has
-/// reported and marked.
-#[derive(Debug, Default)]
-pub(crate) struct InputTable {
-    entries: Vec<InputEntry>,
-    /// Input-link changes waiting for the next input phase.
-    pub(crate) queue: Vec<InputChange>,
-    pub(crate) update_mode: InputUpdate,
-    /// The newest output-link timetag [`Agent::new_output_commands`] has reported.
-    pub(crate) output_reported: u64,
-    /// Commands marked done since the last `init-soar`.
-    done: FxHashSet<Sym>,
-}
-
-/// An input-link change the embedding program made, waiting for the next input phase.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum InputChange {
-    Add(WmeId),
-    Remove(WmeId),
 }
 
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.

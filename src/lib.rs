@@ -17,8 +17,8 @@ macro_rules! kernel_modules {
 }
 
 kernel_modules!(
-    agent, ast, commands, decide, io, learn, lexer, parser, printer, production, rete, rhs, rng,
-    source, stdlib, symbols, trace, wm,
+    agent, ast, commands, decide, inputs, io, learn, lexer, parser, printer, production, rete, rhs,
+    rng, source, stdlib, symbols, trace, value, wm,
 );
 
 mod api;

@@ -1,114 +1,17 @@
-//! Printing productions and symbols back in Soar 9.6's form (`print <rule>`, spec §6a):
-//! constants in rereadable form, conditions grouped by identifier, 80-column wrapping.
+//! Printing productions and symbols back in Soar 9.6's form (`print <rule>`): constants in
+//! rereadable form, conditions grouped by identifier, 80-column wrapping. Constants print
+//! as `constants.rs` says; a single test, term or action as the production types' own text
+//! functions do (`production.rs`, whose load-time messages quote them too).
+
+pub(crate) mod constants;
+
+pub use constants::{float_text, push_constant_text, rereadable};
 
 use crate::ast::{Constant, Head};
-use crate::lexer::{is_identifier_shaped, is_int_lexeme, is_variable};
 use crate::production::{
-    Action, Cond, Condition, FuncCall, Make, PrefKind, Production, RhsTerm, Term, Test,
+    call_text, rhs_term_text, test_text, Action, Cond, Condition, Make, PrefKind, Production,
+    RhsTerm,
 };
-
-fn is_constituent(c: char) -> bool {
-    c.is_ascii_alphanumeric() || "$%&*+-/:<=>?_@".contains(c)
-}
-
-/// Would the lexer read `s` back as something other than this string constant? This is the
-/// kernel's `determine_possible_symbol_types_for_string`: a string is rereadable when it is
-/// all alphanumeric, longer than the longest special lexeme (3, `<=>`), or `*`; and it must
-/// not read as a number, a variable or an identifier. Observed on the official kernel:
-/// `a1`, `a*b`, `a-b`, `z9-`, `-a`, `*a`, `1.5`, `+`, `a b`, `x/y` need bars; `a1b`, `ab-c`,
-/// `1e5`, `1a`, `*`, `x/y:z`, `a-b-c`, `-abc`, `1-23` do not.
-fn needs_bars(s: &str) -> bool {
-    if s.is_empty() || !s.chars().all(is_constituent) {
-        return true;
-    }
-    if is_int_lexeme(s) || is_variable(s) || looks_like_float(s) || is_identifier_shaped(s) {
-        return true;
-    }
-    let rereadable = s.bytes().all(|b| b.is_ascii_alphanumeric()) || s.len() > 3 || s == "*";
-    !rereadable
-}
-
-fn looks_like_float(s: &str) -> bool {
-    s.contains('.') && s.parse::<f64>().is_ok()
-}
-
-/// A string constant as Soar prints it: with `|...|` when it would not read back as itself.
-pub fn rereadable(s: &str) -> String {
-    if needs_bars(s) {
-        let mut out = String::with_capacity(s.len() + 2);
-        out.push('|');
-        for c in s.chars() {
-            if c == '|' || c == '\\' {
-                out.push('\\');
-            }
-            out.push(c);
-        }
-        out.push('|');
-        out
-    } else {
-        s.to_string()
-    }
-}
-
-/// Floats print with 6 decimals as `std::fixed` does (spec §2).
-pub fn float_text(f: f64) -> String {
-    format!("{f:.6}")
-}
-
-pub fn constant_text(c: &Constant) -> String {
-    match c {
-        Constant::Str(s) => rereadable(s),
-        Constant::Int(i) => i.to_string(),
-        Constant::Float(f) => float_text(*f),
-    }
-}
-
-/// [`constant_text`] appended to `out`, without a string of its own for the common case.
-pub fn push_constant_text(c: &Constant, out: &mut String) {
-    use std::fmt::Write;
-    match c {
-        Constant::Str(s) if !needs_bars(s) => out.push_str(s),
-        Constant::Int(i) => {
-            let _ = write!(out, "{i}");
-        }
-        _ => out.push_str(&constant_text(c)),
-    }
-}
-
-fn term_text(t: &Term) -> String {
-    match t {
-        Term::Var(v) => v.to_string(),
-        Term::Const(c) => constant_text(c),
-    }
-}
-
-pub fn test_text(t: &Test) -> String {
-    match t {
-        Test::Equal(term) => term_text(term),
-        Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
-        Test::Disjunction(cs) => {
-            let mut s = String::from("<< ");
-            for c in cs.iter() {
-                s.push_str(&constant_text(c));
-                s.push(' ');
-            }
-            s.push_str(">>");
-            s
-        }
-        Test::Conjunction(ts) => {
-            let items: Vec<String> = ts.iter().map(test_text).collect();
-            format!("{{ {} }}", items.join(" "))
-        }
-    }
-}
-
-pub fn rhs_term_text(t: &RhsTerm) -> String {
-    match t {
-        RhsTerm::Var(v) => v.clone(),
-        RhsTerm::Const(c) => constant_text(c),
-        RhsTerm::Call(f) => call_text(f),
-    }
-}
 
 /// An action's id: identifier-shaped constants (`S1`) print bare, as they were written.
 fn rhs_id_text(t: &RhsTerm) -> String {
@@ -116,22 +19,6 @@ fn rhs_id_text(t: &RhsTerm) -> String {
         RhsTerm::Const(Constant::Str(s)) if crate::lexer::is_identifier_shaped(s) => s.clone(),
         other => rhs_term_text(other),
     }
-}
-
-pub fn call_text(f: &FuncCall) -> String {
-    // 9.6 prints the function names `+`, `-` and `*` bare but `/` in bars (observed).
-    let name = if f.name == "/" {
-        "|/|"
-    } else {
-        f.name.as_str()
-    };
-    let mut s = format!("({name}");
-    for a in &f.args {
-        s.push(' ');
-        s.push_str(&rhs_term_text(a));
-    }
-    s.push(')');
-    s
 }
 
 fn is_operator(t: &RhsTerm) -> bool {
@@ -153,23 +40,6 @@ fn make_item(m: &Make) -> String {
             s.push_str(&rhs_term_text(r));
         }
     }
-    s
-}
-
-/// One make action alone, as in Soar's ungrounded-action message: `(<x> ^a 1 +)`.
-pub fn make_text(m: &Make) -> String {
-    let mut s = format!(
-        "({} ^{} {} {}",
-        rhs_term_text(&m.id),
-        rhs_term_text(&m.attr),
-        rhs_term_text(&m.value),
-        m.pref.symbol()
-    );
-    if let Some(r) = &m.referent {
-        s.push(' ');
-        s.push_str(&rhs_term_text(r));
-    }
-    s.push(')');
     s
 }
 
@@ -376,7 +246,7 @@ pub fn production_text(p: &Production) -> String {
         (f.template, "   :template"),
         (f.interrupt, "    :interrupt"),
         // 9.6 does not print :explain back; we do, so that printing and re-reading a rule
-        // keeps it (the round-trip property of issue 2).
+        // keeps it (rules must survive a print and a reload unchanged).
         (f.explain, "    :explain"),
     ] {
         if on {
@@ -393,43 +263,4 @@ pub fn production_text(p: &Production) -> String {
     print_actions(&mut out, &p.actions);
     out.push_str("}\n");
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn bars_as_the_official_kernel_prints_them() {
-        for s in [
-            "a*b", "a-b", "z9-", "a1-", "-a", "*a", "1.5", "+", "a b", "", "P1", "123", "<x>",
-            "a.b", "x/y", "a_b", "<<>>",
-        ] {
-            assert!(rereadable(s).starts_with('|'), "{s} should have bars");
-        }
-        for s in [
-            "a1b",
-            "ab-c",
-            "x/y:z",
-            "a-b-c",
-            "-abc",
-            "1-23",
-            "1e5",
-            "1a",
-            "*",
-            "a",
-            "gp*test*1",
-            "propose*init",
-            "wall01",
-            "w1b",
-        ] {
-            assert_eq!(rereadable(s), s, "{s} should print bare");
-        }
-    }
-
-    #[test]
-    fn floats_have_six_decimals() {
-        assert_eq!(float_text(2.5), "2.500000");
-        assert_eq!(float_text(150.0), "150.000000");
-    }
 }

@@ -1,13 +1,15 @@
 //! Compiling a parsed `sp` into a production: dot paths and structured values are flattened
 //! into single conditions with placeholder variables, preferences become one action each,
-//! and the load-time checks Soar makes are applied (spec §1c–§1g).
+//! and the load-time checks Soar makes are applied (Soar manual, 3.3 "Production Memory";
+//! the messages are 9.6's).
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
+use crate::printer::constants::constant_text;
 use crate::rhs::table::{self, Use};
 use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// Declared support and other `:flags` (spec §1c).
+/// Declared support and other `:flags` (Soar manual, 3.3, "Production type (optional)").
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Flags {
     pub o_support: bool,
@@ -17,7 +19,7 @@ pub struct Flags {
     pub template: bool,
     pub interrupt: bool,
     pub explain: bool,
-    /// A justification (spec §4): printed, never loaded.
+    /// A justification: printed, never loaded.
     pub justification: bool,
 }
 
@@ -365,8 +367,8 @@ fn collect_vars_ast<'a>(p: &'a ast::Production, used: &mut FxHashSet<&'a str>) {
     }
 }
 
-/// A simple test from the AST, applying the conjunction rules of spec §1d: one equality test
-/// at most (a second is dropped with Soar's message), non-equality tests first.
+/// A simple test from the AST, applying 9.6's conjunction rules: one equality test at most
+/// (a second is dropped with Soar's message), non-equality tests first.
 fn compile_test(t: &ast::Test, out: &mut CompileOutput) -> Test {
     match t {
         ast::Test::Equal(a, _) => Test::Equal(term(a)),
@@ -423,11 +425,77 @@ fn term(a: &ast::Atom) -> Term {
     }
 }
 
+// ---------------------------------------------------------------------------------- text
+
+// The text of one term, test or action as `print` shows it; the load-time messages below
+// quote rules with it, and the printer lays whole rules out from it.
+
 pub fn term_text(t: &Term) -> String {
     match t {
         Term::Var(v) => v.to_string(),
-        Term::Const(c) => crate::printer::constant_text(c),
+        Term::Const(c) => constant_text(c),
     }
+}
+
+pub fn test_text(t: &Test) -> String {
+    match t {
+        Test::Equal(term) => term_text(term),
+        Test::Relational(r, term) => format!("{} {}", r.text(), term_text(term)),
+        Test::Disjunction(cs) => {
+            let mut s = String::from("<< ");
+            for c in cs.iter() {
+                s.push_str(&constant_text(c));
+                s.push(' ');
+            }
+            s.push_str(">>");
+            s
+        }
+        Test::Conjunction(ts) => {
+            let items: Vec<String> = ts.iter().map(test_text).collect();
+            format!("{{ {} }}", items.join(" "))
+        }
+    }
+}
+
+pub fn rhs_term_text(t: &RhsTerm) -> String {
+    match t {
+        RhsTerm::Var(v) => v.clone(),
+        RhsTerm::Const(c) => constant_text(c),
+        RhsTerm::Call(f) => call_text(f),
+    }
+}
+
+pub fn call_text(f: &FuncCall) -> String {
+    // 9.6 prints the function names `+`, `-` and `*` bare but `/` in bars (observed).
+    let name = if f.name == "/" {
+        "|/|"
+    } else {
+        f.name.as_str()
+    };
+    let mut s = format!("({name}");
+    for a in &f.args {
+        s.push(' ');
+        s.push_str(&rhs_term_text(a));
+    }
+    s.push(')');
+    s
+}
+
+/// One make action alone, as in Soar's ungrounded-action message: `(<x> ^a 1 +)`.
+pub fn make_text(m: &Make) -> String {
+    let mut s = format!(
+        "({} ^{} {} {}",
+        rhs_term_text(&m.id),
+        rhs_term_text(&m.attr),
+        rhs_term_text(&m.value),
+        m.pref.symbol()
+    );
+    if let Some(r) = &m.referent {
+        s.push(' ');
+        s.push_str(&rhs_term_text(r));
+    }
+    s.push(')');
+    s
 }
 
 /// A test with an equality test: a placeholder variable is added when it binds nothing.
@@ -504,7 +572,7 @@ fn compile_cond_for_one_id(
             if let Some(k) = constant_equality(&test) {
                 return Err(Diagnostic::error(format!(
                     "Warning: Constant {} in id field test.\n         This will never match.",
-                    crate::printer::constant_text(&k)
+                    constant_text(&k)
                 ))
                 .at(t.span())
                 .with_label("identifiers are matched by variables, never by constants"));
@@ -550,7 +618,7 @@ fn compile_attr_value_tests(
     dest: &mut Vec<Condition>,
     out: &mut CompileOutput,
 ) -> Result<(), Diagnostic> {
-    // Conditions made here go to `local`; a negated chain becomes one negation (spec §1d).
+    // Conditions made here go to `local`; a negated chain becomes one negation.
     let mut local = Vec::new();
     let mut cur_id = id.clone();
     let mut goal = head;
@@ -711,8 +779,8 @@ fn compile_action(
                         &vm.prefs
                     };
                     // Non-operator attributes keep only `-` (one reject per `-`), else one
-                    // acceptable; other unary preferences warn each time (spec §1e; the
-                    // kernel's `parse_preferences_soar8_non_operator`).
+                    // acceptable; other unary preferences warn each time (the kernel's
+                    // `parse_preferences_soar8_non_operator`).
                     let mut rejects = 0usize;
                     for pref in prefs {
                         let (kind, referent) = match pref {
@@ -795,8 +863,8 @@ fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<Rh
     })
 }
 
-/// Checks a call against the built-in table; an unknown name becomes `exec name ...`
-/// with Soar's message (spec §1e).
+/// Checks a call against the built-in table; an unknown name becomes `exec name ...` with
+/// Soar's message.
 fn compile_call(
     f: &ast::FuncCall,
     standalone: bool,
@@ -859,7 +927,7 @@ fn compile_call(
 }
 
 fn rhs_text(t: &RhsTerm) -> String {
-    crate::printer::rhs_term_text(t)
+    rhs_term_text(t)
 }
 
 // --------------------------------------------------------------------------------- checks
@@ -872,11 +940,13 @@ fn equality_var(t: &Test) -> Option<&str> {
     }
 }
 
-/// Spec §1d, as the kernel's reorderer checks it (`collect_root_variables`, `reorder_lhs`):
-/// the roots are the variables in the id field of a positive condition that are not the
-/// value of another positive condition. A root with no `(state ...)`/`(impasse ...)` test
-/// warns; a rule with no root at all must have a positive goal test, or it is rejected.
-/// Conjunctive negations are checked the same way, with the outer variables counted bound.
+/// Conditions must hang from a state (Soar manual, 3.3, "The condition side of productions
+/// (or LHS)"), as the kernel's reorderer checks it (`collect_root_variables`,
+/// `reorder_lhs`): the roots are the variables in the id field of a positive condition that
+/// are not the value of another positive condition. A root with no `(state ...)` or
+/// `(impasse ...)` test warns; a rule with no root at all must have a positive goal test,
+/// or it is rejected. Conjunctive negations are checked the same way, with the outer
+/// variables counted bound.
 fn check_roots(
     p: &Production,
     ast: &ast::Production,
@@ -963,9 +1033,9 @@ fn root_variables<'a>(
     roots
 }
 
-/// Spec §1g, as the kernel's reorderer does it: a relational test on a variable that no
-/// positive condition binds (at this level or outside it) can never be evaluated. In a
-/// positive condition it is dropped silently; in a negated condition it is an error
+/// As the kernel's reorderer does it: a relational test on a variable that no positive
+/// condition binds (at this level or outside it) can never be evaluated. In a positive
+/// condition it is dropped silently; in a negated condition it is an error
 /// (`check_negative_relational_test_bindings`).
 fn drop_unbound_relational(
     conds: &mut [Condition],
@@ -1021,7 +1091,7 @@ fn drop_unbound_relational(
                     if let Some(rel) = members.iter().find(|m| unbound(m)) {
                         return Err(Diagnostic::error(format!(
                             "Error: production {name} has an unbound referent in negated relational test {}.",
-                            crate::printer::test_text(rel)
+                            test_text(rel)
                         ))
                         .at(c.span.span())
                         .with_label("no positive condition binds this variable")
@@ -1033,11 +1103,6 @@ fn drop_unbound_relational(
         }
     }
     Ok(())
-}
-
-/// Variables bound by an equality test in a positive, non-negated condition.
-pub fn bound_variables(p: &Production) -> FxHashSet<String> {
-    bound_names(p).into_iter().map(str::to_string).collect()
 }
 
 /// A set of variable names: a list for the few of a typical rule (no hashing, one small
@@ -1077,12 +1142,6 @@ impl<'a> Names<'a> {
         }
     }
 
-    fn into_iter(self) -> Box<dyn Iterator<Item = &'a str> + 'a> {
-        match self {
-            Names::Few(l) => Box::new(l.into_iter()),
-            Names::Many(s) => Box::new(s.into_iter()),
-        }
-    }
 }
 
 fn bound_names(p: &Production) -> Names<'_> {
@@ -1107,8 +1166,8 @@ fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) 
     }
 }
 
-/// Spec §1g: RHS action ids and function arguments must be bound on the LHS or be new
-/// identifiers made by this rule (an unbound variable in value position).
+/// RHS action ids and function arguments must be bound on the LHS or be new identifiers
+/// made by this rule (an unbound variable in value position).
 fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
     let bound = bound_names(p);
     let mut new_ids: FxHashSet<&str> = FxHashSet::default();
@@ -1143,8 +1202,8 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
         }
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
-            Action::Make(m) => (crate::printer::make_text(m), m.span.span()),
-            Action::Call(f) => (crate::printer::call_text(f), f.span),
+            Action::Make(m) => (make_text(m), m.span.span()),
+            Action::Call(f) => (call_text(f), f.span),
         };
         if seen.insert(text.clone()) {
             bad.push((text, span));

@@ -281,13 +281,6 @@ impl Symbols {
         std::mem::discriminant(self.get(a)) == std::mem::discriminant(self.get(b))
     }
 
-    pub fn len(&self) -> usize {
-        self.table.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.table.len() == 0
-    }
 }
 
 fn str_hash(s: &str) -> u32 {

@@ -1,10 +1,11 @@
-//! Soar 9.6's print formats for working memory (spec §2, §6a): `print <id>` objects with
-//! attributes sorted and wrapped at 80 columns, `print -i` one WME per line with timetags,
-//! and `matches <rule>` partial-match listings.
+//! Soar 9.6's print formats for working memory (the `print` command, Soar manual chapter
+//! 9): `print <id>` objects with attributes sorted and wrapped at 80 columns, `print -i`
+//! one WME per line with timetags, and `matches <rule>` partial-match listings.
 
 use crate::agent::Agent;
-use crate::printer::{cond_text, cond_text_with, test_text};
-use crate::production::Condition;
+use crate::decide::state::SubstateLine;
+use crate::printer::{cond_text, cond_text_with};
+use crate::production::{test_text, Condition};
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
 
@@ -39,15 +40,16 @@ pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
     ws
 }
 
-/// `print <id>` with `--depth` and `--internal` (spec §6a): children indented two spaces per
-/// level, each identifier printed once at its shallowest depth.
+/// `print <id>` with `--depth` and `--internal`: children indented two spaces per level,
+/// each identifier printed once at its shallowest depth.
+#[cfg(test)]
 pub fn print_object(agent: &Agent, id: Sym, depth: usize, internal: bool) -> String {
     print_object_at(agent, id, depth, internal, 0)
 }
 
 /// [`print_object`] when the output stream is already at column `start_col`: 9.6 counts the
-/// first line's width from there, so a print after a trace line wraps earlier (E:t7 vs
-/// E:t2), even right after `(S1`.
+/// first line's width from there, so a print after a trace line wraps earlier (observed on
+/// the official kernel), even right after `(S1`.
 pub fn print_object_at(
     agent: &Agent,
     id: Sym,
@@ -136,7 +138,8 @@ fn print_rec(
                 out.push_str(&line);
                 out.push('\n');
                 *col = 0;
-                // Continuation lines start 7 columns in, under the first attribute (E:t5).
+                // Continuation lines start 7 columns in, under the first attribute
+                // (observed).
                 line = format!("{indent}       {}", &item[1..]);
             } else {
                 line.push_str(&item);
@@ -166,8 +169,8 @@ fn print_rec(
     }
 }
 
-/// `matches <rule>` (spec §6a): each condition with its partial-match count; from the first
-/// condition with none, `>>>>` marks where matching stops.
+/// `matches <rule>` (`production matches`): each condition with its partial-match count;
+/// from the first condition with none, `>>>>` marks where matching stops.
 pub fn matches_listing(agent: &Agent, name: &str) -> Option<String> {
     let loaded = agent.loaded(name)?;
     let counts = agent.rete.partial_match_counts(loaded.id, &agent.symbols);
@@ -271,7 +274,7 @@ pub fn pref_type_char(k: crate::decide::procedure::PrefType) -> char {
     }
 }
 
-/// A preference as the level-5 trace shows it (spec §6c):
+/// A preference as the level-5 trace shows it,
 /// `(S1 ^count 0 +  :O ) [level 2] (rule)`: the referent of a binary or numeric preference
 /// after the type, `  :O ` for o-support, the level of its identifier below the top state,
 /// and the rule whose firing made it.
@@ -374,12 +377,12 @@ impl Agent {
     }
 }
 
-/// The trace of the decision cycle's steps (spec §6c): elaboration headers, retractions,
-/// new preferences, operators removed by the consistency check.
+/// The trace of the decision cycle's steps (`trace`): elaboration headers, retractions, new
+/// preferences, operators removed by the consistency check.
 impl Agent {
     /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before the firings
-    /// at one goal of an elaboration cycle (spec §3b); `None` when only retractions of
-    /// goals that are gone are pending (9.6 has no active goal then).
+    /// at one goal of an elaboration cycle; `None` when only retractions of goals that are
+    /// gone are pending (9.6 has no active goal then).
     pub(crate) fn trace_inner_elaboration(&mut self, level: Option<u32>) {
         if !self.settings.trace.waterfall {
             return;
@@ -605,21 +608,6 @@ impl Agent {
             self.output.push('\n');
         }
     }
-}
-
-/// Where a removed substate's WME goes in a phase's `<=WM:` listing.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum SubstateLine {
-    /// The `^smem`/`^epmem`/`^reward-link` structure.
-    Memories,
-    /// Its slots' other WMEs.
-    Other,
-    /// Its operators' `+` WMEs.
-    OperatorPlus,
-    /// `^type`, `^superstate`, `^impasse` and the other impasse WMEs.
-    Impasse,
-    /// Its selected operator.
-    Selected,
 }
 
 impl Agent {

@@ -260,12 +260,8 @@ impl WorkingMemory {
         self.by_id.keys().copied()
     }
 
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.count
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.count == 0
     }
 
     /// `init-soar`: timetags start again at 1, as in the official kernel.

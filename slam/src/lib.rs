@@ -9,7 +9,8 @@
 //! - [`pipeline`]: converter, noise filter, Hough transform and wall extraction;
 //! - [`soar_loop`]: the SoarRobot loop joining simulator, pipeline and the thesis rules;
 //! - [`experiment`]: `rusoar slam`, the thesis's experiment over many seeds, and [`report`]:
-//!   its figures (SVG and PNG) and `report.md`;
+//!   its figures (SVG and PNG) and `report.md`, both reading [`results`] (the experiment's
+//!   options and runs as data) and [`stats`] (the statistics over seeds);
 //! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share;
 //! - [`fixed`]: fast fixed-decimal printing for the step records and `exec` results.
 //!
@@ -26,10 +27,12 @@ pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;
 pub mod report;
+pub mod results;
 pub mod rng;
 pub mod sim;
 pub mod soar_loop;
 pub mod sonar;
+pub mod stats;
 pub mod world;
 
 pub use geom::{Point, Pose, Segment};

@@ -4,6 +4,7 @@
 use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
+use crate::decide::procedure::NumericMode;
 use crate::source::Diagnostic;
 
 /// Soar 8 single-dash words and their 9.6 spellings.
@@ -342,19 +343,38 @@ impl Interpreter {
                 let parsed = options::parse(&rest, &specs).map_err(|m| ctx.error(m))?;
                 let mut policy = None;
                 for (o, _) in &parsed.options {
-                    if matches!(
-                        *o,
-                        "boltzmann" | "epsilon-greedy" | "first" | "last" | "softmax"
-                    ) {
-                        policy = Some(*o);
-                    }
+                    policy = crate::agent::Exploration::from_name(o).or(policy);
                 }
                 match policy {
                     Some(p) => {
-                        self.agent.settings_policy = p.to_string();
+                        self.agent.settings.exploration = p;
                         Ok(String::new())
                     }
-                    None => Ok(self.agent.settings_policy.clone()),
+                    None => Ok(self.agent.settings.exploration.name().to_string()),
+                }
+            }
+            Some("numeric-indifferent-mode") => {
+                let specs = [opt('a', "avg"), opt('s', "sum")];
+                let parsed = options::parse(&args[1..], &specs).map_err(|m| ctx.error(m))?;
+                let mut mode = None;
+                for (o, _) in &parsed.options {
+                    mode = match *o {
+                        "avg" => Some(NumericMode::Avg),
+                        "sum" => Some(NumericMode::Sum),
+                        _ => mode,
+                    };
+                }
+                match mode {
+                    Some(m) => {
+                        self.agent.settings.numeric_mode = m;
+                        Ok(String::new())
+                    }
+                    // The official kernel's texts (soar-sml 9.6.5).
+                    None => Ok(match self.agent.settings.numeric_mode {
+                        NumericMode::Sum => "Current numeric indifferent mode: Soar will use the sum of numeric preferences.\n",
+                        NumericMode::Avg => "Current numeric indifferent mode: Soar will average numeric preferences.\n",
+                    }
+                    .to_string()),
                 }
             }
             Some("srand") => {

@@ -1,8 +1,8 @@
-//! A rule's actions made ready for firing (spec §1e): constants interned once, each variable
-//! resolved to where the match binds it (token depth and field) or to a slot for the new
-//! identifier it makes, so that a firing looks nothing up by name. Built the first time a
-//! rule fires and kept by rule id (ids are never reused, so an excised rule's entry is
-//! simply never asked for again).
+//! A rule's actions made ready for firing: constants interned once, each variable resolved
+//! to where the match binds it (token depth and field) or to a slot for the new identifier
+//! it makes, so that a firing looks nothing up by name. Built the first time a rule fires
+//! and kept by rule id (ids are never reused, so an excised rule's entry is simply never
+//! asked for again).
 
 use crate::decide::procedure::PrefType;
 use crate::production::{Action, Flags, PrefKind, Production, RhsTerm};
@@ -47,21 +47,22 @@ pub(crate) struct CompiledRule {
     /// For each new-identifier slot: the variable's name and the letter of its identifier
     /// (the variable's first letter, `S` read as `I`; `I` when it has none).
     pub new_vars: Vec<(String, char)>,
-    /// It makes an acceptable preference for `^operator` (spec §3c: proposals are I).
+    /// It makes an acceptable preference for `^operator` (proposals are I-supported: Soar
+    /// manual, 2.7.6 "The calculation of o-support").
     pub proposes: bool,
     /// The rule's flags (declared support, its kind for tracing).
     pub flags: Flags,
     /// For each make action: the binding of its id when that is a variable the conditions
-    /// bind (for the §3c test of actions on the selected operator).
+    /// bind (for the o-support test of actions on the selected operator).
     pub make_ids: Vec<Option<(u32, Field)>>,
     /// One of its positive conditions can match a `^operator` WME. Without one the rule
-    /// cannot test its goal's selected operator and is I-supported (spec §3c), which
-    /// spares the support test a walk over the match.
+    /// cannot test its goal's selected operator and is I-supported, which spares the
+    /// support test a walk over the match.
     pub may_test_operator: bool,
-    /// Where a match's distinct condition identifiers are read (token depth and field):
-    /// the first condition's, and for each later one the binding its identifier is joined
-    /// on. The match goal is the lowest goal among them (spec §3b); most rules test a dozen
-    /// conditions on a handful of identifiers. Filled in by `Agent::compiled_rule`.
+    /// Where a match's distinct condition identifiers are read (token depth and field): the
+    /// first condition's, and for each later one the binding its identifier is joined on.
+    /// The match goal is the lowest goal among them; most rules test a dozen conditions on
+    /// a handful of identifiers. Filled in by `Agent::compiled_rule`.
     pub id_places: Vec<(u32, Field)>,
 }
 

@@ -1,5 +1,6 @@
-//! The bridge from firing to RHS functions (spec §1f): the agent's parts are lent to
-//! `crate::rhs` for one call; `halt` and errors come back to the decision cycle.
+//! The bridge from firing to RHS functions (Soar manual, 3.3, "Right-hand side Functions"):
+//! the agent's parts are lent to `crate::rhs` for one call; `halt` and errors come back to
+//! the decision cycle.
 
 use crate::agent::Agent;
 use crate::symbols::Sym;

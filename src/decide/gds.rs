@@ -1,8 +1,9 @@
-//! The goal dependency set (spec §3f): when a substate makes an o-supported WME, the
-//! superstate WMEs its reasoning tested join that substate's GDS, following local
-//! i-supported WMEs back through the instantiations that made them (local o-supported
-//! WMEs stop the search). When a WME in a goal's GDS leaves working memory, that goal and
-//! every goal below it go, and the next decision can make the impasse again.
+//! The goal dependency set (Soar manual, 2.7.9 "Removal of Substates: The Goal Dependency
+//! Set"): when a substate makes an o-supported WME, the superstate WMEs its reasoning
+//! tested join that substate's GDS, following local i-supported WMEs back through the
+//! instantiations that made them (local o-supported WMEs stop the search). When a WME in a
+//! goal's GDS leaves working memory, that goal and every goal below it go, and the next
+//! decision can make the impasse again.
 
 use super::procedure::PrefType;
 use super::state::InstId;

@@ -1,12 +1,24 @@
-//! The decision cycle (issue 4). This first part is the operator decision procedure and the
-//! exploration policies; the phases, support and impasse machinery build on it.
+//! The decision cycle: the run loop and its phases (`cycle.rs`, which lists the files that
+//! do each step), the operator decision procedure and the exploration policies
+//! (`procedure.rs`), match support (`support.rs`), the goal dependency set (`gds.rs`), and
+//! the decider's memory (`state.rs`, `slot.rs`, `ids.rs`, `scratch.rs`) which the agent
+//! holds.
 
 pub mod by_token;
 pub(crate) mod compiled;
+mod consistency;
 pub mod cycle;
+mod decision;
+mod elaborate;
+mod fire;
 pub mod functions;
+mod gc;
 mod gds;
+mod ids;
 pub mod procedure;
+mod scratch;
 mod slot;
 pub mod state;
+mod substates;
 pub(crate) mod support;
+mod wm_phase;

@@ -1,9 +1,10 @@
-//! Soar 9.6's decision procedure for an operator slot (spec §3d) and the exploration
-//! policies that choose among indifferent candidates (spec §3h).
+//! Soar 9.6's decision procedure for an operator slot (Soar manual, 2.4.2 "How preferences
+//! are evaluated to decide an operator") and the exploration policies that choose among
+//! indifferent candidates (`decide indifferent-selection`, Soar manual chapter 9).
 //!
-//! The caller passes the slot's preferences in slot order; candidates keep the order in which
-//! their acceptable preferences appear, which the slot keeps as Soar does (newest first, so
-//! the candidate list is in reverse firing order, spec §3d).
+//! The caller passes the slot's preferences in slot order; candidates keep the order in
+//! which their acceptable preferences appear, which the slot keeps as Soar does (newest
+//! first, so the candidate list is in reverse firing order).
 
 use crate::rng::Mt19937;
 use crate::symbols::Sym;
@@ -33,6 +34,7 @@ pub struct Pref {
     pub number: Option<f64>,
 }
 
+#[cfg(test)]
 impl Pref {
     pub fn unary(kind: PrefType, value: Sym) -> Self {
         Pref {
@@ -71,7 +73,7 @@ pub enum Outcome {
     ConstraintFailure(Vec<Sym>),
 }
 
-/// How an indifferent choice is made (`indifferent-selection`, spec §3h).
+/// How an indifferent choice is made (`indifferent-selection`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum Policy {
     #[default]
@@ -104,8 +106,8 @@ fn has(prefs: &[Pref], kind: PrefType, value: Sym) -> bool {
     prefs.iter().any(|p| p.kind == kind && p.value == value)
 }
 
-/// The preference semantics of spec §3d in 9.6's order, up to the choice: the candidates
-/// to choose among (one, or several mutually indifferent ones), or the impasse.
+/// The preference semantics in 9.6's order, up to the choice: the candidates to choose
+/// among (one, or several mutually indifferent ones), or the impasse.
 pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     // Step 1: require.
     let mut required = Vec::new();
@@ -202,8 +204,8 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     Ok(cands)
 }
 
-/// Runs the preference semantics of spec §3d in 9.6's order and, when the remaining
-/// candidates are mutually indifferent, chooses one with `policy`.
+/// Runs the preference semantics in 9.6's order and, when the remaining candidates are
+/// mutually indifferent, chooses one with `policy`.
 pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt19937) -> Outcome {
     let cands = match candidates(prefs) {
         Ok(c) => c,
@@ -219,7 +221,7 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
     Outcome::Winner(cands[choose(&values, policy, rng)])
 }
 
-/// A candidate's numeric value (spec §3d): the sum (or average) of its numeric-indifferent
+/// A candidate's numeric value: the sum (or average) of its numeric-indifferent
 /// preferences; binary indifferents where it is the value contribute their referent as a
 /// number when the referent is one (usually 0 here, since referents are operators).
 pub fn numeric_value(prefs: &[Pref], c: Sym, mode: NumericMode) -> f64 {
@@ -238,7 +240,7 @@ pub fn numeric_value(prefs: &[Pref], c: Sym, mode: NumericMode) -> f64 {
     }
 }
 
-/// Index of the chosen candidate (spec §3h).
+/// Index of the chosen candidate.
 pub fn choose(values: &[f64], policy: Policy, rng: &mut Mt19937) -> usize {
     let n = values.len();
     if n <= 1 {
@@ -400,8 +402,8 @@ mod tests {
         );
     }
 
-    /// E:t11: four tied indifferent candidates under softmax with `srand 1..4` pick index
-    /// 1, 0, 2, 2 of the candidate list.
+    /// On the official kernel, four tied indifferent candidates under softmax with
+    /// `srand 1..4` pick index 1, 0, 2, 2 of the candidate list.
     #[test]
     fn softmax_uniform_choice_matches_the_official_kernel() {
         let cands = [s(4), s(3), s(2), s(1)];

@@ -1,11 +1,11 @@
-//! Slots (spec §3): the preferences for one (id, attr) and the WMEs they support.
+//! Slots: the preferences for one (id, attr) and the WMEs they support.
 //!
 //! Most slots hold one or two values, and appear and go with every firing and retraction:
 //! their lists are plain vectors searched in place, indexed by value only once a slot grows
 //! large (one slot can hold thousands of values), and emptied slots are kept for reuse, so a
 //! decision cycle allocates nothing for its slots once it is warm.
 
-use super::state::PrefId;
+use super::ids::PrefId;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
@@ -290,10 +290,6 @@ pub struct Slots {
 impl Slots {
     pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
         self.map.get(key).map(|&i| &self.arena[i as usize])
-    }
-
-    pub fn get_mut(&mut self, key: &(Sym, Sym)) -> Option<&mut Slot> {
-        self.map.get(key).map(|&i| &mut self.arena[i as usize])
     }
 
     pub fn id_of(&self, key: &(Sym, Sym)) -> Option<SlotId> {

@@ -1,14 +1,12 @@
-//! The decider's memory (spec §3): instantiations, preferences, slots and the goal stack.
+//! The decider's memory: instantiations, preferences, slots and the goal stack.
 
+pub use super::ids::{InstId, PrefId};
 use super::procedure::PrefType;
 pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
-
-pub type InstId = u32;
-pub type PrefId = u32;
 
 /// A fired rule: the match it fired on and the preferences it made.
 #[derive(Debug, Clone)]
@@ -41,7 +39,7 @@ pub struct Preference {
     /// On the free list (guards against freeing twice).
     pub freed: bool,
     /// For a preference made in a substate: the firing and identities that made it, for
-    /// backtracing (spec §4).
+    /// backtracing (chunking and justifications).
     pub origin: Option<std::sync::Arc<crate::learn::PrefOrigin>>,
 }
 
@@ -76,14 +74,30 @@ pub struct Goal {
     pub items: Vec<Sym>,
     /// The architecture's WMEs on this state (removed with it).
     pub wmes: Vec<WmeId>,
-    /// The operator slot's preferences changed since it was last decided (spec §3e).
+    /// The operator slot's preferences changed since it was last decided.
     pub slot_changed: bool,
     /// The preferences its firings made, oldest first, with what each says (handles are
     /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
     pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
 }
 
-/// The phases of a decision cycle (spec §3a).
+/// Where a removed substate's WME goes in a phase's `<=WM:` listing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum SubstateLine {
+    /// The `^smem`/`^epmem`/`^reward-link` structure.
+    Memories,
+    /// Its slots' other WMEs.
+    Other,
+    /// Its operators' `+` WMEs.
+    OperatorPlus,
+    /// `^type`, `^superstate`, `^impasse` and the other impasse WMEs.
+    Impasse,
+    /// Its selected operator.
+    Selected,
+}
+
+/// The phases of a decision cycle (Soar manual, 2.5 "Soar's Execution Cycle: Without
+/// Substates").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Phase {
     Input,
@@ -121,19 +135,17 @@ pub struct DecideState {
     pub halted: bool,
     pub stop_requested: bool,
     /// A no-change went past `max-goal-depth` in this run: the run stops, interrupted, and
-    /// the agent is not halted (spec §3a).
+    /// the agent is not halted.
     pub depth_exceeded: bool,
     /// A rule called `(interrupt)` in this run: the run stops after the phase.
     pub rhs_interrupted: bool,
-    /// The top goal's operator slot changed since the last decision, per goal.
-    pub context_changed: bool,
     pub wme_changes: u64,
-    /// Statistics for `stats` (spec §6a): elaboration cycles that fired o-supported rules
-    /// (9.6's p-elaboration cycles), the WM additions and removals counted before this
-    /// decider started (`WorkingMemory` counts from agent creation; init-soar restarts
-    /// the count, and the new top state's 13 WMEs count again), WM size samples, and
-    /// the time spent in each phase (Input, Propose, Decide, Apply, Output) and in the
-    /// input and output callbacks.
+    /// Statistics for `stats`: elaboration cycles that fired o-supported rules (9.6's
+    /// p-elaboration cycles), the WM additions and removals counted before this decider
+    /// started (`WorkingMemory` counts from agent creation; init-soar restarts the count,
+    /// and the new top state's 13 WMEs count again), WM size samples, and the time spent in
+    /// each phase (Input, Propose, Decide, Apply, Output) and in the input and output
+    /// callbacks.
     pub pe_cycles: u64,
     pub wm_base: (u64, u64),
     pub wm_size_sum: u64,
@@ -149,16 +161,16 @@ pub struct DecideState {
     pub(crate) prefs_traced_gone: Vec<PrefId>,
     /// Substate preferences whose result copy (with its justification's support) is an
     /// o-supported reject: in 9.6 the result itself becomes that o-reject, so the original
-    /// is neither traced nor asserted (spec §3a, §3c).
+    /// is neither traced nor asserted.
     pub(crate) results_taken_by_o_rejects: Vec<PrefId>,
-    pub(crate) gc_scratch: super::cycle::GcScratch,
-    pub(crate) cycle_scratch: super::cycle::CycleScratch,
-    pub(crate) slot_scratch: super::cycle::SlotScratch,
+    pub(crate) gc_scratch: super::scratch::GcScratch,
+    pub(crate) cycle_scratch: super::scratch::CycleScratch,
+    pub(crate) slot_scratch: super::scratch::SlotScratch,
     /// Emptied preference lists of freed instantiations, for the next firings.
     pub spare_pref_lists: Vec<Vec<PrefId>>,
     /// The identifiers a firing's actions make, by new-variable slot (scratch).
     pub rhs_new_ids: Vec<Option<Sym>>,
-    /// Each WME in a goal dependency set, with the highest goal that depends on it (§3f).
+    /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
@@ -174,7 +186,7 @@ pub struct DecideState {
     /// index into `MatchSet::retractions`, `usize::MAX` after them all).
     pub justification_retractions: Vec<(InstId, u64, usize)>,
     /// Retractions of matches at a goal below the active one, waiting for a cycle in which
-    /// their goal is the active goal (spec §3b), oldest first.
+    /// their goal is the active goal, oldest first.
     pub waiting_retractions: Vec<InstId>,
     /// Rules' actions compiled for firing, by rule id (built at a rule's first firing).
     pub(crate) compiled: Vec<Option<std::rc::Rc<super::compiled::CompiledRule>>>,
@@ -185,7 +197,7 @@ pub struct DecideState {
 }
 
 impl DecideState {
-    /// A fresh decider: the first decision cycle is number 1 (spec §3a).
+    /// A fresh decider: the first decision cycle is number 1.
     pub fn new() -> Self {
         DecideState {
             d_cycle_count: 1,

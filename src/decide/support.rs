@@ -1,7 +1,7 @@
-//! Match-time support classification (spec §3b, §3c): a match's goal is the deepest state
-//! among its positive conditions' identifiers, and a match that tests that goal's selected
-//! operator (and proposes none) is an o-support candidate. The decision cycle refines this
-//! at fire time.
+//! Match-time support classification (Soar manual, 2.7.6 "The calculation of o-support"): a
+//! match's goal is the deepest state among its positive conditions' identifiers, and a
+//! match that tests that goal's selected operator (and proposes none) is an o-support
+//! candidate. The decision cycle refines this at fire time.
 
 use crate::agent::Agent;
 use crate::decide::compiled::CompiledRule;
@@ -34,18 +34,18 @@ pub(crate) fn goal_among(agent: &Agent, ids: impl Iterator<Item = Sym>) -> Optio
     best.map(|(_, s)| s)
 }
 
-/// The support a match gets (spec §3c, decided at match time as 9.6's rete does).
+/// The support a match gets (decided at match time as 9.6's rete does).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MatchSupport {
     pub o_support: bool,
     /// The rule both elaborates the selected operator and applies it: I-support, with
-    /// 9.6's warning (E:t24).
+    /// 9.6's warning (observed on the official kernel).
     pub mixed: bool,
 }
 
-/// Spec §3c: declared support wins; a rule that proposes an operator is I; otherwise a rule
-/// that tests its goal's selected operator is O if one of its make actions is on something
-/// other than that operator (an application), I if all are on the operator (operator
+/// Declared support wins; a rule that proposes an operator is I; otherwise a rule that
+/// tests its goal's selected operator is O if one of its make actions is on something other
+/// than that operator (an application), I if all are on the operator (operator
 /// elaborations); both is I with a warning (when warnings are on).
 pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
     let i_support = MatchSupport {
@@ -100,7 +100,17 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
     support_of_actions(agent, on_operator)
 }
 
-/// Spec §3c's last step, given for each make action whether it is on the selected
+impl Agent {
+    /// The support of a pending match: decided when it was queued, or now.
+    pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
+        match self.matches.support.get(&(p, t)) {
+            Some(&o) => o,
+            None => crate::decide::support::match_support(self, p, t).o_support,
+        }
+    }
+}
+
+/// The o-support test's last step, given for each make action whether it is on the selected
 /// operator: applications are O, operator elaborations I, both I (with 9.6's warning).
 fn support_of_actions(agent: &Agent, on_operator: impl Iterator<Item = bool>) -> MatchSupport {
     let (mut elaborates, mut applies) = (false, false);

@@ -23,14 +23,13 @@ pub(crate) fn equality_var(t: &Test) -> Option<&str> {
 }
 
 impl Agent {
-    /// Records a firing at `level` (≥ 2) and gives each preference it made (with the index
-    /// of its make action) an origin.
+    /// Records a firing in a substate and gives each preference it made (with the index of
+    /// its make action) an origin.
     pub(crate) fn record_firing(
         &mut self,
         p: ProdId,
         t: TokId,
         prod: &Arc<Production>,
-        level: u32,
         new_ids: &FxHashMap<String, Sym>,
         made: &[(PrefId, usize)],
     ) -> Option<Arc<InstTrace>> {

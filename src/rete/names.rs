@@ -29,12 +29,8 @@ impl VarBindings {
         self.0.iter().map(|(k, b)| (&**k, *b))
     }
 
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.0.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
     }
 
     pub(super) fn new(map: FxHashMap<&str, (u32, Field)>, names: &mut VarNames) -> Self {

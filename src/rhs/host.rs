@@ -6,7 +6,7 @@
 //! A function that panics is caught: the panic is reported in the trace as an error and
 //! the call's value is the error text, so the agent stays usable.
 
-use crate::io::Value;
+use crate::value::Value;
 use crate::symbols::{Sym, SymData, Symbols};
 
 /// One argument of a host function's call.

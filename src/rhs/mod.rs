@@ -533,11 +533,11 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         let function = function.to_string();
         let function = function.as_str();
         return match result {
-            Ok(crate::io::Value::Int(i)) => ctx.symbols.int(i),
-            Ok(crate::io::Value::Float(x)) => ctx.symbols.float(x),
-            Ok(crate::io::Value::Str(s)) => ctx.str_sym(&s),
-            Ok(crate::io::Value::Id(s)) if ctx.symbols.is_id(s) => s,
-            Ok(crate::io::Value::Id(_)) => {
+            Ok(crate::value::Value::Int(i)) => ctx.symbols.int(i),
+            Ok(crate::value::Value::Float(x)) => ctx.symbols.float(x),
+            Ok(crate::value::Value::Str(s)) => ctx.str_sym(&s),
+            Ok(crate::value::Value::Id(s)) if ctx.symbols.is_id(s) => s,
+            Ok(crate::value::Value::Id(_)) => {
                 host_error(ctx, function, "it returned a constant as an identifier")
             }
             Err(why) => host_error(ctx, function, &why),

@@ -3,7 +3,7 @@
 //! soar-sml (the exec tests register Python RHS functions `echo` -> `<agent|name|args>` and
 //! `getlength` -> `len(args)`). An error line is the text the kernel printed instead.
 
-use super::text::{self, accept_symbol, timestamp_text, Accepted};
+use super::text::{self, accept_symbol, c_strtod, c_strtol, timestamp_text, Accepted};
 use super::*;
 use crate::symbols::{SymData, Symbols};
 use crate::wm::WorkingMemory;

@@ -1,6 +1,5 @@
-//! Scoring a wall map against the true walls (issue 6, item 8: "for the map the matched walls'
-//! r and θ errors against the true walls"; `robotics-anchors.md` §6: "number of merged walls vs
-//! 4, and |Δr|, |Δθ| of each merged wall against ground truth").
+//! Scoring a wall map against the true walls: how many walls the map holds against the
+//! room's 4, and the r and θ errors (|Δr|, |Δθ|) of each wall that matches a true wall.
 //!
 //! A map wall is a segment in the believed frame, which starts as the true frame (the believed
 //! pose starts at the true start pose), so a wall recorded while the belief was off shows up as
@@ -17,8 +16,8 @@
 //! within the gate (`|Δr|` ≤ [`Gate::r_mm`], Δθ ≤ [`Gate::th_deg`]). Unmatched walls are
 //! phantoms: misplaced copies of a wall or echoes.
 
-use super::super::experiment::quantile;
 use super::super::geom::{Point, Segment};
+use super::super::stats::quantile;
 
 /// How close a map wall must be to a true wall to count as that wall.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -1,5 +1,5 @@
-//! The figures and `report.md` of `rusoar slam` (issue 6, item 8): the thesis's experiment
-//! (Experiment and Result, Figures 20 and 26–30) answered with numbers over seeds.
+//! The figures and `report.md` of `rusoar slam`: the thesis's experiment (Experiment and
+//! Result, Figures 20 and 26–30) answered with numbers over seeds.
 //!
 //! Written into the experiment's output folder, each figure as SVG and PNG:
 //!
@@ -24,13 +24,12 @@ pub mod pixfont;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use super::experiment::{
-    condition_name, fmt_band, fmt_mm, quantile, wilcoxon, Experiment, Options, Pair, RunSummary,
-};
 use super::geom::Point;
 use super::odometry::DriftParams;
+use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{Correction, MemoryWall};
 use super::sonar::SonarModel;
+use super::stats::{fmt_band, fmt_mm, quantile, wilcoxon};
 use figures::{
     save, Band, BandSeries, HoughFigure, MapFigure, MapPanel, PairedScatter, TimeBands, OFF, ON,
 };
@@ -551,9 +550,9 @@ fn nice_bin(w: f64) -> f64 {
 /// The `rusoar slam` command line that repeats this experiment.
 fn command_line(opts: &Options) -> String {
     let slam = match opts.slam {
-        super::experiment::SlamMode::On => "on",
-        super::experiment::SlamMode::Off => "off",
-        super::experiment::SlamMode::Both => "both",
+        SlamMode::On => "on",
+        SlamMode::Off => "off",
+        SlamMode::Both => "both",
     };
     format!(
         "cargo run --release -- slam --seeds {} --first-seed {} --duration {} --world {} --noise {} --slam {slam} --out {}",

@@ -1,0 +1,131 @@
+//! The consistency checks (Soar manual, 2.5 "Soar's Execution Cycle: Without Substates", and
+//! 2.7.7 "Removal of Substates: Impasse Resolution"): a selected operator that is no longer a
+//! candidate, or that the preferences would no longer choose, goes at once with every
+//! substate below it; so does a substate whose impasse the preferences no longer give. The
+//! next decision decides the slot again.
+
+use super::procedure::{self, Outcome, PrefType};
+use super::state::ImpasseKind;
+use crate::agent::Agent;
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+
+impl Agent {
+    /// The operator installed in a goal stays while it is still a candidate; otherwise it
+    /// goes at once, with every substate below. Returns the operator WME to remove
+    /// (buffered with the other removals).
+    pub(super) fn check_operator_consistency(&mut self, key: (Sym, Sym)) -> Option<WmeId> {
+        let gi = self.decider.goals.iter().position(|g| g.state == key.0)?;
+        let (op, w) = self.decider.goals[gi].operator?;
+        let prefs = self.slot_prefs(key);
+        let still = prefs
+            .iter()
+            .any(|p| p.kind == PrefType::Acceptable && p.value == op)
+            && !prefs
+                .iter()
+                .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
+        if still {
+            return None;
+        }
+        if self.settings.trace.consistency {
+            self.trace_operator_removal(key, op);
+            if let Some(sub) = self.decider.goals.get(gi + 1) {
+                let s = format!(
+                    "Removing state {} because of an operator removal.\n",
+                    self.symbols.text(sub.state)
+                );
+                self.out(&s);
+            }
+        }
+        if self.settings.trace.wmes && self.removed_wmes.is_some() {
+            self.collect_substate_removals(gi);
+        }
+        self.remove_goals_below(gi);
+        self.decider.goals[gi].operator = None;
+        Some(w)
+    }
+
+    /// A goal without an operator whose impasse the preferences no longer give (another
+    /// impasse, other items, or a choice) loses its substates at once, as 9.6's consistency
+    /// check removes them; the next decision decides the slot again.
+    pub(super) fn check_impasse_consistency(&mut self, key: (Sym, Sym)) {
+        let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
+            return;
+        };
+        if let Some((op, w)) = self.decider.goals[gi].operator {
+            self.check_selected_operator(gi, key, op, w);
+            return;
+        }
+        let Some(sub) = self.decider.goals.get(gi + 1) else {
+            return;
+        };
+        let Some((kind, on_operator)) = sub.impasse else {
+            return;
+        };
+        let same_items = |items: &[Sym]| {
+            items.len() == sub.items.len() && items.iter().all(|i| sub.items.contains(i))
+        };
+        let consistent = match procedure::candidates(&self.slot_prefs(key)) {
+            Ok(_) => false,
+            Err(Outcome::NoCandidates) => kind == ImpasseKind::NoChange && !on_operator,
+            Err(Outcome::Tie(items)) => kind == ImpasseKind::Tie && same_items(&items),
+            Err(Outcome::Conflict(items)) => kind == ImpasseKind::Conflict && same_items(&items),
+            Err(Outcome::ConstraintFailure(items)) => {
+                kind == ImpasseKind::ConstraintFailure && same_items(&items)
+            }
+            Err(Outcome::Winner(_)) => false,
+        };
+        if consistent {
+            return;
+        }
+        self.remove_inconsistent_decision(gi, key, true);
+        self.decider.goals[gi].slot_changed = true;
+    }
+
+    /// The substates below goal `gi` go because its decision no longer agrees with the
+    /// preferences, with 9.6's trace (`remove_current_decision`; the `REMOVING CONTEXT
+    /// SLOT` line only when no operator was selected).
+    fn remove_inconsistent_decision(&mut self, gi: usize, key: (Sym, Sym), empty_slot: bool) {
+        if self.settings.trace.consistency {
+            let goal = self.symbols.text(key.0);
+            let slot_line = if empty_slot {
+                format!(
+                    "\n       REMOVING CONTEXT SLOT: Slot Identifier [{goal}] and attribute [operator]\n"
+                )
+            } else {
+                String::new()
+            };
+            let s = format!(
+                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n{slot_line}\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
+            );
+            self.out(&s);
+        }
+        if self.settings.trace.preferences {
+            // Before the substates' `<=WM:` lines, as 9.6 lists them.
+            for k in (gi + 1..self.decider.goals.len()).rev() {
+                let made = std::mem::take(&mut self.decider.goals[k].made);
+                let state = self.decider.goals[k].state;
+                self.trace_removed_prefs(state, &made);
+            }
+        }
+        if self.settings.trace.wmes {
+            self.trace_substate_wmes_removed(gi);
+        }
+        self.remove_goals_below(gi);
+    }
+
+    /// A selected operator stays while the preferences still give it among the candidates;
+    /// when another operator is now better (or an impasse would come instead), the operator
+    /// and every substate below go at once, and the next decision decides the slot again
+    /// (consistency.cpp `decision_consistent_with_current_preferences`).
+    fn check_selected_operator(&mut self, gi: usize, key: (Sym, Sym), op: Sym, w: WmeId) {
+        if matches!(procedure::candidates(&self.slot_prefs(key)), Ok(c) if c.contains(&op)) {
+            return;
+        }
+        self.remove_inconsistent_decision(gi, key, false);
+        self.decider.goals[gi].operator = None;
+        self.remove_slot_wme(w);
+        self.collect_garbage();
+        self.decider.goals[gi].slot_changed = true;
+    }
+}

@@ -1,0 +1,142 @@
+//! The decision phase (Soar manual, 2.4.2 "How preferences are evaluated to decide an
+//! operator", and 2.7.1 "Impasse Types"): from the top goal down, the first operator slot
+//! without a selected operator whose preferences changed is decided; a winner is installed,
+//! otherwise the goal impasses. With nothing to decide, the bottom goal has a no-change.
+
+use super::procedure::{self, Outcome, Policy, Pref};
+use crate::agent::Exploration;
+use super::state::ImpasseKind;
+use crate::agent::Agent;
+use crate::symbols::Sym;
+
+impl Agent {
+    /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
+    /// top (as 9.6's trace prints it).
+    pub(super) fn decision_prefix(&self, level: u32) -> String {
+        format!(
+            "\n{:>6}: {}",
+            self.decider.d_cycle_count,
+            "   ".repeat(level.saturating_sub(1) as usize)
+        )
+    }
+
+    pub(super) fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
+        let Some(slot) = self.decider.slots.get(&key) else {
+            return Vec::new();
+        };
+        // Candidates come out oldest first: the reverse of Soar's head-inserted list.
+        slot.prefs
+            .iter()
+            .map(|&pid| {
+                let p = &self.decider.prefs[pid as usize];
+                Pref {
+                    kind: p.kind,
+                    value: p.value,
+                    referent: p.referent,
+                    number: p.number,
+                }
+            })
+            .collect()
+    }
+
+    /// Decides the first operator slot without an installed operator, from the top; if
+    /// every goal has one, the bottom goal has an operator no-change (decide.cpp
+    /// `decide_context_slots`).
+    pub(super) fn decide_context_slots(&mut self) {
+        // The decision decides every changed slot anew.
+        self.decider.consistency_pending.clear();
+        let op = self.operator_sym();
+        let policy = match self.settings.exploration {
+            Exploration::First => Policy::First,
+            Exploration::Last => Policy::Last,
+            Exploration::EpsilonGreedy => Policy::EpsilonGreedy { epsilon: 0.1 },
+            Exploration::Boltzmann => Policy::Boltzmann { temperature: 25.0 },
+            Exploration::Softmax => Policy::Softmax,
+        };
+        let numeric_mode = self.settings.numeric_mode;
+        let n = self.decider.goals.len();
+        for gi in 0..n {
+            let goal = self.decider.goals[gi].clone();
+            // Decidable: no installed operator and the preferences changed (a selected
+            // operator is not decided again while it stays consistent).
+            if goal.operator.is_some() || !goal.slot_changed {
+                continue;
+            }
+            self.decider.goals[gi].slot_changed = false;
+            let prefs = self.slot_prefs((goal.state, op));
+            let outcome = procedure::decide(&prefs, policy, numeric_mode, &mut self.rng);
+            let (kind, on_operator, items) = match outcome {
+                Outcome::Winner(o) => {
+                    self.remove_goals_below(gi);
+                    let w = self.add_wme(goal.state, op, o, false);
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        self.trace_wme("=>WM: ", &wme);
+                    }
+                    self.classify_new_matches();
+                    self.decider.wme_changes += 1;
+                    self.decider.goals[gi].operator = Some((o, w));
+                    if self.settings.trace.decisions {
+                        let name = self.operator_name(o);
+                        let mut line = format!(
+                            "{}   O: {} {}",
+                            self.decision_prefix(goal.level),
+                            self.symbols.text(o),
+                            name
+                        );
+                        if !name.is_empty() {
+                            line = line.trim_end().to_string();
+                        }
+                        self.out(&line);
+                    }
+                    return;
+                }
+                Outcome::NoCandidates => (ImpasseKind::NoChange, false, Vec::new()),
+                Outcome::Tie(items) => (ImpasseKind::Tie, true, items),
+                Outcome::Conflict(items) => (ImpasseKind::Conflict, true, items),
+                Outcome::ConstraintFailure(items) => (ImpasseKind::ConstraintFailure, true, items),
+            };
+            // The same impasse again changes nothing here: look further down.
+            let same = self
+                .decider
+                .goals
+                .get(gi + 1)
+                .is_some_and(|g| g.impasse == Some((kind, on_operator)) && g.items == items);
+            if same {
+                continue;
+            }
+            if gi + 1 < n || kind != ImpasseKind::NoChange || on_operator {
+                self.impasse(gi, kind, on_operator, items);
+                return;
+            }
+            self.impasse(gi, kind, on_operator, items);
+            return;
+        }
+        // Nothing decidable: the bottom goal made no progress.
+        if let Some(last) = n.checked_sub(1) {
+            let on_operator = self.decider.goals[last].operator.is_some();
+            self.impasse(last, ImpasseKind::NoChange, on_operator, Vec::new());
+        }
+    }
+
+    fn operator_name(&mut self, o: Sym) -> String {
+        let vals = self.name_values(o);
+        if vals.is_empty() {
+            String::new()
+        } else {
+            format!("({})", vals.join(" "))
+        }
+    }
+
+    /// The `^name` values of an object (operators are printed with them).
+    pub(crate) fn name_values(&self, o: Sym) -> Vec<String> {
+        let Some(name) = self.symbols.find_str("name") else {
+            return Vec::new();
+        };
+        self.wm
+            .of_id(o)
+            .filter_map(|w| self.wm.get(w))
+            .filter(|w| w.attr == name && !w.acceptable)
+            .map(|w| self.symbols.text(w.value))
+            .collect()
+    }
+}

@@ -1,0 +1,303 @@
+//! Firing and retraction: a match fires as an instantiation, whose actions make preferences
+//! (and call RHS functions); a retracted instantiation takes its i-supported preferences out
+//! of their slots (Soar manual, 2.3.3 "Production Actions and Persistence"). A rule's actions
+//! are compiled at its first firing.
+
+use super::compiled::{self, Act, CompiledRule, Term};
+use super::procedure::PrefType;
+use super::state::{InstId, Instantiation, PrefId, Preference};
+use crate::agent::Agent;
+use crate::rete::{ProdId, TokId};
+use crate::symbols::{Sym, SymData};
+use crate::wm::WmeId;
+use rustc_hash::FxHashMap;
+use std::rc::Rc;
+
+impl Agent {
+    pub(super) fn fire(
+        &mut self,
+        p: ProdId,
+        t: TokId,
+        o_support: bool,
+        new_prefs: &mut Vec<PrefId>,
+    ) {
+        let Some(rule) = self.compiled_rule(p) else {
+            return;
+        };
+        self.decider.firings += 1;
+        let counts = &mut self.decider.firing_counts;
+        if counts.len() <= p.0 as usize {
+            counts.resize(p.0 as usize + 1, 0);
+        }
+        counts[p.0 as usize] += 1;
+        let traced = self.settings.trace.firings_of(&rule.flags);
+        if traced {
+            let s = format!("\nFiring {}\n", self.production_name(p));
+            self.out(&s);
+            self.trace_match_wmes(p, t);
+        }
+        let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
+        let mut args = std::mem::take(&mut self.decider.rhs_args);
+        self.rete.token_wmes(t, &mut wmes);
+        // The match goal (the lowest goal it tests), from the WMEs the actions read anyway.
+        let goal = crate::decide::support::goal_among(
+            self,
+            rule.id_places
+                .iter()
+                .filter_map(|&(d, f)| self.rete.field_at(&wmes, d, f)),
+        );
+        let level = goal
+            .and_then(|g| self.symbols.id_data(g))
+            .map_or(1, |d| d.level);
+        let mut inst = Instantiation {
+            prod: p,
+            token: t,
+            goal,
+            o_support: o_support || rule.flags.o_support,
+            prefs: self.decider.spare_pref_lists.pop().unwrap_or_default(),
+            alive: true,
+            serial: 0,
+        };
+        if rule.flags.i_support {
+            inst.o_support = false;
+        }
+        // The slot is taken now: the preferences name it.
+        let inst_id = self.decider.alloc_inst(inst.clone());
+        let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
+        new_ids.clear();
+        new_ids.resize(rule.new_vars.len(), None);
+        // Substate firings are recorded for backtracing: each preference with its action.
+        let mut made: Vec<(PrefId, usize)> = Vec::new();
+        for (action_index, action) in rule.actions.iter().enumerate() {
+            match action {
+                Act::Call(f) => {
+                    let mut complete = true;
+                    for a in &f.args {
+                        match self.term_value(&rule, &wmes, a, level, &mut new_ids, &mut args) {
+                            Some(v) => args.push(v),
+                            None => {
+                                complete = false;
+                                break;
+                            }
+                        }
+                    }
+                    if complete {
+                        let _ = self.call_rhs(&f.name, &args);
+                    }
+                    args.clear();
+                }
+                Act::Make {
+                    id,
+                    attr,
+                    value,
+                    referent,
+                    kind,
+                } => {
+                    let id = self.term_value(&rule, &wmes, id, level, &mut new_ids, &mut args);
+                    let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids, &mut args);
+                    let value =
+                        self.term_value(&rule, &wmes, value, level, &mut new_ids, &mut args);
+                    let referent = match referent {
+                        Some(r) => {
+                            match self.term_value(&rule, &wmes, r, level, &mut new_ids, &mut args) {
+                                Some(x) => Some(x),
+                                None => continue,
+                            }
+                        }
+                        None => None,
+                    };
+                    let (Some(id), Some(attr), Some(value)) = (id, attr, value) else {
+                        continue;
+                    };
+                    if !self.symbols.is_id(id) {
+                        continue;
+                    }
+                    let kind = *kind;
+                    let number = match (kind, referent.map(|r| self.symbols.get(r))) {
+                        (PrefType::NumericIndifferent, Some(&SymData::Int(i))) => Some(i as f64),
+                        (PrefType::NumericIndifferent, Some(&SymData::Float(f))) => Some(f),
+                        _ => None,
+                    };
+                    let pref = Preference {
+                        kind,
+                        id,
+                        attr,
+                        value,
+                        referent,
+                        number,
+                        o_support: inst.o_support,
+                        inst: Some(inst_id),
+                        rule: Some(p),
+                        alive: true,
+                        freed: false,
+                        origin: None,
+                    };
+                    let pid = self.decider.alloc_pref(pref);
+                    inst.prefs.push(pid);
+                    new_prefs.push(pid);
+                    if level >= 2 {
+                        made.push((pid, action_index));
+                    }
+                }
+            }
+        }
+        self.decider.rhs_wmes = wmes;
+        self.decider.rhs_args = args;
+        if level >= 2 {
+            for &pid in inst.prefs.iter().rev() {
+                self.note_goal_pref(goal, pid);
+            }
+        }
+        self.decider.inst_by_token.insert((p, t), inst_id);
+        let own_prefs = if traced || level >= 2 {
+            inst.prefs.clone()
+        } else {
+            Vec::new()
+        };
+        self.decider.insts[inst_id as usize] = inst;
+        if traced {
+            self.trace_instantiation_prefs(&own_prefs);
+        }
+        // Results of a substate firing are learned from at once (Soar manual, 2.7.3
+        // "Results"): a justification or a chunk takes them over.
+        if level >= 2 {
+            let new_ids: FxHashMap<String, Sym> = rule
+                .new_vars
+                .iter()
+                .zip(&new_ids)
+                .filter_map(|((name, _), s)| Some((name.clone(), (*s)?)))
+                .collect();
+            let recorded = match self.production_by_id(p) {
+                Some(prod) => self.record_firing(p, t, &prod, &new_ids, &made),
+                None => None,
+            };
+            if let Some(trace) = recorded {
+                let results = self.find_results(&own_prefs, level);
+                if !results.is_empty() {
+                    self.learn_from_results(results, level, &trace, new_prefs);
+                }
+            }
+        }
+        self.decider.rhs_new_ids = new_ids;
+    }
+
+    /// A rule's compiled actions (compiled at its first firing); `None` for a rule that
+    /// is gone.
+    pub(crate) fn compiled_rule(&mut self, p: ProdId) -> Option<Rc<CompiledRule>> {
+        let i = p.0 as usize;
+        if let Some(Some(r)) = self.decider.compiled.get(i) {
+            return Some(Rc::clone(r));
+        }
+        let prod = self.production_by_id(p)?;
+        let info = self.rete.production(p)?;
+        let mut rule = compiled::compile(&prod, info, &mut self.symbols);
+        rule.id_places = self.rete.condition_id_places(info);
+        let rule = Rc::new(rule);
+        if self.decider.compiled.len() <= i {
+            self.decider.compiled.resize(i + 1, None);
+        }
+        self.decider.compiled[i] = Some(Rc::clone(&rule));
+        Some(rule)
+    }
+
+    /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
+    /// identifier at its first use, shared by all its uses (its letter is the variable's
+    /// first, `S` read as `I`; Soar manual, 3.3, "The action side of productions (or
+    /// RHS)").
+    fn term_value(
+        &mut self,
+        rule: &CompiledRule,
+        wmes: &[WmeId],
+        term: &Term,
+        level: u32,
+        new_ids: &mut [Option<Sym>],
+        args: &mut Vec<Sym>,
+    ) -> Option<Sym> {
+        match term {
+            Term::Sym(s) => Some(*s),
+            Term::Bound(depth, field) => self.rete.field_at(wmes, *depth, *field),
+            Term::New(slot) => {
+                if let Some(s) = new_ids[*slot] {
+                    return Some(s);
+                }
+                let s = self.symbols.new_id(rule.new_vars[*slot].1, level);
+                new_ids[*slot] = Some(s);
+                Some(s)
+            }
+            Term::Call(f) => {
+                // The arguments go on the firing's one stack, above the caller's.
+                let base = args.len();
+                for a in &f.args {
+                    // Constants and bindings (nearly every argument) without the recursion.
+                    let v = match a {
+                        Term::Sym(s) => Some(*s),
+                        Term::Bound(depth, field) => self.rete.field_at(wmes, *depth, *field),
+                        _ => self.term_value(rule, wmes, a, level, new_ids, args),
+                    };
+                    match v {
+                        Some(v) => args.push(v),
+                        None => {
+                            args.truncate(base);
+                            return None;
+                        }
+                    }
+                }
+                let result = self.call_rhs(&f.name, &args[base..]);
+                args.truncate(base);
+                match result {
+                    Ok(Some(s)) => Some(s),
+                    _ => None,
+                }
+            }
+        }
+    }
+
+    pub(super) fn retract(&mut self, inst_id: InstId) {
+        let serial = self.decider.insts[inst_id as usize].serial;
+        if serial != 0 {
+            let o = self.decider.insts[inst_id as usize].o_support;
+            self.forget_justification(serial, o);
+        }
+        let inst = &mut self.decider.insts[inst_id as usize];
+        inst.alive = false;
+        let mut prefs = std::mem::take(&mut inst.prefs);
+        // Newest first, as 9.6's list of an instantiation's preferences runs.
+        for &pid in prefs.iter().rev() {
+            let pref = &mut self.decider.prefs[pid as usize];
+            pref.inst = None;
+            // O-supported preferences outlive their instantiation (Soar manual, 2.3.3
+            // "Production Actions and Persistence").
+            if pref.o_support || !pref.alive {
+                continue;
+            }
+            let key = (pref.id, pref.attr);
+            let value = pref.value;
+            if let Some(slot) = self.decider.slots.id_of(&key) {
+                self.decider.slots.slot_mut(slot).remove(pid, value);
+                self.mark_changed(key, Some(slot));
+                self.decider.slots.drop_if_empty(slot);
+            } else {
+                self.mark_changed(key, None);
+            }
+            self.decider.free_pref(pid);
+        }
+        prefs.clear();
+        self.decider.insts[inst_id as usize].prefs = prefs;
+        self.decider.free_inst(inst_id);
+    }
+
+    /// A built-in or registered RHS function (Soar manual, 3.3, "Right-hand side
+    /// Functions").
+    fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
+        crate::decide::functions::call(self, name, args)
+    }
+
+    /// How many times each rule has fired (`firing-counts`).
+    pub fn firing_count(&self, p: ProdId) -> u64 {
+        self.decider
+            .firing_counts
+            .get(p.0 as usize)
+            .copied()
+            .unwrap_or(0)
+    }
+}

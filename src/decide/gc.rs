@@ -1,0 +1,181 @@
+//! Garbage collection (Soar manual, 2.2 "Working memory: The Current Situation": objects not
+//! linked to a state are removed): after working memory changes, the identifiers that lost a
+//! link are searched upward for a goal, and the structure below one that has none goes.
+
+use super::scratch::GcScratch;
+use crate::agent::Agent;
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+
+impl Agent {
+    /// Removes WMEs no longer linked to a goal or the io link. Only identifiers that lost a
+    /// link can have become unlinked: each is searched upward for a goal, and the structure
+    /// below one that has none goes (cycles included).
+    pub(super) fn collect_garbage(&mut self) {
+        self.collect_garbage_traced_at(None);
+    }
+
+    /// Garbage collection; the preferences it takes with the slots of unlinked identifiers
+    /// are traced as `- pref` lines (`trace -r`) at `at` in the output, where the phase's
+    /// `=>WM:` lines start, as 9.6 prints them (checked on soar-sml 9.6.5: agent
+    /// support-retraction, an operator elaboration's `^to` on an operator that went), or
+    /// where the output is now. Returns how many bytes of text went in at `at`.
+    pub(super) fn collect_garbage_traced_at(&mut self, at: Option<usize>) -> usize {
+        let traced_gone = std::mem::take(&mut self.decider.prefs_traced_gone);
+        if self.decider.gc_candidates.is_empty() {
+            return 0;
+        }
+        let candidates = std::mem::take(&mut self.decider.gc_candidates);
+        // The sets live between calls (emptied), so that a collection allocates nothing.
+        let mut gc = std::mem::take(&mut self.decider.gc_scratch);
+        gc.roots.extend(self.decider.goals.iter().map(|g| g.state));
+        gc.roots.insert(self.top.state);
+        let mut garbage: Vec<WmeId> = Vec::new();
+        for &c in &candidates {
+            if gc.dead.contains(&c) || !self.wm.has_wmes(c) || self.linked(c, &mut gc) {
+                continue;
+            }
+            gc.stack.push(c);
+            while let Some(x) = gc.stack.pop() {
+                if !gc.dead.insert(x) {
+                    continue;
+                }
+                for w in self.wm.of_id(x) {
+                    garbage.push(w);
+                    let Some(wme) = self.wm.get(w).copied() else {
+                        continue;
+                    };
+                    for v in [wme.value, wme.attr] {
+                        if self.symbols.is_id(v)
+                            && !gc.dead.contains(&v)
+                            && !self.linked(v, &mut gc)
+                        {
+                            gc.stack.push(v);
+                        }
+                    }
+                }
+            }
+        }
+        gc.clear();
+        self.decider.gc_scratch = gc;
+        self.decider.gc_candidates = candidates;
+        self.decider.gc_candidates.clear();
+        if garbage.is_empty() {
+            return 0;
+        }
+        garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
+        // 9.6 lists the removals newest first; they happen oldest first here.
+        let mut removed_lines = Vec::new();
+        let mut pref_lines = String::new();
+        for w in garbage {
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
+                if self.settings.trace.preferences {
+                    // Newest first, as 9.6's list of a slot's preferences runs.
+                    for &pid in slot.prefs.iter().rev() {
+                        if traced_gone.contains(&pid) {
+                            continue;
+                        }
+                        let pref = &self.decider.prefs[pid as usize];
+                        pref_lines.push_str("- ");
+                        pref_lines.push_str(&crate::trace::pref_trace_text(self, pref));
+                        pref_lines.push('\n');
+                    }
+                }
+                for &pid in &slot.prefs {
+                    self.decider.free_pref(pid);
+                }
+                for sw in slot.wmes.values().rev() {
+                    if sw != w {
+                        self.remove_wme(sw);
+                    }
+                }
+                self.decider.slots.recycle(slot);
+            }
+            if self.wm.get(w).is_some() {
+                removed_lines.push(wme);
+                self.remove_wme(w);
+            }
+        }
+        let mut inserted = 0;
+        if !pref_lines.is_empty() {
+            match at.filter(|&a| a <= self.output.len() && self.output.is_char_boundary(a)) {
+                Some(at) => {
+                    self.output.insert_str(at, &pref_lines);
+                    inserted = pref_lines.len();
+                }
+                None => {
+                    self.fresh_line();
+                    self.output.push_str(&pref_lines);
+                }
+            }
+        }
+        for wme in removed_lines.iter().rev() {
+            self.trace_wme("<=WM: ", wme);
+        }
+        // What these removals point at was all collected above.
+        self.decider.gc_candidates.clear();
+        inserted
+    }
+
+    /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a
+    /// search that finds no goal proves everything it visited unlinked.
+    fn linked(&self, x: Sym, gc: &mut GcScratch) -> bool {
+        if let Some(&b) = gc.memo.get(&x) {
+            return b;
+        }
+        if gc.roots.contains(&x) {
+            gc.memo.insert(x, true);
+            return true;
+        }
+        // Depth first, each identifier's oldest parent first: a wall pointed at by hundreds
+        // of comparison objects is found linked through the `^Wall` WME it was made with,
+        // without a look at the others.
+        gc.visited.clear();
+        gc.path.clear();
+        gc.visited.insert(x);
+        gc.path.push((x, 0));
+        let mut found = false;
+        'search: while let Some(&(y, start)) = gc.path.last() {
+            let parents = self.wm.parent_wmes(y);
+            for (i, &(w, _)) in parents.iter().enumerate().skip(start) {
+                let Some(p) = self.wm.get(w).map(|wme| wme.id) else {
+                    continue;
+                };
+                match gc.memo.get(&p) {
+                    Some(true) => {
+                        found = true;
+                        break 'search;
+                    }
+                    Some(false) => continue,
+                    None => {}
+                }
+                if gc.roots.contains(&p) {
+                    found = true;
+                    break 'search;
+                }
+                if gc.visited.insert(p) {
+                    if let Some(top) = gc.path.last_mut() {
+                        top.1 = i + 1;
+                    }
+                    gc.path.push((p, 0));
+                    continue 'search;
+                }
+            }
+            gc.path.pop();
+        }
+        if found {
+            // Everything on the path hangs off the root found.
+            for &(y, _) in &gc.path {
+                gc.memo.insert(y, true);
+            }
+        } else {
+            for &v in &gc.visited {
+                gc.memo.insert(v, false);
+            }
+        }
+        found
+    }
+}

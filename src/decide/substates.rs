@@ -1,0 +1,352 @@
+//! Impasses and substates (Soar manual, 2.7.2 "Creating New States", and 3.4.1 "Impasses in
+//! working memory"): a new state with its architecture WMEs for an impasse, and the removal
+//! of the states below a goal, with what 9.6's traces list for them.
+
+use super::state::{Goal, ImpasseKind, PrefId};
+use crate::agent::Agent;
+use crate::symbols::Sym;
+use rustc_hash::FxHashSet;
+
+impl Agent {
+    /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
+    /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
+    /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
+    /// WMEs (each group oldest first; seen on 9.6).
+    pub(super) fn trace_substate_wmes_removed(&mut self, gi: usize) {
+        let lines = self.substate_lines(gi);
+        let memories = lines.iter().take_while(|(group, _)| *group <= 2).count();
+        for (_, wme) in &lines[..memories] {
+            self.trace_wme("<=WM: ", wme);
+        }
+        // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
+        // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
+        // agent learn-lookahead: `^name selection`, `^evaluation`, then `^operator E5 +`).
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        for (_, wme) in made {
+            self.trace_wme("<=WM: ", &wme);
+        }
+        for (_, wme) in &lines[memories..] {
+            self.trace_wme("<=WM: ", wme);
+        }
+    }
+
+    /// An operator removal or a GDS change takes the substates below goal `gi` away: their
+    /// `<=WM:` lines join this phase's listing, each tagged with its kind, for
+    /// `trace_removed_wmes` to put in 9.6's place.
+    pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
+        use super::state::SubstateLine;
+        let mut out = Vec::new();
+        for (group, wme) in self.substate_lines(gi) {
+            let place = if group <= 2 {
+                SubstateLine::Memories
+            } else {
+                SubstateLine::Impasse
+            };
+            out.push((place, wme));
+        }
+        for (plus, wme) in self.substate_slot_wmes(gi) {
+            let place = if plus {
+                SubstateLine::OperatorPlus
+            } else {
+                SubstateLine::Other
+            };
+            out.push((place, wme));
+        }
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            if let Some(wme) = g.operator.and_then(|(_, w)| self.wm.get(w).copied()) {
+                out.push((SubstateLine::Selected, wme));
+            }
+        }
+        self.substate_removals.extend(out);
+    }
+
+    /// The WMEs in the slots of the goals below `gi` (those rules made on them), lowest
+    /// goal first, each with whether it is an operator `+` WME.
+    fn substate_slot_wmes(&self, gi: usize) -> Vec<(bool, crate::wm::Wme)> {
+        let op = self.operator_sym();
+        let mut out = Vec::new();
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            for key in self.decider.slots.keys_of(g.state) {
+                let Some(slot) = self.decider.slots.get(&key) else {
+                    continue;
+                };
+                for (_, acc, w) in slot.wmes.iter() {
+                    if let Some(wme) = self.wm.get(w).copied() {
+                        out.push((acc && key.1 == op, wme));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The architecture WMEs of the goals below `gi` in 9.6's order, each with its group
+    /// (0–2: the memories' structure; 3 and up: the impasse's WMEs).
+    fn substate_lines(&self, gi: usize) -> Vec<(u8, crate::wm::Wme)> {
+        let mut lines: Vec<(u8, u64, crate::wm::Wme)> = Vec::new();
+        for g in &self.decider.goals[gi + 1..] {
+            let of = |attr: &str| {
+                let a = self.symbols.find_str(attr);
+                g.wmes
+                    .iter()
+                    .filter_map(|&w| self.wm.get(w))
+                    .find(|w| Some(w.attr) == a && w.id == g.state)
+                    .map(|w| w.value)
+            };
+            let (smem, epmem) = (of("smem"), of("epmem"));
+            for &w in &g.wmes {
+                let Some(wme) = self.wm.get(w).copied() else {
+                    continue;
+                };
+                let attr = self.symbols.text(wme.attr);
+                let group = if Some(wme.id) == smem {
+                    0
+                } else if Some(wme.id) == epmem {
+                    1
+                } else if matches!(attr.as_str(), "reward-link" | "epmem" | "smem") {
+                    2
+                } else if attr.starts_with("non-numeric") {
+                    4
+                } else if attr.starts_with("item") {
+                    5
+                } else {
+                    3
+                };
+                // Counts go after the values they count.
+                let count = u64::from(attr.ends_with("-count"));
+                lines.push((group, count << 63 | wme.timetag, wme));
+            }
+        }
+        lines.sort_by_key(|(g, k, _)| (*g, *k));
+        lines.into_iter().map(|(g, _, w)| (g, w)).collect()
+    }
+
+    /// Creates (or keeps) the substate for an impasse at goal `gi`, with its architecture
+    /// WMEs in 9.6's order.
+    pub(super) fn impasse(
+        &mut self,
+        gi: usize,
+        kind: ImpasseKind,
+        on_operator: bool,
+        items: Vec<Sym>,
+    ) {
+        if let Some(sub) = self.decider.goals.get(gi + 1) {
+            if sub.impasse == Some((kind, on_operator)) && sub.items == items {
+                return;
+            }
+        }
+        self.remove_goals_below(gi);
+        let parent = self.decider.goals[gi].state;
+        let level = self.decider.goals[gi].level + 1;
+        if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
+            // Waiting: the bottom state's own line again, impasse included, as 9.6 prints.
+            if self.settings.trace.decisions {
+                let what = self.decider.goals[gi]
+                    .impasse
+                    .map(|(k, on_op)| {
+                        format!(
+                            "({} {})",
+                            if on_op { "operator" } else { "state" },
+                            k.word()
+                        )
+                    })
+                    .unwrap_or_default();
+                let s = format!(
+                    "{}==>S: {} {}",
+                    self.decision_prefix(level - 1),
+                    self.symbols.text(parent),
+                    what
+                );
+                self.out(&s);
+            }
+            return;
+        }
+        let s = self.symbols.new_id('S', level);
+        if let Some(d) = self.symbols.id_data_mut(s) {
+            d.is_goal = true;
+            d.is_impasse = true;
+        }
+        let mut wmes = Vec::new();
+        let mut add = |agent: &mut Agent, id: Sym, attr: &str, value: Sym| {
+            let a = agent.symbols.str(attr);
+            // Into working memory now; the matcher gets them below, newest first.
+            wmes.push(agent.wm.add(id, a, value, false));
+        };
+        let state = self.symbols.str("state");
+        add(self, s, "type", state);
+        add(self, s, "superstate", parent);
+        let r = self.symbols.new_id('R', level);
+        add(self, s, "reward-link", r);
+        let e = self.symbols.new_id('E', level);
+        add(self, s, "epmem", e);
+        let c = self.symbols.new_id('C', level);
+        add(self, e, "command", c);
+        let r2 = self.symbols.new_id('R', level);
+        add(self, e, "result", r2);
+        let one = self.symbols.int(1);
+        add(self, e, "present-id", one);
+        let l = self.symbols.new_id('L', level);
+        add(self, s, "smem", l);
+        let c2 = self.symbols.new_id('C', level);
+        add(self, l, "command", c2);
+        let r3 = self.symbols.new_id('R', level);
+        add(self, l, "result", r3);
+        let attr = self
+            .symbols
+            .str(if on_operator { "operator" } else { "state" });
+        add(self, s, "attribute", attr);
+        let imp = self.symbols.str(kind.word());
+        add(self, s, "impasse", imp);
+        let choices = self.symbols.str(
+            if matches!(kind, ImpasseKind::Tie | ImpasseKind::Conflict) {
+                "multiple"
+            } else {
+                "none"
+            },
+        );
+        add(self, s, "choices", choices);
+        let t = self.symbols.str("t");
+        add(self, s, "quiescence", t);
+        if !items.is_empty() {
+            for &it in &items {
+                add(self, s, "item", it);
+            }
+            let n = self.symbols.int(items.len() as i64);
+            add(self, s, "item-count", n);
+            for &it in &items {
+                add(self, s, "non-numeric", it);
+            }
+            add(self, s, "non-numeric-count", n);
+        }
+        // 9.6 prints the depth message before the new state's WMEs and line.
+        if level as i64 > self.settings.max_goal_depth {
+            let msg = format!(
+                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
+                self.settings.max_goal_depth
+            );
+            self.out(&msg);
+            // 9.6 stops the run here without halting the agent: a later `run` goes on
+            // deeper, with the same message at each new state (checked on soar-sml 9.6.5).
+            self.decider.depth_exceeded = true;
+        }
+        self.decider.wme_changes += wmes.len() as u64;
+        for &w in wmes.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme("=>WM: ", &wme);
+                self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
+            }
+        }
+        if self.settings.trace.decisions {
+            let what = format!(
+                "({} {})",
+                if on_operator { "operator" } else { "state" },
+                kind.word()
+            );
+            let line = format!(
+                "{}==>S: {} {}",
+                self.decision_prefix(level),
+                self.symbols.text(s),
+                what
+            );
+            self.out(&line);
+        }
+        self.decider.goals.push(Goal {
+            state: s,
+            level,
+            operator: None,
+            impasse: Some((kind, on_operator)),
+            items,
+            wmes,
+            slot_changed: true,
+            made: Vec::new(),
+        });
+    }
+
+    /// Removes every goal below `gi`, deepest first, with its architecture WMEs; what they
+    /// held up goes with the garbage collection.
+    pub(crate) fn remove_goals_below(&mut self, gi: usize) {
+        while self.decider.goals.len() > gi + 1 {
+            let Some(g) = self.decider.goals.pop() else {
+                break;
+            };
+            if self.settings.trace.preferences {
+                self.trace_removed_prefs(g.state, &g.made);
+            }
+            if let Some((_, w)) = g.operator {
+                self.remove_wme(w);
+            }
+            for w in g.wmes {
+                self.remove_wme(w);
+            }
+            if let Some(d) = self.symbols.id_data_mut(g.state) {
+                d.is_goal = false;
+            }
+            // Preferences made for the substate's own objects go with it.
+            let gone = self.decider.slots.keys_of(g.state);
+            for k in gone {
+                if let Some(slot) = self.decider.slots.remove(&k) {
+                    for &pid in &slot.prefs {
+                        self.decider.free_pref(pid);
+                    }
+                    for w in slot.wmes.values().rev() {
+                        self.remove_wme(w);
+                    }
+                    self.decider.slots.recycle(slot);
+                }
+            }
+            self.decider.gc_candidates.push(g.state);
+            self.decider.gds.retain(|_, goal| *goal != g.state);
+        }
+        self.collect_garbage();
+    }
+
+    /// Keeps a substate firing's preference with its goal (a firing's newest first), for
+    /// [`Self::trace_removed_prefs`].
+    pub(super) fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
+        let Some(gi) = self
+            .decider
+            .goals
+            .iter()
+            .position(|g| Some(g.state) == goal)
+        else {
+            return;
+        };
+        let p = &self.decider.prefs[pid as usize];
+        let what = (p.id, p.attr, p.value);
+        self.decider.goals[gi].made.push((pid, what));
+        // A long-lived substate keeps only the preferences that still stand (amortized).
+        let n = self.decider.goals[gi].made.len();
+        if n >= 64 && n.is_power_of_two() {
+            let state = self.decider.goals[gi].state;
+            let mut made = std::mem::take(&mut self.decider.goals[gi].made);
+            made.retain(|&(pid, what)| self.pref_stands(pid, what, state));
+            self.decider.goals[gi].made = made;
+        }
+    }
+
+    /// Whether preference `pid` is still the one a firing of `state` made saying `what`.
+    fn pref_stands(&self, pid: PrefId, what: (Sym, Sym, Sym), state: Sym) -> bool {
+        let p = &self.decider.prefs[pid as usize];
+        p.alive
+            && !p.freed
+            && (p.id, p.attr, p.value) == what
+            && p.inst
+                .is_none_or(|i| self.decider.insts[i as usize].goal == Some(state))
+    }
+
+    /// 9.6's trace 5 lists the standing preferences of a removed state's firings as
+    /// removed (`- (S1 ^r x +) [level 2] (rule)`) before the state's WMEs go: firings
+    /// oldest first, each one's preferences newest first, o-supported ones that outlived
+    /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
+    /// justification-negation).
+    pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
+        let mut seen = FxHashSet::default();
+        for &(pid, what) in made {
+            if self.pref_stands(pid, what, state) && seen.insert(pid) {
+                self.trace_pref('-', pid);
+                self.decider.prefs_traced_gone.push(pid);
+            }
+        }
+    }
+}
