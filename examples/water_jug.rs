@@ -1,22 +1,26 @@
-//! Embedding the kernel from Rust: load an agent, register a Rust function the rules can call,
-//! run it, and read what it printed. Run with `cargo run --release --example water_jug`.
+//! Embedding the kernel from Rust: load an agent, register a Rust function the rules can
+//! call, run it, and read what it printed. Run with
+//! `cargo run --release --example water_jug`.
 
-use rusoar::commands::Interpreter;
+use rusoar::{Agent, RunUnit};
 
-fn main() {
-    let root = env!("CARGO_MANIFEST_DIR");
-    let mut interp = Interpreter::new();
-    interp.set_cwd(std::path::PathBuf::from(root));
-    // A Rust function the rules could call as (exec shout ...) or (shout ...).
-    interp
-        .agent
-        .register_rhs_function("shout", |_agent, args| args.to_uppercase());
-    let commands = "srand 1\nwatch 1\nsource tests/agents/water-jug.soar\nrun 1000";
-    if let Err(d) = interp.run_text("example", commands) {
-        eprintln!("{}", interp.sources.render(&d));
-        std::process::exit(1);
-    }
-    print!("{}", interp.take_output());
-    let d = &interp.agent.decider;
-    println!("\n{} decisions, {} rule firings", d.decisions, d.firings);
+fn main() -> Result<(), rusoar::Error> {
+    let mut agent = Agent::new("soar");
+    agent.set_working_directory(env!("CARGO_MANIFEST_DIR"));
+    // A Rust function the rules could call as (exec shout ...), in SML's form: the
+    // arguments' texts joined, a string back.
+    agent.register_sml_rhs_function("shout", |_agent, args| args.to_uppercase());
+    agent.source_text(
+        "example",
+        "srand 1\nwatch 1\nsource tests/agents/water-jug.soar",
+    )?;
+    let run = agent.run(1000, RunUnit::Decisions)?;
+    print!("{}", agent.take_output());
+    println!(
+        "\n{} decisions, {} rule firings ({:?})",
+        agent.decisions(),
+        agent.firings(),
+        run.stop
+    );
+    Ok(())
 }

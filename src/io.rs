@@ -28,14 +28,14 @@ pub enum IoError {
     /// A WME needs an identifier to hang from, and this symbol is a constant.
     #[error("`{0}` is a constant, not an identifier: input WMEs hang from identifiers")]
     NotAnIdentifier(String),
-    /// The handle's WME was removed (by [`Agent::remove_input`], or with the object it hung
+    /// The handle's WME was removed (by [`crate::Io::remove`], or with the object it hung
     /// from).
     #[error("the input WME was removed: its handle is no longer valid")]
     StaleHandle,
     /// The handle belongs to no input WME of this agent.
     #[error("no input WME has this handle")]
     UnknownHandle,
-    /// [`Agent::mark_done`] was called twice for one command.
+    /// [`crate::Io::mark_done`] was called twice for one command.
     #[error("output command `{0}` is already marked done")]
     AlreadyDone(String),
 }

@@ -22,6 +22,10 @@ kernel_modules!(
 );
 
 mod api;
+/// The README's Rust examples, compiled and run as tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+struct ReadmeDoctests;
 pub mod syntax;
 #[cfg(test)]
 mod tests;

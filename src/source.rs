@@ -13,12 +13,16 @@ pub type FileId = usize;
 /// A byte range in one file. Small and `Copy`, attached to every AST node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct Span {
+    /// The text the span is in.
     pub file: FileId,
+    /// The first byte.
     pub start: usize,
+    /// One past the last byte.
     pub end: usize,
 }
 
 impl Span {
+    /// The bytes `start..end` of `file`.
     pub fn new(file: FileId, start: usize, end: usize) -> Self {
         Span { file, start, end }
     }
@@ -127,6 +131,7 @@ impl<'a> Files<'a> for SourceMap {
 }
 
 impl SourceMap {
+    /// An empty map.
     pub fn new() -> Self {
         Self::default()
     }
@@ -142,6 +147,7 @@ impl SourceMap {
         });
         self.files.len() - 1
     }
+    /// The text registered as `file` (empty for an unknown id).
     pub fn text(&self, file: FileId) -> &str {
         self.get(file).map(|f| f.text.as_str()).unwrap_or("")
     }
@@ -149,6 +155,7 @@ impl SourceMap {
     pub fn shared_text(&self, file: FileId) -> std::sync::Arc<String> {
         self.get(file).map(|f| f.text.clone()).unwrap_or_default()
     }
+    /// The display name of `file`.
     pub fn name(&self, file: FileId) -> &str {
         self.get(file)
             .map(|f| f.name.as_str())
@@ -208,14 +215,19 @@ pub fn clamp_to_char_boundary(text: &str, offset: usize) -> usize {
     o
 }
 
+/// How serious a diagnostic is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Severity {
+    /// The command failed.
     Error,
+    /// The command went on.
     Warning,
+    /// Extra information.
     Note,
 }
 
 impl Severity {
+    /// The word that starts a rendered diagnostic.
     pub fn word(self) -> &'static str {
         match self {
             Severity::Error => "error",
@@ -229,15 +241,22 @@ impl Severity {
 /// users searching for the official text find it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Diagnostic {
+    /// Error, warning or note.
     pub severity: Severity,
+    /// The message.
     pub message: String,
+    /// Where it is, if in a text.
     pub span: Option<Span>,
+    /// The label under the caret.
     pub label: String,
+    /// Other places worth showing, each with its label.
     pub secondary: Vec<(Span, String)>,
+    /// Notes printed after the source excerpt.
     pub notes: Vec<String>,
 }
 
 impl Diagnostic {
+    /// An error with `message` and no location yet.
     pub fn error(message: impl Into<String>) -> Self {
         Diagnostic {
             severity: Severity::Error,
@@ -248,28 +267,34 @@ impl Diagnostic {
             notes: Vec::new(),
         }
     }
+    /// A warning with `message` and no location yet.
     pub fn warning(message: impl Into<String>) -> Self {
         Diagnostic {
             severity: Severity::Warning,
             ..Diagnostic::error(message)
         }
     }
+    /// Located at `span`.
     pub fn at(mut self, span: Span) -> Self {
         self.span = Some(span);
         self
     }
+    /// With a label under the caret.
     pub fn with_label(mut self, label: impl Into<String>) -> Self {
         self.label = label.into();
         self
     }
+    /// With a note after the excerpt.
     pub fn with_note(mut self, note: impl Into<String>) -> Self {
         self.notes.push(note.into());
         self
     }
+    /// With another place to show.
     pub fn with_secondary(mut self, span: Span, label: impl Into<String>) -> Self {
         self.secondary.push((span, label.into()));
         self
     }
+    /// Whether it is an error.
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error
     }

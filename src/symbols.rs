@@ -9,7 +9,7 @@ use std::cmp::Ordering;
 
 /// A handle to an interned symbol.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct Sym(pub u32);
+pub struct Sym(pub(crate) u32);
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum SymData {

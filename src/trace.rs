@@ -40,15 +40,9 @@ pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
     ws
 }
 
-/// `print <id>` with `--depth` and `--internal`: children indented two spaces per level,
-/// each identifier printed once at its shallowest depth.
-#[cfg(test)]
-pub fn print_object(agent: &Agent, id: Sym, depth: usize, internal: bool) -> String {
-    print_object_at(agent, id, depth, internal, 0)
-}
-
-/// [`print_object`] when the output stream is already at column `start_col`: 9.6 counts the
-/// first line's width from there, so a print after a trace line wraps earlier (observed on
+/// `print <id>` with `--depth` and `--internal` (children indented two spaces per level, each
+/// identifier printed once at its shallowest depth), when the output stream is already at
+/// column `start_col`: 9.6 counts the first line's width from there, so a print after a trace line wraps earlier (observed on
 /// the official kernel), even right after `(S1`.
 pub fn print_object_at(
     agent: &Agent,

@@ -9,12 +9,19 @@ use rustc_hash::FxHashMap;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct WmeId(pub u32);
 
+/// A working-memory element: `(id ^attr value)`, with its timetag (Soar manual, 2.2
+/// "Working memory").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Wme {
+    /// The identifier it hangs from.
     pub id: Sym,
+    /// The attribute.
     pub attr: Sym,
+    /// The value.
     pub value: Sym,
+    /// An acceptable-preference WME (`^operator <o> +`), not a plain one.
     pub acceptable: bool,
+    /// Its timetag: the order in which WMEs were added.
     pub timetag: u64,
 }
 

@@ -1,11 +1,11 @@
 //! Times `run 1000` on agents in-process, for scripts/bench_decisions.py: for each agent
-//! file given, `repeat` fresh interpreters each run `srand 1`, `watch 0`, `source FILE`,
+//! file given, `repeat` fresh agents each run `srand 1`, `watch 0`, `source FILE`,
 //! then `run 1000` under the clock; prints `NAME decisions firings median_seconds`.
 //!
 //! usage: cargo run --release -p rusoar-cli --example time_run -- REPEAT [--run N] FILE...
 //! (`--run N`: time `run N` instead of `run 1000`)
 
-use rusoar::commands::Interpreter;
+use rusoar::Agent;
 use std::time::Instant;
 
 // The allocator the rusoar binary uses, so the figures are the binary's.
@@ -36,18 +36,18 @@ fn main() {
         let mut times = Vec::with_capacity(repeat);
         let mut stats = String::new();
         for _ in 0..repeat {
-            let mut interp = Interpreter::new();
+            let mut agent = Agent::default();
             let setup = format!("srand 1\nwatch 0\nsource {{{file}}}");
-            if let Err(d) = interp.run_text("<time_run>", &setup) {
-                eprintln!("{file}: {}", d.message);
+            if let Err(e) = agent.source_text("<time_run>", &setup) {
+                eprintln!("{file}: {}", e.message());
                 std::process::exit(1);
             }
             let start = Instant::now();
-            let _ = interp.run_text("<time_run>", &run);
+            let _ = agent.source_text("<time_run>", &run);
             times.push(start.elapsed().as_secs_f64());
-            let _ = interp.take_output();
-            let _ = interp.run_text("<time_run>", "stats");
-            stats = interp.take_output();
+            let _ = agent.take_output();
+            let _ = agent.source_text("<time_run>", "stats");
+            stats = agent.take_output();
         }
         times.sort_by(f64::total_cmp);
         let name = std::path::Path::new(&file)

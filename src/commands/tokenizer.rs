@@ -9,15 +9,22 @@ use crate::source::{Diagnostic, FileId, Span};
 /// backslash-newlines are blanked, byte for byte, so offsets still point into the file).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum WordKind {
+    /// A plain word, up to white space or `;`.
     Bare,
+    /// `{...}`: the text between the braces.
     Braced,
+    /// `"..."`: the text between the quotes.
     Quoted,
 }
 
+/// One word of a command.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Word {
+    /// The word's text (without its braces or quotes).
     pub text: String,
+    /// Where the word is, braces or quotes included.
     pub span: Span,
+    /// How it was written.
     pub kind: WordKind,
 }
 
@@ -34,7 +41,9 @@ impl Word {
 /// One command: its words and the span from its first to its last word.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Command {
+    /// The words, the command's name first.
     pub words: Vec<Word>,
+    /// From the first word's start to the last word's end.
     pub span: Span,
 }
 
@@ -51,6 +60,7 @@ pub struct Tokenizer<'a> {
 }
 
 impl<'a> Tokenizer<'a> {
+    /// Commands of `text`, whose spans name `file`.
     pub fn new(text: &'a str, file: FileId) -> Self {
         let nul_at = text.find('\0');
         let text = &text[..nul_at.unwrap_or(text.len())];

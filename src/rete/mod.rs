@@ -1323,7 +1323,7 @@ impl Rete {
     }
 
     /// Number of live beta nodes and alpha memories (for benchmarks and tests).
-    #[cfg(any(test, feature = "internals"))]
+    #[cfg(feature = "internals")]
     pub fn node_count(&self) -> (usize, usize) {
         let beta = self.nodes.iter().filter(|n| n.alive).count();
         (beta, self.amem_index.len())
