@@ -56,6 +56,7 @@ pub struct Cond {
 /// One field's test. All but the common `Equal` keep their contents boxed: that makes a
 /// test 24 bytes instead of 32, and a rule keeps three per condition.
 #[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::box_collection)] // The boxes keep the enum small (see above).
 pub enum Test {
     Equal(Term),
     Relational(Relation, Box<Term>),
