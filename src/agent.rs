@@ -1,5 +1,5 @@
 //! One agent: its symbols, working memory, RETE network, rules and settings. The decision
-//! cycle (issue 4) consumes the match set queued here.
+//! cycle consumes the match set queued here.
 
 use crate::production::Production;
 use crate::rete::{MatchSink, ProdId, Rete, TokId};
@@ -7,7 +7,8 @@ use crate::symbols::{Sym, Symbols};
 use crate::wm::{Wme, WmeId, WorkingMemory};
 use indexmap::IndexMap;
 
-/// When Soar learns (spec §4; `chunk always|never|only|except`).
+/// When Soar learns (`chunk always|never|only|except`; Soar manual, 4 "Procedural knowledge
+/// learning").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LearnMode {
     Always,
@@ -27,7 +28,8 @@ impl LearnMode {
     }
 }
 
-/// Kernel settings with 9.6's defaults (spec §3a, §4, §6a).
+/// Kernel settings with 9.6's defaults (Soar manual, 9 "The Soar user interface": `soar`,
+/// `chunk`, `trace`, `output`, `decide`).
 #[derive(Debug, Clone)]
 pub struct Settings {
     pub learn: LearnMode,
@@ -38,7 +40,7 @@ pub struct Settings {
     pub max_nil_output_cycles: i64,
     pub wait_snc: bool,
     /// What the trace shows: `trace N` sets the flags of levels 1 to N, `trace -p` etc. one
-    /// each (spec §6c).
+    /// each.
     pub trace: TraceFlags,
     pub warnings: bool,
     /// `output agent-writes`: whether `write` (and `log`, `trace`) print.
@@ -126,7 +128,7 @@ pub enum WmeDetail {
 }
 
 /// 9.6's trace settings (`trace` with no arguments lists them): one flag per kind of
-/// message. Levels 0 to 5 are shorthands for groups of these (spec §6c).
+/// message. Levels 0 to 5 are shorthands for groups of these (Soar manual, `trace`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TraceFlags {
     /// Level 1 (`-d`): decision lines and new states.
@@ -244,7 +246,7 @@ impl TraceFlags {
     }
 }
 
-/// What adding a production did (spec §1c).
+/// What adding a production did.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Added {
     New,
@@ -256,13 +258,14 @@ pub enum Added {
     },
 }
 
-/// Pending changes to the match set, as the decision cycle will consume them (spec §3i):
+/// Pending changes to the match set, as the decision cycle will consume them:
 /// new matches are head-inserted (the newest is last here) and fired from the head.
 #[derive(Debug, Default)]
 pub struct MatchSet {
     pub assertions: Vec<(ProdId, TokId)>,
     pub retractions: Vec<(ProdId, TokId)>,
-    /// Each pending assertion's support, decided once at match time (spec §3c).
+    /// Each pending assertion's support, decided once at match time (Soar manual, chapter 2, on
+    /// o-support).
     pub support: crate::decide::by_token::ByToken<bool>,
     /// The same matches as `assertions`, with their place there (a hint: a queue rebuilt
     /// without [`MatchSet::reindex`] is searched): most retracted matches have fired, and
@@ -276,7 +279,7 @@ pub struct MatchSet {
 impl MatchSet {
     /// What a match that went before it fired leaves in `assertions`: taking it out at once
     /// would shift the rest of the queue, and an input phase that changes a pose cancels
-    /// hundreds of matches it made a moment before (spec §2 I/O order). Readers skip it.
+    /// hundreds of matches it made a moment before (see `io.rs` on the order of input changes). Readers skip it.
     pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), u32::MAX);
 
     /// Whether a match is queued (not yet fired, not gone).
@@ -381,7 +384,7 @@ impl std::borrow::Borrow<str> for ByName {
     }
 }
 
-/// The identifiers of the top state and its io link (spec §2).
+/// The identifiers of the top state and its io link.
 #[derive(Debug, Clone, Copy)]
 pub struct TopState {
     pub state: Sym,
@@ -392,7 +395,7 @@ pub struct TopState {
     pub operator: Sym,
 }
 
-/// A program's hook at the input or output phase (spec §2 I/O link).
+/// A program's hook at the input or output phase.
 pub type PhaseCallback = Box<dyn FnMut(&mut Agent)>;
 
 pub struct Agent {
@@ -425,7 +428,7 @@ pub struct Agent {
     pub(crate) substate_removals: Vec<(crate::decide::state::SubstateLine, crate::wm::Wme)>,
     /// Whether those substates went for their GDS (9.6 lists them in another order).
     pub(crate) substates_by_gds: bool,
-    /// Rust functions the embedding program registered for `exec` (spec §1f).
+    /// Rust functions the embedding program registered for `exec`.
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
     pub input_callback: Option<PhaseCallback>,
@@ -434,7 +437,7 @@ pub struct Agent {
     pub(crate) inputs: crate::inputs::InputTable,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
-    /// Chunking's state and counters (spec §4).
+    /// Chunking's state and counters.
     pub learn: crate::learn::LearnState,
 }
 
@@ -475,7 +478,7 @@ impl Agent {
     /// rule's matches against working memory are queued at once.
     pub fn add_production(&mut self, mut p: Production) -> Added {
         // 9.6 creates a rule's constants as it parses it, then reorders its conditions
-        // (spec §3i); the network joins them in that order and `print` shows it.
+        // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
         let conds = std::mem::take(&mut p.conditions);
         p.conditions = crate::rete::reorder::reorder_owned(conds, &self.symbols);
@@ -566,7 +569,7 @@ impl Agent {
 
     /// Registers a Rust function callable from rules as `(exec name args...)` or `(name
     /// args...)`: it receives the agent's name and the arguments joined with no separator,
-    /// and returns the string the rule gets (spec §1f).
+    /// and returns the string the rule gets (SML's `exec`).
     pub fn register_rhs_function(
         &mut self,
         name: &str,
@@ -624,7 +627,7 @@ impl Agent {
                 self.decider.gds_invalid.push(goal);
             }
         }
-        // What it pointed at may now be unlinked: garbage collection looks there (spec §2).
+        // What it pointed at may now be unlinked: garbage collection looks there.
         for x in [wme.value, wme.attr] {
             if self.symbols.is_id(x) {
                 self.decider.gc_candidates.push(x);
@@ -634,7 +637,7 @@ impl Agent {
     }
 }
 
-/// Creates the top state as Soar does (spec §2): `I1`–`I3` first, then `S1` and its WMEs
+/// Creates the top state as Soar does: `I1`–`I3` first, then `S1` and its WMEs
 /// with timetags 1–13 in Soar's order. After `init-soar` (`old` is the top state before it),
 /// the io link's identifiers are the same symbols, numbered again, so that a program's
 /// handles on them stay valid.

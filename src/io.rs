@@ -1,5 +1,5 @@
-//! The input and output links as an embedding program uses them (Soar manual, 2.7 "Input and
-//! output"): input WMEs are added, changed and removed between decisions through handles that
+//! The input and output links as an embedding program uses them (Soar manual, chapter 2,
+//! "Input and Output"): input WMEs are added, changed and removed between decisions through handles that
 //! stay valid until removed, also across `init-soar`; commands the rules put on the
 //! output-link are read and marked done.
 //!

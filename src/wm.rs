@@ -9,8 +9,8 @@ use rustc_hash::FxHashMap;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct WmeId(pub u32);
 
-/// A working-memory element: `(id ^attr value)`, with its timetag (Soar manual, 2.2
-/// "Working memory").
+/// A working-memory element: `(id ^attr value)`, with its timetag (Soar manual,
+/// chapter 2, "Working Memory").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Wme {
     /// The identifier it hangs from.

@@ -9,7 +9,7 @@ const RULE: &str = "sp {p (state <s> ^superstate nil) --> (<s> ^operator <a> + =
     (<s> ^operator <e> ! = <a>) (<a> ^name a) (<b> ^name b) (<c> ^name c) (<d> ^name d) \
     (<e> ^name e) (<s> ^thing x + -)}";
 
-fn session(commands: &str) -> String {
+fn run_commands(commands: &str) -> String {
     let mut interp = Agent::default();
     interp.source_text("<test>", RULE).expect("rule loads");
     interp.source_text("<test>", "run 1").expect("run");
@@ -29,12 +29,12 @@ fn operator_slot_lists_every_type_in_soar_order() {
         binary indifferents:\n  E2 (e) = A1 (a) :I \n\nbetters:\n  A1 (a) > B1 (b) :I \n\n\
         numeric indifferents:\n  C3 (c) = 3 :I \n\nselection probabilities:\n  \
         E2 (e) !  = 0. :I (100.00%)\n";
-    assert_eq!(session("preferences S1 operator"), expected);
+    assert_eq!(run_commands("preferences S1 operator"), expected);
 }
 
 #[test]
 fn names_add_the_rule_under_each_preference() {
-    let text = session("preferences S1 operator --names");
+    let text = run_commands("preferences S1 operator --names");
     assert!(text.contains("  A1 (a) +  :I \n    From p\n\n  B1 (b) +  :I \n"));
 }
 

@@ -3,7 +3,7 @@
 
 use rusoar::Agent;
 
-fn session(commands: &str) -> Agent {
+fn run_commands(commands: &str) -> Agent {
     let mut i = Agent::default();
     i.set_working_directory(
         std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/traces"),
@@ -24,9 +24,9 @@ fn output(i: &mut Agent, command: &str) -> String {
 
 #[test]
 fn the_stack_before_and_during_a_run() {
-    let mut i = session("");
+    let mut i = run_commands("");
     assert_eq!(output(&mut i, "print --stack"), "      : ==>S: S1 \n");
-    let mut i = session("run 2");
+    let mut i = run_commands("run 2");
     let stack =
         "      : ==>S: S1 \n      :    O: O1 (compute)\n      :    ==>S: S2 (operator no-change)\n";
     assert_eq!(output(&mut i, "print --stack"), stack);
@@ -47,7 +47,7 @@ fn the_stack_before_and_during_a_run() {
 
 #[test]
 fn stack_options_are_checked() {
-    let mut i = session("");
+    let mut i = run_commands("");
     for (cmd, msg) in [
         ("print -o", "Options --operators (-o) and --states (-S) are only valid when printing the stack."),
         ("print -S", "Options --operators (-o) and --states (-S) are only valid when printing the stack."),
@@ -60,7 +60,7 @@ fn stack_options_are_checked() {
 
 #[test]
 fn tree_prints_one_wme_per_line_under_its_parent() {
-    let mut i = session("run 2");
+    let mut i = run_commands("run 2");
     assert_eq!(
         output(&mut i, "print --tree s1"),
         "(S1 ^epmem E1)\n(S1 ^io I1)\n(S1 ^operator O1)\n(S1 ^operator O1 +)\n(S1 ^reward-link R1)\n(S1 ^smem L1)\n(S1 ^superstate nil)\n(S1 ^type state)\n"

@@ -13,7 +13,7 @@ use std::rc::Rc;
 use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
-/// How far [`Agent::run`] goes (Soar manual, 2.4 "The Soar decision cycle").
+/// How far [`Agent::run`] goes (Soar manual, chapter 2, "The Soar Decision Cycle").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunUnit {
     /// Decision cycles (`run N`).

@@ -7,7 +7,7 @@ use crate::io::{InputUpdate, InputWme, OutputCommand, Value};
 use crate::symbols::Sym;
 use crate::wm::Wme;
 
-/// The input and output links of an agent (Soar manual, 2.7 "Input and output").
+/// The input and output links of an agent (Soar manual, chapter 2, "Input and Output").
 ///
 /// [`crate::Agent::io`] gives one between runs; the input- and output-phase hooks
 /// ([`crate::Agent::on_input_phase`], [`crate::Agent::on_output_phase`]) get one inside the
