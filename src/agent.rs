@@ -439,6 +439,8 @@ pub struct Agent {
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters.
     pub learn: crate::learn::LearnState,
+    /// The program's event listeners.
+    pub(crate) events: crate::events::EventListeners,
 }
 
 impl Agent {
@@ -471,6 +473,7 @@ impl Agent {
             inputs: crate::inputs::InputTable::default(),
             output_callback: None,
             learn: crate::learn::LearnState::default(),
+            events: crate::events::EventListeners::default(),
         }
     }
 
@@ -609,6 +612,27 @@ impl Agent {
         self.rete
             .add_wme(w, fields, acceptable, &self.symbols, &mut self.matches);
         self.justification_wme_added(w);
+        if self.events.any() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.events
+                    .send(&crate::events::AgentEvent::WmeAdded(wme));
+            }
+        }
+    }
+
+    /// Tells the listeners that rule `p` fired (or, with `retracted`, that it retracted).
+    pub(crate) fn send_rule_event(&mut self, p: ProdId, retracted: bool) {
+        if !self.events.any() {
+            return;
+        }
+        let mut events = std::mem::take(&mut self.events);
+        let rule = self.production_name(p);
+        events.send(&if retracted {
+            crate::events::AgentEvent::Retracted { rule }
+        } else {
+            crate::events::AgentEvent::Fired { rule }
+        });
+        self.events = events;
     }
 
     /// Matches a WME already in working memory (a buffered addition reaching the matcher).
@@ -621,6 +645,10 @@ impl Agent {
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
         self.justification_wme_removed(w, wme.timetag);
+        if self.events.any() {
+            self.events
+                .send(&crate::events::AgentEvent::WmeRemoved(wme));
+        }
         // Most removals happen with no substate, so with an empty GDS: no hash probe then.
         if !self.decider.gds.is_empty() {
             if let Some(goal) = self.decider.gds.remove(&w) {

@@ -362,6 +362,12 @@ impl Agent {
         }
     }
 
+    /// Input WMEs waiting for the next input phase to be added.
+    pub(crate) fn pending_input_additions(&self) -> u64 {
+        let adds = self.inputs.queue.iter();
+        adds.filter(|c| matches!(c, InputChange::Add(_))).count() as u64
+    }
+
     /// A mark that changes when the output-link or a command on it changes: the newest
     /// timetag there and the number of WMEs (for running until output).
     pub(crate) fn output_link_stamp(&self) -> (u64, usize) {

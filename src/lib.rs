@@ -17,8 +17,8 @@ macro_rules! kernel_modules {
 }
 
 kernel_modules!(
-    agent, ast, commands, decide, inputs, io, learn, lexer, parser, printer, production, rete, rhs,
-    rng, source, stdlib, symbols, trace, value, wm,
+    agent, ast, commands, decide, events, inputs, io, learn, lexer, parser, printer, production,
+    rete, rhs, rng, source, stdlib, symbols, trace, value, wm,
 );
 
 mod api;
@@ -32,6 +32,8 @@ mod tests;
 
 pub use api::{Agent, Error, Io, ListenerId, Location, Printed, RunResult, RunUnit, StopReason};
 pub use commands::LoadReport;
+pub use decide::state::Phase;
+pub use events::AgentEvent;
 pub use io::{InputUpdate, InputWme, IoError, OutputCommand, Value};
 pub use rhs::host::{RhsArg, RhsCall};
 pub use symbols::Sym as Symbol;

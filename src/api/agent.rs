@@ -3,6 +3,7 @@
 use super::io::{children, has_attribute, value_text, Io};
 use super::{Error, Printed};
 use crate::commands::{Event, Interpreter, LoadReport};
+use crate::events::AgentEvent;
 use crate::io::{InputUpdate, Value};
 use crate::rhs::host::{RhsArg, RhsCall};
 use crate::symbols::Sym;
@@ -51,7 +52,7 @@ pub enum StopReason {
 /// What a run did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RunResult {
-    /// Decision cycles run, counted as `run` reports them.
+    /// Decisions made in the run (decision phases run).
     pub decisions: u64,
     /// Rules fired.
     pub firings: u64,
@@ -196,9 +197,37 @@ impl Agent {
         id
     }
 
-    /// Removes a print listener or a phase hook; false if it was not registered.
+    /// Calls `f` with every [`AgentEvent`] from now on: each phase's start and end, each
+    /// rule firing and retraction, each WME added to or removed from working memory, and
+    /// `init-soar`. An agent nobody listens to pays one branch per event.
+    ///
+    /// ```
+    /// use rusoar::{Agent, AgentEvent, RunUnit};
+    /// use std::{cell::RefCell, rc::Rc};
+    ///
+    /// let mut agent = Agent::new("events");
+    /// agent.execute("sp {hi (state <s> ^superstate nil) --> (<s> ^greeting hello)}")?;
+    /// let fired = Rc::new(RefCell::new(Vec::new()));
+    /// let seen = Rc::clone(&fired);
+    /// agent.on_event(move |e| {
+    ///     if let AgentEvent::Fired { rule } = e {
+    ///         seen.borrow_mut().push(rule.to_string());
+    ///     }
+    /// });
+    /// agent.run(1, RunUnit::Decisions)?;
+    /// assert_eq!(*fired.borrow(), ["hi"]);
+    /// # Ok::<(), rusoar::Error>(())
+    /// ```
+    pub fn on_event(&mut self, f: impl FnMut(&AgentEvent) + 'static) -> ListenerId {
+        let id = self.new_id();
+        self.interp.agent.events.add(id.0, Box::new(f));
+        id
+    }
+
+    /// Removes a print listener, an event listener or a phase hook; false if it was not
+    /// registered.
     pub fn remove_listener(&mut self, id: ListenerId) -> bool {
-        let mut found = false;
+        let mut found = self.interp.agent.events.remove(id.0);
         for list in [&self.input_hooks, &self.output_hooks] {
             list.borrow_mut().retain(|(i, _)| {
                 found |= *i == id;
@@ -300,7 +329,7 @@ impl Agent {
     fn run_units(&mut self, count: u64, unit: crate::decide::cycle::RunUnit) -> RunResult {
         let r = self.interp.run_agent(count.max(1), unit);
         RunResult {
-            decisions: r.decisions,
+            decisions: r.decided,
             firings: r.fired,
             stop: if r.halted {
                 StopReason::Halted

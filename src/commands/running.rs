@@ -22,8 +22,10 @@ fn run_count(word: &str) -> Result<u64, &'static str> {
 /// How a run went (see [`Interpreter::run_agent`]).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub(crate) struct RunReport {
-    /// Decision cycles, as `run` reports them.
+    /// Decision cycles, as `run` reports them (9.6's count, see below).
     pub decisions: u64,
+    /// Decision phases run.
+    pub decided: u64,
     /// Rule firings.
     pub fired: u64,
     /// The agent is halted (now, whether or not it halted in this run).
@@ -106,6 +108,7 @@ impl Interpreter {
     /// 9.6's notices of a halt or an interrupt; the report says how it ended.
     pub(crate) fn run_agent(&mut self, n: u64, unit: RunUnit) -> RunReport {
         let dc_before = self.agent.decider.d_cycle_count;
+        let decided_before = self.agent.decider.decisions;
         let halted_before = self.agent.decider.halted;
         // A halted agent does not run (and 9.6 prints no second "System halted.").
         let (fired, interrupted) = if halted_before {
@@ -149,6 +152,7 @@ impl Interpreter {
         let decisions = self.agent.decider.d_cycle_count.saturating_sub(last_dc);
         RunReport {
             decisions,
+            decided: self.agent.decider.decisions - decided_before,
             fired,
             halted: self.agent.decider.halted,
             interrupted: interrupted
@@ -171,6 +175,11 @@ impl Interpreter {
         self.agent.init_soar();
         self.agent.print_initial_state();
         self.agent.reinstate_inputs();
+        if self.agent.events.any() {
+            self.agent
+                .events
+                .send(&crate::events::AgentEvent::InitSoar);
+        }
         self.flush_agent_output();
         Ok("\nAgent reinitialized.\n".into())
     }
@@ -233,7 +242,9 @@ impl Interpreter {
             inner_e_cycles: d.inner_e_cycles,
             pe_cycles: d.pe_cycles,
             firings: d.firings,
-            additions: wm.additions() - d.wm_base.0,
+            // An input WME counts when the input phase adds it, as in 9.6 (soar-sml 9.6.5
+            // counts a client's update only once it is applied).
+            additions: wm.additions() - d.wm_base.0 - self.agent.pending_input_additions(),
             removals: wm.removals() - d.wm_base.1,
             wm_current: wm.len() as u64,
             wm_mean: if d.wm_size_samples == 0 {

@@ -17,6 +17,7 @@
 
 use super::state::{Goal, InstId, Phase};
 use crate::agent::Agent;
+use crate::events::AgentEvent;
 use crate::symbols::Sym;
 
 /// How far `run` goes.
@@ -103,6 +104,9 @@ impl Agent {
     /// Runs a phase; with `one_cycle`, at most one elaboration cycle of the propose or apply
     /// phase, which then resumes where it stopped on the next call.
     fn do_phase(&mut self, phase: Phase, one_cycle: bool) {
+        if self.events.any() && !self.decider.phase_started {
+            self.events.send(&AgentEvent::BeforePhase(phase));
+        }
         let start = std::time::Instant::now();
         self.do_phase_timed(phase, one_cycle);
         let i = match phase {
@@ -117,6 +121,9 @@ impl Agent {
         // `run -e` is sampled when it ends).
         if self.decider.phase != Some(phase) {
             self.sample_wm_size();
+            if self.events.any() {
+                self.events.send(&AgentEvent::AfterPhase(phase));
+            }
         }
     }
 

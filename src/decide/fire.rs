@@ -30,6 +30,7 @@ impl Agent {
             counts.resize(p.0 as usize + 1, 0);
         }
         counts[p.0 as usize] += 1;
+        self.send_rule_event(p, false);
         let traced = self.settings.trace.firings_of(&rule.flags);
         if traced {
             let s = format!("\nFiring {}\n", self.production_name(p));
@@ -253,6 +254,7 @@ impl Agent {
     }
 
     pub(super) fn retract(&mut self, inst_id: InstId) {
+        self.send_rule_event(self.decider.insts[inst_id as usize].prod, true);
         let serial = self.decider.insts[inst_id as usize].serial;
         if serial != 0 {
             let o = self.decider.insts[inst_id as usize].o_support;

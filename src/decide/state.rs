@@ -100,10 +100,15 @@ pub(crate) enum SubstateLine {
 /// Substates").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Phase {
+    /// The environment writes the input-link; its changes reach working memory.
     Input,
+    /// Elaborations and operator proposals fire until quiescence.
     Propose,
+    /// The decision procedure selects an operator, or an impasse makes a substate.
     Decide,
+    /// The selected operator is applied, until quiescence.
     Apply,
+    /// The environment reads the output-link.
     Output,
 }
 
