@@ -27,7 +27,7 @@ to a temporary directory in files of at most 10,000 rules so that progress can b
                                                  whose ^value join is on (* ^value *)
   echo     `echo x` through ExecuteCommandLine: the command layer's own cost.
 
-With --ours FILE (the JSON that `RETE_BENCH_JSON=FILE cargo bench --bench rete` writes) it
+With --ours FILE (the JSON that `RETE_BENCH_JSON=FILE cargo bench --features internals --bench rete` writes) it
 also prints the side-by-side table. Ratios there are official time / rusoar time: above 1
 means rusoar is faster by that factor.
 

@@ -7,8 +7,8 @@ use crate::symbols::{Sym, Symbols};
 use crate::wm::{Wme, WmeId, WorkingMemory};
 use indexmap::IndexMap;
 
-/// When Soar learns (`chunk always|never|only|except`; Soar manual, 4 "Procedural knowledge
-/// learning").
+/// When Soar learns (`chunk always|never|only|except`; Soar manual, chapter 4, "Procedural
+/// Knowledge Learning").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LearnMode {
     Always,
@@ -28,7 +28,7 @@ impl LearnMode {
     }
 }
 
-/// Kernel settings with 9.6's defaults (Soar manual, 9 "The Soar user interface": `soar`,
+/// Kernel settings with 9.6's defaults (Soar manual, chapter 9, "The Soar User Interface": `soar`,
 /// `chunk`, `trace`, `output`, `decide`).
 #[derive(Debug, Clone)]
 pub struct Settings {
@@ -396,9 +396,9 @@ pub struct TopState {
 }
 
 /// A program's hook at the input or output phase.
-pub type PhaseCallback = Box<dyn FnMut(&mut Agent)>;
+pub type PhaseCallback = Box<dyn FnMut(&mut AgentCore)>;
 
-pub struct Agent {
+pub struct AgentCore {
     pub name: String,
     pub symbols: Symbols,
     pub wm: WorkingMemory,
@@ -443,14 +443,14 @@ pub struct Agent {
     pub(crate) events: crate::events::EventListeners,
 }
 
-impl Agent {
+impl AgentCore {
     pub fn new(name: impl Into<String>) -> Self {
         let mut symbols = Symbols::new();
         let mut wm = WorkingMemory::new();
         let mut rete = Rete::new();
         let mut matches = MatchSet::default();
         let top = create_top_state(&mut symbols, &mut wm, &mut rete, &mut matches, None);
-        Agent {
+        AgentCore {
             name: name.into(),
             symbols,
             wm,

@@ -14,7 +14,7 @@
 //!   the input-link depth first (each identifier's WMEs in the order they were first made),
 //!   and their identifiers are numbered again in that order.
 
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 pub use crate::inputs::{InputUpdate, InputWme};
 pub use crate::value::Value;
 use crate::inputs::{InputChange, InputEntry};
@@ -96,7 +96,7 @@ impl OutputCommand {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// The top state's `^io.input-link` identifier (it keeps its handle across `init-soar`).
     pub fn input_link(&self) -> Sym {
         self.top.input_link
@@ -136,7 +136,7 @@ impl Agent {
     }
 
     /// Adds `(id ^attr value)`: it gets its timetag now and reaches the matcher at the next
-    /// input phase (see [`Agent::apply_input_changes`]), as an SML client's WMEs do.
+    /// input phase (see [`AgentCore::apply_input_changes`]), as an SML client's WMEs do.
     pub fn add_input(
         &mut self,
         id: Sym,
@@ -204,7 +204,7 @@ impl Agent {
         e.wme.ok_or(IoError::StaleHandle)
     }
 
-    /// How [`Agent::update_input`] treats an unchanged value.
+    /// How [`AgentCore::update_input`] treats an unchanged value.
     pub fn set_input_update(&mut self, mode: InputUpdate) {
         self.inputs.update_mode = mode;
     }
@@ -440,7 +440,7 @@ impl Agent {
 
 }
 
-/// The letter of an input object's identifier for `^attr` (see [`Agent::add_input_object`]).
+/// The letter of an input object's identifier for `^attr` (see [`AgentCore::add_input_object`]).
 fn input_letter(attr: &str) -> char {
     attr.chars()
         .next()
@@ -452,14 +452,14 @@ fn input_letter(attr: &str) -> char {
 mod tests {
     use super::*;
 
-    fn text(a: &Agent, h: InputWme) -> String {
+    fn text(a: &AgentCore, h: InputWme) -> String {
         let w = a.input_wme(h).unwrap();
         a.symbols.text(a.wm.get(w).unwrap().value)
     }
 
     #[test]
     fn input_is_matched_and_output_is_read() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let il = a.input_link();
         let (_, data) = a.add_input_object(il, "currentrobotdata").unwrap();
         let x = a.add_input(data, "X", 100i64).unwrap();
@@ -483,9 +483,9 @@ mod tests {
 
     #[test]
     fn input_objects_are_named_as_sml_names_them() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let il = a.input_link();
-        let name = |a: &mut Agent, attr: &str| {
+        let name = |a: &mut AgentCore, attr: &str| {
             let (_, id) = a.add_input_object(il, attr).unwrap();
             a.symbols.text(id)
         };
@@ -500,7 +500,7 @@ mod tests {
 
     #[test]
     fn new_output_commands_are_reported_once() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let ol = a.output_link();
         let (_, c1) = a.add_input_object(ol, "move").unwrap();
         a.add_input(c1, "param1", 300i64).unwrap();
@@ -523,7 +523,7 @@ mod tests {
 
     #[test]
     fn updates_blink_by_default_and_skip_when_asked() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let il = a.input_link();
         let (_, data) = a.add_input_object(il, "pose").unwrap();
         let x = a.add_input(data, "X", 1i64).unwrap();
@@ -546,7 +546,7 @@ mod tests {
 
     #[test]
     fn misuse_is_an_error() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let il = a.input_link();
         let five = a.symbols.int(5);
         assert!(matches!(
@@ -575,7 +575,7 @@ mod tests {
     /// `(I2 ^name m)`, `(I2 ^pos P1)` with timetags 14 to 17.
     #[test]
     fn init_soar_keeps_input_wmes_and_their_handles() {
-        let mut a = Agent::new("t");
+        let mut a = AgentCore::new("t");
         let il = a.input_link();
         let (_, o) = a.add_input_object(il, "obj").unwrap();
         let name = a.add_input(il, "name", "n").unwrap();

@@ -26,6 +26,10 @@ mod api;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+/// The embedding guide's Rust examples, compiled and run as tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/embedding.md")]
+struct EmbeddingGuideDoctests;
 pub mod syntax;
 #[cfg(test)]
 mod tests;

@@ -1,6 +1,6 @@
 //! Compiling a parsed `sp` into a production: dot paths and structured values are flattened
 //! into single conditions with placeholder variables, preferences become one action each,
-//! and the load-time checks Soar makes are applied (Soar manual, 3.3 "Production Memory";
+//! and the load-time checks Soar makes are applied (Soar manual, chapter 3, "Production Memory";
 //! the messages are 9.6's).
 
 use crate::ast::{self, Constant, Head, Pref, Relation};
@@ -9,7 +9,7 @@ use crate::rhs::table::{self, Use};
 use crate::source::{Diagnostic, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
-/// Declared support and other `:flags` (Soar manual, 3.3, "Production type (optional)").
+/// Declared support and other `:flags` (Soar manual, chapter 3, "Production type (optional)").
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Flags {
     pub o_support: bool,
@@ -941,7 +941,7 @@ fn equality_var(t: &Test) -> Option<&str> {
     }
 }
 
-/// Conditions must hang from a state (Soar manual, 3.3, "The condition side of productions
+/// Conditions must hang from a state (Soar manual, chapter 3, "The condition side of productions
 /// (or LHS)"), as the kernel's reorderer checks it (`collect_root_variables`,
 /// `reorder_lhs`): the roots are the variables in the id field of a positive condition that
 /// are not the value of another positive condition. A root with no `(state ...)` or

@@ -2,7 +2,7 @@
 //! 9): `print <id>` objects with attributes sorted and wrapped at 80 columns, `print -i`
 //! one WME per line with timetags, and `matches <rule>` partial-match listings.
 
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::decide::state::SubstateLine;
 use crate::printer::{cond_text, cond_text_with};
 use crate::production::{test_text, Condition};
@@ -10,7 +10,7 @@ use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
 
 /// `(tt: id ^attr value[ +])`
-pub fn wme_internal(agent: &Agent, w: &Wme) -> String {
+pub fn wme_internal(agent: &AgentCore, w: &Wme) -> String {
     let s = &agent.symbols;
     format!(
         "({}: {} ^{} {}{})",
@@ -23,7 +23,7 @@ pub fn wme_internal(agent: &Agent, w: &Wme) -> String {
 }
 
 /// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.
-pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
+pub fn sorted_wmes(agent: &AgentCore, id: Sym) -> Vec<Wme> {
     let mut ws: Vec<Wme> = agent
         .wm
         .of_id(id)
@@ -45,7 +45,7 @@ pub fn sorted_wmes(agent: &Agent, id: Sym) -> Vec<Wme> {
 /// column `start_col`: 9.6 counts the first line's width from there, so a print after a trace line wraps earlier (observed on
 /// the official kernel), even right after `(S1`.
 pub fn print_object_at(
-    agent: &Agent,
+    agent: &AgentCore,
     id: Sym,
     depth: usize,
     internal: bool,
@@ -91,7 +91,7 @@ pub fn print_object_at(
 
 #[allow(clippy::too_many_arguments)]
 fn print_rec(
-    agent: &Agent,
+    agent: &AgentCore,
     id: Sym,
     level: usize,
     depth: usize,
@@ -165,7 +165,7 @@ fn print_rec(
 
 /// `matches <rule>` (`production matches`): each condition with its partial-match count;
 /// from the first condition with none, `>>>>` marks where matching stops.
-pub fn matches_listing(agent: &Agent, name: &str) -> Option<String> {
+pub fn matches_listing(agent: &AgentCore, name: &str) -> Option<String> {
     let loaded = agent.loaded(name)?;
     let counts = agent.rete.partial_match_counts(loaded.id, &agent.symbols);
     let mut out = String::new();
@@ -212,7 +212,7 @@ fn counted(count: usize, stopped: &mut bool) -> String {
 }
 
 /// `matches` with no rule: the pending assertions and retractions, with their goals.
-pub fn pending_matches(agent: &Agent) -> String {
+pub fn pending_matches(agent: &AgentCore) -> String {
     let mut o = String::from("O Assertions:\n");
     let mut i = String::from("I Assertions:\n");
     for &(p, t) in &agent.matches.assertions {
@@ -237,7 +237,7 @@ pub fn pending_matches(agent: &Agent) -> String {
     format!("{o}{i}{r}")
 }
 
-fn goal_text(agent: &Agent, p: crate::rete::ProdId, t: crate::rete::TokId) -> String {
+fn goal_text(agent: &AgentCore, p: crate::rete::ProdId, t: crate::rete::TokId) -> String {
     match crate::decide::support::match_goal(agent, p, t) {
         Some(g) => agent.symbols.text(g),
         None => "NIL".into(),
@@ -245,7 +245,7 @@ fn goal_text(agent: &Agent, p: crate::rete::ProdId, t: crate::rete::TokId) -> St
 }
 
 /// The WMEs of a complete match, for `matches -w`.
-pub fn match_wme_lines(agent: &Agent, ws: &[WmeId]) -> String {
+pub fn match_wme_lines(agent: &AgentCore, ws: &[WmeId]) -> String {
     ws.iter()
         .filter_map(|w| agent.wm.get(*w))
         .map(|w| wme_internal(agent, w))
@@ -272,7 +272,7 @@ pub fn pref_type_char(k: crate::decide::procedure::PrefType) -> char {
 /// `(S1 ^count 0 +  :O ) [level 2] (rule)`: the referent of a binary or numeric preference
 /// after the type, `  :O ` for o-support, the level of its identifier below the top state,
 /// and the rule whose firing made it.
-pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> String {
+pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) -> String {
     let s = &agent.symbols;
     let mut out = format!(
         "({} ^{} {} {}",
@@ -317,7 +317,7 @@ pub fn pref_trace_text(agent: &Agent, p: &crate::decide::state::Preference) -> S
     out
 }
 
-impl Agent {
+impl AgentCore {
     /// Does the print stream stand at the start of a line? (What is still in `output`
     /// decides; when it has been taken, the front end's record of it.)
     pub(crate) fn at_line_start(&self) -> bool {
@@ -373,7 +373,7 @@ impl Agent {
 
 /// The trace of the decision cycle's steps (`trace`): elaboration headers, retractions, new
 /// preferences, operators removed by the consistency check.
-impl Agent {
+impl AgentCore {
     /// `--- Inner Elaboration Phase, active level N goal S ---` (`-W`) before the firings
     /// at one goal of an elaboration cycle; `None` when only retractions of goals that are
     /// gone are pending (9.6 has no active goal then).
@@ -529,7 +529,7 @@ impl Agent {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// `Removing state S2 because element in GDS changed. WME: (...)` (`-g`), before the
     /// working-memory changes of the cycle that take a WME out of a substate's GDS: once
     /// for the highest such goal (the ones below it go with it), naming the first such
@@ -557,7 +557,7 @@ impl Agent {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// With `trace --timetags` or `--fullwmes`, the WMEs a traced firing or retraction
     /// matched, after its `Firing`/`Retracting` line and before its actions run: ` 16 14`
     /// or one ` (16: S1 ^operator O1)` a line, then ` -->`. (9.6 lists them in its
@@ -604,7 +604,7 @@ impl Agent {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// The `<=WM:` lines of one working-memory phase in 9.6's order (what is removed does
     /// not change, only the order it is listed in). 9.6 head-inserts its removals, so it
     /// lists them in the reverse of the order it made them: garbage first (newest first),
@@ -619,7 +619,7 @@ impl Agent {
         let by_gds = std::mem::take(&mut self.substates_by_gds);
         let wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
         let op = self.symbols.find_str("operator");
-        let context = |agent: &Agent, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
+        let context = |agent: &AgentCore, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
         // Each operator's `+` WME's timetag, by (state, operator).
         let plus: Vec<((Sym, Sym), u64)> = wmes
             .iter()
@@ -634,7 +634,7 @@ impl Agent {
         // structure, their operator `+` WMEs, their slot WMEs, the garbage, the slot
         // decisions, their impasse WMEs, their selected operators (agent gds).
         let with_substates = !substates.is_empty();
-        let rank = |agent: &Agent, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
+        let rank = |agent: &AgentCore, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
                 if decided.contains(i) {
                     (if by_gds { 6 } else { 10 }, *i as i64, 0)

@@ -2,7 +2,7 @@
 //! decisions or from inside the input and output phases.
 
 use super::Error;
-use crate::agent::Agent as Core;
+use crate::agent::AgentCore as Core;
 use crate::io::{InputUpdate, InputWme, OutputCommand, Value};
 use crate::symbols::Sym;
 use crate::wm::Wme;

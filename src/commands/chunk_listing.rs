@@ -1,10 +1,10 @@
 //! `chunk` with no arguments and `chunk ?`: 9.6's summary and settings listing
 //! (Soar manual, ch. 9, `chunk`), with this agent's settings and counts filled in.
 
-use crate::agent::{Agent, LearnMode};
+use crate::agent::{AgentCore, LearnMode};
 
 /// `chunk`: the Explanation-Based Chunking summary.
-pub fn summary(agent: &Agent) -> String {
+pub fn summary(agent: &AgentCore) -> String {
     let s = &agent.settings;
     let l = &agent.learn;
     let row = |label: &str, value: String| format!("{label}{value:>w$}\n", w = 55 - label.len());
@@ -31,7 +31,7 @@ pub fn summary(agent: &Agent) -> String {
 }
 
 /// `chunk ?`: every setting, the current choice in capitals (as 9.6 lists them).
-pub fn settings(agent: &Agent) -> String {
+pub fn settings(agent: &AgentCore) -> String {
     let s = &agent.settings;
     let modes = [
         ("always", LearnMode::Always),

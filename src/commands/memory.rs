@@ -145,7 +145,7 @@ impl Interpreter {
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
 /// (values only), else a number or a string constant (`|...|` quoting removed).
-fn symbol_for_word(agent: &mut crate::agent::Agent, word: &str, allow_id: bool) -> Option<Sym> {
+fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
     if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
         return Some(agent.symbols.str(inner));
     }

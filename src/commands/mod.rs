@@ -1,4 +1,4 @@
-//! Soar's command language over an [`Agent`]: alias expansion, unique-prefix command names,
+//! Soar's command language over an [`AgentCore`]: alias expansion, unique-prefix command names,
 //! option clusters, `source` with its directory handling and first-error abort
 //! (Soar manual, ch. 9, "The Soar User Interface"). The interpreter runs without a
 //! terminal; front ends drain its [`Event`]s.
@@ -17,7 +17,7 @@ mod settings;
 pub mod tokenizer;
 mod tracing;
 
-use crate::agent::{Agent, PhaseCallback};
+use crate::agent::{AgentCore, PhaseCallback};
 use crate::commands::tokenizer::{Command, Tokenizer, WordKind};
 use crate::source::{Diagnostic, SourceMap, Span};
 use aliases::Aliases;
@@ -107,7 +107,7 @@ impl LoadReport {
 }
 
 pub struct Interpreter {
-    pub agent: Agent,
+    pub agent: AgentCore,
     pub sources: SourceMap,
     aliases: Aliases,
     cwd: PathBuf,
@@ -155,7 +155,7 @@ impl Interpreter {
     pub fn new() -> Self {
         let cwd = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
         Interpreter {
-            agent: Agent::new("soar"),
+            agent: AgentCore::new("soar"),
             sources: SourceMap::new(),
             aliases: Aliases::default(),
             home: cwd.clone(),
@@ -230,7 +230,7 @@ impl Interpreter {
         let flag = self.interrupt.clone();
         let live = self.live.clone();
         let col = Rc::clone(&self.print_col);
-        self.agent.output_callback = Some(Box::new(move |a: &mut Agent| {
+        self.agent.output_callback = Some(Box::new(move |a: &mut AgentCore| {
             if let Some(cb) = inner.borrow_mut().as_mut() {
                 cb(a);
             }

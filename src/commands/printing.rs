@@ -2,14 +2,14 @@
 //! cycle field, and working memory one WME per line in a tree (Soar manual, ch. 9, `print`;
 //! checked against the official kernel's output).
 
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace::{sorted_wmes, wme_internal};
 use crate::wm::Wme;
 use std::collections::HashSet;
 
 /// The values of `o ^name`, as a decision line shows them: `(a b)`, or nothing.
-fn operator_name(agent: &Agent, o: Sym) -> String {
+fn operator_name(agent: &AgentCore, o: Sym) -> String {
     let vals: Vec<String> = sorted_wmes(agent, o)
         .iter()
         .filter(|w| !w.acceptable && agent.symbols.text(w.attr) == "name")
@@ -25,7 +25,7 @@ fn operator_name(agent: &Agent, o: Sym) -> String {
 /// `print --stack [--states] [--operators]`: one line per state and selected operator, top
 /// first, in the format of the decision trace with `      : ` for the cycle number. With
 /// neither or both flags, states and operators.
-pub fn print_stack(agent: &Agent, states: bool, operators: bool) -> String {
+pub fn print_stack(agent: &AgentCore, states: bool, operators: bool) -> String {
     let (states, operators) = if states == operators {
         (true, true)
     } else {
@@ -71,7 +71,7 @@ pub fn print_stack(agent: &Agent, states: bool, operators: bool) -> String {
 }
 
 /// `(id ^attr value[ +])`
-fn wme_plain(agent: &Agent, w: &Wme) -> String {
+fn wme_plain(agent: &AgentCore, w: &Wme) -> String {
     let s = &agent.symbols;
     format!(
         "({} ^{} {}{})",
@@ -85,7 +85,7 @@ fn wme_plain(agent: &Agent, w: &Wme) -> String {
 /// `print --tree [--depth n] [--internal] id`: one WME per line, each identifier's WMEs
 /// right under the WME that leads to it (indented two spaces per level), each identifier
 /// expanded once.
-pub fn print_tree(agent: &Agent, id: Sym, depth: usize, internal: bool) -> String {
+pub fn print_tree(agent: &AgentCore, id: Sym, depth: usize, internal: bool) -> String {
     let mut out = String::new();
     let mut seen = HashSet::from([id]);
     tree_rec(agent, id, 0, depth.max(1), internal, &mut seen, &mut out);
@@ -93,7 +93,7 @@ pub fn print_tree(agent: &Agent, id: Sym, depth: usize, internal: bool) -> Strin
 }
 
 fn tree_rec(
-    agent: &Agent,
+    agent: &AgentCore,
     id: Sym,
     level: usize,
     depth: usize,

@@ -62,7 +62,7 @@ pub(crate) struct CompiledRule {
     /// Where a match's distinct condition identifiers are read (token depth and field): the
     /// first condition's, and for each later one the binding its identifier is joined on.
     /// The match goal is the lowest goal among them; most rules test a dozen conditions on
-    /// a handful of identifiers. Filled in by `Agent::compiled_rule`.
+    /// a handful of identifiers. Filled in by `AgentCore::compiled_rule`.
     pub id_places: Vec<(u32, Field)>,
 }
 

@@ -1,4 +1,4 @@
-//! The consistency checks (Soar manual, 2.5 "Soar's Execution Cycle: Without Substates", and
+//! The consistency checks (Soar manual, chapter 2, "Soar's Execution Cycle: Without Substates", and
 //! 2.7.7 "Removal of Substates: Impasse Resolution"): a selected operator that is no longer a
 //! candidate, or that the preferences would no longer choose, goes at once with every
 //! substate below it; so does a substate whose impasse the preferences no longer give. The
@@ -6,11 +6,11 @@
 
 use super::procedure::{self, Outcome, PrefType};
 use super::state::ImpasseKind;
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
-impl Agent {
+impl AgentCore {
     /// The operator installed in a goal stays while it is still a candidate; otherwise it
     /// goes at once, with every substate below. Returns the operator WME to remove
     /// (buffered with the other removals).

@@ -16,7 +16,7 @@
 //! The order of firings, identifiers and timetags follows 9.6's.
 
 use super::state::{Goal, InstId, Phase};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::events::AgentEvent;
 use crate::symbols::Sym;
 
@@ -29,7 +29,7 @@ pub enum RunUnit {
     Forever,
 }
 
-impl Agent {
+impl AgentCore {
     pub(super) fn out(&mut self, s: &str) {
         self.output.push_str(s);
     }
@@ -248,7 +248,7 @@ impl Agent {
 
     /// Is there an assertion (of i-support only, unless `any`) or a retraction to process?
     pub(super) fn has_pending(&self, any: bool) -> bool {
-        // Justifications that lost a WME retract like rules (Soar manual, 2.7.4
+        // Justifications that lost a WME retract like rules (Soar manual, chapter 2,
         // "Justifications: Support for results").
         if !self.matches.retractions.is_empty()
             || !self.decider.justification_retractions.is_empty()

@@ -1,4 +1,4 @@
-//! The decision phase (Soar manual, 2.4.2 "How preferences are evaluated to decide an
+//! The decision phase (Soar manual, chapter 2, "How preferences are evaluated to decide an
 //! operator", and 2.7.1 "Impasse Types"): from the top goal down, the first operator slot
 //! without a selected operator whose preferences changed is decided; a winner is installed,
 //! otherwise the goal impasses. With nothing to decide, the bottom goal has a no-change.
@@ -6,10 +6,10 @@
 use super::procedure::{self, Outcome, Policy, Pref};
 use crate::agent::Exploration;
 use super::state::ImpasseKind;
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 
-impl Agent {
+impl AgentCore {
     /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
     /// top (as 9.6's trace prints it).
     pub(super) fn decision_prefix(&self, level: u32) -> String {

@@ -1,4 +1,4 @@
-//! One elaboration cycle (Soar manual, 2.5 "Soar's Execution Cycle: Without Substates", and
+//! One elaboration cycle (Soar manual, chapter 2, "Soar's Execution Cycle: Without Substates", and
 //! 2.7.8 "Soar's Cycle: With Substates"): the pending matches of one support type fire at the
 //! highest goal with activity and then at each lower one (the "waterfall"), the active goal's
 //! retractions follow, and the working-memory phase makes the changes together. Also the
@@ -7,10 +7,10 @@
 use super::compiled::{Act, Term};
 use super::scratch::Queued;
 use super::state::{InstId, Phase};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::rete::{ProdId, TokId};
 
-impl Agent {
+impl AgentCore {
     /// Decides the support of the matches made since the last call, as 9.6's matcher does
     /// when it queues them, with its warning for rules that both elaborate and apply the
     /// operator (observed on 9.6).

@@ -1,19 +1,19 @@
 //! Firing and retraction: a match fires as an instantiation, whose actions make preferences
 //! (and call RHS functions); a retracted instantiation takes its i-supported preferences out
-//! of their slots (Soar manual, 2.3.3 "Production Actions and Persistence"). A rule's actions
+//! of their slots (Soar manual, chapter 2, "Production Actions and Persistence"). A rule's actions
 //! are compiled at its first firing.
 
 use super::compiled::{self, Act, CompiledRule, Term};
 use super::procedure::PrefType;
 use super::state::{InstId, Instantiation, PrefId, Preference};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
 use std::rc::Rc;
 
-impl Agent {
+impl AgentCore {
     pub(super) fn fire(
         &mut self,
         p: ProdId,
@@ -159,7 +159,7 @@ impl Agent {
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }
-        // Results of a substate firing are learned from at once (Soar manual, 2.7.3
+        // Results of a substate firing are learned from at once (Soar manual, chapter 2,
         // "Results"): a justification or a chunk takes them over.
         if level >= 2 {
             let new_ids: FxHashMap<String, Sym> = rule
@@ -203,7 +203,7 @@ impl Agent {
 
     /// The symbol an RHS term stands for in this firing; an unbound variable makes a new
     /// identifier at its first use, shared by all its uses (its letter is the variable's
-    /// first, `S` read as `I`; Soar manual, 3.3, "The action side of productions (or
+    /// first, `S` read as `I`; Soar manual, chapter 3, "The action side of productions (or
     /// RHS)").
     fn term_value(
         &mut self,
@@ -267,7 +267,7 @@ impl Agent {
         for &pid in prefs.iter().rev() {
             let pref = &mut self.decider.prefs[pid as usize];
             pref.inst = None;
-            // O-supported preferences outlive their instantiation (Soar manual, 2.3.3
+            // O-supported preferences outlive their instantiation (Soar manual, chapter 2,
             // "Production Actions and Persistence").
             if pref.o_support || !pref.alive {
                 continue;
@@ -288,7 +288,7 @@ impl Agent {
         self.decider.free_inst(inst_id);
     }
 
-    /// A built-in or registered RHS function (Soar manual, 3.3, "Right-hand side
+    /// A built-in or registered RHS function (Soar manual, chapter 3, "Right-hand side
     /// Functions").
     fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
         crate::decide::functions::call(self, name, args)

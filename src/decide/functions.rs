@@ -1,11 +1,11 @@
-//! The bridge from firing to RHS functions (Soar manual, 3.3, "Right-hand side Functions"):
+//! The bridge from firing to RHS functions (Soar manual, chapter 3, "Right-hand side Functions"):
 //! the agent's parts are lent to `crate::rhs` for one call; `halt` and errors come back to
 //! the decision cycle.
 
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 
-pub fn call(agent: &mut Agent, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
+pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
     let trace_level = agent.settings.trace.level_number();
     let mut ctx = crate::rhs::RhsContext::new(
         &mut agent.symbols,

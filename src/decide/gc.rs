@@ -1,13 +1,13 @@
-//! Garbage collection (Soar manual, 2.2 "Working memory: The Current Situation": objects not
+//! Garbage collection (Soar manual, chapter 2, "Working memory: The Current Situation": objects not
 //! linked to a state are removed): after working memory changes, the identifiers that lost a
 //! link are searched upward for a goal, and the structure below one that has none goes.
 
 use super::scratch::GcScratch;
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 
-impl Agent {
+impl AgentCore {
     /// Removes WMEs no longer linked to a goal or the io link. Only identifiers that lost a
     /// link can have become unlinked: each is searched upward for a goal, and the structure
     /// below one that has none goes (cycles included).

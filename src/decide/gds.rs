@@ -1,4 +1,4 @@
-//! The goal dependency set (Soar manual, 2.7.9 "Removal of Substates: The Goal Dependency
+//! The goal dependency set (Soar manual, chapter 2, "Removal of Substates: The Goal Dependency
 //! Set"): when a substate makes an o-supported WME, the superstate WMEs its reasoning
 //! tested join that substate's GDS, following local i-supported WMEs back through the
 //! instantiations that made them (local o-supported WMEs stop the search). When a WME in a
@@ -7,12 +7,12 @@
 
 use super::procedure::PrefType;
 use super::state::InstId;
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
 
-impl Agent {
+impl AgentCore {
     pub(crate) fn sym_level(&self, s: Sym) -> u32 {
         self.symbols.id_data(s).map_or(0, |d| d.level)
     }

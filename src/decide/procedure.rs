@@ -1,4 +1,4 @@
-//! Soar 9.6's decision procedure for an operator slot (Soar manual, 2.4.2 "How preferences
+//! Soar 9.6's decision procedure for an operator slot (Soar manual, chapter 2, "How preferences
 //! are evaluated to decide an operator") and the exploration policies that choose among
 //! indifferent candidates (`decide indifferent-selection`, Soar manual chapter 9).
 //!

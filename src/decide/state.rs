@@ -96,7 +96,7 @@ pub(crate) enum SubstateLine {
     Selected,
 }
 
-/// The phases of a decision cycle (Soar manual, 2.5 "Soar's Execution Cycle: Without
+/// The phases of a decision cycle (Soar manual, chapter 2, "Soar's Execution Cycle: Without
 /// Substates").
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Phase {

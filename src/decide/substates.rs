@@ -1,13 +1,13 @@
-//! Impasses and substates (Soar manual, 2.7.2 "Creating New States", and 3.4.1 "Impasses in
+//! Impasses and substates (Soar manual, chapter 2, "Creating New States", and 3.4.1 "Impasses in
 //! working memory"): a new state with its architecture WMEs for an impasse, and the removal
 //! of the states below a goal, with what 9.6's traces list for them.
 
 use super::state::{Goal, ImpasseKind, PrefId};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::FxHashSet;
 
-impl Agent {
+impl AgentCore {
     /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
     /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
     /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
@@ -168,7 +168,7 @@ impl Agent {
             d.is_impasse = true;
         }
         let mut wmes = Vec::new();
-        let mut add = |agent: &mut Agent, id: Sym, attr: &str, value: Sym| {
+        let mut add = |agent: &mut AgentCore, id: Sym, attr: &str, value: Sym| {
             let a = agent.symbols.str(attr);
             // Into working memory now; the matcher gets them below, newest first.
             wmes.push(agent.wm.add(id, a, value, false));

@@ -1,20 +1,20 @@
-//! Match-time support classification (Soar manual, 2.7.6 "The calculation of o-support"): a
+//! Match-time support classification (Soar manual, chapter 2, "The calculation of o-support"): a
 //! match's goal is the deepest state among its positive conditions' identifiers, and a
 //! match that tests that goal's selected operator (and proposes none) is an o-support
 //! candidate. The decision cycle refines this at fire time.
 
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::decide::compiled::CompiledRule;
 use crate::production::{Action, RhsTerm};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 
 /// The lowest goal among the identifiers of a match's WMEs.
-pub fn match_goal(agent: &Agent, _p: ProdId, t: TokId) -> Option<Sym> {
+pub fn match_goal(agent: &AgentCore, _p: ProdId, t: TokId) -> Option<Sym> {
     goal_of(agent, agent.rete.chain_wmes(t))
 }
 
-pub(crate) fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
+pub(crate) fn goal_of(agent: &AgentCore, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
     goal_among(
         agent,
         wmes.filter_map(|w| agent.wm.get(w).map(|wme| wme.id)),
@@ -22,7 +22,7 @@ pub(crate) fn goal_of(agent: &Agent, wmes: impl Iterator<Item = crate::wm::WmeId
 }
 
 /// The lowest goal among some identifiers.
-pub(crate) fn goal_among(agent: &Agent, ids: impl Iterator<Item = Sym>) -> Option<Sym> {
+pub(crate) fn goal_among(agent: &AgentCore, ids: impl Iterator<Item = Sym>) -> Option<Sym> {
     let mut best: Option<(u32, Sym)> = None;
     for id in ids {
         if let Some(d) = agent.symbols.id_data(id).filter(|d| d.is_goal) {
@@ -47,7 +47,7 @@ pub struct MatchSupport {
 /// tests its goal's selected operator is O if one of its make actions is on something other
 /// than that operator (an application), I if all are on the operator (operator
 /// elaborations); both is I with a warning (when warnings are on).
-pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
+pub fn match_support(agent: &AgentCore, p: ProdId, t: TokId) -> MatchSupport {
     let i_support = MatchSupport {
         o_support: false,
         mixed: false,
@@ -100,7 +100,7 @@ pub fn match_support(agent: &Agent, p: ProdId, t: TokId) -> MatchSupport {
     support_of_actions(agent, on_operator)
 }
 
-impl Agent {
+impl AgentCore {
     /// The support of a pending match: decided when it was queued, or now.
     pub fn is_o_supported(&self, p: ProdId, t: TokId) -> bool {
         match self.matches.support.get(&(p, t)) {
@@ -112,7 +112,7 @@ impl Agent {
 
 /// The o-support test's last step, given for each make action whether it is on the selected
 /// operator: applications are O, operator elaborations I, both I (with 9.6's warning).
-fn support_of_actions(agent: &Agent, on_operator: impl Iterator<Item = bool>) -> MatchSupport {
+fn support_of_actions(agent: &AgentCore, on_operator: impl Iterator<Item = bool>) -> MatchSupport {
     let (mut elaborates, mut applies) = (false, false);
     for on in on_operator {
         if on {
@@ -129,7 +129,7 @@ fn support_of_actions(agent: &Agent, on_operator: impl Iterator<Item = bool>) ->
 }
 
 /// [`match_support`] for a rule whose actions are compiled: the same test without names.
-fn compiled_support(agent: &Agent, rule: &CompiledRule, t: TokId) -> MatchSupport {
+fn compiled_support(agent: &AgentCore, rule: &CompiledRule, t: TokId) -> MatchSupport {
     let i_support = MatchSupport {
         o_support: false,
         mixed: false,

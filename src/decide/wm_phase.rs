@@ -1,5 +1,5 @@
 //! The working-memory phase of an elaboration cycle: the cycle's new preferences join their
-//! slots, and the changed slots bring working memory in line (Soar manual, 2.4 "Preference
+//! slots, and the changed slots bring working memory in line (Soar manual, chapter 2, "Preference
 //! Memory: Selection Knowledge", and 3.1.4 "Acceptable preferences in working memory"): a
 //! non-context slot shows each value with an acceptable and no reject preference, an operator
 //! slot its candidates as `+` WMEs. The changes reach the matcher together, in 9.6's order,
@@ -9,12 +9,12 @@ use super::procedure::PrefType;
 use super::scratch::Wanted;
 use super::slot::SlotId;
 use super::state::{PrefId, Preference, Slot};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
 
-impl Agent {
+impl AgentCore {
     /// Marks slot `key` (at `slot`, if it exists) for `update_slots`.
     pub(super) fn mark_changed(&mut self, key: (Sym, Sym), slot: Option<SlotId>) {
         if let Some(id) = slot {

@@ -7,7 +7,7 @@
 use super::backtrace::Backtrace;
 use super::record::equality_var;
 use super::{Ident, InstTrace};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::ast::{Constant, Head};
 use crate::decide::procedure::PrefType;
 use crate::decide::state::PrefId;
@@ -52,7 +52,7 @@ impl Namer {
 
 /// The letter a variable is named by: the attribute's first letter for a value, the
 /// identifier's own letter otherwise.
-fn letter_for(agent: &Agent, sym: Sym, under: Option<Sym>) -> char {
+fn letter_for(agent: &AgentCore, sym: Sym, under: Option<Sym>) -> char {
     if let Some(SymData::Str(s)) = under.map(|a| agent.symbols.get(a)) {
         if let Some(c) = s.chars().next().filter(char::is_ascii_alphabetic) {
             return c.to_ascii_lowercase();
@@ -64,7 +64,7 @@ fn letter_for(agent: &Agent, sym: Sym, under: Option<Sym>) -> char {
     }
 }
 
-fn constant_of(agent: &Agent, s: Sym) -> Constant {
+fn constant_of(agent: &AgentCore, s: Sym) -> Constant {
     match agent.symbols.get(s) {
         SymData::Str(x) => Constant::Str(x.to_string()),
         SymData::Int(i) => Constant::Int(*i),
@@ -74,7 +74,7 @@ fn constant_of(agent: &Agent, s: Sym) -> Constant {
 }
 
 struct Builder<'a> {
-    agent: &'a Agent,
+    agent: &'a AgentCore,
     bt: &'a Backtrace,
     namer: Namer,
     /// Identity sets that some positive condition binds (only these may appear elsewhere).
@@ -287,7 +287,7 @@ impl Builder<'_> {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// The negations of a backtrace that belong to a learned rule or justification: those
     /// about superstate objects, with the rule each is a condition of.
     pub(crate) fn superstate_negations<'b>(

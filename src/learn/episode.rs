@@ -7,7 +7,7 @@
 
 use super::backtrace::Backtrace;
 use super::{InstTrace, Justification, PrefOrigin, TraceCond};
-use crate::agent::{Added, Agent, LearnMode};
+use crate::agent::{Added, AgentCore, LearnMode};
 use crate::decide::procedure::PrefType;
 use crate::decide::state::{ImpasseKind, InstId, Instantiation, PrefId};
 use crate::production::Production;
@@ -64,7 +64,7 @@ fn action_idents(trace: &InstTrace, prod: &Production, k: usize) -> [super::Iden
     ]
 }
 
-impl Agent {
+impl AgentCore {
     /// The results among a firing's preferences (Soar manual, ch. 2, "Results"): those for
     /// objects of a higher level, and everything on new objects they link up, which move up
     /// to that level.

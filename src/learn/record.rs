@@ -4,7 +4,7 @@
 //! and record nothing (speed).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
-use crate::agent::Agent;
+use crate::agent::AgentCore;
 use crate::decide::procedure::PrefType;
 use crate::decide::state::PrefId;
 use crate::production::{Action, Condition, Production, RhsTerm, Term, Test};
@@ -22,7 +22,7 @@ pub(crate) fn equality_var(t: &Test) -> Option<&str> {
     }
 }
 
-impl Agent {
+impl AgentCore {
     /// Records a firing in a substate and gives each preference it made (with the index of
     /// its make action) an origin.
     pub(crate) fn record_firing(

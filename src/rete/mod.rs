@@ -469,7 +469,7 @@ pub struct Rete {
     /// When set, `add_wme` notes before each alpha memory it activates that memory's
     /// 9.6 alpha table (`attr constant` × 2 + `value constant`) and the sink's retraction
     /// count, in `alpha_marks`: justifications are not in our network, and 9.6 reaches
-    /// theirs in that table order (see `Agent::match_wme_now`).
+    /// theirs in that table order (see `AgentCore::match_wme_now`).
     pub(crate) mark_alphas: bool,
     pub(crate) alpha_marks: Vec<(u8, usize)>,
 }
