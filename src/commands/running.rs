@@ -126,7 +126,7 @@ impl Interpreter {
             // the kernel's print column (checked: a `print` after a halt wraps from 0).
             self.print_col.set(0);
             self.events.push(super::Event::Text(
-                "\nInterrupt received.This AgentCore halted.".to_string(),
+                "\nInterrupt received.This Agent halted.".to_string(),
             ));
         }
         if self.agent.decider.depth_exceeded {

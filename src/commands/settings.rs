@@ -517,7 +517,7 @@ fn output_status(agent_writes: bool, warnings: bool) -> String {
     format!(
         "{rule}\n-                   Output Status                     -\n{rule}\n\
          Printing enabled                                    Yes   \n{line}\n\
-         AgentCore RHS write output {:>32}   \nAll agent log channels enabled.\n{line}\n\
+         Agent RHS write output {:>32}   \nAll agent log channels enabled.\n{line}\n\
          Warnings {:>46}   \n{line}\n\n\
          To enable specific types of trace messages, use the 'trace' command.\n\
          Use 'output ?' for a command overview or 'help output' for the manual page.",
