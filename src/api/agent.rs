@@ -399,13 +399,7 @@ impl Agent {
         let id = self.new_id();
         self.input_hooks.borrow_mut().push((id, Box::new(hook)));
         if self.interp.agent.input_callback.is_none() {
-            let hooks = Rc::clone(&self.input_hooks);
-            self.interp.agent.input_callback = Some(Box::new(move |core| {
-                let mut io = Io::new(core);
-                for (_, h) in hooks.borrow_mut().iter_mut() {
-                    h(&mut io);
-                }
-            }));
+            self.interp.agent.input_callback = Some(dispatcher(&self.input_hooks));
         }
         id
     }
@@ -416,13 +410,7 @@ impl Agent {
         let id = self.new_id();
         self.output_hooks.borrow_mut().push((id, Box::new(hook)));
         if self.interp.agent.output_callback.is_none() {
-            let hooks = Rc::clone(&self.output_hooks);
-            self.interp.agent.output_callback = Some(Box::new(move |core| {
-                let mut io = Io::new(core);
-                for (_, h) in hooks.borrow_mut().iter_mut() {
-                    h(&mut io);
-                }
-            }));
+            self.interp.agent.output_callback = Some(dispatcher(&self.output_hooks));
         }
         id
     }
@@ -580,6 +568,17 @@ impl Agent {
     pub fn set_random_seed(&mut self, seed: u32) {
         self.interp.agent.seed_rng(seed);
     }
+}
+
+/// The kernel's phase callback that calls each hook of `hooks`, in the order registered.
+fn dispatcher(hooks: &Hooks) -> crate::agent::PhaseCallback {
+    let hooks = Rc::clone(hooks);
+    Box::new(move |core| {
+        let mut io = Io::new(core);
+        for (_, h) in hooks.borrow_mut().iter_mut() {
+            h(&mut io);
+        }
+    })
 }
 
 impl Drop for Agent {
