@@ -441,6 +441,8 @@ pub struct AgentCore {
     pub learn: crate::learn::LearnState,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
+    /// `multi-attributes`: what the reorderer expects of declared attributes.
+    pub(crate) multi_attributes: crate::rete::reorder::MultiAttributes,
 }
 
 impl AgentCore {
@@ -474,6 +476,7 @@ impl AgentCore {
             output_callback: None,
             learn: crate::learn::LearnState::default(),
             events: crate::events::EventListeners::default(),
+            multi_attributes: Default::default(),
         }
     }
 
@@ -484,7 +487,8 @@ impl AgentCore {
         // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
         let conds = std::mem::take(&mut p.conditions);
-        p.conditions = crate::rete::reorder::reorder_owned(conds, &self.symbols);
+        p.conditions =
+            crate::rete::reorder::reorder_owned(conds, &self.symbols, &self.multi_attributes);
         self.rete.share_var_names(&mut p.conditions);
         let replaced = self.excise(&p.name);
         let id = match self

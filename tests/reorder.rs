@@ -100,3 +100,37 @@ fn several_set_aside_tests_come_back_in_their_order() {
         "{out}"
     );
 }
+
+/// `multi-attributes` prices a condition on a declared attribute by its expected count once
+/// the state is bound. soar-sml 9.6.5 orders these rules as below with the declarations
+/// (`^c <z> ^b <y> ^a <x>` and `^b <y> ^a <x>` without them), and lists the declarations
+/// newest first.
+#[test]
+fn multi_attributes_change_the_order_as_in_the_official_kernel() {
+    let rules = [
+        "multi-attributes b 50",
+        "multi-attributes c",
+        "sp {rule1 (state <s> ^a <x>) (<s> ^b <y>) (<s> ^c <z>) --> (write <x> <y> <z>)}",
+        "sp {rule2 (state <s> ^b <y> ^a <x>) (<y> ^c <z> ^d <w>) (<x> ^b <v>) --> (write <x>)}",
+    ];
+    assert_eq!(
+        printed(&rules, "rule1"),
+        "sp {rule1\n    (state <s> ^a <x> ^c <z> ^b <y>)\n    -->\n    (write <x> <y> <z>)\n}\n\n"
+    );
+    assert_eq!(
+        printed(&rules, "rule2"),
+        "sp {rule2\n    (state <s> ^a <x> ^b <y>)\n    (<y> ^d <w> ^c <z>)\n    (<x> ^b <v>)\n    -->\n    (write <x>)\n}\n\n"
+    );
+    let mut agent = Agent::default();
+    assert_eq!(
+        agent.execute("multi-attributes").unwrap(),
+        "No optimized attributes found.Value\tSymbol\n"
+    );
+    agent.execute("multi-attributes foo 5\nmulti-attributes bar\nmulti-attributes 3 4\nmulti-attributes foo 7").unwrap();
+    assert_eq!(
+        agent.execute("multi-attributes").unwrap(),
+        "Value\tSymbol\n4\t|3|\n10\tbar\n7\tfoo\n"
+    );
+    let e = agent.execute("multi-attributes foo 0").unwrap_err();
+    assert_eq!(e.message(), "Expected non-negative integer.");
+}

@@ -260,8 +260,36 @@ impl Interpreter {
             Some("excise") => self.cmd_excise(ctx, &args[1..]),
             Some("matches") => self.cmd_matches(ctx, &args[1..]),
             Some("firing-counts") => self.cmd_firing_counts(ctx, &args[1..]),
+            Some("optimize-attribute") => self.cmd_optimize_attribute(ctx, &args[1..]),
             Some(_) | None => Err(super::not_yet(ctx, "production")),
         }
+    }
+
+    /// `production optimize-attribute [ATTR [N]]` (alias `multi-attributes`): with no
+    /// argument the listing; else ATTR (a string constant, whatever it looks like) is
+    /// declared to have N values (10 when not given), which the reorderer counts in rules
+    /// loaded from then on. Texts as soar-sml 9.6.5 prints them.
+    fn cmd_optimize_attribute(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let Some(attr) = args.first() else {
+            return Ok(self.agent.multi_attributes.listing(&self.agent.symbols));
+        };
+        let count = match args.get(1) {
+            None => crate::rete::reorder::MultiAttributes::DEFAULT_COUNT,
+            Some(n) => match n.parse::<u64>() {
+                Ok(n) if n > 0 => n,
+                _ => {
+                    return Err(Diagnostic::error("Expected non-negative integer.")
+                        .at(ctx.arg_span(2))
+                        .with_label("a count of at least 1"))
+                }
+            },
+        };
+        if args.len() > 2 {
+            return Err(ctx.error("Syntax: multi-attributes [symbol [n]]"));
+        }
+        let sym = self.agent.symbols.str(attr);
+        self.agent.multi_attributes.set(sym, count);
+        Ok(String::new())
     }
 
     fn cmd_excise(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {

@@ -59,6 +59,9 @@ struct Cond {
     placed: bool,
     /// Mark for the look-ahead (a generation number).
     mark: u32,
+    /// The expected match count of its constant attribute (`multi-attributes`; 1 when not
+    /// declared), which 9.6 counts once every root variable is bound.
+    multi: u64,
 }
 
 /// One variable of the list (its name is in `Chooser::names`).
@@ -81,6 +84,11 @@ pub(super) struct Chooser<'a> {
     queue: Vec<Key>,
     ties: Vec<usize>,
     generation: u32,
+    /// Every root variable is bound: from then on 9.6 prices a bound constant attribute
+    /// by its `multi-attributes` count (its "common simple case" of a condition's cost).
+    roots_done: bool,
+    /// Some condition's attribute has a `multi-attributes` count other than 1.
+    has_multi: bool,
 }
 
 /// A chooser's buffers, kept between lists: every rule is ordered when it is loaded, and
@@ -141,6 +149,7 @@ impl<'a> Chooser<'a> {
         outside: &Bound,
         roots: &[String],
         rank: &dyn Fn(&Constant) -> u64,
+        multi: &dyn Fn(&Constant) -> u64,
     ) -> Self {
         let n = conds.len();
         let scratch = take_scratch();
@@ -178,8 +187,12 @@ impl<'a> Chooser<'a> {
         for (i, c) in conds.iter().enumerate() {
             let start = req.len() as u32;
             let mut fields = [Field::Untested; 3];
+            let mut multi_count = 1;
             let positive = match c {
                 Condition::Positive(p) => {
+                    if let Some(Term::Const(a)) = equality_term(&p.attr) {
+                        multi_count = multi(a);
+                    }
                     for (slot, t) in fields.iter_mut().zip([&p.id, &p.attr, &p.value]) {
                         *slot = match equality_term(t) {
                             Some(Term::Const(_)) => Field::Const,
@@ -205,6 +218,7 @@ impl<'a> Chooser<'a> {
                 canon: canonical(c, rank),
                 placed: false,
                 mark: 0,
+                multi: multi_count,
             });
         }
         for r in roots {
@@ -221,7 +235,11 @@ impl<'a> Chooser<'a> {
             queue: scratch.queue,
             ties: scratch.ties,
             generation: 0,
+            roots_done: false,
+            has_multi: false,
         };
+        c.roots_done = c.all_roots_bound();
+        c.has_multi = c.conds.iter().any(|x| x.multi != 1);
         c.index_users(scratch.start, scratch.next);
         for i in 0..n {
             c.conds[i].cost = c.cost(i);
@@ -325,7 +343,11 @@ impl<'a> Chooser<'a> {
         if !self.covered(id) {
             return MAX_COST;
         }
-        let mut cost = if self.covered(attr) { 1 } else { BRANCHING };
+        let mut cost = match (self.covered(attr), self.roots_done) {
+            (true, true) => c.multi,
+            (true, false) => 1,
+            (false, _) => BRANCHING,
+        };
         if !self.covered(value) {
             cost *= BRANCHING;
         }
@@ -460,7 +482,35 @@ impl<'a> Chooser<'a> {
             }
         }
         // Once every root is bound the roots no longer count; they are bound then, so
-        // `covered` is unchanged and nothing needs clearing.
+        // `covered` is unchanged, but a declared multi-attribute now prices its conditions.
+        if !self.roots_done && self.all_roots_bound() {
+            self.roots_done = true;
+            if self.has_multi {
+                self.price_all_again();
+            }
+        }
+    }
+
+    fn all_roots_bound(&self) -> bool {
+        self.vars.iter().all(|v| !v.root || v.bound)
+    }
+
+    /// Every unplaced condition's cost computed again, and the queue with it.
+    fn price_all_again(&mut self) {
+        for j in 0..self.conds.len() {
+            if !self.conds[j].placed {
+                self.conds[j].cost = self.cost(j);
+            }
+        }
+        let mut queue = std::mem::take(&mut self.queue);
+        queue.clear();
+        for j in 0..self.conds.len() {
+            if !self.conds[j].placed {
+                queue.push(self.key(j));
+            }
+        }
+        queue.sort_unstable_by(|a, b| b.cmp(a));
+        self.queue = queue;
     }
 
     /// Everything bound now, by name: `outside` and what the placed conditions bound.

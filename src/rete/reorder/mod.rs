@@ -23,12 +23,14 @@
 //! then each rule's constants in text order), which reproduces the kernel's tie breaks.
 
 mod choose;
+mod multi;
 mod set_aside;
 
 use crate::ast::{Constant, Head};
 use crate::production::{Condition, Term, Test};
 use crate::symbols::Symbols;
 use choose::Chooser;
+pub use multi::MultiAttributes;
 use rustc_hash::FxHashSet;
 
 type Bound = FxHashSet<String>;
@@ -37,12 +39,17 @@ type Bound = FxHashSet<String>;
 /// rule (see [`intern_in_text_order`]); an unknown constant ranks as a variable.
 #[cfg(test)]
 pub fn reorder(conds: &[Condition], syms: &Symbols) -> Vec<Condition> {
-    reorder_owned(conds.to_vec(), syms)
+    reorder_owned(conds.to_vec(), syms, &MultiAttributes::default())
 }
 
 /// [`reorder`], taking the conditions (no copy of them is made).
-pub fn reorder_owned(mut conds: Vec<Condition>, syms: &Symbols) -> Vec<Condition> {
+pub fn reorder_owned(
+    mut conds: Vec<Condition>,
+    syms: &Symbols,
+    multi: &MultiAttributes,
+) -> Vec<Condition> {
     let rank = |c: &Constant| syms.find_constant(c).map_or(0, |s| s.0 as u64 + 1);
+    let multi = |c: &Constant| multi.count(c, syms);
     let outside = Bound::default();
     let mut roots = root_variables(&conds, &outside);
     if !roots.is_empty() {
@@ -57,7 +64,7 @@ pub fn reorder_owned(mut conds: Vec<Condition>, syms: &Symbols) -> Vec<Condition
         return conds;
     }
     let required = requirements(&conds, &outside);
-    reorder_list(conds, required, roots, &outside, &rank, &mut 0)
+    reorder_list(conds, required, roots, &outside, &rank, &multi, &mut 0)
 }
 
 /// Interns the name and the constants of a rule in the order 9.6's parser creates them: the
@@ -259,6 +266,7 @@ fn reorder_list(
     roots: Vec<String>,
     outside: &Bound,
     rank: &dyn Fn(&Constant) -> u64,
+    multi: &dyn Fn(&Constant) -> u64,
     dummies: &mut usize,
 ) -> Vec<Condition> {
     let saved = set_aside::simplify(&mut conds, dummies);
@@ -268,7 +276,7 @@ fn reorder_list(
     let mut order = Vec::with_capacity(conds.len());
     let mut bound_at_ncc = Vec::new();
     {
-        let mut chooser = Chooser::new(&conds, &vars, outside, &roots, rank);
+        let mut chooser = Chooser::new(&conds, &vars, outside, &roots, rank, multi);
         while let Some(i) = chooser.next() {
             if matches!(conds[i], Condition::Ncc(_)) {
                 bound_at_ncc.push(chooser.bound_names(outside));
@@ -297,6 +305,7 @@ fn reorder_list(
                     inner_roots,
                     &bound,
                     rank,
+                    multi,
                     dummies,
                 ))
             }
