@@ -54,6 +54,10 @@ pub struct Settings {
     pub exploration: Exploration,
     /// `decide numeric-indifferent-mode`: how numeric preferences for one operator combine.
     pub numeric_mode: crate::decide::procedure::NumericMode,
+    /// `decide indifferent-selection --epsilon`: epsilon-greedy's chance of a random choice.
+    pub epsilon: f64,
+    /// `decide indifferent-selection --temperature`: Boltzmann's temperature.
+    pub temperature: f64,
 }
 
 /// The exploration policies of `decide indifferent-selection`.
@@ -114,6 +118,8 @@ impl Default for Settings {
             learning_trace: 0,
             exploration: Exploration::default(),
             numeric_mode: crate::decide::procedure::NumericMode::Sum,
+            epsilon: 0.1,
+            temperature: 25.0,
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Settings commands: `learn` (with Soar 8 spellings), `chunk`, `soar`, `trace`, `decide`,
 //! `output`, `alias` (Soar manual, ch. 9).
 
-use super::options::{self, opt, opt_arg};
+use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
 use crate::decide::procedure::NumericMode;
@@ -87,16 +87,36 @@ impl Interpreter {
         match args.first().map(String::as_str) {
             None => Ok(super::chunk_listing::summary(&self.agent)),
             Some("?" | "help") => Ok(super::chunk_listing::settings(&self.agent)),
-            Some(w @ ("always" | "never" | "only" | "except" | "on" | "off")) => {
-                // `chunk on` means `only` in 9.6.
+            Some(
+                w @ ("always" | "never" | "only" | "except" | "on" | "off" | "flagged"
+                | "unflagged"),
+            ) => {
+                // `chunk on` and `chunk flagged` mean `only` in 9.6, `unflagged` `except`.
                 s.learn = match w {
                     "always" => LearnMode::Always,
                     "never" | "off" => LearnMode::Never,
-                    "only" | "on" => LearnMode::Only,
+                    "only" | "on" | "flagged" => LearnMode::Only,
                     _ => LearnMode::Except,
                 };
-                let shown = if w == "off" { "off\n" } else { s.learn.word() };
+                // 9.6 echoes the old spellings with an extra newline.
+                let shown = match w {
+                    "off" | "flagged" | "unflagged" => format!("{w}\n"),
+                    _ => s.learn.word().to_string(),
+                };
                 Ok(format!("Learns rules in states: {shown}\n"))
+            }
+            // 9.6 takes `chunk --on`, `chunk -e`... for `chunk`: it prints the summary and
+            // changes nothing (soar-sml 9.6.5). So does rusoar, and says so.
+            Some(w) if w.starts_with('-') => {
+                let word = w.to_string();
+                self.warn(
+                    Diagnostic::warning(format!(
+                        "`chunk {word}` changes nothing in Soar 9.6 (it prints the summary): write `chunk always|never|only|except`"
+                    ))
+                    .at(ctx.arg_span(0))
+                    .with_label("an option `chunk` ignores"),
+                );
+                Ok(super::chunk_listing::summary(&self.agent))
             }
             Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, CHUNK_INVALID, |n| format!("max-chunks is now {n}\n")),
             Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, CHUNK_INVALID, |n| format!("max-dupes is now {n}\n")),
@@ -331,26 +351,47 @@ impl Interpreter {
                     );
                     rest[pos] = "--softmax".into();
                 }
+                // `-e` and `-t` take their value only when given one: alone they print it.
                 let specs = [
                     opt('b', "boltzmann"),
                     opt('g', "epsilon-greedy"),
                     opt('f', "first"),
                     opt('l', "last"),
                     opt('x', "softmax"),
-                    opt_arg('e', "epsilon"),
-                    opt_arg('t', "temperature"),
+                    opt('e', "epsilon"),
+                    opt('t', "temperature"),
                 ];
                 let parsed = options::parse(&rest, &specs).map_err(|m| ctx.error(m))?;
-                let mut policy = None;
-                for (o, _) in &parsed.options {
-                    policy = crate::agent::Exploration::from_name(o).or(policy);
-                }
-                match policy {
-                    Some(p) => {
-                        self.agent.settings.exploration = p;
+                let s = &mut self.agent.settings;
+                let option = match parsed.options.as_slice() {
+                    [] => return Ok(s.exploration.name().to_string()),
+                    [(o, _)] => *o,
+                    _ => {
+                        return Err(ctx.error(
+                            "indifferent-selection takes only one option at a time.",
+                        ))
+                    }
+                };
+                let value = parsed.args.first().map(|v| v.parse::<f64>());
+                // The official kernel's ranges and texts (soar-sml 9.6.5).
+                let invalid = || ctx.error("Invalid parameter value.");
+                match (option, value) {
+                    ("epsilon", None) => Ok(s.epsilon.to_string()),
+                    ("temperature", None) => Ok(s.temperature.to_string()),
+                    ("epsilon", Some(Ok(e))) if (0.0..=1.0).contains(&e) => {
+                        s.epsilon = e;
                         Ok(String::new())
                     }
-                    None => Ok(self.agent.settings.exploration.name().to_string()),
+                    ("temperature", Some(Ok(t))) if t > 0.0 && t.is_finite() => {
+                        s.temperature = t;
+                        Ok(String::new())
+                    }
+                    ("epsilon" | "temperature", _) => Err(invalid()),
+                    (policy, _) => {
+                        s.exploration =
+                            crate::agent::Exploration::from_name(policy).unwrap_or(s.exploration);
+                        Ok(String::new())
+                    }
                 }
             }
             Some("numeric-indifferent-mode") => {
@@ -377,7 +418,8 @@ impl Interpreter {
                     .to_string()),
                 }
             }
-            Some("srand") => {
+            // `set-random-seed` is 9.6's long name of `srand`.
+            Some("srand" | "set-random-seed") => {
                 let seed = match args.get(1) {
                     Some(s) => s.parse::<u32>().map_err(|_| {
                         Diagnostic::error(format!("Integer expected: {s}"))

@@ -49,8 +49,12 @@ impl AgentCore {
         let policy = match self.settings.exploration {
             Exploration::First => Policy::First,
             Exploration::Last => Policy::Last,
-            Exploration::EpsilonGreedy => Policy::EpsilonGreedy { epsilon: 0.1 },
-            Exploration::Boltzmann => Policy::Boltzmann { temperature: 25.0 },
+            Exploration::EpsilonGreedy => Policy::EpsilonGreedy {
+                epsilon: self.settings.epsilon,
+            },
+            Exploration::Boltzmann => Policy::Boltzmann {
+                temperature: self.settings.temperature,
+            },
             Exploration::Softmax => Policy::Softmax,
         };
         let numeric_mode = self.settings.numeric_mode;

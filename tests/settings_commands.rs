@@ -1,0 +1,91 @@
+//! `decide` and `chunk` settings as agents write them, with the official kernel's texts
+//! (soar-sml 9.6.5 printed each expected result for the same command on a fresh agent).
+
+use rusoar::Agent;
+
+fn learn_mode(agent: &mut Agent) -> String {
+    let summary = agent.execute("chunk").unwrap();
+    let line = summary
+        .lines()
+        .find(|l| l.starts_with("When Soar will learn rules"))
+        .unwrap_or_default();
+    line.split_whitespace()
+        .last()
+        .unwrap_or_default()
+        .to_string()
+}
+
+#[test]
+fn exploration_parameters_are_read_set_and_checked() {
+    let mut a = Agent::default();
+    let run = |a: &mut Agent, c: &str| a.execute(c);
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection --epsilon").unwrap(),
+        "0.1\n"
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection -t").unwrap(),
+        "25\n"
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection --epsilon 0.3").unwrap(),
+        ""
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection -e").unwrap(),
+        "0.3\n"
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection --temperature 2").unwrap(),
+        ""
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection -t").unwrap(),
+        "2\n"
+    );
+    for bad in ["--epsilon 2", "--temperature 0", "--temperature x"] {
+        let e = run(&mut a, &format!("decide indifferent-selection {bad}")).unwrap_err();
+        assert_eq!(e.message(), "Invalid parameter value.", "{bad}");
+    }
+    let e = run(
+        &mut a,
+        "decide indifferent-selection --epsilon-greedy --epsilon 0.2",
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.message(),
+        "indifferent-selection takes only one option at a time."
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection --boltzmann").unwrap(),
+        ""
+    );
+    assert_eq!(
+        run(&mut a, "decide indifferent-selection").unwrap(),
+        "boltzmann\n"
+    );
+    assert_eq!(
+        run(&mut a, "decide set-random-seed 5").unwrap(),
+        "Random number generator seed set to 5\n"
+    );
+}
+
+#[test]
+fn chunk_accepts_the_spellings_9_6_accepts() {
+    let mut a = Agent::default();
+    assert_eq!(
+        a.execute("chunk flagged").unwrap(),
+        "Learns rules in states: flagged\n\n"
+    );
+    assert_eq!(learn_mode(&mut a), "only");
+    assert_eq!(
+        a.execute("chunk unflagged").unwrap(),
+        "Learns rules in states: unflagged\n\n"
+    );
+    assert_eq!(learn_mode(&mut a), "except");
+    // 9.6 prints the summary for `chunk --on` and changes nothing; rusoar warns too.
+    let out = a.execute("chunk --on").unwrap();
+    assert!(out.contains("Explanation-Based Chunking Summary"), "{out}");
+    assert!(out.contains("changes nothing in Soar 9.6"), "{out}");
+    assert_eq!(learn_mode(&mut a), "except");
+}
