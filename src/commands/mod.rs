@@ -6,6 +6,7 @@
 pub mod aliases;
 mod chunk_listing;
 mod files;
+mod gp;
 pub mod help;
 mod memory;
 pub mod options;
@@ -429,6 +430,7 @@ impl Interpreter {
         let args = &words[1..];
         let result = match name {
             "sp" => self.cmd_sp(&ctx),
+            "gp" => self.cmd_gp(&ctx),
             "load" => self.cmd_load(&ctx, args),
             "pushd" => self.cmd_pushd(&ctx, args),
             "popd" => self.cmd_popd(&ctx),

@@ -1,0 +1,159 @@
+//! `gp`: one `sp` body with `[a b ...]` alternatives stands for one rule per combination
+//! (Soar manual, chapter 9, `gp`). The rules are named `NAME*1`, `NAME*2`, ... with the
+//! first alternative list varying fastest, as the official kernel numbers them (soar-sml
+//! 9.6.5 printed `gen*1` to `gen*8` in that order for three lists of two).
+
+use super::{CmdResult, Ctx, Interpreter};
+
+/// The bodies a `gp` body stands for, in the official kernel's order, or its error text.
+pub(super) fn expand(body: &str) -> Result<Vec<String>, &'static str> {
+    // The text between the lists, and each list's alternatives.
+    let mut pieces: Vec<&str> = Vec::new();
+    let mut lists: Vec<Vec<&str>> = Vec::new();
+    let bytes = body.as_bytes();
+    let (mut start, mut i) = (0, 0);
+    while i < bytes.len() {
+        match bytes[i] {
+            // `|...|` is one constant: brackets inside it are text.
+            b'|' => i = skip_pipe(bytes, i),
+            b'[' => {
+                let close = find_close(bytes, i + 1)?;
+                pieces.push(&body[start..i]);
+                let values = alternatives(&body[i + 1..close]);
+                if values.is_empty() {
+                    return Err("gp can't have empty value collections");
+                }
+                lists.push(values);
+                start = close + 1;
+                i = close + 1;
+            }
+            _ => i += 1,
+        }
+    }
+    pieces.push(&body[start..]);
+    let total: usize = lists.iter().map(Vec::len).product();
+    let mut out = Vec::with_capacity(total);
+    for n in 0..total {
+        let mut text = String::with_capacity(body.len());
+        let mut rest = n;
+        for (piece, list) in pieces.iter().zip(&lists) {
+            text.push_str(piece);
+            text.push_str(list[rest % list.len()]);
+            rest /= list.len();
+        }
+        text.push_str(pieces[pieces.len() - 1]);
+        out.push(text);
+    }
+    Ok(out)
+}
+
+/// The index just past the `|...|` that starts at `at` (the end, if it never closes).
+fn skip_pipe(bytes: &[u8], at: usize) -> usize {
+    let mut i = at + 1;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' => i += 2,
+            b'|' => return i + 1,
+            _ => i += 1,
+        }
+    }
+    bytes.len()
+}
+
+/// The `]` that closes a list opened before `from`.
+fn find_close(bytes: &[u8], from: usize) -> Result<usize, &'static str> {
+    let mut i = from;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'|' => i = skip_pipe(bytes, i),
+            b']' => return Ok(i),
+            _ => i += 1,
+        }
+    }
+    Err("gp syntax error, unmatched values bracket.")
+}
+
+/// A list's alternatives: its words, a `|...|` constant being one word.
+fn alternatives(list: &str) -> Vec<&str> {
+    let bytes = list.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        if bytes[i].is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < bytes.len() && !bytes[i].is_ascii_whitespace() {
+            i = if bytes[i] == b'|' {
+                skip_pipe(bytes, i)
+            } else {
+                i + 1
+            };
+        }
+        out.push(&list[start..i.min(list.len())]);
+    }
+    out
+}
+
+impl Interpreter {
+    /// `gp {NAME body}`: each combination becomes `sp {NAME*N body}`, loaded as `sp` loads
+    /// it (a `*` each, duplicates ignored with 9.6's message).
+    pub(super) fn cmd_gp(&mut self, ctx: &Ctx) -> CmdResult {
+        let [_, body] = ctx.cmd.words.as_slice() else {
+            return Err(ctx.error("Syntax: gp { production_body }"));
+        };
+        let bodies = expand(&body.text).map_err(|m| ctx.error(m))?;
+        let trimmed = body.text.trim_start();
+        let name_len = trimmed
+            .find(|c: char| c.is_whitespace())
+            .unwrap_or(trimmed.len());
+        let name = &trimmed[..name_len];
+        for (n, b) in bodies.iter().enumerate() {
+            let b = b.trim_start();
+            let rest = &b[name_len.min(b.len())..];
+            let rule = format!("sp {{{name}*{}{rest}}}", n + 1);
+            self.run_text("gp", &rule)?;
+        }
+        Ok(String::new())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::expand;
+
+    #[test]
+    fn the_first_list_varies_fastest() {
+        let out = expand("g (state <s> ^a [b c] ^d [1 2]) --> (<s> ^e [x y])").unwrap();
+        assert_eq!(out.len(), 8);
+        assert_eq!(out[0], "g (state <s> ^a b ^d 1) --> (<s> ^e x)");
+        assert_eq!(out[1], "g (state <s> ^a c ^d 1) --> (<s> ^e x)");
+        assert_eq!(out[2], "g (state <s> ^a b ^d 2) --> (<s> ^e x)");
+        assert_eq!(out[7], "g (state <s> ^a c ^d 2) --> (<s> ^e y)");
+    }
+
+    #[test]
+    fn pipes_are_one_word_and_hide_brackets() {
+        let out = expand("g (state <s> ^a [ |x y| 3.5 ]) --> (write |[not]|)").unwrap();
+        assert_eq!(
+            out,
+            [
+                "g (state <s> ^a |x y|) --> (write |[not]|)",
+                "g (state <s> ^a 3.5) --> (write |[not]|)"
+            ]
+        );
+    }
+
+    #[test]
+    fn bad_lists_are_errors() {
+        assert_eq!(
+            expand("g (state <s> ^a [b c) --> (<s> ^c d)"),
+            Err("gp syntax error, unmatched values bracket.")
+        );
+        assert_eq!(
+            expand("g (state <s> ^a []) --> (<s> ^c d)"),
+            Err("gp can't have empty value collections")
+        );
+    }
+}
