@@ -89,3 +89,27 @@ fn chunk_accepts_the_spellings_9_6_accepts() {
     assert!(out.contains("changes nothing in Soar 9.6"), "{out}");
     assert_eq!(learn_mode(&mut a), "except");
 }
+
+/// `excise` by kind and `ls` with an argument, as soar-sml 9.6.5 answers them.
+#[test]
+fn excise_by_kind_and_ls_take_9_6s_arguments() {
+    let mut a = Agent::default();
+    a.execute(
+        "sp {a (state <s> ^superstate nil) --> (<s> ^x 1)}
+         sp {b (state <s> ^superstate nil) --> (<s> ^y 1)}",
+    )
+    .unwrap();
+    // (The `*` marks of `sp` end their line first.)
+    assert_eq!(
+        a.execute("excise --chunks").unwrap().trim_start(),
+        "0 productions excised.\n"
+    );
+    assert_eq!(a.execute("excise -d").unwrap(), "0 productions excised.\n");
+    assert_eq!(a.production_count(), 2);
+    assert_eq!(a.execute("excise -u").unwrap(), "2 productions excised.\n");
+    assert_eq!(a.production_count(), 0);
+    assert_eq!(
+        a.execute("ls some-dir").unwrap_err().message(),
+        "Syntax: ls"
+    );
+}

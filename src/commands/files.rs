@@ -188,7 +188,14 @@ impl Interpreter {
         s
     }
 
+    /// `ls`: the working directory's entries. 9.6 takes no argument (`ls DIR` is its
+    /// "Syntax: ls" error, checked on soar-sml 9.6.5).
     pub(super) fn cmd_ls(&self, ctx: &Ctx) -> CmdResult {
+        if ctx.cmd.words.len() > 1 {
+            return Err(Diagnostic::error("Syntax: ls")
+                .at(ctx.arg_span(0))
+                .with_label("ls lists the working directory; `cd` there first"));
+        }
         let mut names: Vec<String> = std::fs::read_dir(&self.cwd)
             .map_err(|e| ctx.error(format!("ls: {e}")))?
             .filter_map(|e| e.ok())

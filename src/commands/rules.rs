@@ -4,7 +4,7 @@ use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::Added;
 use crate::commands::tokenizer::WordKind;
-use crate::production::{self, CompileOutput};
+use crate::production::{self, CompileOutput, Flags};
 use crate::source::Diagnostic;
 
 impl Interpreter {
@@ -314,13 +314,47 @@ impl Interpreter {
             opt('u', "user"),
         ];
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
-        if parsed.has("all") || parsed.has("user") || parsed.has("task") {
+        if parsed.has("all") {
             let n = self.agent.excise_all();
             self.report.excised += n;
-            return Ok(format!(
-                "{n} production{} excised.",
-                if n == 1 { "" } else { "s" }
-            ));
+            return Ok(excised_text(n));
+        }
+        if parsed.has("rl") {
+            return Err(super::not_yet(ctx, "excise --rl"));
+        }
+        // The kinds of rule an option names (Soar manual, chapter 9, `excise`): `--task` is
+        // every rule but the default ones.
+        let kinds: [(&str, fn(&Flags) -> bool); 5] = [
+            ("chunks", |f: &Flags| f.chunk),
+            ("default", |f: &Flags| f.default),
+            ("templates", |f: &Flags| f.template),
+            ("user", |f: &Flags| !f.chunk && !f.default),
+            ("task", |f: &Flags| !f.default),
+        ];
+        let wanted: Vec<fn(&Flags) -> bool> = kinds
+            .iter()
+            .filter(|(o, _)| parsed.has(o))
+            .map(|&(_, k)| k)
+            .collect();
+        let never_fired = parsed.has("never-fired");
+        if !wanted.is_empty() || never_fired {
+            let names: Vec<String> = self
+                .agent
+                .productions()
+                .filter(|p| {
+                    let fired = self
+                        .agent
+                        .loaded(&p.name)
+                        .is_some_and(|l| self.agent.firing_count(l.id) > 0);
+                    wanted.iter().any(|k| k(&p.flags)) || (never_fired && !fired)
+                })
+                .map(|p| p.name.clone())
+                .collect();
+            for name in &names {
+                self.agent.excise(name);
+            }
+            self.report.excised += names.len();
+            return Ok(excised_text(names.len()));
         }
         if parsed.args.is_empty() {
             return Err(ctx.error("excise: expected a production name or an option"));
@@ -336,11 +370,13 @@ impl Interpreter {
         }
         // `source` counts these in its "N productions excised." summary.
         self.report.excised += n;
-        Ok(format!(
-            "{n} production{} excised.",
-            if n == 1 { "" } else { "s" }
-        ))
+        Ok(excised_text(n))
     }
+}
+
+/// `excise`'s result, as 9.6 words it.
+fn excised_text(n: usize) -> String {
+    format!("{n} production{} excised.", if n == 1 { "" } else { "s" })
 }
 
 /// An identifier (`S1`) or a timetag: things `print` shows from working memory.
