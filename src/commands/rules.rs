@@ -324,14 +324,14 @@ impl Interpreter {
         }
         // The kinds of rule an option names (Soar manual, chapter 9, `excise`): `--task` is
         // every rule but the default ones.
-        let kinds: [(&str, fn(&Flags) -> bool); 5] = [
+        let kinds: [(&str, RuleKind); 5] = [
             ("chunks", |f: &Flags| f.chunk),
             ("default", |f: &Flags| f.default),
             ("templates", |f: &Flags| f.template),
             ("user", |f: &Flags| !f.chunk && !f.default),
             ("task", |f: &Flags| !f.default),
         ];
-        let wanted: Vec<fn(&Flags) -> bool> = kinds
+        let wanted: Vec<RuleKind> = kinds
             .iter()
             .filter(|(o, _)| parsed.has(o))
             .map(|&(_, k)| k)
@@ -373,6 +373,9 @@ impl Interpreter {
         Ok(excised_text(n))
     }
 }
+
+/// Whether a rule is of the kind an `excise` option names.
+type RuleKind = fn(&Flags) -> bool;
 
 /// `excise`'s result, as 9.6 words it.
 fn excised_text(n: usize) -> String {
