@@ -7,6 +7,7 @@ use crate::decide::state::SubstateLine;
 use crate::printer::{cond_text, cond_text_with};
 use crate::production::{test_text, Condition};
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use crate::wm::{Wme, WmeId};
 
 /// `(tt: id ^attr value[ +])`
@@ -334,10 +335,16 @@ impl AgentCore {
         }
     }
 
-    /// A phase header of trace level 2 (`trace -p`), printed as given.
-    pub(crate) fn trace_phase(&mut self, text: &str) {
+    /// Sends a trace event to the 9.6 text listener, which appends its text to `output`.
+    /// Callers build events only when the trace setting that shows them is on.
+    pub(crate) fn emit(&mut self, event: &TraceEvent<'_>) {
+        self.trace_text.write(&mut self.output, &self.symbols, event);
+    }
+
+    /// A phase header of trace level 2 (`trace -p`).
+    pub(crate) fn trace_phase(&mut self, event: TraceEvent<'_>) {
         if self.settings.trace.phases {
-            self.output.push_str(text);
+            self.emit(&event);
         }
     }
 
@@ -354,19 +361,16 @@ impl AgentCore {
         self.output.push('\n');
     }
 
-    /// `=>WM: (tt: id ^attr value)` or `<=WM: ...` (`trace -w`).
-    pub(crate) fn trace_wme(&mut self, arrow: &str, w: &Wme) {
-        if arrow.starts_with("<=") {
+    /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`).
+    pub(crate) fn trace_wme(&mut self, added: bool, w: &Wme) {
+        if !added {
             if let Some(buffer) = self.removed_wmes.as_mut() {
                 buffer.push(*w);
                 return;
             }
         }
         if self.settings.trace.wmes {
-            let text = wme_internal(self, w);
-            self.output.push_str(arrow);
-            self.output.push_str(&text);
-            self.output.push('\n');
+            self.emit(&TraceEvent::Wme { added, wme: w });
         }
     }
 }
@@ -381,7 +385,7 @@ impl AgentCore {
         if !self.settings.trace.waterfall {
             return;
         }
-        let (level, goal) = match level {
+        let event = match level {
             Some(l) => {
                 let goal = self
                     .decider
@@ -389,12 +393,17 @@ impl AgentCore {
                     .iter()
                     .find(|g| g.level == l)
                     .map_or(self.top.state, |g| g.state);
-                (l, self.symbols.text(goal))
+                TraceEvent::InnerElaboration {
+                    level: l,
+                    goal: Some(goal),
+                }
             }
-            None => (0, "#".to_string()),
+            None => TraceEvent::InnerElaboration {
+                level: 0,
+                goal: None,
+            },
         };
-        let s = format!("\n--- Inner Elaboration Phase, active level {level} goal {goal} ---\n");
-        self.output.push_str(&s);
+        self.emit(&event);
     }
 
     /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).
@@ -669,7 +678,7 @@ impl AgentCore {
         }
         lines.sort_by_key(|(r, _)| *r);
         for (_, w) in lines {
-            self.trace_wme("<=WM: ", &w);
+            self.trace_wme(false, &w);
         }
     }
 }
