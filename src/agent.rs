@@ -426,6 +426,8 @@ pub struct AgentCore {
     /// Whether the print stream stood at the start of a line when `output` was last taken
     /// (9.6 starts some trace lines on a fresh line only).
     pub output_line_start: bool,
+    /// The default trace listener: writes the trace events as 9.6's text into `output`.
+    pub(crate) trace_text: crate::trace_text::TraceText96,
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
@@ -473,6 +475,7 @@ impl AgentCore {
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
             output_line_start: false,
+            trace_text: crate::trace_text::TraceText96,
             removed_wmes: None,
             substate_removals: Vec::new(),
             substates_by_gds: false,

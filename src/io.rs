@@ -301,14 +301,14 @@ impl AgentCore {
                 continue;
             };
             self.match_new_wme(w, &wme);
-            self.trace_wme("=>WM: ", &wme);
+            self.trace_wme(true, &wme);
         }
         for change in queue.iter().rev() {
             let InputChange::Remove(w) = *change else {
                 continue;
             };
             if let Some(wme) = self.remove_wme(w) {
-                self.trace_wme("<=WM: ", &wme);
+                self.trace_wme(false, &wme);
             }
         }
         if batch {

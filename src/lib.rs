@@ -17,8 +17,29 @@ macro_rules! kernel_modules {
 }
 
 kernel_modules!(
-    agent, ast, commands, decide, events, inputs, io, learn, lexer, parser, printer, production,
-    rete, rhs, rng, source, stdlib, symbols, trace, value, wm,
+    agent,
+    ast,
+    commands,
+    decide,
+    events,
+    inputs,
+    io,
+    learn,
+    lexer,
+    parser,
+    printer,
+    production,
+    rete,
+    rhs,
+    rng,
+    source,
+    stdlib,
+    symbols,
+    trace,
+    trace_events,
+    trace_text,
+    value,
+    wm,
 );
 
 mod api;

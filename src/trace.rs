@@ -7,6 +7,7 @@ use crate::decide::state::SubstateLine;
 use crate::printer::{cond_text, cond_text_with};
 use crate::production::{test_text, Condition};
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use crate::wm::{Wme, WmeId};
 
 /// `(tt: id ^attr value[ +])`
@@ -253,68 +254,45 @@ pub fn match_wme_lines(agent: &AgentCore, ws: &[WmeId]) -> String {
         .join("\n ")
 }
 
-/// The character of a preference type in traces (`+`, `-`, `!`, `~`, `=`, `>`, `<`).
-pub fn pref_type_char(k: crate::decide::procedure::PrefType) -> char {
-    use crate::decide::procedure::PrefType;
-    match k {
-        PrefType::Acceptable => '+',
-        PrefType::Require => '!',
-        PrefType::Reject => '-',
-        PrefType::Prohibit => '~',
-        PrefType::UnaryIndifferent | PrefType::BinaryIndifferent => '=',
-        PrefType::NumericIndifferent => '=',
-        PrefType::Best | PrefType::Better => '>',
-        PrefType::Worst | PrefType::Worse => '<',
-    }
+/// A preference as the level-5 trace shows it (see `trace_text::pref_text`).
+pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) -> String {
+    let mut out = String::new();
+    crate::trace_text::pref_text(
+        &mut out,
+        &agent.symbols,
+        p,
+        pref_level(agent, p),
+        pref_rule(agent, p),
+    );
+    out
 }
 
-/// A preference as the level-5 trace shows it,
-/// `(S1 ^count 0 +  :O ) [level 2] (rule)`: the referent of a binary or numeric preference
-/// after the type, `  :O ` for o-support, the level of its identifier below the top state,
-/// and the rule whose firing made it.
-pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) -> String {
+/// The level a preference is traced at: 9.6 prints the level of the instantiation's goal
+/// (a result made in a substate says `[level 2]` though its id is on the top state).
+fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
     let s = &agent.symbols;
-    let mut out = format!(
-        "({} ^{} {} {}",
-        s.text(p.id),
-        s.text(p.attr),
-        s.text(p.value),
-        pref_type_char(p.kind)
-    );
-    if let Some(r) = p.referent {
-        out.push(' ');
-        out.push_str(&s.text(r));
-    }
-    if p.o_support {
-        out.push_str("  :O ");
-    }
-    out.push(')');
-    // 9.6 prints the level of the instantiation's goal (a result made in a substate says
-    // `[level 2]` though its id is on the top state).
     let goal_level = p
         .inst
         .and_then(|i| agent.decider.insts[i as usize].goal)
         .and_then(|g| s.id_data(g))
         .map(|d| d.level);
-    let level = goal_level.unwrap_or_else(|| s.id_data(p.id).map_or(1, |d| d.level));
-    if level > 1 {
-        out.push_str(&format!(" [level {level}]"));
-    }
+    goal_level.unwrap_or_else(|| s.id_data(p.id).map_or(1, |d| d.level))
+}
+
+/// The justification or rule whose firing made a preference.
+fn pref_rule<'a>(agent: &'a AgentCore, p: &crate::decide::state::Preference) -> Option<&'a str> {
     let justification = p
         .inst
         .map(|i| agent.decider.insts[i as usize].serial)
         .filter(|&serial| serial != 0)
         .and_then(|serial| agent.learn.justification_names.get(&serial));
-    let rule = p
-        .inst
-        .map(|i| agent.decider.insts[i as usize].prod)
-        .or(p.rule);
     if let Some(name) = justification {
-        out.push_str(&format!(" ({name})"));
-    } else if let Some(prod) = rule {
-        out.push_str(&format!(" ({})", agent.production_name(prod)));
+        return Some(name.as_str());
     }
-    out
+    p.inst
+        .map(|i| agent.decider.insts[i as usize].prod)
+        .or(p.rule)
+        .map(|prod| agent.production_name(prod))
 }
 
 impl AgentCore {
@@ -334,10 +312,24 @@ impl AgentCore {
         }
     }
 
-    /// A phase header of trace level 2 (`trace -p`), printed as given.
-    pub(crate) fn trace_phase(&mut self, text: &str) {
+    /// Sends a trace event to the 9.6 text listener, which appends its text to `output`.
+    /// Callers build events only when the trace setting that shows them is on.
+    pub(crate) fn emit(&mut self, event: &TraceEvent<'_>) {
+        self.trace_text
+            .write(&mut self.output, self.output_line_start, &self.symbols, event);
+    }
+
+    /// Writes a trace event that borrows the agent's memories into `out`, the print
+    /// stream set aside for the while (`std::mem::take`, which does not allocate).
+    pub(crate) fn write_event(&self, out: &mut String, event: &TraceEvent<'_>) {
+        self.trace_text
+            .write(out, self.output_line_start, &self.symbols, event);
+    }
+
+    /// A phase header of trace level 2 (`trace -p`).
+    pub(crate) fn trace_phase(&mut self, event: TraceEvent<'_>) {
         if self.settings.trace.phases {
-            self.output.push_str(text);
+            self.emit(&event);
         }
     }
 
@@ -346,27 +338,28 @@ impl AgentCore {
         if !self.settings.trace.preferences {
             return;
         }
-        let text = pref_trace_text(self, &self.decider.prefs[pid as usize]);
-        self.fresh_line();
-        self.output.push(sign);
-        self.output.push(' ');
-        self.output.push_str(&text);
-        self.output.push('\n');
+        let mut out = std::mem::take(&mut self.output);
+        let pref = &self.decider.prefs[pid as usize];
+        let event = TraceEvent::Preference {
+            added: sign == '+',
+            pref,
+            level: pref_level(self, pref),
+            rule: pref_rule(self, pref),
+        };
+        self.write_event(&mut out, &event);
+        self.output = out;
     }
 
-    /// `=>WM: (tt: id ^attr value)` or `<=WM: ...` (`trace -w`).
-    pub(crate) fn trace_wme(&mut self, arrow: &str, w: &Wme) {
-        if arrow.starts_with("<=") {
+    /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`).
+    pub(crate) fn trace_wme(&mut self, added: bool, w: &Wme) {
+        if !added {
             if let Some(buffer) = self.removed_wmes.as_mut() {
                 buffer.push(*w);
                 return;
             }
         }
         if self.settings.trace.wmes {
-            let text = wme_internal(self, w);
-            self.output.push_str(arrow);
-            self.output.push_str(&text);
-            self.output.push('\n');
+            self.emit(&TraceEvent::Wme { added, wme: w });
         }
     }
 }
@@ -381,7 +374,7 @@ impl AgentCore {
         if !self.settings.trace.waterfall {
             return;
         }
-        let (level, goal) = match level {
+        let event = match level {
             Some(l) => {
                 let goal = self
                     .decider
@@ -389,12 +382,17 @@ impl AgentCore {
                     .iter()
                     .find(|g| g.level == l)
                     .map_or(self.top.state, |g| g.state);
-                (l, self.symbols.text(goal))
+                TraceEvent::InnerElaboration {
+                    level: l,
+                    goal: Some(goal),
+                }
             }
-            None => (0, "#".to_string()),
+            None => TraceEvent::InnerElaboration {
+                level: 0,
+                goal: None,
+            },
         };
-        let s = format!("\n--- Inner Elaboration Phase, active level {level} goal {goal} ---\n");
-        self.output.push_str(&s);
+        self.emit(&event);
     }
 
     /// `Retracting rule` (`-u` and the like) and the preferences that go with it (`-r`).
@@ -424,7 +422,7 @@ impl AgentCore {
             .production_arc(&name)
             .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
         if traced {
-            self.output.push_str(&format!("\nRetracting {name}\n"));
+            self.emit(&TraceEvent::Retraction { rule: &name });
             let (p, t) = {
                 let i = &self.decider.insts[inst as usize];
                 (i.prod, i.token)
@@ -469,8 +467,12 @@ impl AgentCore {
             return;
         };
         if self.settings.trace.firings_of(&j.production.flags) {
-            let line = format!("\nRetracting {}\n", j.production.name);
-            self.output.push_str(&line);
+            let mut out = std::mem::take(&mut self.output);
+            let event = TraceEvent::Retraction {
+                rule: &j.production.name,
+            };
+            self.write_event(&mut out, &event);
+            self.output = out;
         }
         self.trace_retracted_prefs(inst);
     }
@@ -522,10 +524,7 @@ impl AgentCore {
             .get(&key)
             .and_then(|s| s.wmes.get(&(op, true)))
             .and_then(|w| self.wm.get(w).copied());
-        let text = w.map(|w| wme_internal(self, &w)).unwrap_or_default();
-        self.output.push_str(&format!(
-            "\n        REMOVING: Operator from context slot (proposal no longer matches): {text}\n"
-        ));
+        self.emit(&TraceEvent::OperatorRemoval { wme: w.as_ref() });
     }
 }
 
@@ -548,11 +547,7 @@ impl AgentCore {
                 continue;
             }
             reported = Some(level);
-            let g = self.symbols.text(goal);
-            let text = wme_internal(self, &wme);
-            self.output.push_str(&format!(
-                "Removing state {g} because element in GDS changed. WME: {text}\n\n    REMOVING GOAL [{g}] due to change in GDS WME {text}\n"
-            ));
+            self.emit(&TraceEvent::GdsRemoval { goal, wme: &wme });
         }
     }
 }
@@ -574,15 +569,10 @@ impl AgentCore {
             .into_iter()
             .filter_map(|w| self.wm.get(w).copied())
             .collect();
-        for w in wmes {
-            if detail == crate::agent::WmeDetail::Full {
-                let text = wme_internal(self, &w);
-                self.output.push_str(&format!(" {text}\n"));
-            } else {
-                self.output.push_str(&format!(" {}", w.timetag));
-            }
-        }
-        self.output.push_str(" -->\n");
+        self.emit(&TraceEvent::MatchWmes {
+            wmes: &wmes,
+            full: detail == crate::agent::WmeDetail::Full,
+        });
     }
 
     /// The instantiation's preferences, one a line, newest first (with `--timetags` or
@@ -591,16 +581,14 @@ impl AgentCore {
         if self.settings.trace.wme_detail == crate::agent::WmeDetail::None {
             return;
         }
+        // Without its instantiation: at its identifier's level, with no rule.
+        let mut out = std::mem::take(&mut self.output);
         for &pid in prefs.iter().rev() {
-            let mut bare = self.decider.prefs[pid as usize].clone();
-            bare.inst = None;
-            bare.rule = None;
-            let text = pref_trace_text(self, &bare);
-            self.fresh_line();
-            self.output.push(' ');
-            self.output.push_str(&text);
-            self.output.push('\n');
+            let pref = &self.decider.prefs[pid as usize];
+            let level = self.symbols.id_data(pref.id).map_or(1, |d| d.level);
+            self.write_event(&mut out, &TraceEvent::InstantiationPreference { pref, level });
         }
+        self.output = out;
     }
 }
 
@@ -669,7 +657,7 @@ impl AgentCore {
         }
         lines.sort_by_key(|(r, _)| *r);
         for (_, w) in lines {
-            self.trace_wme("<=WM: ", &w);
+            self.trace_wme(false, &w);
         }
     }
 }

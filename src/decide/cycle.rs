@@ -19,6 +19,7 @@ use super::state::{Goal, InstId, Phase};
 use crate::agent::AgentCore;
 use crate::events::AgentEvent;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 
 /// How far `run` goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -141,16 +142,16 @@ impl AgentCore {
         self.learn.dupes_this_phase.clear();
         match phase {
             Phase::Input => {
-                self.trace_phase("\n--- Input Phase --- \n");
+                self.trace_phase(TraceEvent::PhaseBegin(Phase::Input));
                 self.run_input_callbacks();
                 self.apply_input_changes();
                 self.classify_new_matches();
-                self.trace_phase("\n--- END Input Phase --- \n");
+                self.trace_phase(TraceEvent::PhaseEnd(Phase::Input));
                 self.decider.phase = Some(Phase::Propose);
             }
             Phase::Propose => {
                 if !self.decider.phase_started {
-                    self.trace_phase("\n--- Propose Phase ---\n");
+                    self.trace_phase(TraceEvent::PhaseBegin(Phase::Propose));
                     self.decider.e_cycles_this_phase = 0;
                     self.decider.phase_started = true;
                 }
@@ -169,22 +170,22 @@ impl AgentCore {
                 // A halt with firings still pending ends the phase without its END line
                 // (checked on 9.6).
                 if !(self.decider.halted && self.has_pending(false)) {
-                    self.trace_phase("\n--- END Propose Phase ---\n");
+                    self.trace_phase(TraceEvent::PhaseEnd(Phase::Propose));
                 }
                 self.decider.phase = Some(Phase::Decide);
             }
             Phase::Decide => {
-                self.trace_phase("\n--- Decision Phase ---\n");
+                self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
                 self.decide_context_slots();
                 self.classify_new_matches();
-                self.trace_phase("\n--- END Decision Phase ---\n");
+                self.trace_phase(TraceEvent::PhaseEnd(Phase::Decide));
                 self.decider.decisions += 1;
                 self.decider.e_cycles_this_phase = 0;
                 self.decider.phase = Some(Phase::Apply);
             }
             Phase::Apply => {
                 if !self.decider.phase_started {
-                    self.trace_phase("\n--- Application Phase ---\n");
+                    self.trace_phase(TraceEvent::PhaseBegin(Phase::Apply));
                     self.decider.phase_started = true;
                 }
                 while self.has_pending_in_apply() && !self.decider.halted {
@@ -200,14 +201,14 @@ impl AgentCore {
                 }
                 self.decider.phase_started = false;
                 if !(self.decider.halted && self.has_pending(true)) {
-                    self.trace_phase("\n--- END Application Phase ---\n");
+                    self.trace_phase(TraceEvent::PhaseEnd(Phase::Apply));
                 }
                 self.decider.phase = Some(Phase::Output);
             }
             Phase::Output => {
-                self.trace_phase("\n--- Output Phase ---\n");
+                self.trace_phase(TraceEvent::PhaseBegin(Phase::Output));
                 self.run_output_callbacks();
-                self.trace_phase("\n--- END Output Phase ---\n");
+                self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
                 self.decider.phase = Some(Phase::Input);
             }

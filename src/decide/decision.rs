@@ -74,7 +74,7 @@ impl AgentCore {
                     self.remove_goals_below(gi);
                     let w = self.add_wme(goal.state, op, o, false);
                     if let Some(wme) = self.wm.get(w).copied() {
-                        self.trace_wme("=>WM: ", &wme);
+                        self.trace_wme(true, &wme);
                     }
                     self.classify_new_matches();
                     self.decider.wme_changes += 1;

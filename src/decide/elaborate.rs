@@ -9,6 +9,7 @@ use super::scratch::Queued;
 use super::state::{InstId, Phase};
 use crate::agent::AgentCore;
 use crate::rete::{ProdId, TokId};
+use crate::trace_events::TraceEvent;
 
 impl AgentCore {
     /// Decides the support of the matches made since the last call, as 9.6's matcher does
@@ -118,11 +119,10 @@ impl AgentCore {
         };
         self.decider.pe_cycles += u64::from(o_support);
         if apply && self.settings.trace.phases {
-            let kind = if o_support { "PE" } else { "IE" };
-            let depth = top.unwrap_or(0);
-            self.out(&format!(
-                "\t--- Firing Productions ({kind}) For State At Depth {depth} ---\n"
-            ));
+            self.emit(&TraceEvent::FiringProductions {
+                o_support,
+                depth: top.unwrap_or(0),
+            });
         }
         // Inner elaboration: each goal with activity, from the active one down, fires its
         // matches of the firing type; below the active goal a match whose actions would
@@ -206,8 +206,7 @@ impl AgentCore {
             self.retract(inst);
         }
         if apply && self.settings.trace.phases {
-            let kind = if o_support { "PE" } else { "IE" };
-            self.trace_phase(&format!("\t--- Change Working Memory ({kind}) ---\n"));
+            self.emit(&TraceEvent::ChangeWorkingMemory { o_support });
         }
         now.clear();
         retracted.clear();

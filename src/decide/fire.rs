@@ -33,8 +33,12 @@ impl AgentCore {
         self.send_rule_event(p, false);
         let traced = self.settings.trace.firings_of(&rule.flags);
         if traced {
-            let s = format!("\nFiring {}\n", self.production_name(p));
-            self.out(&s);
+            let mut out = std::mem::take(&mut self.output);
+            let event = crate::trace_events::TraceEvent::Firing {
+                rule: self.production_name(p),
+            };
+            self.write_event(&mut out, &event);
+            self.output = out;
             self.trace_match_wmes(p, t);
         }
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);

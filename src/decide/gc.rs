@@ -113,7 +113,7 @@ impl AgentCore {
             }
         }
         for wme in removed_lines.iter().rev() {
-            self.trace_wme("<=WM: ", wme);
+            self.trace_wme(false, wme);
         }
         // What these removals point at was all collected above.
         self.decider.gc_candidates.clear();

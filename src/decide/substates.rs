@@ -16,7 +16,7 @@ impl AgentCore {
         let lines = self.substate_lines(gi);
         let memories = lines.iter().take_while(|(group, _)| *group <= 2).count();
         for (_, wme) in &lines[..memories] {
-            self.trace_wme("<=WM: ", wme);
+            self.trace_wme(false, wme);
         }
         // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
         // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
@@ -24,10 +24,10 @@ impl AgentCore {
         let mut made = self.substate_slot_wmes(gi);
         made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
         for (_, wme) in made {
-            self.trace_wme("<=WM: ", &wme);
+            self.trace_wme(false, &wme);
         }
         for (_, wme) in &lines[memories..] {
-            self.trace_wme("<=WM: ", wme);
+            self.trace_wme(false, wme);
         }
     }
 
@@ -233,7 +233,7 @@ impl AgentCore {
         self.decider.wme_changes += wmes.len() as u64;
         for &w in wmes.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
-                self.trace_wme("=>WM: ", &wme);
+                self.trace_wme(true, &wme);
                 self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
             }
         }

@@ -202,7 +202,7 @@ impl AgentCore {
         let mut traced_adds = Vec::new();
         for &w in added.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
-                self.trace_wme("=>WM: ", &wme);
+                self.trace_wme(true, &wme);
                 if self.settings.trace.wmes {
                     traced_adds.push(wme);
                 }
@@ -278,7 +278,7 @@ impl AgentCore {
         let Some(wme) = self.wm.get(w).copied() else {
             return;
         };
-        self.trace_wme("<=WM: ", &wme);
+        self.trace_wme(false, &wme);
         let key = (wme.id, wme.attr);
         if let Some(id) = self.decider.slots.id_of(&key) {
             let slots = &mut self.decider.slots;

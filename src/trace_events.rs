@@ -1,0 +1,51 @@
+//! The decision cycle's trace as typed events (Soar manual, chapter 9, "trace"): the
+//! kernel says what happened, at the moment it happens and only when the trace setting
+//! that shows it is on; a listener turns each event into text. The default listener,
+//! `trace_text`, prints Soar 9.6's trace; another one (a debugger's view, a program's
+//! callback) can read the same events without parsing that text.
+
+use crate::decide::state::{Phase, Preference};
+use crate::symbols::Sym;
+use crate::wm::Wme;
+
+/// One line (or header) of the decision cycle's trace.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum TraceEvent<'a> {
+    /// A phase begins (`trace --phases`).
+    PhaseBegin(Phase),
+    /// A phase ends (`trace --phases`).
+    PhaseEnd(Phase),
+    /// The apply phase fires one elaboration cycle's productions: all o-supported (PE)
+    /// or not (IE), at the goal of this depth (`trace --phases`).
+    FiringProductions { o_support: bool, depth: u32 },
+    /// The apply phase's elaboration cycle changes working memory (`trace --phases`).
+    ChangeWorkingMemory { o_support: bool },
+    /// The firings of one goal in an elaboration cycle begin (`trace --waterfall`); no
+    /// goal when only the retractions of goals that are gone are pending.
+    InnerElaboration { level: u32, goal: Option<Sym> },
+    /// A WME enters (`added`) or leaves working memory (`trace --wmes`).
+    Wme { added: bool, wme: &'a Wme },
+    /// A preference is asserted (`added`) or retracted (`trace --preferences`), at the
+    /// level of the goal it was made for, with the rule or justification that made it.
+    Preference {
+        added: bool,
+        pref: &'a Preference,
+        level: u32,
+        rule: Option<&'a str>,
+    },
+    /// One of a traced firing's or retraction's preferences (`trace --timetags` or
+    /// `--fullwmes`), at its identifier's level.
+    InstantiationPreference { pref: &'a Preference, level: u32 },
+    /// A traced rule fires (`trace --rules` and the other firing settings).
+    Firing { rule: &'a str },
+    /// A traced rule or justification retracts.
+    Retraction { rule: &'a str },
+    /// The WMEs a traced firing or retraction matched: timetags only, or in `full`
+    /// (`trace --timetags`, `--fullwmes`).
+    MatchWmes { wmes: &'a [Wme], full: bool },
+    /// A selected operator leaves its slot because its proposal no longer matches
+    /// (`trace --consistency`).
+    OperatorRemoval { wme: Option<&'a Wme> },
+    /// A substate goes because a WME of its goal dependency set changed (`trace --gds`).
+    GdsRemoval { goal: Sym, wme: &'a Wme },
+}

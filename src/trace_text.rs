@@ -1,0 +1,211 @@
+//! The 9.6 text listener: Soar 9.6's trace text for each trace event, byte for byte as
+//! the official kernel prints it (Soar manual, chapter 9, "trace"). The agent owns one as
+//! its default listener and appends what it writes to its print stream.
+
+use crate::decide::procedure::PrefType;
+use crate::decide::state::{Phase, Preference};
+use crate::symbols::Symbols;
+use crate::trace_events::TraceEvent;
+use crate::wm::Wme;
+use std::fmt::Write;
+
+/// Writes trace events as Soar 9.6's trace text.
+#[derive(Debug, Default, Clone, Copy)]
+pub(crate) struct TraceText96;
+
+impl TraceText96 {
+    /// Appends the text of `event` to `out`; `line_start` says whether the print stream
+    /// stands at the start of a line when `out` is empty (its text was taken).
+    pub(crate) fn write(
+        &self,
+        out: &mut String,
+        line_start: bool,
+        symbols: &Symbols,
+        event: &TraceEvent<'_>,
+    ) {
+        match *event {
+            TraceEvent::PhaseBegin(phase) => out.push_str(phase_begin(phase)),
+            TraceEvent::PhaseEnd(phase) => out.push_str(phase_end(phase)),
+            TraceEvent::FiringProductions { o_support, depth } => {
+                let _ = writeln!(
+                    out,
+                    "\t--- Firing Productions ({}) For State At Depth {depth} ---",
+                    pe_or_ie(o_support)
+                );
+            }
+            TraceEvent::ChangeWorkingMemory { o_support } => {
+                let _ = writeln!(
+                    out,
+                    "\t--- Change Working Memory ({}) ---",
+                    pe_or_ie(o_support)
+                );
+            }
+            TraceEvent::InnerElaboration { level, goal } => {
+                let goal = goal.map_or_else(|| "#".to_string(), |g| symbols.text(g));
+                let _ = writeln!(
+                    out,
+                    "\n--- Inner Elaboration Phase, active level {level} goal {goal} ---"
+                );
+            }
+            TraceEvent::Wme { added, wme } => {
+                out.push_str(if added { "=>WM: " } else { "<=WM: " });
+                wme_text(out, symbols, wme);
+                out.push('\n');
+            }
+            TraceEvent::Preference {
+                added,
+                pref,
+                level,
+                rule,
+            } => {
+                fresh_line(out, line_start);
+                out.push_str(if added { "+ " } else { "- " });
+                pref_text(out, symbols, pref, level, rule);
+                out.push('\n');
+            }
+            TraceEvent::InstantiationPreference { pref, level } => {
+                fresh_line(out, line_start);
+                out.push(' ');
+                pref_text(out, symbols, pref, level, None);
+                out.push('\n');
+            }
+            TraceEvent::Firing { rule } => {
+                let _ = write!(out, "\nFiring {rule}\n");
+            }
+            TraceEvent::Retraction { rule } => {
+                let _ = write!(out, "\nRetracting {rule}\n");
+            }
+            TraceEvent::MatchWmes { wmes, full } => {
+                for w in wmes {
+                    out.push(' ');
+                    if full {
+                        wme_text(out, symbols, w);
+                        out.push('\n');
+                    } else {
+                        let _ = write!(out, "{}", w.timetag);
+                    }
+                }
+                out.push_str(" -->\n");
+            }
+            TraceEvent::OperatorRemoval { wme } => {
+                out.push_str(
+                    "\n        REMOVING: Operator from context slot (proposal no longer matches): ",
+                );
+                if let Some(w) = wme {
+                    wme_text(out, symbols, w);
+                }
+                out.push('\n');
+            }
+            TraceEvent::GdsRemoval { goal, wme } => {
+                let g = symbols.text(goal);
+                let _ = write!(out, "Removing state {g} because element in GDS changed. WME: ");
+                wme_text(out, symbols, wme);
+                let _ = write!(out, "\n\n    REMOVING GOAL [{g}] due to change in GDS WME ");
+                wme_text(out, symbols, wme);
+                out.push('\n');
+            }
+        }
+    }
+}
+
+/// A newline unless the stream stands at the start of a line (9.6's fresh line).
+fn fresh_line(out: &mut String, line_start: bool) {
+    let at_start = match out.as_bytes().last() {
+        Some(&b) => b == b'\n',
+        None => line_start,
+    };
+    if !at_start {
+        out.push('\n');
+    }
+}
+
+/// The character of a preference type in traces (`+`, `-`, `!`, `~`, `=`, `>`, `<`).
+pub(crate) fn pref_type_char(k: PrefType) -> char {
+    match k {
+        PrefType::Acceptable => '+',
+        PrefType::Require => '!',
+        PrefType::Reject => '-',
+        PrefType::Prohibit => '~',
+        PrefType::UnaryIndifferent | PrefType::BinaryIndifferent => '=',
+        PrefType::NumericIndifferent => '=',
+        PrefType::Best | PrefType::Better => '>',
+        PrefType::Worst | PrefType::Worse => '<',
+    }
+}
+
+/// A preference as the level-5 trace shows it, `(S1 ^count 0 +  :O ) [level 2] (rule)`:
+/// the referent of a binary or numeric preference after the type, `  :O ` for o-support,
+/// the level when below the top state, and the rule whose firing made it.
+pub(crate) fn pref_text(
+    out: &mut String,
+    symbols: &Symbols,
+    p: &Preference,
+    level: u32,
+    rule: Option<&str>,
+) {
+    let _ = write!(
+        out,
+        "({} ^{} {} {}",
+        symbols.text(p.id),
+        symbols.text(p.attr),
+        symbols.text(p.value),
+        pref_type_char(p.kind)
+    );
+    if let Some(r) = p.referent {
+        out.push(' ');
+        out.push_str(&symbols.text(r));
+    }
+    if p.o_support {
+        out.push_str("  :O ");
+    }
+    out.push(')');
+    if level > 1 {
+        let _ = write!(out, " [level {level}]");
+    }
+    if let Some(name) = rule {
+        let _ = write!(out, " ({name})");
+    }
+}
+
+/// `(tt: id ^attr value[ +])`, as `print --internal` shows a WME.
+fn wme_text(out: &mut String, symbols: &Symbols, w: &Wme) {
+    let _ = write!(
+        out,
+        "({}: {} ^{} {}{})",
+        w.timetag,
+        symbols.text(w.id),
+        symbols.text(w.attr),
+        symbols.text(w.value),
+        if w.acceptable { " +" } else { "" }
+    );
+}
+
+fn pe_or_ie(o_support: bool) -> &'static str {
+    if o_support {
+        "PE"
+    } else {
+        "IE"
+    }
+}
+
+// The input phase's lines end in a space before the newline; the others do not
+// (observed on 9.6).
+fn phase_begin(phase: Phase) -> &'static str {
+    match phase {
+        Phase::Input => "\n--- Input Phase --- \n",
+        Phase::Propose => "\n--- Propose Phase ---\n",
+        Phase::Decide => "\n--- Decision Phase ---\n",
+        Phase::Apply => "\n--- Application Phase ---\n",
+        Phase::Output => "\n--- Output Phase ---\n",
+    }
+}
+
+fn phase_end(phase: Phase) -> &'static str {
+    match phase {
+        Phase::Input => "\n--- END Input Phase --- \n",
+        Phase::Propose => "\n--- END Propose Phase ---\n",
+        Phase::Decide => "\n--- END Decision Phase ---\n",
+        Phase::Apply => "\n--- END Application Phase ---\n",
+        Phase::Output => "\n--- END Output Phase ---\n",
+    }
+}
