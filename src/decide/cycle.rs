@@ -42,8 +42,12 @@ impl AgentCore {
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
     pub fn print_initial_state(&mut self) {
         if self.settings.trace.decisions {
-            let s = format!("\n{:>6}: ==>S: {} ", 0, self.symbols.text(self.top.state));
-            self.out(&s);
+            self.emit(&TraceEvent::State {
+                cycle: 0,
+                level: 1,
+                state: self.top.state,
+                impasse: None,
+            });
         }
     }
 
