@@ -66,4 +66,12 @@ pub(crate) enum TraceEvent<'a> {
         state: Sym,
         impasse: Option<(ImpasseKind, bool)>,
     },
+    /// The run stops because the agent halted or reached max-goal-depth.
+    SystemHalted,
+    /// The substate below a goal goes with the operator that left its slot (`trace
+    /// --consistency`).
+    OperatorRemovalSubstate { state: Sym },
+    /// The substates below `goal` go because its decision no longer agrees with the
+    /// preferences (`trace --consistency`); `empty_slot` when no operator was selected.
+    InconsistentDecision { goal: Sym, empty_slot: bool },
 }

@@ -141,6 +141,29 @@ impl TraceText96 {
                     impasse_text(out, kind, on_operator);
                 }
             }
+            TraceEvent::SystemHalted => out.push_str("\nSystem halted."),
+            TraceEvent::OperatorRemovalSubstate { state } => {
+                let s = symbols.text(state);
+                let _ = writeln!(out, "Removing state {s} because of an operator removal.");
+            }
+            TraceEvent::InconsistentDecision { goal, empty_slot } => {
+                let g = symbols.text(goal);
+                let _ = writeln!(
+                    out,
+                    "Removing substates of {g} because the operator last selected in {g} is not\nconsistent with the current preferences."
+                );
+                // 9.6's `REMOVING CONTEXT SLOT` line only when no operator was selected.
+                if empty_slot {
+                    let _ = writeln!(
+                        out,
+                        "\n       REMOVING CONTEXT SLOT: Slot Identifier [{g}] and attribute [operator]"
+                    );
+                }
+                let _ = writeln!(
+                    out,
+                    "\n          Decision for goal [{g}] is inconsistent.  Replacing it with...."
+                );
+            }
         }
     }
 }

@@ -98,7 +98,7 @@ impl AgentCore {
             }
         }
         if (self.decider.halted || self.decider.depth_exceeded) && self.decider.phase.is_some() {
-            self.out("\nSystem halted.");
+            self.emit(&TraceEvent::SystemHalted);
         }
         (
             self.decider.decisions - start_dc,
