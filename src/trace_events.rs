@@ -4,7 +4,7 @@
 //! `trace_text`, prints Soar 9.6's trace; another one (a debugger's view, a program's
 //! callback) can read the same events without parsing that text.
 
-use crate::decide::state::{Phase, Preference};
+use crate::decide::state::{ImpasseKind, Phase, Preference};
 use crate::symbols::Sym;
 use crate::wm::Wme;
 
@@ -48,4 +48,30 @@ pub(crate) enum TraceEvent<'a> {
     OperatorRemoval { wme: Option<&'a Wme> },
     /// A substate goes because a WME of its goal dependency set changed (`trace --gds`).
     GdsRemoval { goal: Sym, wme: &'a Wme },
+    /// An operator is selected for the goal at `level` in decision `cycle` (`trace
+    /// --decisions`), with its `^name` values.
+    Operator {
+        cycle: u64,
+        level: u32,
+        operator: Sym,
+        names: &'a [String],
+    },
+    /// A state in the goal stack (`trace --decisions`): a new substate with its impasse
+    /// (on the operator slot when the flag says so), the bottom state again while it
+    /// waits out a state no-change, or the top state, with no impasse, at creation and
+    /// `init-soar` (cycle 0).
+    State {
+        cycle: u64,
+        level: u32,
+        state: Sym,
+        impasse: Option<(ImpasseKind, bool)>,
+    },
+    /// The run stops because the agent halted or reached max-goal-depth.
+    SystemHalted,
+    /// The substate below a goal goes with the operator that left its slot (`trace
+    /// --consistency`).
+    OperatorRemovalSubstate { state: Sym },
+    /// The substates below `goal` go because its decision no longer agrees with the
+    /// preferences (`trace --consistency`); `empty_slot` when no operator was selected.
+    InconsistentDecision { goal: Sym, empty_slot: bool },
 }

@@ -3,7 +3,7 @@
 //! its default listener and appends what it writes to its print stream.
 
 use crate::decide::procedure::PrefType;
-use crate::decide::state::{Phase, Preference};
+use crate::decide::state::{ImpasseKind, Phase, Preference};
 use crate::symbols::Symbols;
 use crate::trace_events::TraceEvent;
 use crate::wm::Wme;
@@ -104,8 +104,86 @@ impl TraceText96 {
                 wme_text(out, symbols, wme);
                 out.push('\n');
             }
+            TraceEvent::Operator {
+                cycle,
+                level,
+                operator,
+                names,
+            } => {
+                decision_prefix(out, cycle, level);
+                out.push_str("   O: ");
+                out.push_str(&symbols.text(operator));
+                if names.is_empty() {
+                    // 9.6 leaves the separating space when the operator has no name.
+                    out.push(' ');
+                } else {
+                    out.push_str(" (");
+                    for (i, n) in names.iter().enumerate() {
+                        if i > 0 {
+                            out.push(' ');
+                        }
+                        out.push_str(n);
+                    }
+                    out.push(')');
+                }
+            }
+            TraceEvent::State {
+                cycle,
+                level,
+                state,
+                impasse,
+            } => {
+                decision_prefix(out, cycle, level);
+                out.push_str("==>S: ");
+                out.push_str(&symbols.text(state));
+                out.push(' ');
+                if let Some((kind, on_operator)) = impasse {
+                    impasse_text(out, kind, on_operator);
+                }
+            }
+            TraceEvent::SystemHalted => out.push_str("\nSystem halted."),
+            TraceEvent::OperatorRemovalSubstate { state } => {
+                let s = symbols.text(state);
+                let _ = writeln!(out, "Removing state {s} because of an operator removal.");
+            }
+            TraceEvent::InconsistentDecision { goal, empty_slot } => {
+                let g = symbols.text(goal);
+                let _ = writeln!(
+                    out,
+                    "Removing substates of {g} because the operator last selected in {g} is not\nconsistent with the current preferences."
+                );
+                // 9.6's `REMOVING CONTEXT SLOT` line only when no operator was selected.
+                if empty_slot {
+                    let _ = writeln!(
+                        out,
+                        "\n       REMOVING CONTEXT SLOT: Slot Identifier [{g}] and attribute [operator]"
+                    );
+                }
+                let _ = writeln!(
+                    out,
+                    "\n          Decision for goal [{g}] is inconsistent.  Replacing it with...."
+                );
+            }
         }
     }
+}
+
+/// The start of a decision line, `\n     N: ` with three spaces more for each level below
+/// the top state (Soar manual, chapter 9, "trace").
+fn decision_prefix(out: &mut String, cycle: u64, level: u32) {
+    let _ = write!(out, "\n{cycle:>6}: ");
+    for _ in 1..level {
+        out.push_str("   ");
+    }
+}
+
+/// `(state no-change)`, `(operator tie)`, ...: the slot and kind of an impasse.
+fn impasse_text(out: &mut String, kind: ImpasseKind, on_operator: bool) {
+    out.push('(');
+    out.push_str(if on_operator { "operator" } else { "state" });
+    out.push(' ');
+    out.push_str(kind.word());
+    out.push(')');
 }
 
 /// A newline unless the stream stands at the start of a line (9.6's fresh line).

@@ -8,6 +8,7 @@ use super::procedure::{self, Outcome, PrefType};
 use super::state::ImpasseKind;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use crate::wm::WmeId;
 
 impl AgentCore {
@@ -30,11 +31,8 @@ impl AgentCore {
         if self.settings.trace.consistency {
             self.trace_operator_removal(key, op);
             if let Some(sub) = self.decider.goals.get(gi + 1) {
-                let s = format!(
-                    "Removing state {} because of an operator removal.\n",
-                    self.symbols.text(sub.state)
-                );
-                self.out(&s);
+                let state = sub.state;
+                self.emit(&TraceEvent::OperatorRemovalSubstate { state });
             }
         }
         if self.settings.trace.wmes && self.removed_wmes.is_some() {
@@ -87,18 +85,10 @@ impl AgentCore {
     /// SLOT` line only when no operator was selected).
     fn remove_inconsistent_decision(&mut self, gi: usize, key: (Sym, Sym), empty_slot: bool) {
         if self.settings.trace.consistency {
-            let goal = self.symbols.text(key.0);
-            let slot_line = if empty_slot {
-                format!(
-                    "\n       REMOVING CONTEXT SLOT: Slot Identifier [{goal}] and attribute [operator]\n"
-                )
-            } else {
-                String::new()
-            };
-            let s = format!(
-                "Removing substates of {goal} because the operator last selected in {goal} is not\nconsistent with the current preferences.\n{slot_line}\n          Decision for goal [{goal}] is inconsistent.  Replacing it with....\n"
-            );
-            self.out(&s);
+            self.emit(&TraceEvent::InconsistentDecision {
+                goal: key.0,
+                empty_slot,
+            });
         }
         if self.settings.trace.preferences {
             // Before the substates' `<=WM:` lines, as 9.6 lists them.

@@ -42,8 +42,12 @@ impl AgentCore {
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
     pub fn print_initial_state(&mut self) {
         if self.settings.trace.decisions {
-            let s = format!("\n{:>6}: ==>S: {} ", 0, self.symbols.text(self.top.state));
-            self.out(&s);
+            self.emit(&TraceEvent::State {
+                cycle: 0,
+                level: 1,
+                state: self.top.state,
+                impasse: None,
+            });
         }
     }
 
@@ -94,7 +98,7 @@ impl AgentCore {
             }
         }
         if (self.decider.halted || self.decider.depth_exceeded) && self.decider.phase.is_some() {
-            self.out("\nSystem halted.");
+            self.emit(&TraceEvent::SystemHalted);
         }
         (
             self.decider.decisions - start_dc,

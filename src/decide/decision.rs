@@ -8,18 +8,11 @@ use crate::agent::Exploration;
 use super::state::ImpasseKind;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 
 impl AgentCore {
     /// The decision-line prefix: dc right-justified to 6, then 3 spaces per level below the
     /// top (as 9.6's trace prints it).
-    pub(super) fn decision_prefix(&self, level: u32) -> String {
-        format!(
-            "\n{:>6}: {}",
-            self.decider.d_cycle_count,
-            "   ".repeat(level.saturating_sub(1) as usize)
-        )
-    }
-
     pub(super) fn slot_prefs(&self, key: (Sym, Sym)) -> Vec<Pref> {
         let Some(slot) = self.decider.slots.get(&key) else {
             return Vec::new();
@@ -80,17 +73,13 @@ impl AgentCore {
                     self.decider.wme_changes += 1;
                     self.decider.goals[gi].operator = Some((o, w));
                     if self.settings.trace.decisions {
-                        let name = self.operator_name(o);
-                        let mut line = format!(
-                            "{}   O: {} {}",
-                            self.decision_prefix(goal.level),
-                            self.symbols.text(o),
-                            name
-                        );
-                        if !name.is_empty() {
-                            line = line.trim_end().to_string();
-                        }
-                        self.out(&line);
+                        let names = self.name_values(o);
+                        self.emit(&TraceEvent::Operator {
+                            cycle: self.decider.d_cycle_count,
+                            level: goal.level,
+                            operator: o,
+                            names: &names,
+                        });
                     }
                     return;
                 }
@@ -119,15 +108,6 @@ impl AgentCore {
         if let Some(last) = n.checked_sub(1) {
             let on_operator = self.decider.goals[last].operator.is_some();
             self.impasse(last, ImpasseKind::NoChange, on_operator, Vec::new());
-        }
-    }
-
-    fn operator_name(&mut self, o: Sym) -> String {
-        let vals = self.name_values(o);
-        if vals.is_empty() {
-            String::new()
-        } else {
-            format!("({})", vals.join(" "))
         }
     }
 

@@ -5,6 +5,7 @@
 use super::state::{Goal, ImpasseKind, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use rustc_hash::FxHashSet;
 
 impl AgentCore {
@@ -142,23 +143,12 @@ impl AgentCore {
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
             // Waiting: the bottom state's own line again, impasse included, as 9.6 prints.
             if self.settings.trace.decisions {
-                let what = self.decider.goals[gi]
-                    .impasse
-                    .map(|(k, on_op)| {
-                        format!(
-                            "({} {})",
-                            if on_op { "operator" } else { "state" },
-                            k.word()
-                        )
-                    })
-                    .unwrap_or_default();
-                let s = format!(
-                    "{}==>S: {} {}",
-                    self.decision_prefix(level - 1),
-                    self.symbols.text(parent),
-                    what
-                );
-                self.out(&s);
+                self.emit(&TraceEvent::State {
+                    cycle: self.decider.d_cycle_count,
+                    level: level - 1,
+                    state: parent,
+                    impasse: self.decider.goals[gi].impasse,
+                });
             }
             return;
         }
@@ -238,18 +228,12 @@ impl AgentCore {
             }
         }
         if self.settings.trace.decisions {
-            let what = format!(
-                "({} {})",
-                if on_operator { "operator" } else { "state" },
-                kind.word()
-            );
-            let line = format!(
-                "{}==>S: {} {}",
-                self.decision_prefix(level),
-                self.symbols.text(s),
-                what
-            );
-            self.out(&line);
+            self.emit(&TraceEvent::State {
+                cycle: self.decider.d_cycle_count,
+                level,
+                state: s,
+                impasse: Some((kind, on_operator)),
+            });
         }
         self.decider.goals.push(Goal {
             state: s,
