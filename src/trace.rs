@@ -12,15 +12,9 @@ use crate::wm::{Wme, WmeId};
 
 /// `(tt: id ^attr value[ +])`
 pub fn wme_internal(agent: &AgentCore, w: &Wme) -> String {
-    let s = &agent.symbols;
-    format!(
-        "({}: {} ^{} {}{})",
-        w.timetag,
-        s.text(w.id),
-        s.text(w.attr),
-        s.text(w.value),
-        if w.acceptable { " +" } else { "" }
-    )
+    let mut out = String::new();
+    crate::trace_text::wme_text(&mut out, &agent.symbols, w);
+    out
 }
 
 /// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.

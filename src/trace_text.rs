@@ -246,7 +246,7 @@ pub(crate) fn pref_text(
 }
 
 /// `(tt: id ^attr value[ +])`, as `print --internal` shows a WME.
-fn wme_text(out: &mut String, symbols: &Symbols, w: &Wme) {
+pub(crate) fn wme_text(out: &mut String, symbols: &Symbols, w: &Wme) {
     let _ = write!(
         out,
         "({}: {} ^{} {}{})",
