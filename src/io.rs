@@ -17,7 +17,7 @@
 use crate::agent::AgentCore;
 pub use crate::inputs::{InputUpdate, InputWme};
 pub use crate::value::Value;
-use crate::inputs::{InputChange, InputEntry};
+use crate::inputs::{InputChange, InputEntry, InputTable};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
@@ -161,15 +161,9 @@ impl AgentCore {
 
     fn push_input(&mut self, id: Sym, attr: Sym, value: Sym, object: bool) -> InputWme {
         let wme = self.queue_input_add(id, attr, value);
-        let table = &mut self.inputs;
-        table.entries.push(InputEntry {
-            id,
-            attr,
-            value,
-            wme: Some(wme),
-            object,
-        });
-        InputWme(table.entries.len() as u32 - 1)
+        let value_is_id = self.symbols.is_id(value);
+        let entry = InputTable::entry(id, attr, value, wme, object);
+        self.inputs.insert(entry, value_is_id)
     }
 
     fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
@@ -180,15 +174,11 @@ impl AgentCore {
     }
 
     fn live_entry(&self, h: InputWme) -> Result<&InputEntry, IoError> {
-        let e = self
-            .inputs
-            .entries
-            .get(h.0 as usize)
-            .ok_or(IoError::UnknownHandle)?;
-        if e.wme.is_none() {
-            return Err(IoError::StaleHandle);
+        match self.inputs.get(h) {
+            Ok(Some(e)) => Ok(e),
+            Ok(None) => Err(IoError::StaleHandle),
+            Err(()) => Err(IoError::UnknownHandle),
         }
-        Ok(e)
     }
 
     /// The value an input WME holds now.
@@ -222,11 +212,8 @@ impl AgentCore {
         }
         self.inputs.queue.push(InputChange::Remove(old));
         let w = self.queue_input_add(id, attr, new);
-        let e = &mut self.inputs.entries[h.0 as usize];
-        e.wme = Some(w);
-        e.value = new;
-        // A value that was an object of this table is one no longer.
-        e.object = false;
+        let is_id = [self.symbols.is_id(old_value), self.symbols.is_id(new)];
+        self.inputs.set_value(h, new, w, is_id);
         Ok(true)
     }
 
@@ -237,19 +224,11 @@ impl AgentCore {
         let e = self.live_entry(h)?;
         let (old, object, value) = (e.wme.ok_or(IoError::StaleHandle)?, e.object, e.value);
         self.inputs.queue.push(InputChange::Remove(old));
-        self.inputs.entries[h.0 as usize].wme = None;
-        if object && !self.still_linked(value) {
+        self.inputs.kill(h.slot, self.symbols.is_id(value));
+        if object && !self.inputs.linked(value) {
             self.drop_entries_below(value);
         }
         Ok(())
-    }
-
-    /// Whether a live input WME still points at `id`.
-    fn still_linked(&self, id: Sym) -> bool {
-        self.inputs
-            .entries
-            .iter()
-            .any(|e| e.wme.is_some() && e.value == id)
     }
 
     /// Marks the input WMEs under `root` (made by this table) removed, without queueing
@@ -257,14 +236,11 @@ impl AgentCore {
     fn drop_entries_below(&mut self, root: Sym) {
         let mut below = vec![root];
         while let Some(id) = below.pop() {
-            for i in 0..self.inputs.entries.len() {
-                let e = &self.inputs.entries[i];
-                if e.id != id || e.wme.is_none() {
-                    continue;
-                }
+            for slot in self.inputs.children(id).to_vec() {
+                let e = self.inputs.at(slot);
                 let (object, value) = (e.object, e.value);
-                self.inputs.entries[i].wme = None;
-                if object && !self.still_linked(value) {
+                self.inputs.kill(slot, self.symbols.is_id(value));
+                if object && !self.inputs.linked(value) {
                     below.push(value);
                 }
             }
@@ -325,39 +301,32 @@ impl AgentCore {
         self.inputs.output_reported = 0;
         let root = self.top.input_link;
         let mut visited: FxHashSet<Sym> = [root].into_iter().collect();
-        let mut kept = vec![false; self.inputs.entries.len()];
-        self.reinstate_below(root, &mut visited, &mut kept);
-        for (e, kept) in self.inputs.entries.iter_mut().zip(kept) {
-            if !kept {
-                e.wme = None;
-            }
-        }
-    }
-
-    fn reinstate_below(&mut self, root: Sym, visited: &mut FxHashSet<Sym>, kept: &mut [bool]) {
-        // An explicit stack of (identifier, next entry to look at), so deep input
+        let mut kept: FxHashSet<u32> = FxHashSet::default();
+        // An explicit stack of (identifier, place in its list of entries), so deep input
         // structures cannot overflow the call stack.
         let mut stack = vec![(root, 0usize)];
-        while let Some((id, from)) = stack.pop() {
-            let next = (from..self.inputs.entries.len()).find(|&i| {
-                let e = &self.inputs.entries[i];
-                e.id == id && e.wme.is_some()
-            });
-            let Some(i) = next else { continue };
-            stack.push((id, i + 1));
-            let (attr, value, object) = {
-                let e = &self.inputs.entries[i];
-                (e.attr, e.value, e.object)
+        while let Some((id, k)) = stack.pop() {
+            let Some(&slot) = self.inputs.children(id).get(k) else {
+                continue;
             };
+            stack.push((id, k + 1));
+            let e = self.inputs.at(slot);
+            let (attr, value, object) = (e.attr, e.value, e.object);
             let first_visit = visited.insert(value);
             if object && first_visit {
                 self.symbols.renumber_id(value);
             }
-            kept[i] = true;
+            kept.insert(slot);
             let w = self.queue_input_add(id, attr, value);
-            self.inputs.entries[i].wme = Some(w);
+            self.inputs.set_wme(slot, w);
             if first_visit && self.symbols.is_id(value) {
                 stack.push((value, 0));
+            }
+        }
+        for slot in self.inputs.live_slots() {
+            if !kept.contains(&slot) {
+                let value = self.inputs.at(slot).value;
+                self.inputs.kill(slot, self.symbols.is_id(value));
             }
         }
     }
@@ -562,11 +531,33 @@ mod tests {
         a.remove_input(obj).unwrap();
         assert_eq!(a.remove_input(obj), Err(IoError::StaleHandle));
         assert_eq!(a.update_input(below, 2i64), Err(IoError::StaleHandle));
-        assert_eq!(a.input_value(InputWme(99)), Err(IoError::UnknownHandle));
+        assert_eq!(a.input_value(InputWme { slot: 99, generation: 0 }), Err(IoError::UnknownHandle));
         let ol = a.output_link();
         let (_, cmd) = a.add_input_object(ol, "move").unwrap();
         a.mark_done(cmd).unwrap();
         assert!(matches!(a.mark_done(cmd), Err(IoError::AlreadyDone(_))));
+    }
+
+    /// A removed WME's place serves the next one; its old handle stays stale, and the table
+    /// does not grow with adds and removes.
+    #[test]
+    fn places_are_reused_and_old_handles_stay_stale() {
+        let mut a = AgentCore::new("t");
+        let il = a.input_link();
+        let first = a.add_input(il, "x", 1i64).unwrap();
+        a.remove_input(first).unwrap();
+        let second = a.add_input(il, "y", 2i64).unwrap();
+        assert_eq!(first.slot, second.slot);
+        assert_eq!(a.input_value(first), Err(IoError::StaleHandle));
+        assert_eq!(a.input_value(second), Ok(Value::Int(2)));
+        for n in 0..100i64 {
+            let (obj, o) = a.add_input_object(il, "obj").unwrap();
+            a.add_input(o, "n", n).unwrap();
+            a.remove_input(obj).unwrap();
+        }
+        assert!(a.inputs.live_slots().len() == 1);
+        let (obj, _) = a.add_input_object(il, "obj").unwrap();
+        assert!(obj.slot <= 2, "the table grew to {}", obj.slot);
     }
 
     /// soar-sml 9.6.5 adds a client's input WMEs again after `init-soar`, depth first from

@@ -227,17 +227,10 @@ impl Agent {
     /// Removes a print listener, an event listener or a phase hook; false if it was not
     /// registered.
     pub fn remove_listener(&mut self, id: ListenerId) -> bool {
-        let mut found = self.interp.agent.events.remove(id.0);
-        for list in [&self.input_hooks, &self.output_hooks] {
-            list.borrow_mut().retain(|(i, _)| {
-                found |= *i == id;
-                *i != id
-            });
-        }
-        self.listeners.borrow_mut().retain(|(i, _)| {
-            found |= *i == id;
-            *i != id
-        });
+        let found = self.interp.agent.events.remove(id.0)
+            | remove_by_id(&self.input_hooks, id)
+            | remove_by_id(&self.output_hooks, id)
+            | remove_by_id(&self.listeners, id);
         if self.listeners.borrow().is_empty() {
             self.interp.clear_live_output();
         }
@@ -254,22 +247,16 @@ impl Agent {
 
     /// Hands `events` to the print listeners; returns them rendered.
     fn send(&mut self, events: &[Event]) -> String {
-        let mut text = String::new();
         let mut listeners = self.listeners.borrow_mut();
-        for e in events {
-            let printed = Printed::from_event(e, &self.interp.sources);
-            if matches!(printed, Printed::Diagnostic(_))
-                && !text.is_empty()
-                && !text.ends_with('\n')
-            {
-                text.push('\n');
-            }
-            text.push_str(&printed.to_string());
-            for (_, l) in listeners.iter_mut() {
-                l(&printed);
+        if !listeners.is_empty() {
+            for e in events {
+                let printed = Printed::from_event(e, &self.interp.sources);
+                for (_, l) in listeners.iter_mut() {
+                    l(&printed);
+                }
             }
         }
-        text
+        self.interp.render_all(events)
     }
 
     fn new_id(&mut self) -> ListenerId {
@@ -568,6 +555,14 @@ impl Agent {
     pub fn set_random_seed(&mut self, seed: u32) {
         self.interp.agent.seed_rng(seed);
     }
+}
+
+/// Removes entry `id` from a list of listeners or hooks; false if it was not there.
+fn remove_by_id<T>(list: &RefCell<Vec<(ListenerId, T)>>, id: ListenerId) -> bool {
+    let mut list = list.borrow_mut();
+    let before = list.len();
+    list.retain(|(i, _)| *i != id);
+    list.len() != before
 }
 
 /// The kernel's phase callback that calls each hook of `hooks`, in the order registered.

@@ -293,8 +293,13 @@ impl Interpreter {
     /// Renders and takes everything printed so far, as one string.
     pub fn take_output(&mut self) -> String {
         let events = self.take_events();
+        self.render_all(&events)
+    }
+
+    /// Events rendered as one text: a diagnostic starts on a line of its own.
+    pub(crate) fn render_all(&self, events: &[Event]) -> String {
         let mut s = String::new();
-        for e in &events {
+        for e in events {
             let r = self.render(e);
             if matches!(e, Event::Diag(_)) && !s.is_empty() && !s.ends_with('\n') {
                 s.push('\n');
