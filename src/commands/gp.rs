@@ -104,14 +104,11 @@ impl Interpreter {
             return Err(ctx.error("Syntax: gp { production_body }"));
         };
         let bodies = expand(&body.text).map_err(|m| ctx.error(m))?;
-        let trimmed = body.text.trim_start();
-        let name_len = trimmed
-            .find(|c: char| c.is_whitespace())
-            .unwrap_or(trimmed.len());
-        let name = &trimmed[..name_len];
         for (n, b) in bodies.iter().enumerate() {
+            // Each rule's name is its body's first word (alternatives in it expanded).
             let b = b.trim_start();
-            let rest = &b[name_len.min(b.len())..];
+            let name_end = b.find(char::is_whitespace).unwrap_or(b.len());
+            let (name, rest) = b.split_at(name_end);
             let rule = format!("sp {{{name}*{}{rest}}}", n + 1);
             self.run_text("gp", &rule)?;
         }
@@ -143,6 +140,14 @@ mod tests {
                 "g (state <s> ^a 3.5) --> (write |[not]|)"
             ]
         );
+    }
+
+    /// A name with alternatives and text that is not ASCII: each body is cut at its own
+    /// first space.
+    #[test]
+    fn names_with_alternatives_are_expanded_too() {
+        let out = expand("é[a bb] (state <s>) --> (write é)").unwrap();
+        assert_eq!(out, ["éa (state <s>) --> (write é)", "ébb (state <s>) --> (write é)"]);
     }
 
     #[test]
