@@ -248,19 +248,6 @@ pub fn match_wme_lines(agent: &AgentCore, ws: &[WmeId]) -> String {
         .join("\n ")
 }
 
-/// A preference as the level-5 trace shows it (see `trace_text::pref_text`).
-pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) -> String {
-    let mut out = String::new();
-    crate::trace_text::pref_text(
-        &mut out,
-        &agent.symbols,
-        p,
-        pref_level(agent, p),
-        pref_rule(agent, p),
-    );
-    out
-}
-
 /// The level a preference is traced at: 9.6 prints the level of the instantiation's goal
 /// (a result made in a substate says `[level 2]` though its id is on the top state).
 fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
@@ -333,15 +320,27 @@ impl AgentCore {
             return;
         }
         let mut out = std::mem::take(&mut self.output);
+        self.write_pref_event(&mut out, self.output_line_start, sign == '+', pid);
+        self.output = out;
+    }
+
+    /// Writes the `Preference` event of `pid` into `out`; `line_start` as for
+    /// [`TraceText96::write`](crate::trace_text::TraceText96::write).
+    pub(crate) fn write_pref_event(
+        &self,
+        out: &mut String,
+        line_start: bool,
+        added: bool,
+        pid: crate::decide::state::PrefId,
+    ) {
         let pref = &self.decider.prefs[pid as usize];
         let event = TraceEvent::Preference {
-            added: sign == '+',
+            added,
             pref,
             level: pref_level(self, pref),
             rule: pref_rule(self, pref),
         };
-        self.write_event(&mut out, &event);
-        self.output = out;
+        self.trace_text.write(out, line_start, &self.symbols, &event);
     }
 
     /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`).

@@ -31,10 +31,6 @@ pub enum RunUnit {
 }
 
 impl AgentCore {
-    pub(super) fn out(&mut self, s: &str) {
-        self.output.push_str(s);
-    }
-
     pub(super) fn operator_sym(&self) -> Sym {
         self.top.operator
     }
@@ -163,7 +159,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached("decide") {
+                    if self.max_elaborations_reached(Phase::Decide) {
                         break;
                     }
                     if one_cycle && self.has_pending(false) && !self.decider.halted {
@@ -196,7 +192,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached("output") {
+                    if self.max_elaborations_reached(Phase::Output) {
                         break;
                     }
                     if one_cycle && self.has_pending(true) && !self.decider.halted {
@@ -219,11 +215,10 @@ impl AgentCore {
         }
     }
 
-    fn max_elaborations_reached(&mut self, next: &str) -> bool {
+    fn max_elaborations_reached(&mut self, next: Phase) -> bool {
         if self.decider.e_cycles_this_phase >= self.settings.max_elaborations.max(1) as u64 {
             if self.settings.warnings {
-                let s = format!("\nWarning: reached max-elaborations; proceeding to {next} phase.");
-                self.out(&s);
+                self.emit(&TraceEvent::MaxElaborations { next });
             }
             return true;
         }

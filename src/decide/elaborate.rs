@@ -26,10 +26,10 @@ impl AgentCore {
             self.compiled_rule(key.0);
             let s = crate::decide::support::match_support(self, key.0, key.1);
             if s.mixed && self.settings.warnings {
-                let name = self.production_name(key.0).to_string();
-                self.out(&format!(
-                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {name}"
-                ));
+                let mut out = std::mem::take(&mut self.output);
+                let rule = self.production_name(key.0);
+                self.write_event(&mut out, &TraceEvent::MixedOperatorElaborations { rule });
+                self.output = out;
             }
             self.matches.support.insert(key, s.o_support);
         }

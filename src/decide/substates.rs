@@ -211,11 +211,9 @@ impl AgentCore {
         }
         // 9.6 prints the depth message before the new state's WMEs and line.
         if level as i64 > self.settings.max_goal_depth {
-            let msg = format!(
-                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
-                self.settings.max_goal_depth
-            );
-            self.out(&msg);
+            self.emit(&TraceEvent::GoalDepthExceeded {
+                max_depth: self.settings.max_goal_depth,
+            });
             // 9.6 stops the run here without halting the agent: a later `run` goes on
             // deeper, with the same message at each new state (checked on soar-sml 9.6.5).
             self.decider.depth_exceeded = true;

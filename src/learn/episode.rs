@@ -13,6 +13,7 @@ use crate::decide::state::{ImpasseKind, InstId, Instantiation, PrefId};
 use crate::production::Production;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 
@@ -177,9 +178,7 @@ impl AgentCore {
         if want_chunk && !bt.tested_quiescence {
             if self.learn.chunks_this_phase >= self.settings.max_chunks {
                 if self.settings.warnings {
-                    self.output.push_str(
-                        "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
-                    );
+                    self.emit(&TraceEvent::MaxChunksReached);
                 }
             } else if dupes >= self.settings.max_dupes {
                 // This rule's results keep giving rules already known: give up on it for
@@ -486,10 +485,11 @@ impl AgentCore {
             self.learn.justifications_since_init += 1;
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
             if self.settings.learning_trace >= 2 {
-                self.output.push_str(&format!(
-                    "\n\nLearning new rule {name}\n\n{}\n",
-                    crate::printer::production_text(&prod).trim_end()
-                ));
+                let text = crate::printer::production_text(&prod);
+                self.emit(&TraceEvent::LearnedRule {
+                    name,
+                    text: Some(&text),
+                });
             }
             self.learn.justifications.push(Justification {
                 production: Arc::new(prod),
@@ -503,16 +503,14 @@ impl AgentCore {
     fn print_learned(&mut self, name: &str) {
         match self.settings.learning_trace {
             0 => {}
-            1 => self
-                .output
-                .push_str(&format!("\n\nLearning new rule {name}\n")),
+            1 => self.emit(&TraceEvent::LearnedRule { name, text: None }),
             _ => {
                 if let Some(p) = self.production(name) {
                     let text = crate::printer::production_text(p);
-                    self.output.push_str(&format!(
-                        "\n\nLearning new rule {name}\n\n{}\n",
-                        text.trim_end()
-                    ));
+                    self.emit(&TraceEvent::LearnedRule {
+                        name,
+                        text: Some(&text),
+                    });
                 }
             }
         }

@@ -556,7 +556,7 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         match registry.call(function, ctx.agent_name, &argument) {
             Some(Ok(r)) => r,
             Some(Err(why)) => {
-                report_host_error(ctx.output, &why);
+                report_host_error(ctx.output, ctx.symbols, &why);
                 format!("Error: {why}")
             }
             None => format!("Error: Nobody was registered to implement rhs function {function}"),
@@ -572,17 +572,16 @@ fn host_error(ctx: &mut RhsContext, function: &str, why: &str) -> Sym {
     } else {
         format!("rhs function {function} failed: {why}")
     };
-    report_host_error(ctx.output, &why);
+    report_host_error(ctx.output, ctx.symbols, &why);
     ctx.str_sym(&format!("Error: {why}"))
 }
 
-fn report_host_error(output: &mut String, why: &str) {
-    if !output.is_empty() && !output.ends_with('\n') {
-        output.push('\n');
-    }
-    output.push_str("Error: ");
-    output.push_str(why);
-    output.push('\n');
+fn report_host_error(output: &mut String, symbols: &Symbols, why: &str) {
+    let event = crate::trace_events::TraceEvent::RhsError {
+        message: &format!("Error: {why}"),
+        fresh_line: true,
+    };
+    crate::trace_text::TraceText96.write(output, true, symbols, &event);
 }
 
 /// `cmd` (SML): every argument is preceded by a space (9.6's `first` flag is never set,
