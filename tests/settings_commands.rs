@@ -113,3 +113,17 @@ fn excise_by_kind_and_ls_take_9_6s_arguments() {
         "Syntax: ls"
     );
 }
+
+#[test]
+fn decide_usage_is_the_listing() {
+    // 9.6 prints the same listing but reports the command as failed; rusoar reports success.
+    let mut a = Agent::default();
+    let text = a.execute("decide ?").unwrap();
+    assert!(text.contains("decide select                    <operator ID>\n"));
+    assert!(text.ends_with("For a detailed explanation of sub-commands:    help decide\n"));
+    let e = a.execute("decide nonsense").unwrap_err();
+    assert_eq!(
+        e.message(),
+        "Invalid decide command.  Use 'decide ?' to see a list of valid settings."
+    );
+}

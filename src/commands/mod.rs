@@ -5,6 +5,7 @@
 
 pub mod aliases;
 mod chunk_listing;
+mod decide;
 mod files;
 mod gp;
 pub mod help;

@@ -47,8 +47,9 @@ impl AgentCore {
         }
     }
 
-    /// Runs `n` units (the `run` command): decisions stop before the apply phase, as 9.6's
-    /// default stop phase does. Returns (decisions executed, rules fired).
+    /// Runs `n` units (the `run` command): a decision is counted each time the run reaches
+    /// the stop phase (`soar stop-phase`, apply by default), so a run of decisions stops
+    /// before it. Returns (decisions executed, rules fired).
     pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
         self.decider.stop_requested = false;
         self.decider.depth_exceeded = false;
@@ -69,6 +70,9 @@ impl AgentCore {
         let start_dc = self.decider.decisions;
         let start_firings = self.decider.firings;
         let mut done = 0u64;
+        let stop_phase = self.settings.stop_phase;
+        let max_dc_time = u64::try_from(self.settings.max_dc_time).unwrap_or(0);
+        let mut decision_start = std::time::Instant::now();
         while !self.decider.halted
             && !self.decider.stop_requested
             && !self.decider.depth_exceeded
@@ -81,12 +85,20 @@ impl AgentCore {
             self.do_phase(phase, unit == RunUnit::Elaborations);
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
-                    if phase == Phase::Decide {
+                    if phase != stop_phase && self.decider.phase == Some(stop_phase) {
                         done += 1;
                     }
                 }
                 RunUnit::Phases => done += 1,
                 RunUnit::Elaborations => done += (self.decider.e_cycles - e_before).max(1),
+            }
+            // `max-dc-time`: a decision cycle that takes too long interrupts the run.
+            if max_dc_time > 0 && self.decider.phase != Some(phase) {
+                if phase == Phase::Output {
+                    decision_start = std::time::Instant::now();
+                } else if decision_start.elapsed().as_secs() >= max_dc_time {
+                    self.decider.stop_requested = true;
+                }
             }
             // Endless state no-changes stop at max-goal-depth.
             if unit == RunUnit::Forever && done > 1_000_000_000 {
@@ -177,6 +189,7 @@ impl AgentCore {
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
                 self.decide_context_slots();
+                self.reduce_exploration_parameters();
                 self.classify_new_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Decide));
                 self.decider.decisions += 1;

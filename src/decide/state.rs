@@ -144,6 +144,12 @@ pub struct DecideState {
     pub depth_exceeded: bool,
     /// A rule called `(interrupt)` in this run: the run stops after the phase.
     pub rhs_interrupted: bool,
+    /// `decide select`: the operator the next decision takes when it is proposed, as
+    /// typed with its first letter upper-cased (9.6 compares the text).
+    pub(crate) forced_operator: Option<String>,
+    /// `decide predict` seeded the generator with this before predicting: the next
+    /// decision seeds it the same way, so that it makes the predicted choice.
+    pub(crate) predict_seed: Option<u32>,
     pub wme_changes: u64,
     /// Statistics for `stats`: elaboration cycles that fired o-supported rules (9.6's
     /// p-elaboration cycles), the WM additions and removals counted before this decider

@@ -35,6 +35,7 @@ mod math;
 mod numeric;
 pub mod table;
 mod text;
+
 mod wmefns;
 mod xml;
 
@@ -47,7 +48,7 @@ use crate::wm::{WmeId, WorkingMemory};
 use std::collections::BTreeMap;
 
 pub use numeric::NumericRhsFn;
-pub use text::{c_fixed, value_text};
+pub use text::{c_fixed, c_general, value_text};
 
 /// A function registered by the embedding program: `(agent name, argument string) -> result`.
 pub type RhsFn = Box<dyn FnMut(&str, &str) -> String>;
