@@ -78,7 +78,7 @@ impl AgentCore {
                         if traced_gone.contains(&pid) {
                             continue;
                         }
-                        let pref = &self.decider.prefs[pid as usize];
+                        let pref = &self.decider.prefs[pid];
                         pref_lines.push_str("- ");
                         pref_lines.push_str(&crate::trace::pref_trace_text(self, pref));
                         pref_lines.push('\n');
