@@ -377,7 +377,7 @@ impl MatchSet {
     /// What a match that went before it fired leaves in `assertions`: taking it out at once
     /// would shift the rest of the queue, and an input phase that changes a pose cancels
     /// hundreds of matches it made a moment before (see `io.rs` on the order of input changes). Readers skip it.
-    pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), u32::MAX);
+    pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), TokId::NONE);
 
     /// Whether a match is queued (not yet fired, not gone).
     pub fn has_assertions(&self) -> bool {

@@ -246,7 +246,7 @@ impl AgentCore {
             return true;
         }
         let live = |i: InstId| {
-            self.decider.insts[i as usize]
+            self.decider.insts[i]
                 .goal
                 .is_none_or(|g| self.symbols.is_goal(g))
         };

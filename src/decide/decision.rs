@@ -21,7 +21,7 @@ impl AgentCore {
         slot.prefs
             .iter()
             .map(|&pid| {
-                let p = &self.decider.prefs[pid as usize];
+                let p = &self.decider.prefs[pid];
                 Pref {
                     kind: p.kind,
                     value: p.value,

@@ -3,5 +3,17 @@
 //! slots, the scratch buffers and the decider's state can all name them without naming each
 //! other.
 
-pub type InstId = u32;
-pub type PrefId = u32;
+use super::state::{Instantiation, Preference};
+use crate::ids::id_type;
+
+id_type! {
+    /// An instantiation: its place in `DecideState::insts`.
+    pub struct InstId;
+    index Instantiation;
+}
+
+id_type! {
+    /// A preference: its place in `DecideState::prefs`.
+    pub struct PrefId;
+    index Preference;
+}

@@ -219,12 +219,12 @@ impl DecideState {
     pub fn alloc_inst(&mut self, inst: Instantiation) -> InstId {
         match self.free_insts.pop() {
             Some(i) => {
-                self.insts[i as usize] = inst;
+                self.insts[i] = inst;
                 i
             }
             None => {
                 self.insts.push(inst);
-                (self.insts.len() - 1) as InstId
+                InstId::from_index(self.insts.len() - 1)
             }
         }
     }
@@ -232,19 +232,19 @@ impl DecideState {
     pub fn alloc_pref(&mut self, pref: Preference) -> PrefId {
         match self.free_prefs.pop() {
             Some(i) => {
-                self.prefs[i as usize] = pref;
+                self.prefs[i] = pref;
                 i
             }
             None => {
                 self.prefs.push(pref);
-                (self.prefs.len() - 1) as PrefId
+                PrefId::from_index(self.prefs.len() - 1)
             }
         }
     }
 
     /// Frees a retracted instantiation (nothing refers to it any more).
     pub fn free_inst(&mut self, i: InstId) {
-        let inst = &mut self.insts[i as usize];
+        let inst = &mut self.insts[i];
         inst.alive = false;
         let mut list = std::mem::take(&mut inst.prefs);
         inst.serial = 0;
@@ -257,7 +257,7 @@ impl DecideState {
 
     /// Frees a preference already out of its slot: it leaves its instantiation's list too.
     pub fn free_pref(&mut self, pid: PrefId) {
-        let pref = &mut self.prefs[pid as usize];
+        let pref = &mut self.prefs[pid];
         if pref.freed {
             return;
         }
@@ -265,7 +265,7 @@ impl DecideState {
         pref.alive = false;
         pref.origin = None;
         if let Some(i) = pref.inst.take() {
-            let inst = &mut self.insts[i as usize];
+            let inst = &mut self.insts[i];
             if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {
                 inst.prefs.remove(pos);
             }

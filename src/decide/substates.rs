@@ -294,7 +294,7 @@ impl AgentCore {
         else {
             return;
         };
-        let p = &self.decider.prefs[pid as usize];
+        let p = &self.decider.prefs[pid];
         let what = (p.id, p.attr, p.value);
         self.decider.goals[gi].made.push((pid, what));
         // A long-lived substate keeps only the preferences that still stand (amortized).
@@ -309,12 +309,12 @@ impl AgentCore {
 
     /// Whether preference `pid` is still the one a firing of `state` made saying `what`.
     fn pref_stands(&self, pid: PrefId, what: (Sym, Sym, Sym), state: Sym) -> bool {
-        let p = &self.decider.prefs[pid as usize];
+        let p = &self.decider.prefs[pid];
         p.alive
             && !p.freed
             && (p.id, p.attr, p.value) == what
             && p.inst
-                .is_none_or(|i| self.decider.insts[i as usize].goal == Some(state))
+                .is_none_or(|i| self.decider.insts[i].goal == Some(state))
     }
 
     /// 9.6's trace 5 lists the standing preferences of a removed state's firings as

@@ -74,7 +74,7 @@ impl AgentCore {
             .iter()
             .copied()
             .filter(|&p| {
-                let l = self.sym_level(self.decider.prefs[p as usize].id);
+                let l = self.sym_level(self.decider.prefs[p].id);
                 l > 0 && l < level
             })
             .collect();
@@ -88,7 +88,7 @@ impl AgentCore {
                 continue;
             }
             results.push(r);
-            let p = &self.decider.prefs[r as usize];
+            let p = &self.decider.prefs[r];
             let target = self.sym_level(p.id);
             let linked: Vec<Sym> = [Some(p.value), p.referent].into_iter().flatten().collect();
             for x in linked {
@@ -96,7 +96,7 @@ impl AgentCore {
                     queue.extend(
                         made.iter()
                             .copied()
-                            .filter(|&q| self.decider.prefs[q as usize].id == y),
+                            .filter(|&q| self.decider.prefs[q].id == y),
                     );
                     let mut on_y = self.decider.slots.keys_of(y);
                     on_y.sort();
@@ -144,7 +144,7 @@ impl AgentCore {
         let t = self.symbols.str("t");
         let mut bt = Backtrace::new(level);
         for &r in &results {
-            if let Some(o) = self.decider.prefs[r as usize].origin.clone() {
+            if let Some(o) = self.decider.prefs[r].origin.clone() {
                 bt.result(&o, quiescence, t);
             }
         }
@@ -285,7 +285,7 @@ impl AgentCore {
         };
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
-            let mut p = self.decider.prefs[r as usize].clone();
+            let mut p = self.decider.prefs[r].clone();
             let ids = match &recorded {
                 Some((t, prod)) => action_idents(t, prod, k),
                 None => p
@@ -310,7 +310,7 @@ impl AgentCore {
             if o_reject {
                 self.decider.results_taken_by_o_rejects.push(r);
             }
-            self.decider.insts[inst_id as usize].prefs.push(pid);
+            self.decider.insts[inst_id].prefs.push(pid);
             new_prefs.push(pid);
             clones.push(pid);
         }
@@ -414,7 +414,7 @@ impl AgentCore {
         };
         let prefs: Vec<_> = results
             .iter()
-            .map(|&r| self.decider.prefs[r as usize].clone())
+            .map(|&r| self.decider.prefs[r].clone())
             .collect();
         if prefs
             .iter()
@@ -447,7 +447,7 @@ impl AgentCore {
             crate::decide::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
         let inst = Instantiation {
             prod: ProdId(u32::MAX),
-            token: 0,
+            token: TokId::new(0),
             goal,
             o_support,
             prefs: Vec::new(),
@@ -545,7 +545,7 @@ impl AgentCore {
             .negations
             .violated_by(&new, &self.wm, &self.symbols, |i, s| {
                 insts
-                    .get(i as usize)
+                    .get(i.index())
                     .is_some_and(|x| x.alive && x.serial == s)
             });
         let end = self.matches.retractions.len();

@@ -9,6 +9,7 @@ mod episode;
 mod negations;
 mod record;
 
+use crate::decide::state::InstId;
 use crate::production::Production;
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
@@ -107,7 +108,7 @@ pub struct LearnState {
     /// Live justifications, by serial.
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
-    pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(u32, u64)>>,
+    pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(InstId, u64)>>,
     /// The superstate negations of live justifications: a new WME that matches one
     /// retracts it.
     pub negations: negations::WatchedNegations,

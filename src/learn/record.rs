@@ -115,7 +115,7 @@ impl AgentCore {
                 ident(&m.value),
                 m.referent.as_ref().map_or(0, ident),
             ];
-            self.decider.prefs[pid as usize].origin = Some(Arc::new(PrefOrigin {
+            self.decider.prefs[pid].origin = Some(Arc::new(PrefOrigin {
                 trace: trace.clone(),
                 ids,
                 action: Some(ai),
@@ -142,7 +142,7 @@ impl AgentCore {
     fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         slot.prefs_for(wme.value).find_map(|pid| {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             let kind_ok = match p.kind {
                 PrefType::Acceptable => true,
                 PrefType::Require => wme.acceptable,
