@@ -26,6 +26,11 @@ impl Id for u32 {
 /// optional `index` list names the item types whose `Vec`s and slices it indexes
 /// (`nodes[n]`).
 macro_rules! id_type {
+    // Indexing only, declared beside the item type (when the id's module must not name it).
+    (index $name:ident => $item:ty) => {
+        $crate::ids::id_type!(@index $name, [$item]);
+        $crate::ids::id_type!(@index $name, Vec<$item>);
+    };
     (
         $(#[$meta:meta])*
         $vis:vis struct $name:ident;

@@ -8,6 +8,9 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
 
+crate::ids::id_type!(index InstId => Instantiation);
+crate::ids::id_type!(index PrefId => Preference);
+
 /// A fired rule: the match it fired on and the preferences it made.
 #[derive(Debug, Clone)]
 pub struct Instantiation {

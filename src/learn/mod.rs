@@ -9,7 +9,7 @@ mod episode;
 mod negations;
 mod record;
 
-use crate::decide::state::InstId;
+use crate::decide::ids::InstId;
 use crate::production::Production;
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};

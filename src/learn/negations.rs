@@ -13,7 +13,7 @@ use super::InstTrace;
 use crate::ast::Relation;
 use crate::production::{Cond, Condition, Term, Test};
 use crate::rete::tests::{relation_holds, Op};
-use crate::decide::state::InstId;
+use crate::decide::ids::InstId;
 use crate::symbols::{Sym, Symbols};
 use crate::wm::{Wme, WorkingMemory};
 
