@@ -35,6 +35,8 @@ pub struct Settings {
     pub learn: LearnMode,
     pub max_chunks: i64,
     pub max_dupes: i64,
+    /// `chunk`'s other settings: naming, interrupts, singletons and the rest.
+    pub chunk: crate::learn::settings::ChunkSettings,
     pub max_elaborations: i64,
     pub max_goal_depth: i64,
     pub max_nil_output_cycles: i64,
@@ -189,6 +191,7 @@ impl Default for Settings {
             learn: LearnMode::Never,
             max_chunks: 50,
             max_dupes: 3,
+            chunk: Default::default(),
             max_elaborations: 100,
             max_goal_depth: 100,
             max_nil_output_cycles: 15,

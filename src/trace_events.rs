@@ -88,6 +88,8 @@ pub(crate) enum TraceEvent<'a> {
     /// A rule or justification was learned (`trace --learning`): its name, and the rule's
     /// text when the setting prints rules.
     LearnedRule { name: &'a str, text: Option<&'a str> },
+    /// `chunk interrupt`: a rule was learned, and the run stops after this phase.
+    LearningInterrupt,
     /// A right-hand-side function failed, with its message; `fresh_line` when 9.6 starts
     /// the message on a line of its own.
     RhsError { message: &'a str, fresh_line: bool },

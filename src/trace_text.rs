@@ -195,6 +195,10 @@ impl TraceText96 {
                     let _ = writeln!(out, "\n{}", text.trim_end());
                 }
             }
+            TraceEvent::LearningInterrupt => {
+                fresh_line(out, line_start);
+                out.push_str("Soar learned a new rule.\n");
+            }
             TraceEvent::RhsError {
                 message,
                 fresh_line: fresh,

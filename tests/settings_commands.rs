@@ -127,3 +127,27 @@ fn decide_usage_is_the_listing() {
         "Invalid decide command.  Use 'decide ?' to see a list of valid settings."
     );
 }
+
+#[test]
+fn singleton_patterns_are_listed_added_and_removed() {
+    // 9.6 lists the user patterns in the order of its hash table; rusoar in the order they
+    // were added, 9.6's eleven defaults first.
+    let mut a = Agent::default();
+    let listing = a.execute("chunk singleton").unwrap();
+    assert!(listing.starts_with("==== Singleton WME Unification Patterns ====\n"));
+    assert!(
+        listing.contains("   ---------- user-defined ----------\n   (<any> ^superstate <any>)\n")
+    );
+    a.execute("chunk singleton state counter constant").unwrap();
+    assert!(a.execute("chunk singleton").unwrap().contains(
+        "   (<any> ^smem <any>)\n   (<state> ^counter <constant>)\n\n\nTo add a new pattern:"
+    ));
+    a.execute("chunk singleton -r state counter constant")
+        .unwrap();
+    assert_eq!(a.execute("chunk singleton").unwrap(), listing);
+    let e = a.execute("chunk singleton state counter").unwrap_err();
+    assert_eq!(
+        e.message(),
+        "Wrong number of arguments for the chunk command."
+    );
+}

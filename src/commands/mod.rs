@@ -4,6 +4,7 @@
 //! terminal; front ends drain its [`Event`]s.
 
 pub mod aliases;
+mod chunk;
 mod chunk_listing;
 mod decide;
 mod files;

@@ -81,67 +81,6 @@ impl Interpreter {
         }
         Ok(text)
     }
-
-    pub(super) fn cmd_chunk(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        let s = &mut self.agent.settings;
-        match args.first().map(String::as_str) {
-            None => Ok(super::chunk_listing::summary(&self.agent)),
-            Some("?" | "help") => Ok(super::chunk_listing::settings(&self.agent)),
-            Some(
-                w @ ("always" | "never" | "only" | "except" | "on" | "off" | "flagged"
-                | "unflagged"),
-            ) => {
-                // `chunk on` and `chunk flagged` mean `only` in 9.6, `unflagged` `except`.
-                s.learn = match w {
-                    "always" => LearnMode::Always,
-                    "never" | "off" => LearnMode::Never,
-                    "only" | "on" | "flagged" => LearnMode::Only,
-                    _ => LearnMode::Except,
-                };
-                // 9.6 echoes the old spellings with an extra newline.
-                let shown = match w {
-                    "off" | "flagged" | "unflagged" => format!("{w}\n"),
-                    _ => s.learn.word().to_string(),
-                };
-                Ok(format!("Learns rules in states: {shown}\n"))
-            }
-            // 9.6 takes `chunk --on`, `chunk -e`... for `chunk`: it prints the summary and
-            // changes nothing (soar-sml 9.6.5). So does rusoar, and says so.
-            Some(w) if w.starts_with('-') => {
-                let word = w.to_string();
-                self.warn(
-                    Diagnostic::warning(format!(
-                        "`chunk {word}` changes nothing in Soar 9.6 (it prints the summary): write `chunk always|never|only|except`"
-                    ))
-                    .at(ctx.arg_span(0))
-                    .with_label("an option `chunk` ignores"),
-                );
-                Ok(super::chunk_listing::summary(&self.agent))
-            }
-            Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, CHUNK_INVALID, |n| format!("max-chunks is now {n}\n")),
-            Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, CHUNK_INVALID, |n| format!("max-dupes is now {n}\n")),
-            Some(
-                "stats"
-                | "bottom-only"
-                | "naming-style"
-                | "interrupt"
-                | "explain-interrupt"
-                | "warning-interrupt"
-                | "singleton"
-                | "automatically-create-singletons"
-                | "add-ltm-links"
-                | "add-osk"
-                | "allow-local-negations"
-                | "allow-opaque",
-            ) => Err(super::not_yet(ctx, "chunk")),
-            Some(_) => Err(Diagnostic::error(
-                "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.",
-            )
-            .at(ctx.arg_span(0))
-            .with_label("not a chunk setting")),
-        }
-    }
-
     pub(super) fn cmd_soar(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let s = &mut self.agent.settings;
         match args.first().map(String::as_str) {
@@ -464,9 +403,6 @@ impl Interpreter {
     }
 }
 
-/// Soar's message for a bad value of a `chunk` setting.
-const CHUNK_INVALID: &str =
-    "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.";
 /// Soar's message for a bad value of a `soar` setting.
 const SOAR_INVALID: &str = "Invalid argument. Use 'soar ?' to see a list of valid settings.";
 
@@ -532,7 +468,7 @@ fn atoi(s: &str) -> i64 {
 
 /// `setting [N]`: shows or sets a non-negative integer setting; `invalid` is Soar's message
 /// for a value that is not one.
-fn int_setting(
+pub(super) fn int_setting(
     ctx: &Ctx,
     args: &[String],
     name: &str,

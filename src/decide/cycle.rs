@@ -65,6 +65,7 @@ impl AgentCore {
                 wmes: Vec::new(),
                 slot_changed: true,
                 made: Vec::new(),
+                learned_below: false,
             });
         }
         let start_dc = self.decider.decisions;

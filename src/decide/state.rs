@@ -82,6 +82,9 @@ pub struct Goal {
     /// The preferences its firings made, oldest first, with what each says (handles are
     /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
     pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
+    /// A state below this one learned a rule: with `chunk bottom-only`, this one learns no
+    /// more while it lasts.
+    pub learned_below: bool,
 }
 
 /// Where a removed substate's WME goes in a phase's `<=WM:` listing.

@@ -242,6 +242,7 @@ impl AgentCore {
             wmes,
             slot_changed: true,
             made: Vec::new(),
+                learned_below: false,
         });
     }
 

@@ -165,6 +165,14 @@ impl AgentCore {
             LearnMode::Only => goal.is_some_and(|g| self.learn.force_learn.contains(&g)),
             LearnMode::Except => !goal.is_some_and(|g| self.learn.dont_learn.contains(&g)),
         };
+        // `chunk bottom-only`: a state above one that learned a rule learns none.
+        let want_chunk = want_chunk
+            && !(self.settings.chunk.bottom_only
+                && self
+                    .decider
+                    .goals
+                    .iter()
+                    .any(|g| g.level == level && g.learned_below));
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
         self.learn.substates_analyzed += 1;
         // The rule whose firing made the result: max-dupes counts per rule, per phase.
@@ -201,6 +209,7 @@ impl AgentCore {
                             chunk = Some((l.id, p));
                         }
                         self.print_learned(&name);
+                        self.rule_learned_at(level);
                     }
                 }
             }
@@ -331,6 +340,11 @@ impl AgentCore {
             self.learn.chunk_name_count = 0;
         }
         self.learn.chunk_name_count += 1;
+        if self.settings.chunk.naming_style == crate::learn::settings::NamingStyle::Numbered {
+            // 9.6 counts two for each name it makes.
+            self.learn.chunk_number += 2;
+            return format!("chunk{}", self.learn.chunk_number - 1);
+        }
         let prefix = match source.generation {
             0 => "chunk".to_string(),
             g => format!("chunkx{}", g + 1),
@@ -497,6 +511,19 @@ impl AgentCore {
             });
         }
         id
+    }
+
+    /// A rule was learned from the substate below `level`: the states above that substate
+    /// learn no more under `bottom-only`, and `chunk interrupt` stops the run after this
+    /// phase, with 9.6's notice.
+    fn rule_learned_at(&mut self, level: u32) {
+        for g in self.decider.goals.iter_mut().filter(|g| g.level < level) {
+            g.learned_below = true;
+        }
+        if self.settings.chunk.interrupt && !self.decider.rhs_interrupted {
+            self.decider.rhs_interrupted = true;
+            self.emit(&TraceEvent::LearningInterrupt);
+        }
     }
 
     /// `trace -L 1` prints the new rule's name, `-L 2` the rule too.

@@ -8,6 +8,7 @@ mod build;
 mod episode;
 mod negations;
 mod record;
+pub mod settings;
 
 use crate::decide::ids::InstId;
 use crate::production::Production;
@@ -84,6 +85,8 @@ pub struct LearnState {
     /// The count used in chunk names (`t<dc>-<n>`).
     pub chunk_name_count: u64,
     pub chunk_name_dc: u64,
+    /// The counter of `chunk naming-style numbered` names (incremented twice per name).
+    pub chunk_number: u64,
     /// The justification name counter (incremented twice per name, as in 9.6).
     pub justification_counter: u64,
     pub justifications_learned: u64,
@@ -120,6 +123,8 @@ impl LearnState {
     pub fn reset_for_init(&mut self) {
         self.init_count += 1;
         self.justification_counter = 0;
+        self.chunk_name_dc = 0;
+        self.chunk_name_count = 0;
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
