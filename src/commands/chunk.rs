@@ -199,7 +199,6 @@ const SINGLETONS_BUILT_IN: &str = "\
 
 const SINGLETONS_FOOTER: &str = "
 
-
 To add a new pattern:    chunk singleton    <type> attribute <type>
 To remove a pattern:     chunk singleton -r <type> attribute <type>
 
