@@ -124,7 +124,7 @@ impl Interpreter {
                 "max-nil-output-cycles",
                 &mut s.max_nil_output_cycles,
                 SOAR_INVALID,
-                |n| format!("max-nil-output-cycles is now {n}\n"),
+                |n| format!("The maximum number of decision cycles without output before interrupting is now {n}.  (used with run --output)\n"),
             ),
             Some("wait-snc") => {
                 match args.get(1).map(String::as_str) {
@@ -140,11 +140,9 @@ impl Interpreter {
                         s.wait_snc = false;
                         Ok("Soar will now impasse when a state doesn't change.\n".into())
                     }
-                    Some(other) => Err(Diagnostic::error(format!(
-                        "Invalid value for wait-snc: {other}"
-                    ))
-                    .at(ctx.arg_span(1))
-                    .with_label("expected on or off")),
+                    Some(_) => Err(Diagnostic::error(SOAR_INVALID)
+                        .at(ctx.arg_span(1))
+                        .with_label("expected on or off")),
                 }
             }
             Some("timers") => on_off_soar(
@@ -261,7 +259,12 @@ impl Interpreter {
         s.push_str(&row("Decisions", &a.decider.d_cycle_count.to_string()));
         s.push_str(&row("Elaborations", &a.decider.e_cycles.to_string()));
         s.push_str(&format!("{rule}\n"));
-        s.push_str(&row("State stack", &states.join(", ")));
+        // 9.6 shows a stack of more than four states by its two ends.
+        let stack = match states.as_slice() {
+            [a, b, .., y, z] if states.len() > 4 => format!("{a}, {b} ... {y}, {z}"),
+            all => all.join(", "),
+        };
+        s.push_str(&row("State stack", &stack));
         s.push_str(&row("Current number of states", &states.len().to_string()));
         s.push_str(&row("Next phase", phase));
         s.push_str(&format!("{rule}\n\n"));

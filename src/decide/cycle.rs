@@ -24,9 +24,14 @@ use crate::trace_events::TraceEvent;
 /// How far `run` goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunUnit {
+    /// Decision cycles, counted at the stop phase (`soar stop-phase`): a run of N stops
+    /// there after reaching it N times; a run of 0 goes on to it unless already there.
     Decisions,
     Phases,
     Elaborations,
+    /// Output cycles (`run -o`): decision cycles up to one whose output phase found the
+    /// output-link changed, or up to `max-nil-output-cycles` cycles without output.
+    OutputCycles,
     Forever,
 }
 
@@ -74,11 +79,20 @@ impl AgentCore {
         let stop_phase = self.settings.stop_phase;
         let max_dc_time = u64::try_from(self.settings.max_dc_time).unwrap_or(0);
         let mut decision_start = std::time::Instant::now();
+        let max_nil = u64::try_from(self.settings.max_nil_output_cycles.max(1)).unwrap_or(1);
+        let mut nil_cycles = 0u64;
+        let mut output_stamp = self.output_link_stamp();
         while !self.decider.halted
             && !self.decider.stop_requested
             && !self.decider.depth_exceeded
             && !self.decider.rhs_interrupted
-            && (unit == RunUnit::Forever || done < n)
+            && match unit {
+                RunUnit::Forever => true,
+                RunUnit::Decisions => {
+                    done < n || self.decider.phase.unwrap_or(Phase::Input) != stop_phase
+                }
+                _ => done < n,
+            }
         {
             let phase = self.decider.phase.unwrap_or(Phase::Input);
             let e_before = self.decider.e_cycles;
@@ -88,6 +102,17 @@ impl AgentCore {
                 RunUnit::Decisions | RunUnit::Forever => {
                     if phase != stop_phase && self.decider.phase == Some(stop_phase) {
                         done += 1;
+                    }
+                }
+                RunUnit::OutputCycles => {
+                    if phase == Phase::Output && self.decider.phase != Some(Phase::Output) {
+                        let stamp = self.output_link_stamp();
+                        nil_cycles += 1;
+                        if stamp != output_stamp || nil_cycles >= max_nil {
+                            done += 1;
+                            nil_cycles = 0;
+                        }
+                        output_stamp = stamp;
                     }
                 }
                 RunUnit::Phases => done += 1,
