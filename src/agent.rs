@@ -47,6 +47,19 @@ pub struct Settings {
     pub warnings: bool,
     /// `output agent-writes`: whether `write` (and `log`, `trace`) print.
     pub agent_writes: bool,
+    /// `output enabled`: off, the trace and the text of the commands 9.6 prints through
+    /// the agent (`print`, `preferences`, `matches`, the summaries) are dropped.
+    pub output_enabled: bool,
+    /// `output console`: 9.6 also copies its output to the process's standard output;
+    /// kept and listed (rusoar's command line prints everything already).
+    pub output_console: bool,
+    /// `output callbacks`: off, print listeners are not called.
+    pub output_callbacks: bool,
+    /// `output echo-commands`: kept and listed (9.6 echoes commands to a debugger).
+    pub echo_commands: bool,
+    /// `output agent-logs N off`: the channels of the `log` function turned off, as bits 1
+    /// to 100.
+    pub log_channels_off: u128,
     /// `output print-depth`: `print`'s depth when none is given.
     pub print_depth: usize,
     /// `trace -L`: 0 nothing, 1 the names of learned rules, 2 the rules too.
@@ -206,6 +219,11 @@ impl Default for Settings {
             epsilon: 0.1,
             temperature: 25.0,
             timers: true,
+            output_enabled: true,
+            output_console: false,
+            output_callbacks: true,
+            echo_commands: false,
+            log_channels_off: 0,
             stop_phase: crate::decide::state::Phase::Apply,
             max_dc_time: 0,
             max_memory_usage: 100_000_000,

@@ -151,3 +151,47 @@ fn singleton_patterns_are_listed_added_and_removed() {
         "Wrong number of arguments for the chunk command."
     );
 }
+
+#[test]
+fn output_log_and_command_to_file_write_files() {
+    let dir = std::env::temp_dir().join(format!("rusoar-output-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let log = dir.join("session.log");
+    let ctf = dir.join("print.txt");
+    let mut a = Agent::default();
+    let opened = a.execute(&format!("output log {}", log.display())).unwrap();
+    assert_eq!(opened, format!("Log file '{}' open.\n", log.display()));
+    a.execute("echo hello").unwrap();
+    a.execute("output log --add a note").unwrap();
+    assert_eq!(
+        a.execute("output log --close").unwrap(),
+        "Log file closed.\n"
+    );
+    assert_eq!(
+        a.execute("output log --close").unwrap_err().message(),
+        "Log is not open."
+    );
+    let text = std::fs::read_to_string(&log).unwrap();
+    assert!(text.starts_with(&opened), "{text}");
+    assert!(text.contains("soar> echo hello\nhello\n"), "{text}");
+    assert!(text.contains("a note\n"), "{text}");
+    assert!(!text.contains("--close"), "{text}");
+
+    // The command's text goes to the file, not to the print stream.
+    let shown = a
+        .execute(&format!(
+            "output command-to-file {} print s1",
+            ctf.display()
+        ))
+        .unwrap();
+    assert_eq!(shown, "");
+    let text = std::fs::read_to_string(&ctf).unwrap();
+    assert!(text.starts_with("(S1 ^epmem E1"), "{text}");
+    a.execute(&format!(
+        "output command-to-file -a {} echo more",
+        ctf.display()
+    ))
+    .unwrap();
+    assert!(std::fs::read_to_string(&ctf).unwrap().ends_with("more\n\n"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 const MAX_SOURCE_DEPTH: usize = 100;
 
 impl Interpreter {
-    fn resolve(&self, p: &str) -> PathBuf {
+    pub(super) fn resolve(&self, p: &str) -> PathBuf {
         let path = Path::new(p);
         if path.is_absolute() {
             path.to_path_buf()

@@ -12,6 +12,7 @@ mod gp;
 pub mod help;
 mod memory;
 pub mod options;
+mod output;
 mod prefs;
 mod printing;
 mod rules;
@@ -124,6 +125,8 @@ pub struct Interpreter {
     pub exit_requested: bool,
     /// The last thing printed was an `sp` progress mark, so other output starts a new line.
     after_star: bool,
+    /// The `output log` file, when one is open.
+    log: Option<output::OutputLog>,
     /// Set from outside (the REPL's Ctrl-C handler) to stop a `run` at the next decision.
     interrupt: Option<Arc<AtomicBool>>,
     /// Receives the trace while a `run` goes on, once per decision, instead of at its end.
@@ -169,6 +172,7 @@ impl Interpreter {
             report: LoadReport::default(),
             exit_requested: false,
             after_star: false,
+            log: None,
             interrupt: None,
             live: None,
             // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
@@ -425,6 +429,24 @@ impl Interpreter {
 
     /// Executes one tokenized command.
     pub fn execute(&mut self, cmd: &Command) -> CmdResult {
+        if self.log.is_none() || !self.source_stack.is_empty() {
+            return self.execute_command(cmd);
+        }
+        // `output log`: the command as typed, then what it printed.
+        let start = self.events.len();
+        let result = self.execute_command(cmd);
+        self.flush_agent_output();
+        let mut printed = self.render_all(&self.events[start..]);
+        if let Ok(r) = &result {
+            printed.push_str(r);
+        }
+        let text = self.sources.shared_text(cmd.span.file);
+        let line = text.get(cmd.span.start..cmd.span.end).unwrap_or_default().to_string();
+        self.log_command(&line, &printed);
+        result
+    }
+
+    fn execute_command(&mut self, cmd: &Command) -> CmdResult {
         // `sp` reads its body from the command itself, so a rule file's commands are not
         // copied word by word (unless `sp` is an alias).
         let w0 = &cmd.words[0];
@@ -503,6 +525,20 @@ impl Interpreter {
         // These commands print through the agent's printer in 9.6 (checked one by one).
         let printed = matches!(name, "print" | "learn" | "chunk")
             || (name == "production" && args.first().is_some_and(|a| a == "matches"));
+        // With `output enabled` or `output callbacks` off, what 9.6 prints through the
+        // agent is not shown (checked one by one on soar-sml 9.6.5).
+        let s = &self.agent.settings;
+        if !(s.output_enabled && s.output_callbacks) {
+            let listing = args.is_empty() || args[0] == "?";
+            let through_agent = matches!(name, "print" | "preferences")
+                || (name == "production" && args.first().is_some_and(|a| a == "matches"))
+                || (listing && matches!(name, "soar" | "chunk" | "decide" | "output"));
+            if let (true, Ok(text)) = (through_agent, &result) {
+                // Not shown, but 9.6's printer still counts the columns it would take.
+                advance_col(&self.print_col, text);
+                return Ok(String::new());
+            }
+        }
         if let (true, Ok(text)) = (printed, &result) {
             advance_col(&self.print_col, text);
         }

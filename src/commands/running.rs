@@ -172,7 +172,15 @@ impl Interpreter {
 
     /// Moves the agent's trace output into the event stream.
     pub(super) fn flush_agent_output(&mut self) {
+        let s = &self.agent.settings;
+        if !(s.output_enabled && s.output_callbacks) {
+            // `output enabled off`: the trace and what rules print are dropped.
+            self.agent.output.clear();
+        }
         if !self.agent.output.is_empty() {
+            // The agent's text goes on after any `*` marks: no newline is owed them any more
+            // (9.6 prints both as they come).
+            self.after_star = false;
             let text = std::mem::take(&mut self.agent.output);
             super::advance_col(&self.print_col, &text);
             self.events.push(super::Event::Text(text));

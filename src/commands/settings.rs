@@ -350,35 +350,6 @@ impl Interpreter {
         s
     }
 
-    /// `output`: the status listing, and the settings 9.6 prints as `NAME is VALUE` (checked
-    /// on soar-sml 9.6.5); logging and echo are not done yet.
-    pub(super) fn cmd_output(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        let settings = &mut self.agent.settings;
-        let Some(sub) = args.first().map(String::as_str) else {
-            return Ok(output_status(settings.agent_writes, settings.warnings));
-        };
-        let value = args.get(1).map(String::as_str);
-        match sub {
-            "warnings" => on_off_setting(ctx, "warnings", &mut settings.warnings, value),
-            "agent-writes" => on_off_setting(ctx, "agent-writes", &mut settings.agent_writes, value),
-            "print-depth" => match value {
-                None => Ok(format!("print-depth is {}\n", settings.print_depth)),
-                Some(v) => match v.parse::<usize>() {
-                    Ok(n) if n > 0 => {
-                        settings.print_depth = n;
-                        Ok(format!("print-depth is now {n}\n"))
-                    }
-                    _ => Err(ctx.error("Invalid value for print-depth.")),
-                },
-            },
-            "?" | "enabled" | "console" | "callbacks" | "agent-logs" | "log"
-            | "command-to-file" | "echo-commands" => Err(super::not_yet(ctx, "output")),
-            _ => Err(ctx.error(
-                "Invalid output sub-command.  Use 'output ?' to see a list of valid sub-commands and settings.",
-            )),
-        }
-    }
-
     pub(super) fn cmd_alias(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         match args {
             [] => Ok(self.aliases.listing()),
@@ -493,36 +464,3 @@ pub(super) fn int_setting(
     }
 }
 
-/// `output`'s status listing, as 9.6 prints it.
-fn output_status(agent_writes: bool, warnings: bool) -> String {
-    let on = |b: bool| if b { "on" } else { "off" };
-    let rule = "=======================================================";
-    let line = "-------------------------------------------------------";
-    format!(
-        "{rule}\n-                   Output Status                     -\n{rule}\n\
-         Printing enabled                                    Yes   \n{line}\n\
-         Agent RHS write output {:>32}   \nAll agent log channels enabled.\n{line}\n\
-         Warnings {:>46}   \n{line}\n\n\
-         To enable specific types of trace messages, use the 'trace' command.\n\
-         Use 'output ?' for a command overview or 'help output' for the manual page.",
-        on(agent_writes),
-        on(warnings),
-    )
-}
-
-/// A setting 9.6 reports as `NAME is on` and sets with `NAME is now off`.
-fn on_off_setting(ctx: &Ctx, name: &str, slot: &mut bool, value: Option<&str>) -> CmdResult {
-    let word = |b: bool| if b { "on" } else { "off" };
-    match value {
-        None => Ok(format!("{name} is {}\n", word(*slot))),
-        Some("on") => {
-            *slot = true;
-            Ok(format!("{name} is now on\n"))
-        }
-        Some("off") => {
-            *slot = false;
-            Ok(format!("{name} is now off\n"))
-        }
-        Some(_) => Err(ctx.error(format!("Invalid value for {name}: expected on or off."))),
-    }
-}

@@ -19,6 +19,7 @@ pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sy
     ctx.decision_count = agent.decider.d_cycle_count;
     ctx.agent_writes = agent.settings.agent_writes;
     ctx.trace_flags = crate::rhs::trace_flags_for_level(trace_level);
+    ctx.log_channels_off = agent.settings.log_channels_off;
     let result = crate::rhs::call(name, args, &mut ctx);
     let (halt, interrupt) = (ctx.halt, ctx.interrupt);
     let fresh_line = ctx.error_fresh_line;

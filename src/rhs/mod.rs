@@ -203,6 +203,8 @@ pub struct RhsContext<'a> {
     pub module_wmes: Vec<(Sym, Sym, Sym)>,
     /// Set with an `Err` whose text 9.6 prints with `%e`: start a fresh line first.
     pub error_fresh_line: bool,
+    /// The `log` channels turned off (`output agent-logs N off`), as bits 1 to 100.
+    pub log_channels_off: u128,
 }
 
 impl<'a> RhsContext<'a> {
@@ -233,6 +235,7 @@ impl<'a> RhsContext<'a> {
             deep_copy_wmes: Vec::new(),
             module_wmes: Vec::new(),
             error_fresh_line: false,
+            log_channels_off: 0,
         }
     }
 
@@ -618,9 +621,8 @@ fn trace_log(is_log: bool, args: &[Sym], ctx: &mut RhsContext) -> Result<Option<
     };
     let enabled = if is_log {
         match n {
-            // Every agent log channel is enabled by default (observed); this module has no
-            // `output log` settings to consult.
-            Some(1..=100) => true,
+            // Every channel is on until `output agent-logs N off`.
+            Some(c @ 1..=100) => ctx.log_channels_off & (1u128 << c) == 0,
             _ => {
                 let msg = format!(
                     "Error: First argument of agent's (log) rhs-function must be an integer channel number between 1 and 100.  {} is invalid.",
