@@ -168,6 +168,31 @@ fn paren_depth(tokens: &[lexer::Spanned], location: usize) -> i64 {
         .sum()
 }
 
+/// The constant right after the `(` of the innermost condition open at `location`, if its
+/// id is one (`(stat <s> ...)`).
+fn constant_id(tokens: &[lexer::Spanned], location: usize) -> Option<String> {
+    let mut open = Vec::new();
+    for (i, (s, t, _)) in tokens.iter().enumerate() {
+        if *s >= location {
+            break;
+        }
+        match t {
+            Tok::LParen => open.push(i),
+            Tok::RParen => {
+                open.pop();
+            }
+            _ => {}
+        }
+    }
+    let (_, id, _) = tokens.get(open.last()? + 1)?;
+    match id {
+        Tok::Sym(_) | Tok::Ident(_) | Tok::Int(_) | Tok::Float(_) | Tok::Quoted(_) => {
+            Some(id.describe())
+        }
+        _ => None,
+    }
+}
+
 /// Soar's message for a syntax error, chosen from what the grammar expected.
 fn soar_message(expected: &[String], tokens: &[lexer::Spanned], location: usize) -> String {
     let has = |t: &str| expected.iter().any(|e| e == t);
@@ -200,6 +225,13 @@ fn soar_message(expected: &[String], tokens: &[lexer::Spanned], location: usize)
     // Where a condition must start (after the name, flags, or a `-`).
     if has("\"(\"") && !has("\"^\"") && !has("\"var\"") {
         return "Expected ( to begin condition element".into();
+    }
+    // A condition whose id is a constant: Soar rejects it as soon as it has read the id
+    // (parse_head_of_cond_for_one_id), whatever follows.
+    if let Some(constant) = constant_id(tokens, location) {
+        return format!(
+            "Warning: Constant {constant} in id field test.\n         This will never match."
+        );
     }
     // Inside a condition, where `^attr` must come: parse_attr_value_tests.
     if has("\"^\"") && !has("\"var\"") {
