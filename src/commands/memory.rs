@@ -72,7 +72,20 @@ impl Interpreter {
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
         match parsed.args.first() {
-            None => Ok(crate::trace::pending_matches(&self.agent)),
+            None => {
+                // `-a` keeps the assertions, `-r` the retractions (9.6 lists assertions
+                // first, then `Retractions:`).
+                let all = crate::trace::pending_matches(&self.agent);
+                let (assertions, retractions) = match all.find("Retractions:") {
+                    Some(i) => all.split_at(i),
+                    None => (all.as_str(), ""),
+                };
+                Ok(match (parsed.has("assertions"), parsed.has("retractions")) {
+                    (true, false) => assertions.to_string(),
+                    (false, true) => retractions.to_string(),
+                    _ => all.clone(),
+                })
+            }
             Some(name) => {
                 let mut text =
                     crate::trace::matches_listing(&self.agent, name).ok_or_else(|| {

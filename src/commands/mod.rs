@@ -514,7 +514,7 @@ impl Interpreter {
             "production" => self.cmd_production(&ctx, args),
             "wm" => self.cmd_wm(&ctx, args),
             "run" => self.cmd_run(&ctx, args),
-            "stats" => self.cmd_stats(),
+            "stats" => self.cmd_stats_options(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -231,6 +231,47 @@ impl Interpreter {
             .collect())
     }
 
+    /// `stats [options]` (Soar manual, ch. 9, `stats`): the report (`-s`, the default), the
+    /// decision count (`-d`), the agent counters (`-a`; rusoar keeps none, as a 9.6 agent
+    /// without them prints an empty table). The memory-pool, rete, learning and per-cycle
+    /// reports are not built: each says so.
+    pub(super) fn cmd_stats_options(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let specs = [
+            opt('m', "memory"),
+            opt('l', "learning"),
+            opt('r', "rete"),
+            opt('s', "system"),
+            opt('M', "max"),
+            opt('R', "reset"),
+            opt('t', "track"),
+            opt('T', "stop-track"),
+            opt('c', "cycle"),
+            opt('C', "cycle-csv"),
+            opt('S', "sort"),
+            opt('d', "decision"),
+            opt('a', "agent"),
+        ];
+        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        let Some((option, _)) = parsed.options.first() else {
+            return self.cmd_stats();
+        };
+        match *option {
+            "system" => self.cmd_stats(),
+            "decision" => Ok(format!("{}\n", self.agent.decider.decisions)),
+            "agent" => Ok("Agent counters:
+Counter          Value
+---------------- -----------
+".into()),
+            "learning" => Err(super::not_yet(ctx, "stats --learning")),
+            "memory" => Err(super::not_yet(ctx, "stats --memory")),
+            "rete" => Err(super::not_yet(ctx, "stats --rete")),
+            _ => Err(super::not_yet(
+                ctx,
+                "stats --max, --reset, --track, --stop-track, --cycle, --cycle-csv and --sort",
+            )),
+        }
+    }
+
     /// `stats`: 9.6's report: the production counts, the phase timing table, the single
     /// timers, then the counts. The timings are rusoar's own (wall-clock time per phase,
     /// `std::time::Instant`); the first line names rusoar, the host and the time. WM size
