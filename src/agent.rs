@@ -655,9 +655,10 @@ impl AgentCore {
 
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
         self.wm.get(w)?;
+        let rule_retractions = self.matches.retractions.len();
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
-        self.justification_wme_removed(w, wme.timetag);
+        self.justification_wme_removed(w, wme.timetag, rule_retractions);
         if self.events.any() {
             self.events
                 .send(&crate::events::AgentEvent::WmeRemoved(wme));

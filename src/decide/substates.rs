@@ -141,6 +141,7 @@ impl AgentCore {
         let parent = self.decider.goals[gi].state;
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
+            self.flush_impasse_item_updates();
             // Waiting: the bottom state's own line again, impasse included, as 9.6 prints.
             if self.settings.trace.decisions {
                 self.emit(&TraceEvent::State {
@@ -227,6 +228,7 @@ impl AgentCore {
                 self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
             }
         }
+        self.flush_impasse_item_updates();
         if self.settings.trace.decisions {
             self.emit(&TraceEvent::State {
                 cycle: self.decider.d_cycle_count,

@@ -564,26 +564,79 @@ impl AgentCore {
         }
     }
 
-    /// A justification's instantiation lost a WME: its retraction is queued.
-    pub(crate) fn justification_wme_removed(&mut self, w: crate::wm::WmeId, timetag: u64) {
+    /// A justification's instantiation lost a WME: its retraction is queued, before the
+    /// rules' retractions the same removal made (from `at` on) and the newest
+    /// justification first: 9.6's matcher drops the WME's newest matches first, and the
+    /// justifications' are newer than the rules' (checked on soar-sml 9.6.5: agent
+    /// long/fifteen-puzzle, trace 3, where a move retracts the evaluations' justifications
+    /// after the old proposals, oldest first).
+    pub(crate) fn justification_wme_removed(
+        &mut self,
+        w: crate::wm::WmeId,
+        timetag: u64,
+        at: usize,
+    ) {
         // Most removals meet no justification: skip the hash probe then.
         if self.learn.justified_by_wme.is_empty() {
             return;
         }
         if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
-            let after_rules = usize::MAX;
             self.decider
                 .justification_retractions
-                .extend(list.into_iter().map(|(i, s)| (i, s, after_rules)));
+                .extend(list.into_iter().rev().map(|(i, s)| (i, s, at)));
         }
     }
 
-    /// A justification retracted: it leaves the list unless o-supported results keep it
-    /// (9.6 keeps it while its preferences live).
-    pub(crate) fn forget_justification(&mut self, serial: u64, o_support: bool) {
-        if !o_support {
-            self.learn.justification_names.remove(&serial);
-            self.learn.justifications.retain(|j| j.serial != serial);
+    /// A justification retracted. Its i-supported preferences go with it, and so does the
+    /// justification; o-supported ones stay in preference memory (Soar manual, ch. 2,
+    /// "Justifications: Support for results"), and the justification with them until the
+    /// last of them is removed (checked on soar-sml 9.6.5: agent long/fifteen-puzzle, whose
+    /// o-supported evaluation results live as long as the selection state).
+    pub(crate) fn justification_retracted(&mut self, inst: InstId, serial: u64) {
+        let mut held = 0;
+        if self.decider.insts[inst as usize].o_support {
+            for &pid in &self.decider.insts[inst as usize].prefs {
+                let p = &self.decider.prefs[pid as usize];
+                if p.o_support && p.alive && !p.freed {
+                    self.decider.held_by_justification.insert(pid, serial);
+                    held += 1;
+                }
+            }
         }
+        if held == 0 {
+            self.forget_justification(serial);
+        } else {
+            self.learn.held_prefs.insert(serial, held);
+        }
+    }
+
+    /// Retracted justifications whose last o-supported preference has gone leave the list.
+    pub(crate) fn release_justifications(&mut self) {
+        if self.decider.released_justification_prefs.is_empty() {
+            return;
+        }
+        let released = std::mem::take(&mut self.decider.released_justification_prefs);
+        let mut gone = FxHashSet::default();
+        for &serial in &released {
+            if let Some(n) = self.learn.held_prefs.get_mut(&serial) {
+                *n -= 1;
+                if *n == 0 {
+                    self.learn.held_prefs.remove(&serial);
+                    self.learn.justification_names.remove(&serial);
+                    gone.insert(serial);
+                }
+            }
+        }
+        if !gone.is_empty() {
+            self.learn.justifications.retain(|j| !gone.contains(&j.serial));
+        }
+        let mut released = released;
+        released.clear();
+        self.decider.released_justification_prefs = released;
+    }
+
+    fn forget_justification(&mut self, serial: u64) {
+        self.learn.justification_names.remove(&serial);
+        self.learn.justifications.retain(|j| j.serial != serial);
     }
 }

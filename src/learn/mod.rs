@@ -112,6 +112,9 @@ pub struct LearnState {
     /// retracts it.
     pub negations: negations::WatchedNegations,
     pub next_serial: u64,
+    /// Retracted justifications kept by o-supported preferences: how many of those are
+    /// still in preference memory, by serial.
+    pub held_prefs: FxHashMap<u64, u32>,
 }
 
 impl LearnState {
@@ -122,6 +125,7 @@ impl LearnState {
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
+        self.held_prefs.clear();
         self.negations.clear();
         self.force_learn.clear();
         self.dont_learn.clear();
