@@ -456,20 +456,22 @@ impl AgentCore {
             serial,
         };
         let id = self.decider.alloc_inst(inst);
+        let mut watched = Vec::with_capacity(bt.grounds.len());
         for g in &bt.grounds {
             let key = (g.cond.wme_id, g.cond.wme.timetag);
             if self.wm.get(key.0).is_some_and(|w| w.timetag == key.1) {
-                self.learn
-                    .justified_by_wme
-                    .entry(key)
-                    .or_default()
-                    .push((id, serial));
+                let list = self.learn.justified_by_wme.entry(key).or_default();
+                if list.last() != Some(&(id, serial)) {
+                    list.push((id, serial));
+                    watched.push(key);
+                }
             } else {
                 self.decider
                     .justification_retractions
                     .push((id, serial, usize::MAX));
             }
         }
+        self.learn.grounds_of.insert(serial, watched);
         let negations = self.superstate_negations(bt);
         if !negations.is_empty() {
             let list: Vec<_> = negations
@@ -593,6 +595,16 @@ impl AgentCore {
     /// last of them is removed (checked on soar-sml 9.6.5: agent long/fifteen-puzzle, whose
     /// o-supported evaluation results live as long as the selection state).
     pub(crate) fn justification_retracted(&mut self, inst: InstId, serial: u64) {
+        // Its WMEs no longer retract it (those that stay would otherwise keep it listed
+        // for as long as they last).
+        for key in self.learn.grounds_of.remove(&serial).unwrap_or_default() {
+            if let Some(list) = self.learn.justified_by_wme.get_mut(&key) {
+                list.retain(|&(_, s)| s != serial);
+                if list.is_empty() {
+                    self.learn.justified_by_wme.remove(&key);
+                }
+            }
+        }
         let mut held = 0;
         if self.decider.insts[inst as usize].o_support {
             for &pid in &self.decider.insts[inst as usize].prefs {

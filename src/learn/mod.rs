@@ -108,6 +108,8 @@ pub struct LearnState {
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
     pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(u32, u64)>>,
+    /// The WMEs each live justification is listed under in `justified_by_wme`, by serial.
+    pub grounds_of: FxHashMap<u64, Vec<(WmeId, u64)>>,
     /// The superstate negations of live justifications: a new WME that matches one
     /// retracts it.
     pub negations: negations::WatchedNegations,
@@ -125,6 +127,7 @@ impl LearnState {
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
+        self.grounds_of.clear();
         self.held_prefs.clear();
         self.negations.clear();
         self.force_learn.clear();
