@@ -12,17 +12,7 @@ use rusoar::Agent;
 use std::path::PathBuf;
 
 /// (agent, level) pairs whose trace still differs from 9.6's, with the reason.
-const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[
-    (
-        "learn-lookahead",
-        4,
-        "the order of `<=WM:` lines when a GDS change removes the lookahead substate (9.6: \
-         i-supported WMEs newest first, then o-supported ones oldest first), and where the \
-         selection state's objects (its evaluation and operator) are listed when the top \
-         operator is replaced",
-    ),
-    ("learn-lookahead", 5, "as at level 4"),
-];
+const KNOWN_DIFFERENCES: &[(&str, u8, &str)] = &[];
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

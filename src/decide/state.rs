@@ -164,6 +164,9 @@ pub struct DecideState {
     /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the
     /// garbage collection after it does not list them again.
     pub(crate) prefs_traced_gone: Vec<PrefId>,
+    /// WMEs (by timetag) a removed substate's trace has just listed as gone: the garbage
+    /// collection after it does not list them again.
+    pub(crate) wmes_traced_gone: Vec<u64>,
     /// Substate preferences whose result copy (with its justification's support) is an
     /// o-supported reject: in 9.6 the result itself becomes that o-reject, so the original
     /// is neither traced nor asserted.

@@ -13,23 +13,88 @@ impl AgentCore {
     /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
     /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
     /// WMEs (each group oldest first; seen on 9.6).
+    ///
+    /// The substates' own objects go with them: those their other slots hold come first,
+    /// the last held first, each one's WMEs oldest first; those their operator slots hold
+    /// come after the state's own WMEs, newest first, before the operator `+` WMEs
+    /// (soar-sml 9.6.5, agents learn-lookahead and long/fifteen-puzzle: the evaluation
+    /// objects, the memories, `^name selection`, `^evaluation`, the proposed operator's
+    /// `^superoperator` and `^name`, then `^operator E5 +`). The garbage collection does
+    /// not list them again.
     pub(super) fn trace_substate_wmes_removed(&mut self, gi: usize) {
         let lines = self.substate_lines(gi);
         let memories = lines.iter().take_while(|(group, _)| *group <= 2).count();
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        let (held, proposed) = self.substate_objects(gi, &made);
+        for wme in &held {
+            self.trace_wme(false, wme);
+        }
         for (_, wme) in &lines[..memories] {
             self.trace_wme(false, wme);
         }
         // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
-        // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
-        // agent learn-lookahead: `^name selection`, `^evaluation`, then `^operator E5 +`).
-        let mut made = self.substate_slot_wmes(gi);
-        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
-        for (_, wme) in made {
+        // the memories' structure, oldest first, the operator `+` WMEs last.
+        for &(plus, wme) in &made {
+            if plus {
+                continue;
+            }
             self.trace_wme(false, &wme);
+        }
+        for wme in &proposed {
+            self.trace_wme(false, wme);
+        }
+        for &(plus, wme) in &made {
+            if plus {
+                self.trace_wme(false, &wme);
+            }
         }
         for (_, wme) in &lines[memories..] {
             self.trace_wme(false, wme);
         }
+        let traced = held.iter().chain(&proposed).map(|w| w.timetag);
+        self.decider.wmes_traced_gone.extend(traced);
+    }
+
+    /// The WMEs of the objects local to the substates below `gi` that their slot WMEs
+    /// `made` (as [`Self::trace_substate_wmes_removed`] orders them) hold: those of the
+    /// objects other slots hold, the last held first, each one's oldest first; and those
+    /// of the objects the operator slots hold, newest first.
+    fn substate_objects(
+        &self,
+        gi: usize,
+        made: &[(bool, crate::wm::Wme)],
+    ) -> (Vec<crate::wm::Wme>, Vec<crate::wm::Wme>) {
+        let levels: Vec<u32> = self.decider.goals[gi + 1..].iter().map(|g| g.level).collect();
+        let local = |v: Sym| {
+            !self.symbols.is_goal(v)
+                && self
+                    .symbols
+                    .id_data(v)
+                    .is_some_and(|d| levels.contains(&d.level))
+        };
+        let mut seen = FxHashSet::default();
+        let mut held = Vec::new();
+        let mut proposed = Vec::new();
+        for &(plus, wme) in made.iter().rev() {
+            if !local(wme.value) || !seen.insert(wme.value) {
+                continue;
+            }
+            let mut of: Vec<crate::wm::Wme> = self
+                .wm
+                .of_id(wme.value)
+                .filter_map(|w| self.wm.get(w).copied())
+                .collect();
+            if plus {
+                of.sort_by_key(|w| std::cmp::Reverse(w.timetag));
+                proposed.extend(of);
+            } else {
+                of.sort_by_key(|w| w.timetag);
+                held.extend(of);
+            }
+        }
+        proposed.sort_by_key(|w| std::cmp::Reverse(w.timetag));
+        (held, proposed)
     }
 
     /// An operator removal or a GDS change takes the substates below goal `gi` away: their
@@ -60,6 +125,22 @@ impl AgentCore {
             }
         }
         self.substate_removals.extend(out);
+    }
+
+    /// The slots of the standing preferences the firings of the goals below `gi` made, in
+    /// the order 9.6 removes those preferences with the goals (deepest goal first, as
+    /// [`Self::trace_removed_prefs`] lists them), each slot once.
+    pub(crate) fn substate_pref_slots(&self, gi: usize) -> Vec<(Sym, Sym)> {
+        let mut out: Vec<(Sym, Sym)> = Vec::new();
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            for &(pid, what) in &g.made {
+                let slot = (what.0, what.1);
+                if self.pref_stands(pid, what, g.state) && !out.contains(&slot) {
+                    out.push(slot);
+                }
+            }
+        }
+        out
     }
 
     /// The WMEs in the slots of the goals below `gi` (those rules made on them), lowest
@@ -289,7 +370,7 @@ impl AgentCore {
 
     /// Keeps a substate firing's preference with its goal (a firing's newest first), for
     /// [`Self::trace_removed_prefs`].
-    pub(super) fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
+    pub(crate) fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
         let Some(gi) = self
             .decider
             .goals

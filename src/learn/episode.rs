@@ -315,6 +315,15 @@ impl AgentCore {
             new_prefs.push(pid);
             clones.push(pid);
         }
+        // The learned rule's instantiation belongs to its match goal: a substate there
+        // lists the copies among its firings' preferences when it goes (checked on
+        // soar-sml 9.6.5: agent learn-lookahead, trace 5).
+        let goal = self.decider.insts[inst_id as usize].goal;
+        if goal.is_some_and(|g| self.sym_level(g) >= 2) {
+            for &pid in clones.iter().rev() {
+                self.note_goal_pref(goal, pid);
+            }
+        }
         // Still results one level up: learn again from this instantiation.
         if owner_level >= 2 {
             let again = self.find_results(&clones, owner_level);
