@@ -262,14 +262,17 @@ pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) 
 }
 
 /// The level a preference is traced at: 9.6 prints the level of the instantiation's goal
-/// (a result made in a substate says `[level 2]` though its id is on the top state).
+/// (a result made in a substate says `[level 2]` though its id is on the top state), also
+/// once the instantiation has retracted and an o-supported preference outlives it.
 fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
     let s = &agent.symbols;
-    let goal_level = p
-        .inst
-        .and_then(|i| agent.decider.insts[i as usize].goal)
-        .and_then(|g| s.id_data(g))
-        .map(|d| d.level);
+    let goal_level = match p.inst {
+        Some(i) => agent.decider.insts[i as usize]
+            .goal
+            .and_then(|g| s.id_data(g))
+            .map(|d| d.level),
+        None => p.origin.as_ref().map(|o| o.trace.level).filter(|&l| l > 0),
+    };
     goal_level.unwrap_or_else(|| s.id_data(p.id).map_or(1, |d| d.level))
 }
 
@@ -624,12 +627,12 @@ impl AgentCore {
         // the goals', then their impasse WMEs, and the selected operators after those
         // (checked on soar-sml 9.6.5: substate-results, learn-justification,
         // tests/data/traces/substate.soar). When a GDS change takes them: the memories'
-        // structure, the goals' operator WMEs, the substates' operator `+` WMEs, the slot
-        // decisions made before the WME that took them, the WMEs of the slots the
-        // substates' preferences were in (slot by slot in the order those preferences go,
-        // each slot's oldest first), the rest of the garbage, that WME and the decisions
-        // after it, their impasse WMEs, their selected operators (agents gds,
-        // learn-lookahead, long/fifteen-puzzle).
+        // structure, the rest of the garbage (newest first), the goals' operator WMEs, the
+        // substates' operator `+` WMEs, the slot decisions made before the WME that took
+        // them, the WMEs of the slots the substates' preferences were in (slot by slot in
+        // the order those preferences go, each slot's oldest first), that WME and the
+        // decisions after it, their impasse WMEs, their selected operators (agents gds,
+        // learn-lookahead, long/fifteen-puzzle, long/factorization).
         let with_substates = !substates.is_empty();
         let trigger_at = trigger.and_then(|tt| {
             wmes.iter()
@@ -648,7 +651,8 @@ impl AgentCore {
                     } else if let Some(k) = in_slot(w) {
                         (4, k as i64, 0)
                     } else {
-                        (5, -(w.timetag as i64), 0)
+                        // Right after the memories' structure, newest first.
+                        (0, (1 << 48) - w.timetag as i64, 0)
                     }
                 } else if decided.contains(i) {
                     (10, *i as i64, 0)
@@ -678,7 +682,7 @@ impl AgentCore {
                 (SubstateLine::OperatorPlus, true) => (2, w.timetag as i64, 0),
                 (SubstateLine::Other, true) => match in_slot(&w) {
                     Some(s) => (4, s as i64, 0),
-                    None => (5, -(w.timetag as i64), 0),
+                    None => (0, (1 << 48) - w.timetag as i64, 0),
                 },
                 (SubstateLine::Impasse, _) => (7, k, 0),
                 (SubstateLine::Selected, _) => (8, k, 0),

@@ -6,7 +6,7 @@ use super::state::{Goal, ImpasseKind, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 impl AgentCore {
     /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
@@ -129,18 +129,27 @@ impl AgentCore {
 
     /// The slots of the standing preferences the firings of the goals below `gi` made, in
     /// the order 9.6 removes those preferences with the goals (deepest goal first, as
-    /// [`Self::trace_removed_prefs`] lists them), each slot once.
+    /// [`Self::trace_removed_prefs`] lists them), each slot once; only the slots that hold
+    /// no other preference (a WME something else supports goes with the garbage).
     pub(crate) fn substate_pref_slots(&self, gi: usize) -> Vec<(Sym, Sym)> {
-        let mut out: Vec<(Sym, Sym)> = Vec::new();
+        let mut order: Vec<(Sym, Sym)> = Vec::new();
+        let mut theirs = FxHashSet::default();
         for g in self.decider.goals[gi + 1..].iter().rev() {
-            for &(pid, what) in &g.made {
+            for (pid, what) in self.standing_prefs(g.state, &g.made) {
+                theirs.insert(pid);
                 let slot = (what.0, what.1);
-                if self.pref_stands(pid, what, g.state) && !out.contains(&slot) {
-                    out.push(slot);
+                if !order.contains(&slot) {
+                    order.push(slot);
                 }
             }
         }
-        out
+        order.retain(|key| {
+            self.decider
+                .slots
+                .get(key)
+                .is_none_or(|slot| slot.prefs.iter().all(|p| theirs.contains(p)))
+        });
+        order
     }
 
     /// The WMEs in the slots of the goals below `gi` (those rules made on them), lowest
@@ -340,6 +349,7 @@ impl AgentCore {
             if self.settings.trace.preferences {
                 self.trace_removed_prefs(g.state, &g.made);
             }
+            self.remove_goal_prefs(g.state, &g.made);
             if let Some((_, w)) = g.operator {
                 self.remove_wme(w);
             }
@@ -366,6 +376,27 @@ impl AgentCore {
             self.decider.gds.retain(|_, goal| *goal != g.state);
         }
         self.collect_garbage();
+    }
+
+    /// A removed substate's firings' preferences leave preference memory with it, those
+    /// on objects of the states above too: an o-supported result's own preference goes,
+    /// and its WME stays only while the learned rule's copy supports it (Soar manual,
+    /// ch. 2, "Justifications: Support for results"; 9.6 removes a goal's preferences
+    /// with it). The state's own slots go with the state.
+    fn remove_goal_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
+        for (pid, what) in self.standing_prefs(state, made) {
+            if what.0 == state {
+                continue;
+            }
+            let key = (what.0, what.1);
+            if let Some(slot) = self.decider.slots.id_of(&key) {
+                if self.decider.slots.slot_mut(slot).remove(pid, what.2) {
+                    self.mark_changed(key, Some(slot));
+                    self.decider.slots.drop_if_empty(slot);
+                    self.decider.free_pref(pid);
+                }
+            }
+        }
     }
 
     /// Keeps a substate firing's preference with its goal (a firing's newest first), for
@@ -408,12 +439,28 @@ impl AgentCore {
     /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
     /// justification-negation).
     pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
-        let mut seen = FxHashSet::default();
-        for &(pid, what) in made {
-            if self.pref_stands(pid, what, state) && seen.insert(pid) {
-                self.trace_pref('-', pid);
-                self.decider.prefs_traced_gone.push(pid);
-            }
+        for (pid, _) in self.standing_prefs(state, made) {
+            self.trace_pref('-', pid);
+            self.decider.prefs_traced_gone.push(pid);
         }
+    }
+
+    /// The preferences of `made` (a goal's, oldest first) that still stand, in that order.
+    /// A handle is reused once its preference is freed: only its last entry can be the
+    /// preference it now holds.
+    fn standing_prefs(
+        &self,
+        state: Sym,
+        made: &[(PrefId, (Sym, Sym, Sym))],
+    ) -> Vec<(PrefId, (Sym, Sym, Sym))> {
+        let mut last: FxHashMap<PrefId, usize> = FxHashMap::default();
+        for (k, &(pid, _)) in made.iter().enumerate() {
+            last.insert(pid, k);
+        }
+        made.iter()
+            .enumerate()
+            .filter(|&(k, &(pid, what))| last[&pid] == k && self.pref_stands(pid, what, state))
+            .map(|(_, &x)| x)
+            .collect()
     }
 }

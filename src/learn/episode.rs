@@ -282,6 +282,9 @@ impl AgentCore {
                 vars: Default::default(),
                 base: source.base.clone(),
                 generation: source.generation,
+                level: self.decider.insts[inst_id as usize]
+                    .goal
+                    .map_or(0, |g| self.sym_level(g)),
             }),
         };
         let mut clones = Vec::with_capacity(results.len());

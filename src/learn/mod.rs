@@ -51,6 +51,8 @@ pub struct InstTrace {
     /// (`chunk*r*...` is 1, `chunkx2*r*...` 2): names of chunks learned from this firing.
     pub base: String,
     pub generation: u32,
+    /// The level of the instantiation's match goal (traced with its preferences).
+    pub level: u32,
 }
 
 /// Where a preference came from: the firing and the identities of its fields.
