@@ -89,9 +89,9 @@ impl AgentCore {
             });
         }
         if self.settings.trace.preferences {
-            // Before the substates' `<=WM:` lines, as 9.6 lists them.
+            // Before the substates' `<=WM:` lines, as 9.6 lists them (not again below).
             for k in (gi + 1..self.decider.goals.len()).rev() {
-                let made = std::mem::take(&mut self.decider.goals[k].made);
+                let made = self.decider.goals[k].made.clone();
                 let state = self.decider.goals[k].state;
                 self.trace_removed_prefs(state, &made);
             }
@@ -99,6 +99,7 @@ impl AgentCore {
         if self.settings.trace.wmes {
             self.trace_substate_wmes_removed(gi);
         }
+        self.remove_held_objects(gi);
         self.remove_goals_below(gi);
     }
 

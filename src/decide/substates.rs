@@ -27,7 +27,7 @@ impl AgentCore {
         let mut made = self.substate_slot_wmes(gi);
         made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
         let (held, proposed) = self.substate_objects(gi, &made);
-        for wme in &held {
+        for (_, wme) in &held {
             self.trace_wme(false, wme);
         }
         for (_, wme) in &lines[..memories] {
@@ -41,7 +41,7 @@ impl AgentCore {
             }
             self.trace_wme(false, &wme);
         }
-        for wme in &proposed {
+        for (_, wme) in &proposed {
             self.trace_wme(false, wme);
         }
         for &(plus, wme) in &made {
@@ -52,8 +52,38 @@ impl AgentCore {
         for (_, wme) in &lines[memories..] {
             self.trace_wme(false, wme);
         }
-        let traced = held.iter().chain(&proposed).map(|w| w.timetag);
+        let traced = held.iter().chain(&proposed).map(|(_, w)| w.timetag);
         self.decider.wmes_traced_gone.extend(traced);
+    }
+
+    /// A consistency check removes the substates below goal `gi`: the objects their other
+    /// slots hold go first, before the states' own WMEs, in the order the trace lists them
+    /// (see [`Self::trace_substate_wmes_removed`]): 9.6 takes them out of the matcher in
+    /// that order, so their alpha memories empty before the states' matches go, which
+    /// sets where the matcher's joins stand when they come back (checked on soar-sml
+    /// 9.6.5: agent long/fifteen-puzzle, trace 3, the order of the selection rules that a
+    /// second selection state's first evaluation fires).
+    pub(super) fn remove_held_objects(&mut self, gi: usize) {
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        let (held, _) = self.substate_objects(gi, &made);
+        for (w, wme) in held {
+            if self.wm.get(w).is_none_or(|x| x.timetag != wme.timetag) {
+                continue;
+            }
+            if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
+                for &pid in &slot.prefs {
+                    self.decider.free_pref(pid);
+                }
+                for sw in slot.wmes.values().rev() {
+                    if sw != w {
+                        self.remove_wme(sw);
+                    }
+                }
+                self.decider.slots.recycle(slot);
+            }
+            self.remove_wme(w);
+        }
     }
 
     /// The WMEs of the objects local to the substates below `gi` that their slot WMEs
@@ -64,7 +94,10 @@ impl AgentCore {
         &self,
         gi: usize,
         made: &[(bool, crate::wm::Wme)],
-    ) -> (Vec<crate::wm::Wme>, Vec<crate::wm::Wme>) {
+    ) -> (
+        Vec<(crate::wm::WmeId, crate::wm::Wme)>,
+        Vec<(crate::wm::WmeId, crate::wm::Wme)>,
+    ) {
         let levels: Vec<u32> = self.decider.goals[gi + 1..].iter().map(|g| g.level).collect();
         let local = |v: Sym| {
             !self.symbols.is_goal(v)
@@ -80,20 +113,20 @@ impl AgentCore {
             if !local(wme.value) || !seen.insert(wme.value) {
                 continue;
             }
-            let mut of: Vec<crate::wm::Wme> = self
+            let mut of: Vec<(crate::wm::WmeId, crate::wm::Wme)> = self
                 .wm
                 .of_id(wme.value)
-                .filter_map(|w| self.wm.get(w).copied())
+                .filter_map(|w| Some((w, self.wm.get(w).copied()?)))
                 .collect();
             if plus {
-                of.sort_by_key(|w| std::cmp::Reverse(w.timetag));
+                of.sort_by_key(|(_, w)| std::cmp::Reverse(w.timetag));
                 proposed.extend(of);
             } else {
-                of.sort_by_key(|w| w.timetag);
+                of.sort_by_key(|(_, w)| w.timetag);
                 held.extend(of);
             }
         }
-        proposed.sort_by_key(|w| std::cmp::Reverse(w.timetag));
+        proposed.sort_by_key(|(_, w)| std::cmp::Reverse(w.timetag));
         (held, proposed)
     }
 
@@ -440,6 +473,9 @@ impl AgentCore {
     /// justification-negation).
     pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
         for (pid, _) in self.standing_prefs(state, made) {
+            if self.decider.prefs_traced_gone.contains(&pid) {
+                continue;
+            }
             self.trace_pref('-', pid);
             self.decider.prefs_traced_gone.push(pid);
         }
