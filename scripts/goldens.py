@@ -56,7 +56,9 @@ Conventions (tests/conformance.rs follows the same ones):
             The print callback's text during `run 50`, then run's result text, go to
             tests/golden/traces/NAME.LEVEL.txt, whole (a newline added if the text does not
             end with one). tests/trace_goldens.rs runs the same commands in rusoar and
-            compares the text line for line.
+            compares the text line for line. TRACE_AGENTS may name long-run agents
+            (`long/NAME`, tests/agents/long/NAME.soar): their traces go to
+            tests/golden/traces/long/.
 
   Long runs for the agents in tests/agents/long/ (each with its number of decisions in
             LONG_RUNS), in a fresh agent of the official kernel:
@@ -122,6 +124,8 @@ TRACE_AGENTS = [
     "support-retraction",
     "wait-snc",
     "water-jug",
+    "long/factorization",
+    "long/fifteen-puzzle",
 ]
 TRACE_LEVELS = [2, 3, 4, 5]
 TRACE_RUN = "run 50"
@@ -337,7 +341,7 @@ def generate(out_dir):
                 ) as f:
                     f.write(rules)
         traces = os.path.join(out_dir, "traces")
-        os.makedirs(traces, exist_ok=True)
+        os.makedirs(os.path.join(traces, "long"), exist_ok=True)
         wanted = set()
         for name in TRACE_AGENTS:
             for level in TRACE_LEVELS:
@@ -346,9 +350,10 @@ def generate(out_dir):
                 text = trace_agent(kernel, os.path.join(AGENTS, name + ".soar"), level)
                 with open(os.path.join(traces, f), "w", newline="\n") as out:
                     out.write(text)
-        for f in os.listdir(traces):
-            if f.endswith(".txt") and f not in wanted:
-                os.remove(os.path.join(traces, f))
+        for sub in ["", "long/"]:
+            for f in os.listdir(os.path.join(traces, sub)):
+                if f.endswith(".txt") and sub + f not in wanted:
+                    os.remove(os.path.join(traces, sub + f))
         long_dir = os.path.join(out_dir, "long")
         os.makedirs(long_dir, exist_ok=True)
         names = long_names()
@@ -363,10 +368,10 @@ def generate(out_dir):
 
 
 def golden_files(folder):
-    """The golden files under folder: NAME.txt, NAME.rules.txt, traces/NAME.L.txt and
-    long/NAME.txt."""
+    """The golden files under folder: NAME.txt, NAME.rules.txt, traces/NAME.L.txt,
+    traces/long/NAME.L.txt and long/NAME.txt."""
     found = set(f for f in os.listdir(folder) if f.endswith(".txt"))
-    for sub in ["traces", "long"]:
+    for sub in ["traces", "traces/long", "long"]:
         d = os.path.join(folder, sub)
         if os.path.isdir(d):
             found |= set(sub + "/" + f for f in os.listdir(d) if f.endswith(".txt"))
