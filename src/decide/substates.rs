@@ -8,6 +8,9 @@ use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
 use rustc_hash::{FxHashMap, FxHashSet};
 
+/// A WME of an object a removed substate holds, with its handle.
+type ObjectWme = (crate::wm::WmeId, crate::wm::Wme);
+
 impl AgentCore {
     /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
     /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
@@ -94,10 +97,7 @@ impl AgentCore {
         &self,
         gi: usize,
         made: &[(bool, crate::wm::Wme)],
-    ) -> (
-        Vec<(crate::wm::WmeId, crate::wm::Wme)>,
-        Vec<(crate::wm::WmeId, crate::wm::Wme)>,
-    ) {
+    ) -> (Vec<ObjectWme>, Vec<ObjectWme>) {
         let levels: Vec<u32> = self.decider.goals[gi + 1..].iter().map(|g| g.level).collect();
         let local = |v: Sym| {
             !self.symbols.is_goal(v)
@@ -113,7 +113,7 @@ impl AgentCore {
             if !local(wme.value) || !seen.insert(wme.value) {
                 continue;
             }
-            let mut of: Vec<(crate::wm::WmeId, crate::wm::Wme)> = self
+            let mut of: Vec<ObjectWme> = self
                 .wm
                 .of_id(wme.value)
                 .filter_map(|w| Some((w, self.wm.get(w).copied()?)))
