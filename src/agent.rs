@@ -35,6 +35,8 @@ pub struct Settings {
     pub learn: LearnMode,
     pub max_chunks: i64,
     pub max_dupes: i64,
+    /// `chunk`'s other settings: naming, interrupts, singletons and the rest.
+    pub chunk: crate::learn::settings::ChunkSettings,
     pub max_elaborations: i64,
     pub max_goal_depth: i64,
     pub max_nil_output_cycles: i64,
@@ -58,6 +60,88 @@ pub struct Settings {
     pub epsilon: f64,
     /// `decide indifferent-selection --temperature`: Boltzmann's temperature.
     pub temperature: f64,
+    /// `soar timers`: whether `stats` measures where the time goes.
+    pub timers: bool,
+    /// `soar stop-phase`: a run of decisions stops before this phase (apply by default).
+    pub stop_phase: crate::decide::state::Phase,
+    /// `soar max-dc-time`: a run stops when one decision takes longer than this many
+    /// seconds (0: never).
+    pub max_dc_time: i64,
+    /// `soar max-memory-usage`: 9.6's threshold for a memory warning, in bytes; kept and
+    /// listed (9.6 itself acts on it only in a special build).
+    pub max_memory_usage: i64,
+    /// `soar max-gp`: the most rules one `gp` may generate.
+    pub max_gp: i64,
+    /// `soar keep-all-top-oprefs`: keep every preference of an o-supported WME on the top
+    /// state (9.6 frees them otherwise); kept and listed.
+    pub keep_all_top_oprefs: bool,
+    /// `decide indifferent-selection --auto-reduce`: lower epsilon and the temperature
+    /// after each decision phase, each by its own reduction.
+    pub auto_reduce: bool,
+    /// How `--auto-reduce` lowers epsilon.
+    pub epsilon_reduction: Reduction,
+    /// How `--auto-reduce` lowers the temperature.
+    pub temperature_reduction: Reduction,
+}
+
+/// How `decide indifferent-selection --auto-reduce` lowers an exploration parameter: the
+/// policy in use, and a rate for each policy (`--reduction-policy`, `--reduction-rate`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reduction {
+    pub policy: ReductionPolicy,
+    /// The factor of the exponential policy, in [0, 1]; 1 by default (no change).
+    pub exponential_rate: f64,
+    /// The step of the linear policy, at least 0; 0 by default (no change).
+    pub linear_rate: f64,
+}
+
+impl Default for Reduction {
+    fn default() -> Self {
+        Reduction {
+            policy: ReductionPolicy::Exponential,
+            exponential_rate: 1.0,
+            linear_rate: 0.0,
+        }
+    }
+}
+
+impl Reduction {
+    /// The parameter after one decision: scaled by the exponential rate, or lowered by
+    /// the linear step and kept at 0 or above.
+    pub fn apply(&self, value: f64) -> f64 {
+        match self.policy {
+            ReductionPolicy::Exponential => value * self.exponential_rate,
+            ReductionPolicy::Linear => (value - self.linear_rate).max(0.0),
+        }
+    }
+}
+
+/// The reduction policies of `decide indifferent-selection --auto-reduce`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ReductionPolicy {
+    /// The parameter is multiplied by the rate, the default.
+    Exponential,
+    /// The rate is subtracted from the parameter.
+    Linear,
+}
+
+impl ReductionPolicy {
+    /// The policy's name, as `decide` prints it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ReductionPolicy::Exponential => "exponential",
+            ReductionPolicy::Linear => "linear",
+        }
+    }
+
+    /// The policy named `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        match name {
+            "exponential" => Some(ReductionPolicy::Exponential),
+            "linear" => Some(ReductionPolicy::Linear),
+            _ => None,
+        }
+    }
 }
 
 /// The exploration policies of `decide indifferent-selection`.
@@ -107,6 +191,7 @@ impl Default for Settings {
             learn: LearnMode::Never,
             max_chunks: 50,
             max_dupes: 3,
+            chunk: Default::default(),
             max_elaborations: 100,
             max_goal_depth: 100,
             max_nil_output_cycles: 15,
@@ -120,6 +205,15 @@ impl Default for Settings {
             numeric_mode: crate::decide::procedure::NumericMode::Sum,
             epsilon: 0.1,
             temperature: 25.0,
+            timers: true,
+            stop_phase: crate::decide::state::Phase::Apply,
+            max_dc_time: 0,
+            max_memory_usage: 100_000_000,
+            max_gp: 20_000,
+            keep_all_top_oprefs: false,
+            auto_reduce: false,
+            epsilon_reduction: Reduction::default(),
+            temperature_reduction: Reduction::default(),
         }
     }
 }
@@ -286,7 +380,7 @@ impl MatchSet {
     /// What a match that went before it fired leaves in `assertions`: taking it out at once
     /// would shift the rest of the queue, and an input phase that changes a pose cancels
     /// hundreds of matches it made a moment before (see `io.rs` on the order of input changes). Readers skip it.
-    pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), u32::MAX);
+    pub const GONE: (ProdId, TokId) = (ProdId(u32::MAX), TokId::NONE);
 
     /// Whether a match is queued (not yet fired, not gone).
     pub fn has_assertions(&self) -> bool {

@@ -43,6 +43,7 @@ kernel_modules!(
 );
 
 mod api;
+mod ids;
 /// The README's Rust examples, compiled and run as tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

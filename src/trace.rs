@@ -248,26 +248,13 @@ pub fn match_wme_lines(agent: &AgentCore, ws: &[WmeId]) -> String {
         .join("\n ")
 }
 
-/// A preference as the level-5 trace shows it (see `trace_text::pref_text`).
-pub fn pref_trace_text(agent: &AgentCore, p: &crate::decide::state::Preference) -> String {
-    let mut out = String::new();
-    crate::trace_text::pref_text(
-        &mut out,
-        &agent.symbols,
-        p,
-        pref_level(agent, p),
-        pref_rule(agent, p),
-    );
-    out
-}
-
 /// The level a preference is traced at: 9.6 prints the level of the instantiation's goal
 /// (a result made in a substate says `[level 2]` though its id is on the top state), also
 /// once the instantiation has retracted and an o-supported preference outlives it.
 fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
     let s = &agent.symbols;
     let goal_level = match p.inst {
-        Some(i) => agent.decider.insts[i as usize]
+        Some(i) => agent.decider.insts[i]
             .goal
             .and_then(|g| s.id_data(g))
             .map(|d| d.level),
@@ -286,7 +273,7 @@ fn pref_rule<'a>(
 ) -> Option<&'a str> {
     let justification = p
         .inst
-        .map(|i| agent.decider.insts[i as usize].serial)
+        .map(|i| agent.decider.insts[i].serial)
         .filter(|&serial| serial != 0)
         .and_then(|serial| agent.learn.justification_names.get(&serial));
     if let Some(name) = justification {
@@ -296,7 +283,7 @@ fn pref_rule<'a>(
         return Some(o.trace.name.as_str());
     }
     p.inst
-        .map(|i| agent.decider.insts[i as usize].prod)
+        .map(|i| agent.decider.insts[i].prod)
         .or(p.rule)
         .map(|prod| agent.production_name(prod))
 }
@@ -345,15 +332,27 @@ impl AgentCore {
             return;
         }
         let mut out = std::mem::take(&mut self.output);
-        let pref = &self.decider.prefs[pid as usize];
+        self.write_pref_event(&mut out, self.output_line_start, sign == '+', pid);
+        self.output = out;
+    }
+
+    /// Writes the `Preference` event of `pid` into `out`; `line_start` as for
+    /// [`TraceText96::write`](crate::trace_text::TraceText96::write).
+    pub(crate) fn write_pref_event(
+        &self,
+        out: &mut String,
+        line_start: bool,
+        added: bool,
+        pid: crate::decide::state::PrefId,
+    ) {
+        let pref = &self.decider.prefs[pid];
         let event = TraceEvent::Preference {
-            added: sign == '+',
+            added,
             pref,
             level: pref_level(self, pref),
             rule: pref_rule(self, pref),
         };
-        self.write_event(&mut out, &event);
-        self.output = out;
+        self.trace_text.write(out, line_start, &self.symbols, &event);
     }
 
     /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`).
@@ -405,12 +404,12 @@ impl AgentCore {
     /// An o-supported instantiation, or one that made no preferences, has nothing to
     /// retract: 9.6 prints nothing for it, nor for a justification.
     pub(crate) fn trace_retraction(&mut self, inst: crate::decide::state::InstId) {
-        if self.decider.insts[inst as usize].serial != 0 {
+        if self.decider.insts[inst].serial != 0 {
             self.trace_justification_retraction(inst);
             return;
         }
         let (prod, quiet) = {
-            let i = &self.decider.insts[inst as usize];
+            let i = &self.decider.insts[inst];
             // Firings in a substate that is gone retract silently too (checked on 9.6).
             let goal_gone = i
                 .goal
@@ -430,11 +429,11 @@ impl AgentCore {
         if traced {
             self.emit(&TraceEvent::Retraction { rule: &name });
             let (p, t) = {
-                let i = &self.decider.insts[inst as usize];
+                let i = &self.decider.insts[inst];
                 (i.prod, i.token)
             };
             self.trace_match_wmes(p, t);
-            let prefs = self.decider.insts[inst as usize].prefs.clone();
+            let prefs = self.decider.insts[inst].prefs.clone();
             self.trace_instantiation_prefs(&prefs);
         }
         self.trace_retracted_prefs(inst);
@@ -446,9 +445,9 @@ impl AgentCore {
         if !self.settings.trace.preferences {
             return;
         }
-        let prefs = self.decider.insts[inst as usize].prefs.clone();
+        let prefs = self.decider.insts[inst].prefs.clone();
         for pid in prefs.into_iter().rev() {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             if p.alive && !p.o_support {
                 self.trace_pref('-', pid);
             }
@@ -459,7 +458,7 @@ impl AgentCore {
     /// `Retracting justify1` with the firings trace, then its results' `-` lines with the
     /// preferences trace, as 9.6 prints them; no match WMEs (checked on 9.6).
     fn trace_justification_retraction(&mut self, inst: crate::decide::state::InstId) {
-        let i = &self.decider.insts[inst as usize];
+        let i = &self.decider.insts[inst];
         if i.o_support || i.prefs.is_empty() {
             return;
         }
@@ -491,7 +490,7 @@ impl AgentCore {
         // The o-rejects' removals first, in firing and action order, then the other
         // preferences (checked on 9.6: water-jug, o-reject and blocks-world at trace 5).
         for &pid in new_prefs.iter() {
-            let p = self.decider.prefs[pid as usize].clone();
+            let p = self.decider.prefs[pid].clone();
             if p.kind == PrefType::Reject && p.o_support {
                 let removed: Vec<_> = self
                     .decider
@@ -503,7 +502,7 @@ impl AgentCore {
                             .rev()
                             .copied()
                             .filter(|&x| {
-                                x != pid && self.decider.prefs[x as usize].value == p.value
+                                x != pid && self.decider.prefs[x].value == p.value
                             })
                             .collect()
                     })
@@ -514,7 +513,7 @@ impl AgentCore {
             }
         }
         for &pid in new_prefs.iter().rev() {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             let o_reject = p.kind == PrefType::Reject && p.o_support;
             if !o_reject && !self.decider.results_taken_by_o_rejects.contains(&pid) {
                 self.trace_pref('+', pid);
@@ -590,7 +589,7 @@ impl AgentCore {
         // Without its instantiation: at its identifier's level, with no rule.
         let mut out = std::mem::take(&mut self.output);
         for &pid in prefs.iter().rev() {
-            let pref = &self.decider.prefs[pid as usize];
+            let pref = &self.decider.prefs[pid];
             let level = self.symbols.id_data(pref.id).map_or(1, |d| d.level);
             self.write_event(&mut out, &TraceEvent::InstantiationPreference { pref, level });
         }

@@ -74,4 +74,23 @@ pub(crate) enum TraceEvent<'a> {
     /// The substates below `goal` go because its decision no longer agrees with the
     /// preferences (`trace --consistency`); `empty_slot` when no operator was selected.
     InconsistentDecision { goal: Sym, empty_slot: bool },
+    /// A phase stopped at max-elaborations; the run goes on to the `next` phase
+    /// (warnings on).
+    MaxElaborations { next: Phase },
+    /// A rule both elaborates and applies the operator, so it gets i-support (warnings
+    /// on).
+    MixedOperatorElaborations { rule: &'a str },
+    /// A no-change impasse made a goal deeper than max-goal-depth: the run stops.
+    GoalDepthExceeded { max_depth: i64 },
+    /// The phase learned max-chunks rules already: a result gets no new rule (warnings
+    /// on).
+    MaxChunksReached,
+    /// A rule or justification was learned (`trace --learning`): its name, and the rule's
+    /// text when the setting prints rules.
+    LearnedRule { name: &'a str, text: Option<&'a str> },
+    /// `chunk interrupt`: a rule was learned, and the run stops after this phase.
+    LearningInterrupt,
+    /// A right-hand-side function failed, with its message; `fresh_line` when 9.6 starts
+    /// the message on a line of its own.
+    RhsError { message: &'a str, fresh_line: bool },
 }

@@ -164,6 +164,51 @@ impl TraceText96 {
                     "\n          Decision for goal [{g}] is inconsistent.  Replacing it with...."
                 );
             }
+            TraceEvent::MaxElaborations { next } => {
+                let next = match next {
+                    Phase::Output => "output",
+                    _ => "decide",
+                };
+                let _ = write!(
+                    out,
+                    "\nWarning: reached max-elaborations; proceeding to {next} phase."
+                );
+            }
+            TraceEvent::MixedOperatorElaborations { rule } => {
+                let _ = write!(
+                    out,
+                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {rule}"
+                );
+            }
+            TraceEvent::GoalDepthExceeded { max_depth } => {
+                let _ = write!(
+                    out,
+                    "\nGoal stack depth exceeded {max_depth} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n"
+                );
+            }
+            TraceEvent::MaxChunksReached => out.push_str(
+                "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
+            ),
+            TraceEvent::LearnedRule { name, text } => {
+                let _ = write!(out, "\n\nLearning new rule {name}\n");
+                if let Some(text) = text {
+                    let _ = writeln!(out, "\n{}", text.trim_end());
+                }
+            }
+            TraceEvent::LearningInterrupt => {
+                fresh_line(out, line_start);
+                out.push_str("Soar learned a new rule.\n");
+            }
+            TraceEvent::RhsError {
+                message,
+                fresh_line: fresh,
+            } => {
+                if fresh {
+                    fresh_line(out, true);
+                }
+                out.push_str(message);
+                out.push('\n');
+            }
         }
     }
 }

@@ -113,3 +113,41 @@ fn excise_by_kind_and_ls_take_9_6s_arguments() {
         "Syntax: ls"
     );
 }
+
+#[test]
+fn decide_usage_is_the_listing() {
+    // 9.6 prints the same listing but reports the command as failed; rusoar reports success.
+    let mut a = Agent::default();
+    let text = a.execute("decide ?").unwrap();
+    assert!(text.contains("decide select                    <operator ID>\n"));
+    assert!(text.ends_with("For a detailed explanation of sub-commands:    help decide\n"));
+    let e = a.execute("decide nonsense").unwrap_err();
+    assert_eq!(
+        e.message(),
+        "Invalid decide command.  Use 'decide ?' to see a list of valid settings."
+    );
+}
+
+#[test]
+fn singleton_patterns_are_listed_added_and_removed() {
+    // 9.6 lists the user patterns in the order of its hash table; rusoar in the order they
+    // were added, 9.6's eleven defaults first.
+    let mut a = Agent::default();
+    let listing = a.execute("chunk singleton").unwrap();
+    assert!(listing.starts_with("==== Singleton WME Unification Patterns ====\n"));
+    assert!(
+        listing.contains("   ---------- user-defined ----------\n   (<any> ^superstate <any>)\n")
+    );
+    a.execute("chunk singleton state counter constant").unwrap();
+    assert!(a.execute("chunk singleton").unwrap().contains(
+        "   (<any> ^smem <any>)\n   (<state> ^counter <constant>)\n\n\nTo add a new pattern:"
+    ));
+    a.execute("chunk singleton -r state counter constant")
+        .unwrap();
+    assert_eq!(a.execute("chunk singleton").unwrap(), listing);
+    let e = a.execute("chunk singleton state counter").unwrap_err();
+    assert_eq!(
+        e.message(),
+        "Wrong number of arguments for the chunk command."
+    );
+}

@@ -37,6 +37,12 @@ fn cli() -> ClapCommand {
                 .action(ArgAction::Append)
                 .help("Run a Soar command (repeatable; runs in order with --source)"),
         )
+        .arg(
+            Arg::new("strict")
+                .long("strict")
+                .action(ArgAction::SetTrue)
+                .help("Stop at the first command that fails (by default each error is printed and the rest run)"),
+        )
 }
 
 /// `--source` and `-c` values in the order they were given.
@@ -211,16 +217,31 @@ fn run(agent: &mut Agent) -> ExitCode {
         }
         return interactive(agent);
     }
+    let strict = matches.get_flag("strict");
     if steps.is_empty() {
         let mut text = String::new();
         if std::io::stdin().read_to_string(&mut text).is_err() {
             eprintln!("error: standard input is not valid UTF-8");
             return ExitCode::FAILURE;
         }
-        let result = agent.source_text("<stdin>", &text);
-        return finish(agent, result);
+        if strict {
+            let result = agent.source_text("<stdin>", &text);
+            return finish(agent, result);
+        }
+        let failed = agent.source_text_keep_going("<stdin>", &text);
+        flush(agent);
+        return exit_code(failed);
     }
+    let mut failed = 0;
     for (_, is_source, value) in steps {
+        if !strict && !is_source {
+            failed += agent.source_text_keep_going("-c", &value);
+            flush(agent);
+            if agent.exit_requested() {
+                break;
+            }
+            continue;
+        }
         let result = if is_source {
             let cmd = format!("source {{{value}}}");
             let r = agent.source_text("--source", &cmd);
@@ -237,14 +258,27 @@ fn run(agent: &mut Agent) -> ExitCode {
                 eprint!("{}", load_report(agent));
             }
             report_failure(agent, e);
-            return ExitCode::FAILURE;
+            if strict {
+                return ExitCode::FAILURE;
+            }
+            failed += 1;
+            continue;
         }
         flush(agent);
         if agent.exit_requested() {
             break;
         }
     }
-    ExitCode::SUCCESS
+    exit_code(failed)
+}
+
+/// Success when no command failed.
+fn exit_code(failed: usize) -> ExitCode {
+    if failed == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
 }
 
 /// `rusoar test [--max-decisions N] [--verbose] FILE_OR_DIR...`: SoarUnit.

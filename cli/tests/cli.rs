@@ -118,14 +118,54 @@ fn commands_on_standard_input() {
 
 #[test]
 fn a_failing_c_exits_nonzero_with_a_located_diagnostic() {
-    let out = rusoar(&["-c", "echo ok", "-c", "learn -x", "-c", "echo never"]);
+    // As on Soar's command line, the commands after a failing one still run.
+    let out = rusoar(&["-c", "echo ok", "-c", "learn -x", "-c", "echo after"]);
     let stdout = text(&out.stdout);
     let stderr = text(&out.stderr);
     assert!(!out.status.success());
     assert!(stdout.contains("ok"), "{stdout}");
-    assert!(!stdout.contains("never"), "{stdout}");
+    assert!(stdout.contains("after"), "{stdout}");
     assert!(stderr.contains("error: No such option: x"), "{stderr}");
     assert!(stderr.contains("┌─ -c:1:1"), "{stderr}");
+
+    // `--strict` stops at the first failure.
+    let out = rusoar(&[
+        "--strict",
+        "-c",
+        "echo ok",
+        "-c",
+        "learn -x",
+        "-c",
+        "echo never",
+    ]);
+    assert!(!out.status.success());
+    assert!(!text(&out.stdout).contains("never"));
+
+    // So does standard input: each error is printed, the rest runs, the status says so.
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rusoar"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"echo one\nbogus-command\necho two\n")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(!out.status.success());
+    assert!(
+        text(&out.stdout).contains("one\ntwo\n"),
+        "{}",
+        text(&out.stdout)
+    );
+    assert!(
+        text(&out.stderr).contains("┌─ <stdin>:2:1"),
+        "{}",
+        text(&out.stderr)
+    );
 
     let out = rusoar(&["-c", "sp {p1 (state <s> ^superstate nil) --> (<s> ^a b)}"]);
     let stderr = text(&out.stderr);

@@ -156,6 +156,16 @@ impl Agent {
         result.map_err(|d| Error::from_diagnostic(&d, &self.interp.sources))
     }
 
+    /// Runs a text of Soar commands as Soar's command line reads its input: a command that
+    /// fails puts its error on the print stream (a [`Printed::Diagnostic`]) and the next
+    /// command runs. Only text that cannot be read as commands, such as an unclosed brace,
+    /// ends it early. Returns how many commands failed.
+    pub fn source_text_keep_going(&mut self, name: &str, commands: &str) -> usize {
+        let failed = self.interp.run_text_keep_going(name, commands);
+        self.deliver();
+        failed
+    }
+
     /// Sources a file of Soar commands, as `source FILE` does (relative paths resolve
     /// against the working directory); what it prints goes to the print stream.
     pub fn source_file(&mut self, path: impl AsRef<Path>) -> Result<(), Error> {

@@ -2,6 +2,7 @@
 //! (Soar manual, ch. 9, `chunk`), with this agent's settings and counts filled in.
 
 use crate::agent::{AgentCore, LearnMode};
+use crate::learn::settings::NamingStyle;
 
 /// `chunk`: the Explanation-Based Chunking summary.
 pub fn summary(agent: &AgentCore) -> String {
@@ -15,10 +16,15 @@ pub fn summary(agent: &AgentCore) -> String {
         "When Soar will learn rules",
         s.learn.word().trim_end().to_string(),
     );
-    out += &row("Incorporate operator selection knowledge", "Yes".into());
-    out += &row("Interrupt after learning any rule", "No".into());
-    out += &row("Interrupt after learning from watched rule", "No".into());
-    out += &row("Interrupt after learning failure", "No".into());
+    let yes_no = |b: bool| if b { "Yes" } else { "No" }.to_string();
+    let c = &s.chunk;
+    out += &row("Incorporate operator selection knowledge", yes_no(c.add_osk));
+    out += &row("Interrupt after learning any rule", yes_no(c.interrupt));
+    out += &row(
+        "Interrupt after learning from watched rule",
+        yes_no(c.explain_interrupt),
+    );
+    out += &row("Interrupt after learning failure", yes_no(c.warning_interrupt));
     out += "\n";
     out += &row("Chunks learned", l.chunks_since_init.to_string());
     out += &row(
@@ -54,7 +60,13 @@ pub fn settings(agent: &AgentCore) -> String {
         "===================================================\n           Chunk Commands and Settings\n===================================================\nchunk ? | help                                        Print all EBC settings\nchunk stats                                           Print statistics on learning that has occurred\n------------------- Settings ----------------------\n",
     );
     out += &format!("{modes:<54}When Soar will learn new rules\n");
-    out += "bottom-only                            [ on | OFF ]   Learn only from bottom sub-state\nnaming-style                     [ numbered | RULE]   Simple numeric chunk names or informational rule-based name\n";
+    let c = &s.chunk;
+    out += &switch("bottom-only", c.bottom_only, "Learn only from bottom sub-state");
+    out += match c.naming_style {
+        NamingStyle::Numbered => "naming-style                     [ NUMBERED | rule]",
+        NamingStyle::Rule => "naming-style                     [ numbered | RULE]",
+    };
+    out += "   Simple numeric chunk names or informational rule-based name\n";
     out += &number(
         "max-chunks",
         s.max_chunks,
@@ -65,9 +77,48 @@ pub fn settings(agent: &AgentCore) -> String {
         s.max_dupes,
         "Maximum duplicate chunks (per rule, per phase)",
     );
-    out += STATIC_TAIL;
+    out += "------------------- Debugging ---------------------\n";
+    out += &switch("interrupt", c.interrupt, "Stop Soar after learning from any rule");
+    out += &switch(
+        "explain-interrupt",
+        c.explain_interrupt,
+        "Stop Soar after learning rule watched by explainer",
+    );
+    out += &switch(
+        "warning-interrupt",
+        c.warning_interrupt,
+        "Stop Soar after detecting learning issue",
+    );
+    out += "------------------- Fine Tune ---------------------\nsingleton                                             Print all WME singletons\nsingleton                <type> <attribute> <type>    Add a WME singleton pattern\nsingleton -r             <type> <attribute> <type>    Remove a WME singleton pattern\n";
+    out += &switch(
+        "automatically-create-singletons",
+        c.automatically_create_singletons,
+        "Attempt creating singletons for every string attribute",
+    );
+    out += "----------------- EBC Mechanisms ------------------\n";
+    out += &switch(
+        "add-ltm-links",
+        c.add_ltm_links,
+        "Recreate LTM links in original results",
+    );
+    out += &switch("add-osk", c.add_osk, "Incorporate operator selection knowledge");
+    out += "---------- Correctness Guarantee Filters ----------   Allow rules to form that...\n";
+    out += &switch(
+        "allow-local-negations",
+        c.allow_local_negations,
+        "...used local negative reasoning",
+    );
+    out += &switch(
+        "allow-opaque",
+        c.allow_opaque,
+        "...used knowledge from a LTM recall",
+    );
+    out += "---------------------------------------------------\n\nTo change a setting:                                  chunk <setting> [<value>]\nFor a detailed explanation of these settings:         help chunk\n";
     out
 }
 
-/// The listing's fixed part: settings rusoar does not offer to change keep 9.6's defaults.
-const STATIC_TAIL: &str = "------------------- Debugging ---------------------\ninterrupt                              [ on | OFF ]   Stop Soar after learning from any rule\nexplain-interrupt                      [ on | OFF ]   Stop Soar after learning rule watched by explainer\nwarning-interrupt                      [ on | OFF ]   Stop Soar after detecting learning issue\n------------------- Fine Tune ---------------------\nsingleton                                             Print all WME singletons\nsingleton                <type> <attribute> <type>    Add a WME singleton pattern\nsingleton -r             <type> <attribute> <type>    Remove a WME singleton pattern\nautomatically-create-singletons        [ ON | off ]   Attempt creating singletons for every string attribute\n----------------- EBC Mechanisms ------------------\nadd-ltm-links                          [ on | OFF ]   Recreate LTM links in original results\nadd-osk                                [ ON | off ]   Incorporate operator selection knowledge\n---------- Correctness Guarantee Filters ----------   Allow rules to form that...\nallow-local-negations                  [ ON | off ]   ...used local negative reasoning\nallow-opaque                           [ ON | off ]   ...used knowledge from a LTM recall\n---------------------------------------------------\n\nTo change a setting:                                  chunk <setting> [<value>]\nFor a detailed explanation of these settings:         help chunk\n";
+/// An on/off row of `chunk ?`, the current value in capitals.
+fn switch(name: &str, on: bool, what: &str) -> String {
+    let choice = if on { "[ ON | off ]" } else { "[ on | OFF ]" };
+    format!("{name:<39}{choice}   {what}\n")
+}

@@ -48,8 +48,18 @@ impl Interpreter {
         if top_level {
             self.report = super::LoadReport::default();
         }
+        // A nested file's `*` marks get a line of their own: 9.6 ends the line of marks
+        // before it with " \n" and its own marks with a newline.
+        if !top_level && self.after_star {
+            self.events.push(super::Event::Text(" \n".into()));
+            self.after_star = false;
+        }
         let result = self.source_file(ctx, name);
         if !top_level {
+            if self.after_star {
+                self.events.push(super::Event::Text("\n".into()));
+                self.after_star = false;
+            }
             return result.map(|_| String::new());
         }
         let r = &self.report;

@@ -5,8 +5,9 @@
 
 use super::{CmdResult, Ctx, Interpreter};
 
-/// The bodies a `gp` body stands for, in the official kernel's order, or its error text.
-pub(super) fn expand(body: &str) -> Result<Vec<String>, &'static str> {
+/// The bodies a `gp` body stands for, in the official kernel's order, or its error text;
+/// more than `max` bodies (`soar max-gp`) is an error.
+pub(super) fn expand(body: &str, max: usize) -> Result<Vec<String>, String> {
     // The text between the lists, and each list's alternatives.
     let mut pieces: Vec<&str> = Vec::new();
     let mut lists: Vec<Vec<&str>> = Vec::new();
@@ -17,11 +18,11 @@ pub(super) fn expand(body: &str) -> Result<Vec<String>, &'static str> {
             // `|...|` is one constant: brackets inside it are text.
             b'|' => i = skip_pipe(bytes, i),
             b'[' => {
-                let close = find_close(bytes, i + 1)?;
+                let close = find_close(bytes, i + 1).map_err(str::to_string)?;
                 pieces.push(&body[start..i]);
                 let values = alternatives(&body[i + 1..close]);
                 if values.is_empty() {
-                    return Err("gp can't have empty value collections");
+                    return Err("gp can't have empty value collections".into());
                 }
                 lists.push(values);
                 start = close + 1;
@@ -31,7 +32,15 @@ pub(super) fn expand(body: &str) -> Result<Vec<String>, &'static str> {
         }
     }
     pieces.push(&body[start..]);
-    let total: usize = lists.iter().map(Vec::len).product();
+    let total = lists
+        .iter()
+        .try_fold(1usize, |n, l| n.checked_mul(l.len()))
+        .filter(|&n| n <= max)
+        .ok_or_else(|| {
+            let total = lists.iter().fold(1u128, |n, l| n.saturating_mul(l.len() as u128));
+            // 9.6's text, without its space before "exceeded".
+            format!("gp-max of {max}exceeded, current production produces {total} productions. You can run 'soar gp-max' to set a higher limit.")
+        })?;
     let mut out = Vec::with_capacity(total);
     for n in 0..total {
         let mut text = String::with_capacity(body.len());
@@ -103,7 +112,8 @@ impl Interpreter {
         let [_, body] = ctx.cmd.words.as_slice() else {
             return Err(ctx.error("Syntax: gp { production_body }"));
         };
-        let bodies = expand(&body.text).map_err(|m| ctx.error(m))?;
+        let max = usize::try_from(self.agent.settings.max_gp).unwrap_or(0);
+        let bodies = expand(&body.text, max).map_err(|m| ctx.error(m))?;
         for (n, b) in bodies.iter().enumerate() {
             // Each rule's name is its body's first word (alternatives in it expanded).
             let b = b.trim_start();
@@ -122,7 +132,7 @@ mod tests {
 
     #[test]
     fn the_first_list_varies_fastest() {
-        let out = expand("g (state <s> ^a [b c] ^d [1 2]) --> (<s> ^e [x y])").unwrap();
+        let out = expand("g (state <s> ^a [b c] ^d [1 2]) --> (<s> ^e [x y])", 20_000).unwrap();
         assert_eq!(out.len(), 8);
         assert_eq!(out[0], "g (state <s> ^a b ^d 1) --> (<s> ^e x)");
         assert_eq!(out[1], "g (state <s> ^a c ^d 1) --> (<s> ^e x)");
@@ -132,7 +142,7 @@ mod tests {
 
     #[test]
     fn pipes_are_one_word_and_hide_brackets() {
-        let out = expand("g (state <s> ^a [ |x y| 3.5 ]) --> (write |[not]|)").unwrap();
+        let out = expand("g (state <s> ^a [ |x y| 3.5 ]) --> (write |[not]|)", 20_000).unwrap();
         assert_eq!(
             out,
             [
@@ -146,19 +156,28 @@ mod tests {
     /// first space.
     #[test]
     fn names_with_alternatives_are_expanded_too() {
-        let out = expand("é[a bb] (state <s>) --> (write é)").unwrap();
+        let out = expand("é[a bb] (state <s>) --> (write é)", 20_000).unwrap();
         assert_eq!(out, ["éa (state <s>) --> (write é)", "ébb (state <s>) --> (write é)"]);
     }
 
     #[test]
     fn bad_lists_are_errors() {
         assert_eq!(
-            expand("g (state <s> ^a [b c) --> (<s> ^c d)"),
-            Err("gp syntax error, unmatched values bracket.")
+            expand("g (state <s> ^a [b c) --> (<s> ^c d)", 20_000),
+            Err("gp syntax error, unmatched values bracket.".to_string())
         );
         assert_eq!(
-            expand("g (state <s> ^a []) --> (<s> ^c d)"),
-            Err("gp can't have empty value collections")
+            expand("g (state <s> ^a []) --> (<s> ^c d)", 20_000),
+            Err("gp can't have empty value collections".to_string())
         );
+    }
+
+    #[test]
+    fn more_rules_than_max_gp_is_an_error() {
+        let e = expand("g (state <s> ^a [1 2] ^b [3 4]) --> (<s> ^c d)", 3).unwrap_err();
+        assert_eq!(e, "gp-max of 3exceeded, current production produces 4 productions. You can run 'soar gp-max' to set a higher limit.");
+        // 2^80 combinations: an error, not an allocation.
+        let huge = format!("g (state <s> {}) --> (<s> ^c d)", "^a [1 2] ".repeat(80));
+        assert!(expand(&huge, 20_000).unwrap_err().contains("1208925819614629174706176 productions"));
     }
 }

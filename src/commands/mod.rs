@@ -4,7 +4,9 @@
 //! terminal; front ends drain its [`Event`]s.
 
 pub mod aliases;
+mod chunk;
 mod chunk_listing;
+mod decide;
 mod files;
 mod gp;
 pub mod help;
@@ -322,6 +324,40 @@ impl Interpreter {
     pub fn run_text(&mut self, name: &str, text: &str) -> Result<(), Diagnostic> {
         let file = self.sources.add(name, text);
         self.run_file_id(file)
+    }
+
+    /// Runs a text of commands as Soar's command line reads them: a command that fails
+    /// puts its diagnostic on the print stream, and the next command runs. Only text that
+    /// cannot be read as commands (an unclosed brace) ends it. Returns how many failed.
+    pub fn run_text_keep_going(&mut self, name: &str, text: &str) -> usize {
+        let file = self.sources.add(name, text);
+        let text = self.sources.shared_text(file);
+        let mut failed = 0;
+        for cmd in Tokenizer::new(&text, file) {
+            let cmd = match cmd {
+                Ok(c) => c,
+                Err(d) => {
+                    let d = self.failing(d);
+                    self.events.push(Event::Diag(d));
+                    failed += 1;
+                    break;
+                }
+            };
+            let result = self.execute(&cmd);
+            self.flush_agent_output();
+            match result {
+                Ok(r) => self.print_result(r),
+                Err(d) => {
+                    let d = self.failing(d);
+                    self.events.push(Event::Diag(d));
+                    failed += 1;
+                }
+            }
+            if self.exit_requested {
+                break;
+            }
+        }
+        failed
     }
 
     fn run_file_id(&mut self, file: usize) -> Result<(), Diagnostic> {

@@ -78,7 +78,7 @@ impl Interpreter {
                 slot.prefs
                     .iter()
                     .rev()
-                    .map(|&p| agent.decider.prefs[p as usize].clone())
+                    .map(|&p| agent.decider.prefs[p].clone())
                     .filter(|p| p.alive)
                     .collect()
             })
@@ -160,7 +160,7 @@ impl Interpreter {
     fn rule_line(&self, p: &Preference) -> String {
         match p.inst {
             Some(i) => {
-                let prod = self.agent.decider.insts[i as usize].prod;
+                let prod = self.agent.decider.insts[i].prod;
                 format!("    From {}\n\n", self.agent.production_name(prod))
             }
             None => "\n".into(),

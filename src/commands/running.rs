@@ -69,13 +69,21 @@ impl Interpreter {
             RunUnit::Elaborations
         } else if parsed.has("phase") {
             RunUnit::Phases
+        } else if parsed.has("output") && count.is_some() {
+            RunUnit::OutputCycles
+        } else if parsed.has("output") {
+            RunUnit::Forever
         } else if parsed.has("decision") || count.is_some() {
             RunUnit::Decisions
         } else {
             RunUnit::Forever
         };
-        // 9.6 runs one unit for a count of 0 (checked on the official kernel).
-        let n = count.unwrap_or(1).max(1);
+        // A count of 0 is an error but for decisions, where it runs on to the stop phase
+        // (checked on the official kernel).
+        if count == Some(0) && unit != RunUnit::Decisions {
+            return Err(ctx.error("Count must be positive."));
+        }
+        let n = count.unwrap_or(1);
         let RunReport {
             decisions, fired, ..
         } = self.run_agent(n, unit);

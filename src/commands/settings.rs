@@ -4,7 +4,7 @@
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
-use crate::decide::procedure::NumericMode;
+use crate::decide::state::Phase;
 use crate::source::Diagnostic;
 
 /// Soar 8 single-dash words and their 9.6 spellings.
@@ -81,67 +81,6 @@ impl Interpreter {
         }
         Ok(text)
     }
-
-    pub(super) fn cmd_chunk(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        let s = &mut self.agent.settings;
-        match args.first().map(String::as_str) {
-            None => Ok(super::chunk_listing::summary(&self.agent)),
-            Some("?" | "help") => Ok(super::chunk_listing::settings(&self.agent)),
-            Some(
-                w @ ("always" | "never" | "only" | "except" | "on" | "off" | "flagged"
-                | "unflagged"),
-            ) => {
-                // `chunk on` and `chunk flagged` mean `only` in 9.6, `unflagged` `except`.
-                s.learn = match w {
-                    "always" => LearnMode::Always,
-                    "never" | "off" => LearnMode::Never,
-                    "only" | "on" | "flagged" => LearnMode::Only,
-                    _ => LearnMode::Except,
-                };
-                // 9.6 echoes the old spellings with an extra newline.
-                let shown = match w {
-                    "off" | "flagged" | "unflagged" => format!("{w}\n"),
-                    _ => s.learn.word().to_string(),
-                };
-                Ok(format!("Learns rules in states: {shown}\n"))
-            }
-            // 9.6 takes `chunk --on`, `chunk -e`... for `chunk`: it prints the summary and
-            // changes nothing (soar-sml 9.6.5). So does rusoar, and says so.
-            Some(w) if w.starts_with('-') => {
-                let word = w.to_string();
-                self.warn(
-                    Diagnostic::warning(format!(
-                        "`chunk {word}` changes nothing in Soar 9.6 (it prints the summary): write `chunk always|never|only|except`"
-                    ))
-                    .at(ctx.arg_span(0))
-                    .with_label("an option `chunk` ignores"),
-                );
-                Ok(super::chunk_listing::summary(&self.agent))
-            }
-            Some("max-chunks") => int_setting(ctx, &args[1..], "max-chunks", &mut s.max_chunks, CHUNK_INVALID, |n| format!("max-chunks is now {n}\n")),
-            Some("max-dupes") => int_setting(ctx, &args[1..], "max-dupes", &mut s.max_dupes, CHUNK_INVALID, |n| format!("max-dupes is now {n}\n")),
-            Some(
-                "stats"
-                | "bottom-only"
-                | "naming-style"
-                | "interrupt"
-                | "explain-interrupt"
-                | "warning-interrupt"
-                | "singleton"
-                | "automatically-create-singletons"
-                | "add-ltm-links"
-                | "add-osk"
-                | "allow-local-negations"
-                | "allow-opaque",
-            ) => Err(super::not_yet(ctx, "chunk")),
-            Some(_) => Err(Diagnostic::error(
-                "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.",
-            )
-            .at(ctx.arg_span(0))
-            .with_label("not a chunk setting")),
-        }
-    }
-
     pub(super) fn cmd_soar(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let s = &mut self.agent.settings;
         match args.first().map(String::as_str) {
@@ -185,7 +124,7 @@ impl Interpreter {
                 "max-nil-output-cycles",
                 &mut s.max_nil_output_cycles,
                 SOAR_INVALID,
-                |n| format!("max-nil-output-cycles is now {n}\n"),
+                |n| format!("The maximum number of decision cycles without output before interrupting is now {n}.  (used with run --output)\n"),
             ),
             Some("wait-snc") => {
                 match args.get(1).map(String::as_str) {
@@ -201,13 +140,82 @@ impl Interpreter {
                         s.wait_snc = false;
                         Ok("Soar will now impasse when a state doesn't change.\n".into())
                     }
-                    Some(other) => Err(Diagnostic::error(format!(
-                        "Invalid value for wait-snc: {other}"
-                    ))
-                    .at(ctx.arg_span(1))
-                    .with_label("expected on or off")),
+                    Some(_) => Err(Diagnostic::error(SOAR_INVALID)
+                        .at(ctx.arg_span(1))
+                        .with_label("expected on or off")),
                 }
             }
+            Some("timers") => on_off_soar(
+                ctx,
+                args.get(1),
+                &mut s.timers,
+                "timers",
+                ["Timers are now enabled.", "Timers are now disabled."],
+            ),
+            Some("keep-all-top-oprefs") => on_off_soar(
+                ctx,
+                args.get(1),
+                &mut s.keep_all_top_oprefs,
+                "keep-all-top-oprefs",
+                [
+                    "Soar will now always retain top level preferences for items that are already o-supported.",
+                    "Soar will now not retain top level preferences for items that are already o-supported.",
+                ],
+            ),
+            Some("stop-phase") => match args.get(1).map(String::as_str) {
+                None => Ok(format!("Stop before {}\n", phase_name(s.stop_phase))),
+                Some(name) => {
+                    // 9.6 cannot stop before the decision phase.
+                    let phase = [Phase::Input, Phase::Propose, Phase::Apply, Phase::Output]
+                        .into_iter()
+                        .find(|&p| phase_name(p) == name)
+                        .ok_or_else(|| ctx.error(SOAR_INVALID))?;
+                    s.stop_phase = phase;
+                    Ok(format!("Soar will now stop before the {name} phase.\n"))
+                }
+            },
+            Some("max-dc-time") => match args.get(1) {
+                None => Ok(format!("max-dc-time is {}\n", s.max_dc_time)),
+                Some(v) => match atoi(v) {
+                    n if n < 0 => Err(ctx.error(SOAR_INVALID)),
+                    0 => {
+                        s.max_dc_time = 0;
+                        // 9.6's text, its doubled word included.
+                        Ok("Soar will no longer interrupt based on how how long a decision takes. (default)\n".into())
+                    }
+                    n => {
+                        s.max_dc_time = n;
+                        Ok(format!("Soar will now interrupt decisions after {n} seconds.\n"))
+                    }
+                },
+            },
+            Some("max-memory-usage") => match args.get(1) {
+                None => Ok(format!("max-memory-usage is {}\n", s.max_memory_usage)),
+                Some(v) => {
+                    s.max_memory_usage = positive_atoi(ctx, v)?;
+                    Ok(format!(
+                        "Soar will now interrupt execution if more than {} bytes of memory are used.  (This requires a special build of Soar.  See manual for more information.)\n",
+                        s.max_memory_usage
+                    ))
+                }
+            },
+            Some("max-gp") => match args.get(1) {
+                None => Ok(format!("max-gp is {}\n", s.max_gp)),
+                Some(v) => {
+                    s.max_gp = positive_atoi(ctx, v)?;
+                    Ok(format!(
+                        "The maximum number of rules gp can generate is now {}.\n",
+                        s.max_gp
+                    ))
+                }
+            },
+            // rusoar has no Tcl interpreter; 9.6 without its Tcl library answers the same.
+            Some("tcl") => match args.get(1).map(String::as_str) {
+                None => Ok("tcl is off\n".into()),
+                Some("off") => Ok("Tcl mode is already off.\n".into()),
+                Some("on") => Err(ctx.error("Could not load library tclsoarlib: Library not found.")),
+                Some(_) => Err(ctx.error(SOAR_INVALID)),
+            },
             Some("init") => self.cmd_init(),
             Some("stop") => {
                 self.agent.decider.stop_requested = true;
@@ -225,7 +233,6 @@ impl Interpreter {
 
     /// `soar` with no arguments: 9.6's summary of the agent (rows 55 columns wide).
     fn soar_summary(&self) -> String {
-        use crate::decide::state::Phase;
         let a = &self.agent;
         let row = |label: &str, value: &str| format!("{label}{value:>w$}\n", w = 55 - label.len());
         let rule = "-".repeat(55);
@@ -238,13 +245,7 @@ impl Interpreter {
                 .map(|g| a.symbols.text(g.state))
                 .collect()
         };
-        let phase = match a.decider.phase.unwrap_or(Phase::Input) {
-            Phase::Input => "input",
-            Phase::Propose => "propose",
-            Phase::Decide => "decide",
-            Phase::Apply => "apply",
-            Phase::Output => "output",
-        };
+        let phase = phase_name(a.decider.phase.unwrap_or(Phase::Input));
         let mut s = format!(
             "{eq}\n-{:^53}-\n{eq}\n",
             format!("rusoar {} Summary", env!("CARGO_PKG_VERSION")),
@@ -258,7 +259,12 @@ impl Interpreter {
         s.push_str(&row("Decisions", &a.decider.d_cycle_count.to_string()));
         s.push_str(&row("Elaborations", &a.decider.e_cycles.to_string()));
         s.push_str(&format!("{rule}\n"));
-        s.push_str(&row("State stack", &states.join(", ")));
+        // 9.6 shows a stack of more than four states by its two ends.
+        let stack = match states.as_slice() {
+            [a, b, .., y, z] if states.len() > 4 => format!("{a}, {b} ... {y}, {z}"),
+            all => all.join(", "),
+        };
+        s.push_str(&row("State stack", &stack));
         s.push_str(&row("Current number of states", &states.len().to_string()));
         s.push_str(&row("Next phase", phase));
         s.push_str(&format!("{rule}\n\n"));
@@ -283,7 +289,7 @@ impl Interpreter {
         for (name, value, what) in [
             (
                 "keep-all-top-oprefs",
-                "off".to_string(),
+                on_off(st.keep_all_top_oprefs).to_string(),
                 "Keep all preferences for o-supported WMEs on top state",
             ),
             (
@@ -303,22 +309,30 @@ impl Interpreter {
             ),
             (
                 "max-dc-time",
-                "0".into(),
+                st.max_dc_time.to_string(),
                 "Interrupt decision after this much time",
             ),
             (
                 "max-memory-usage",
-                "100000000".into(),
+                st.max_memory_usage.to_string(),
                 "Threshold for memory warning (see help)",
             ),
-            ("max-gp", "20000".into(), "Maximum rules gp can generate"),
+            (
+                "max-gp",
+                st.max_gp.to_string(),
+                "Maximum rules gp can generate",
+            ),
             (
                 "stop-phase",
-                "apply".into(),
+                phase_name(st.stop_phase).into(),
                 "Phase before which Soar will stop",
             ),
             ("tcl", "off".into(), "Allow Tcl code in commands"),
-            ("timers", "on".into(), "Profile where Soar spends its time"),
+            (
+                "timers",
+                on_off(st.timers).into(),
+                "Profile where Soar spends its time",
+            ),
             (
                 "wait-snc",
                 on_off(st.wait_snc).into(),
@@ -334,116 +348,6 @@ impl Interpreter {
         s.push_str("To change a setting:                               soar <setting> [<value>]\n");
         s.push_str("For a detailed explanation of these settings:      help soar\n");
         s
-    }
-
-    /// `decide`: only the settings that need no decision cycle (`srand` is stored).
-    pub(super) fn cmd_decide(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        match args.first().map(String::as_str) {
-            Some("indifferent-selection") => {
-                let mut rest = args[1..].to_vec();
-                if let Some(pos) = rest.iter().position(|a| a == "-random") {
-                    self.warn(
-                        Diagnostic::warning(
-                            "Soar 8 spelling `indifferent-selection -random`: Soar 9.6 has no such policy; its default softmax is already uniform over plain indifferent operators",
-                        )
-                        .at(ctx.cmd.span)
-                        .with_label("read as `indifferent-selection --softmax`"),
-                    );
-                    rest[pos] = "--softmax".into();
-                }
-                // `-e` and `-t` take their value only when given one: alone they print it.
-                let specs = [
-                    opt('b', "boltzmann"),
-                    opt('g', "epsilon-greedy"),
-                    opt('f', "first"),
-                    opt('l', "last"),
-                    opt('x', "softmax"),
-                    opt('e', "epsilon"),
-                    opt('t', "temperature"),
-                ];
-                let parsed = options::parse(&rest, &specs).map_err(|m| ctx.error(m))?;
-                let s = &mut self.agent.settings;
-                let option = match parsed.options.as_slice() {
-                    [] => return Ok(s.exploration.name().to_string()),
-                    [(o, _)] => *o,
-                    _ => {
-                        return Err(ctx.error(
-                            "indifferent-selection takes only one option at a time.",
-                        ))
-                    }
-                };
-                let value = parsed.args.first().map(|v| v.parse::<f64>());
-                // The official kernel's ranges and texts (soar-sml 9.6.5).
-                let invalid = || ctx.error("Invalid parameter value.");
-                match (option, value) {
-                    ("epsilon", None) => Ok(s.epsilon.to_string()),
-                    ("temperature", None) => Ok(s.temperature.to_string()),
-                    ("epsilon", Some(Ok(e))) if (0.0..=1.0).contains(&e) => {
-                        s.epsilon = e;
-                        Ok(String::new())
-                    }
-                    ("temperature", Some(Ok(t))) if t > 0.0 && t.is_finite() => {
-                        s.temperature = t;
-                        Ok(String::new())
-                    }
-                    ("epsilon" | "temperature", _) => Err(invalid()),
-                    (policy, _) => {
-                        s.exploration =
-                            crate::agent::Exploration::from_name(policy).unwrap_or(s.exploration);
-                        Ok(String::new())
-                    }
-                }
-            }
-            Some("numeric-indifferent-mode") => {
-                let specs = [opt('a', "avg"), opt('s', "sum")];
-                let parsed = options::parse(&args[1..], &specs).map_err(|m| ctx.error(m))?;
-                let mut mode = None;
-                for (o, _) in &parsed.options {
-                    mode = match *o {
-                        "avg" => Some(NumericMode::Avg),
-                        "sum" => Some(NumericMode::Sum),
-                        _ => mode,
-                    };
-                }
-                match mode {
-                    Some(m) => {
-                        self.agent.settings.numeric_mode = m;
-                        Ok(String::new())
-                    }
-                    // The official kernel's texts (soar-sml 9.6.5).
-                    None => Ok(match self.agent.settings.numeric_mode {
-                        NumericMode::Sum => "Current numeric indifferent mode: Soar will use the sum of numeric preferences.\n",
-                        NumericMode::Avg => "Current numeric indifferent mode: Soar will average numeric preferences.\n",
-                    }
-                    .to_string()),
-                }
-            }
-            // `set-random-seed` is 9.6's long name of `srand`.
-            Some("srand" | "set-random-seed") => {
-                let seed = match args.get(1) {
-                    Some(s) => s.parse::<u32>().map_err(|_| {
-                        Diagnostic::error(format!("Integer expected: {s}"))
-                            .at(ctx.arg_span(1))
-                            .with_label("not a seed")
-                    })?,
-                    None => {
-                        // No seed: a new random one, as 9.6 does (from the clock).
-                        let now = std::time::SystemTime::now()
-                            .duration_since(std::time::UNIX_EPOCH)
-                            .map(|d| d.as_nanos())
-                            .unwrap_or(0);
-                        let seed = (now ^ (now >> 32)) as u32;
-                        self.agent.seed = Some(seed);
-                        self.agent.rng.seed(seed);
-                        return Ok("Random number generator seed set to new random value.\n".into());
-                    }
-                };
-                self.agent.seed = Some(seed);
-                self.agent.rng.seed(seed);
-                Ok(format!("Random number generator seed set to {seed}\n"))
-            }
-            _ => Err(super::not_yet(ctx, "decide")),
-        }
     }
 
     /// `output`: the status listing, and the settings 9.6 prints as `NAME is VALUE` (checked
@@ -502,11 +406,49 @@ impl Interpreter {
     }
 }
 
-/// Soar's message for a bad value of a `chunk` setting.
-const CHUNK_INVALID: &str =
-    "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.";
 /// Soar's message for a bad value of a `soar` setting.
 const SOAR_INVALID: &str = "Invalid argument. Use 'soar ?' to see a list of valid settings.";
+
+/// A setting's value read with `atoi`, which must be positive.
+fn positive_atoi(ctx: &Ctx, v: &str) -> Result<i64, Diagnostic> {
+    match atoi(v) {
+        n if n > 0 => Ok(n),
+        _ => Err(ctx.error(SOAR_INVALID)),
+    }
+}
+
+/// An on/off setting of `soar`: shown as `NAME is on`, set with 9.6's messages.
+fn on_off_soar(
+    ctx: &Ctx,
+    value: Option<&String>,
+    slot: &mut bool,
+    name: &str,
+    [on, off]: [&str; 2],
+) -> CmdResult {
+    match value.map(String::as_str) {
+        None => Ok(format!("{name} is {}\n", if *slot { "on" } else { "off" })),
+        Some("on") => {
+            *slot = true;
+            Ok(format!("{on}\n"))
+        }
+        Some("off") => {
+            *slot = false;
+            Ok(format!("{off}\n"))
+        }
+        Some(_) => Err(ctx.error(SOAR_INVALID)),
+    }
+}
+
+/// A phase's name as `soar` prints it.
+fn phase_name(p: Phase) -> &'static str {
+    match p {
+        Phase::Input => "input",
+        Phase::Propose => "propose",
+        Phase::Decide => "decide",
+        Phase::Apply => "apply",
+        Phase::Output => "output",
+    }
+}
 
 /// C's `atoi`: optional blanks and sign, then digits; anything else ends the number.
 fn atoi(s: &str) -> i64 {
@@ -529,7 +471,7 @@ fn atoi(s: &str) -> i64 {
 
 /// `setting [N]`: shows or sets a non-negative integer setting; `invalid` is Soar's message
 /// for a value that is not one.
-fn int_setting(
+pub(super) fn int_setting(
     ctx: &Ctx,
     args: &[String],
     name: &str,

@@ -17,7 +17,7 @@ impl<T: Copy> Default for ByToken<T> {
 
 impl<T: Copy> ByToken<T> {
     pub fn get(&self, &(p, t): &(ProdId, TokId)) -> Option<&T> {
-        match self.slots.get(t as usize) {
+        match self.slots.get(t.index()) {
             Some(Some((q, v))) if *q == p => Some(v),
             _ => None,
         }
@@ -29,7 +29,7 @@ impl<T: Copy> ByToken<T> {
 
     /// Sets the entry; a stale entry of another rule on a reused token id is replaced.
     pub fn insert(&mut self, (p, t): (ProdId, TokId), v: T) -> Option<T> {
-        let i = t as usize;
+        let i = t.index();
         if self.slots.len() <= i {
             self.slots.resize(i + 1, None);
         }
@@ -38,7 +38,7 @@ impl<T: Copy> ByToken<T> {
     }
 
     pub fn remove(&mut self, &(p, t): &(ProdId, TokId)) -> Option<T> {
-        let slot = self.slots.get_mut(t as usize)?;
+        let slot = self.slots.get_mut(t.index())?;
         match slot {
             Some((q, _)) if *q == p => slot.take().map(|(_, v)| v),
             _ => None,

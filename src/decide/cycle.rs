@@ -24,17 +24,18 @@ use crate::trace_events::TraceEvent;
 /// How far `run` goes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RunUnit {
+    /// Decision cycles, counted at the stop phase (`soar stop-phase`): a run of N stops
+    /// there after reaching it N times; a run of 0 goes on to it unless already there.
     Decisions,
     Phases,
     Elaborations,
+    /// Output cycles (`run -o`): decision cycles up to one whose output phase found the
+    /// output-link changed, or up to `max-nil-output-cycles` cycles without output.
+    OutputCycles,
     Forever,
 }
 
 impl AgentCore {
-    pub(super) fn out(&mut self, s: &str) {
-        self.output.push_str(s);
-    }
-
     pub(super) fn operator_sym(&self) -> Sym {
         self.top.operator
     }
@@ -51,8 +52,9 @@ impl AgentCore {
         }
     }
 
-    /// Runs `n` units (the `run` command): decisions stop before the apply phase, as 9.6's
-    /// default stop phase does. Returns (decisions executed, rules fired).
+    /// Runs `n` units (the `run` command): a decision is counted each time the run reaches
+    /// the stop phase (`soar stop-phase`, apply by default), so a run of decisions stops
+    /// before it. Returns (decisions executed, rules fired).
     pub fn run(&mut self, n: u64, unit: RunUnit) -> (u64, u64) {
         self.decider.stop_requested = false;
         self.decider.depth_exceeded = false;
@@ -68,16 +70,29 @@ impl AgentCore {
                 wmes: Vec::new(),
                 slot_changed: true,
                 made: Vec::new(),
+                learned_below: false,
             });
         }
         let start_dc = self.decider.decisions;
         let start_firings = self.decider.firings;
         let mut done = 0u64;
+        let stop_phase = self.settings.stop_phase;
+        let max_dc_time = u64::try_from(self.settings.max_dc_time).unwrap_or(0);
+        let mut decision_start = std::time::Instant::now();
+        let max_nil = u64::try_from(self.settings.max_nil_output_cycles.max(1)).unwrap_or(1);
+        let mut nil_cycles = 0u64;
+        let mut output_stamp = self.output_link_stamp();
         while !self.decider.halted
             && !self.decider.stop_requested
             && !self.decider.depth_exceeded
             && !self.decider.rhs_interrupted
-            && (unit == RunUnit::Forever || done < n)
+            && match unit {
+                RunUnit::Forever => true,
+                RunUnit::Decisions => {
+                    done < n || self.decider.phase.unwrap_or(Phase::Input) != stop_phase
+                }
+                _ => done < n,
+            }
         {
             let phase = self.decider.phase.unwrap_or(Phase::Input);
             let e_before = self.decider.e_cycles;
@@ -85,12 +100,31 @@ impl AgentCore {
             self.do_phase(phase, unit == RunUnit::Elaborations);
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
-                    if phase == Phase::Decide {
+                    if phase != stop_phase && self.decider.phase == Some(stop_phase) {
                         done += 1;
+                    }
+                }
+                RunUnit::OutputCycles => {
+                    if phase == Phase::Output && self.decider.phase != Some(Phase::Output) {
+                        let stamp = self.output_link_stamp();
+                        nil_cycles += 1;
+                        if stamp != output_stamp || nil_cycles >= max_nil {
+                            done += 1;
+                            nil_cycles = 0;
+                        }
+                        output_stamp = stamp;
                     }
                 }
                 RunUnit::Phases => done += 1,
                 RunUnit::Elaborations => done += (self.decider.e_cycles - e_before).max(1),
+            }
+            // `max-dc-time`: a decision cycle that takes too long interrupts the run.
+            if max_dc_time > 0 && self.decider.phase != Some(phase) {
+                if phase == Phase::Output {
+                    decision_start = std::time::Instant::now();
+                } else if decision_start.elapsed().as_secs() >= max_dc_time {
+                    self.decider.stop_requested = true;
+                }
             }
             // Endless state no-changes stop at max-goal-depth.
             if unit == RunUnit::Forever && done > 1_000_000_000 {
@@ -164,7 +198,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached("decide") {
+                    if self.max_elaborations_reached(Phase::Decide) {
                         break;
                     }
                     if one_cycle && self.has_pending(false) && !self.decider.halted {
@@ -182,6 +216,7 @@ impl AgentCore {
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
                 self.decide_context_slots();
+                self.reduce_exploration_parameters();
                 self.classify_new_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Decide));
                 self.decider.decisions += 1;
@@ -197,7 +232,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached("output") {
+                    if self.max_elaborations_reached(Phase::Output) {
                         break;
                     }
                     if one_cycle && self.has_pending(true) && !self.decider.halted {
@@ -220,11 +255,10 @@ impl AgentCore {
         }
     }
 
-    fn max_elaborations_reached(&mut self, next: &str) -> bool {
+    fn max_elaborations_reached(&mut self, next: Phase) -> bool {
         if self.decider.e_cycles_this_phase >= self.settings.max_elaborations.max(1) as u64 {
             if self.settings.warnings {
-                let s = format!("\nWarning: reached max-elaborations; proceeding to {next} phase.");
-                self.out(&s);
+                self.emit(&TraceEvent::MaxElaborations { next });
             }
             return true;
         }
@@ -240,12 +274,12 @@ impl AgentCore {
             return true;
         }
         let live = |i: InstId| {
-            self.decider.insts[i as usize]
+            self.decider.insts[i]
                 .goal
                 .is_none_or(|g| self.symbols.is_goal(g))
         };
         let justification = |&(i, serial, _): &(InstId, u64, usize)| {
-            let inst = &self.decider.insts[i as usize];
+            let inst = &self.decider.insts[i];
             inst.alive && inst.serial == serial && live(i)
         };
         self.decider.justification_retractions.iter().any(justification)

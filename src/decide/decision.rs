@@ -21,7 +21,7 @@ impl AgentCore {
         slot.prefs
             .iter()
             .map(|&pid| {
-                let p = &self.decider.prefs[pid as usize];
+                let p = &self.decider.prefs[pid];
                 Pref {
                     kind: p.kind,
                     value: p.value,
@@ -38,18 +38,11 @@ impl AgentCore {
     pub(super) fn decide_context_slots(&mut self) {
         // The decision decides every changed slot anew.
         self.decider.consistency_pending.clear();
+        if let Some(seed) = self.decider.predict_seed.take() {
+            self.rng.seed(seed);
+        }
         let op = self.operator_sym();
-        let policy = match self.settings.exploration {
-            Exploration::First => Policy::First,
-            Exploration::Last => Policy::Last,
-            Exploration::EpsilonGreedy => Policy::EpsilonGreedy {
-                epsilon: self.settings.epsilon,
-            },
-            Exploration::Boltzmann => Policy::Boltzmann {
-                temperature: self.settings.temperature,
-            },
-            Exploration::Softmax => Policy::Softmax,
-        };
+        let policy = self.exploration_policy();
         let numeric_mode = self.settings.numeric_mode;
         let n = self.decider.goals.len();
         for gi in 0..n {
@@ -61,7 +54,10 @@ impl AgentCore {
             }
             self.decider.goals[gi].slot_changed = false;
             let prefs = self.slot_prefs((goal.state, op));
-            let outcome = procedure::decide(&prefs, policy, numeric_mode, &mut self.rng);
+            let outcome = match self.take_forced_operator(&prefs) {
+                Some(o) => Outcome::Winner(o),
+                None => procedure::decide(&prefs, policy, numeric_mode, &mut self.rng),
+            };
             let (kind, on_operator, items) = match outcome {
                 Outcome::Winner(o) => {
                     self.remove_goals_below(gi);
@@ -114,6 +110,86 @@ impl AgentCore {
         if let Some(last) = n.checked_sub(1) {
             let on_operator = self.decider.goals[last].operator.is_some();
             self.impasse(last, ImpasseKind::NoChange, on_operator, Vec::new());
+        }
+    }
+
+
+    /// `decide select`: the forced operator when one of the slot's acceptable preferences
+    /// proposes it, whatever the other preferences say; it is used up then (Soar manual,
+    /// chapter 9, "decide").
+    fn take_forced_operator(&mut self, prefs: &[Pref]) -> Option<Sym> {
+        let forced = self.decider.forced_operator.as_deref()?;
+        let o = prefs
+            .iter()
+            .filter(|p| p.kind == procedure::PrefType::Acceptable)
+            .map(|p| p.value)
+            .find(|&v| self.symbols.text(v) == forced)?;
+        self.decider.forced_operator = None;
+        Some(o)
+    }
+
+    /// `decide predict`: what the next decision will do, without doing it: the operator
+    /// it selects, or `tie`, `conflict`, `constraint`, or `none` (no change). The
+    /// generator is seeded with a number drawn from it, before the prediction and again
+    /// at the decision, so that a random choice comes out as predicted. As in 9.6, a
+    /// forced operator (`decide select`) is predicted and used up.
+    pub(crate) fn predict_decision(&mut self) -> String {
+        let seed = loop {
+            let s = self.rng.next_u32();
+            if s != 0 {
+                break s;
+            }
+        };
+        self.decider.predict_seed = Some(seed);
+        self.rng.seed(seed);
+        let op = self.operator_sym();
+        let policy = self.exploration_policy();
+        let numeric_mode = self.settings.numeric_mode;
+        let decidable = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.operator.is_none() && g.slot_changed)
+            .map(|g| g.state);
+        let Some(state) = decidable else {
+            return "none".to_string();
+        };
+        let prefs = self.slot_prefs((state, op));
+        let outcome = match self.take_forced_operator(&prefs) {
+            Some(o) => Outcome::Winner(o),
+            None => procedure::decide(&prefs, policy, numeric_mode, &mut self.rng),
+        };
+        match outcome {
+            Outcome::Winner(o) => self.symbols.text(o),
+            Outcome::NoCandidates => "none".to_string(),
+            Outcome::Tie(_) => "tie".to_string(),
+            Outcome::Conflict(_) => "conflict".to_string(),
+            Outcome::ConstraintFailure(_) => "constraint".to_string(),
+        }
+    }
+
+    /// `--auto-reduce`: after each decision phase, epsilon and the temperature go down by
+    /// their reductions (observed on 9.6: the decision uses the values before).
+    pub(super) fn reduce_exploration_parameters(&mut self) {
+        let s = &mut self.settings;
+        if s.auto_reduce {
+            s.epsilon = s.epsilon_reduction.apply(s.epsilon);
+            s.temperature = s.temperature_reduction.apply(s.temperature);
+        }
+    }
+
+    /// The exploration policy of `indifferent-selection`, with its parameter.
+    fn exploration_policy(&self) -> Policy {
+        match self.settings.exploration {
+            Exploration::First => Policy::First,
+            Exploration::Last => Policy::Last,
+            Exploration::EpsilonGreedy => Policy::EpsilonGreedy {
+                epsilon: self.settings.epsilon,
+            },
+            Exploration::Boltzmann => Policy::Boltzmann {
+                temperature: self.settings.temperature,
+            },
+            Exploration::Softmax => Policy::Softmax,
         }
     }
 

@@ -26,10 +26,10 @@ impl AgentCore {
             self.compiled_rule(key.0);
             let s = crate::decide::support::match_support(self, key.0, key.1);
             if s.mixed && self.settings.warnings {
-                let name = self.production_name(key.0).to_string();
-                self.out(&format!(
-                    "WARNING:  Operator elaborations mixed with operator applications\nAssigning i_support to prod {name}"
-                ));
+                let mut out = std::mem::take(&mut self.output);
+                let rule = self.production_name(key.0);
+                self.write_event(&mut out, &TraceEvent::MixedOperatorElaborations { rule });
+                self.output = out;
             }
             self.matches.support.insert(key, s.o_support);
         }
@@ -51,7 +51,7 @@ impl AgentCore {
         // earlier cycles come first (they are older).
         let mut retracted = std::mem::take(&mut sc.retracted);
         retracted.append(&mut self.decider.waiting_retractions);
-        retracted.retain(|&i| self.decider.insts[i as usize].alive);
+        retracted.retain(|&i| self.decider.insts[i].alive);
         // Justifications that lost a WME retract with them, each in its place among the
         // rules' retractions (see `justification_wme_added`).
         let mut justified = std::mem::take(&mut self.decider.justification_retractions);
@@ -88,7 +88,7 @@ impl AgentCore {
         // Each retraction's goal level (`None`: its goal is gone).
         let mut retracted_levels = std::mem::take(&mut sc.retracted_levels);
         retracted_levels.extend(retracted.iter().map(|&i| {
-            self.decider.insts[i as usize]
+            self.decider.insts[i]
                 .goal
                 .filter(|&g| self.symbols.is_goal(g))
                 .and_then(|g| self.symbols.id_data(g))
@@ -232,7 +232,7 @@ impl AgentCore {
         let mut next = justified.iter().peekable();
         for at in 0..=end {
             while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(end) <= at) {
-                let inst = &self.decider.insts[i as usize];
+                let inst = &self.decider.insts[i];
                 if inst.alive && inst.serial == serial && !retracted.contains(&i) {
                     retracted.push(i);
                 }

@@ -159,7 +159,7 @@ impl AgentCore {
         } else {
             Vec::new()
         };
-        self.decider.insts[inst_id as usize] = inst;
+        self.decider.insts[inst_id] = inst;
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }
@@ -258,17 +258,17 @@ impl AgentCore {
     }
 
     pub(super) fn retract(&mut self, inst_id: InstId) {
-        self.send_rule_event(self.decider.insts[inst_id as usize].prod, true);
-        let serial = self.decider.insts[inst_id as usize].serial;
+        self.send_rule_event(self.decider.insts[inst_id].prod, true);
+        let serial = self.decider.insts[inst_id].serial;
         if serial != 0 {
             self.justification_retracted(inst_id, serial);
         }
-        let inst = &mut self.decider.insts[inst_id as usize];
+        let inst = &mut self.decider.insts[inst_id];
         inst.alive = false;
         let mut prefs = std::mem::take(&mut inst.prefs);
         // Newest first, as 9.6's list of an instantiation's preferences runs.
         for &pid in prefs.iter().rev() {
-            let pref = &mut self.decider.prefs[pid as usize];
+            let pref = &mut self.decider.prefs[pid];
             pref.inst = None;
             // O-supported preferences outlive their instantiation (Soar manual, chapter 2,
             // "Production Actions and Persistence").
@@ -287,7 +287,7 @@ impl AgentCore {
             self.decider.free_pref(pid);
         }
         prefs.clear();
-        self.decider.insts[inst_id as usize].prefs = prefs;
+        self.decider.insts[inst_id].prefs = prefs;
         self.decider.free_inst(inst_id);
     }
 

@@ -4,6 +4,7 @@
 
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 
 pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
     let trace_level = agent.settings.trace.level_number();
@@ -31,11 +32,10 @@ pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sy
     }
     if let Err(msg) = &result {
         if !msg.is_empty() {
-            if fresh_line && !agent.output.is_empty() && !agent.output.ends_with('\n') {
-                agent.output.push('\n');
-            }
-            agent.output.push_str(msg);
-            agent.output.push('\n');
+            agent.emit(&TraceEvent::RhsError {
+                message: msg,
+                fresh_line,
+            });
         }
     }
     result

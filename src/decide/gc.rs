@@ -79,10 +79,8 @@ impl AgentCore {
                         if traced_gone.contains(&pid) {
                             continue;
                         }
-                        let pref = &self.decider.prefs[pid as usize];
-                        pref_lines.push_str("- ");
-                        pref_lines.push_str(&crate::trace::pref_trace_text(self, pref));
-                        pref_lines.push('\n');
+                        // The lines go in before text already written, so each starts a line.
+                        self.write_pref_event(&mut pref_lines, true, false, pid);
                     }
                 }
                 for &pid in &slot.prefs {

@@ -26,7 +26,7 @@ impl AgentCore {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         let mut found = None;
         for pid in slot.prefs_for(wme.value) {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             if !p.alive || p.kind != PrefType::Acceptable || p.value != wme.value {
                 continue;
             }
@@ -50,7 +50,7 @@ impl AgentCore {
             return;
         };
         let inst = slot.prefs_for(wme.value).find_map(|pid| {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             (p.alive && p.o_support && p.kind == PrefType::Acceptable && p.value == wme.value)
                 .then_some(p.inst)
                 .flatten()
@@ -61,7 +61,7 @@ impl AgentCore {
     }
 
     fn elaborate_gds(&mut self, inst: InstId) {
-        let Some(goal) = self.decider.insts[inst as usize].goal else {
+        let Some(goal) = self.decider.insts[inst].goal else {
             return;
         };
         let level = self.sym_level(goal);
@@ -72,11 +72,11 @@ impl AgentCore {
         let mut stack = vec![inst];
         let mut found: Vec<WmeId> = Vec::new();
         while let Some(i) = stack.pop() {
-            if !seen.insert(i) || !self.decider.insts[i as usize].alive {
+            if !seen.insert(i) || !self.decider.insts[i].alive {
                 continue;
             }
             let (prod, token) = {
-                let x = &self.decider.insts[i as usize];
+                let x = &self.decider.insts[i];
                 (x.prod, x.token)
             };
             for w in self.rete.match_wmes(prod, token) {

@@ -14,7 +14,7 @@ mod fire;
 pub mod functions;
 mod gc;
 mod gds;
-mod ids;
+pub(crate) mod ids;
 pub mod procedure;
 mod scratch;
 mod slot;

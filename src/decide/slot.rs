@@ -6,6 +6,7 @@
 //! decision cycle allocates nothing for its slots once it is warm.
 
 use super::ids::PrefId;
+use crate::ids::id_type;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
@@ -265,10 +266,13 @@ impl SlotWmes {
     }
 }
 
-/// A slot's place in [`Slots`], valid while the slot lives: the changed list holds these
-/// and each firing's retraction finds its slot without hashing (9.6 points preferences at
-/// their slots).
-pub type SlotId = u32;
+id_type! {
+    /// A slot's place in [`Slots`], valid while the slot lives: the changed list holds these
+    /// and each firing's retraction finds its slot without hashing (9.6 points preferences at
+    /// their slots).
+    pub struct SlotId;
+    index Slot;
+}
 
 /// The slots, in an arena found by (id, attribute), and each identifier's attributes that
 /// have one, so that the slots of one identifier are found without a scan of them all (a
@@ -289,7 +293,7 @@ pub struct Slots {
 
 impl Slots {
     pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
-        self.map.get(key).map(|&i| &self.arena[i as usize])
+        self.map.get(key).map(|&i| &self.arena[i])
     }
 
     pub fn id_of(&self, key: &(Sym, Sym)) -> Option<SlotId> {
@@ -297,21 +301,21 @@ impl Slots {
     }
 
     pub fn slot(&self, id: SlotId) -> &Slot {
-        &self.arena[id as usize]
+        &self.arena[id]
     }
 
     pub fn slot_mut(&mut self, id: SlotId) -> &mut Slot {
-        &mut self.arena[id as usize]
+        &mut self.arena[id]
     }
 
     pub fn generation(&self, id: SlotId) -> u32 {
-        self.gens[id as usize]
+        self.gens[id.index()]
     }
 
     /// The slot, made empty if there was none.
     pub fn entry(&mut self, key: (Sym, Sym)) -> &mut Slot {
         let id = self.entry_id(key);
-        &mut self.arena[id as usize]
+        &mut self.arena[id]
     }
 
     /// The slot's place, made empty if there was none.
@@ -329,24 +333,24 @@ impl Slots {
             None => {
                 self.arena.push(self.spare.pop().unwrap_or_default());
                 self.gens.push(0);
-                (self.arena.len() - 1) as SlotId
+                SlotId::from_index(self.arena.len() - 1)
             }
         };
-        self.arena[id as usize].key = key;
+        self.arena[id].key = key;
         self.map.insert(key, id);
         id
     }
 
     /// Forgets the slot at `id` if it has no preferences and no WMEs, emptying it in place.
     pub fn drop_if_empty(&mut self, id: SlotId) {
-        let slot = &mut self.arena[id as usize];
+        let slot = &mut self.arena[id];
         if !slot.is_empty() {
             return;
         }
         let key = slot.key;
         slot.clear();
         self.map.remove(&key);
-        self.gens[id as usize] += 1;
+        self.gens[id.index()] += 1;
         self.free.push(id);
         self.forget_attr(key);
     }
@@ -369,8 +373,8 @@ impl Slots {
     /// Takes a slot out; hand it back with [`Slots::recycle`] once read.
     pub fn remove(&mut self, key: &(Sym, Sym)) -> Option<Slot> {
         let id = self.map.remove(key)?;
-        let slot = std::mem::take(&mut self.arena[id as usize]);
-        self.gens[id as usize] += 1;
+        let slot = std::mem::take(&mut self.arena[id]);
+        self.gens[id.index()] += 1;
         self.free.push(id);
         self.forget_attr(*key);
         Some(slot)

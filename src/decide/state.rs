@@ -8,6 +8,9 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
 
+crate::ids::id_type!(index InstId => Instantiation);
+crate::ids::id_type!(index PrefId => Preference);
+
 /// A fired rule: the match it fired on and the preferences it made.
 #[derive(Debug, Clone)]
 pub struct Instantiation {
@@ -79,6 +82,9 @@ pub struct Goal {
     /// The preferences its firings made, oldest first, with what each says (handles are
     /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
     pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
+    /// A state below this one learned a rule: with `chunk bottom-only`, this one learns no
+    /// more while it lasts.
+    pub learned_below: bool,
 }
 
 /// Where a removed substate's WME goes in a phase's `<=WM:` listing.
@@ -144,6 +150,12 @@ pub struct DecideState {
     pub depth_exceeded: bool,
     /// A rule called `(interrupt)` in this run: the run stops after the phase.
     pub rhs_interrupted: bool,
+    /// `decide select`: the operator the next decision takes when it is proposed, as
+    /// typed with its first letter upper-cased (9.6 compares the text).
+    pub(crate) forced_operator: Option<String>,
+    /// `decide predict` seeded the generator with this before predicting: the next
+    /// decision seeds it the same way, so that it makes the predicted choice.
+    pub(crate) predict_seed: Option<u32>,
     pub wme_changes: u64,
     /// Statistics for `stats`: elaboration cycles that fired o-supported rules (9.6's
     /// p-elaboration cycles), the WM additions and removals counted before this decider
@@ -225,12 +237,12 @@ impl DecideState {
     pub fn alloc_inst(&mut self, inst: Instantiation) -> InstId {
         match self.free_insts.pop() {
             Some(i) => {
-                self.insts[i as usize] = inst;
+                self.insts[i] = inst;
                 i
             }
             None => {
                 self.insts.push(inst);
-                (self.insts.len() - 1) as InstId
+                InstId::from_index(self.insts.len() - 1)
             }
         }
     }
@@ -238,19 +250,19 @@ impl DecideState {
     pub fn alloc_pref(&mut self, pref: Preference) -> PrefId {
         match self.free_prefs.pop() {
             Some(i) => {
-                self.prefs[i as usize] = pref;
+                self.prefs[i] = pref;
                 i
             }
             None => {
                 self.prefs.push(pref);
-                (self.prefs.len() - 1) as PrefId
+                PrefId::from_index(self.prefs.len() - 1)
             }
         }
     }
 
     /// Frees a retracted instantiation (nothing refers to it any more).
     pub fn free_inst(&mut self, i: InstId) {
-        let inst = &mut self.insts[i as usize];
+        let inst = &mut self.insts[i];
         inst.alive = false;
         let mut list = std::mem::take(&mut inst.prefs);
         inst.serial = 0;
@@ -263,7 +275,7 @@ impl DecideState {
 
     /// Frees a preference already out of its slot: it leaves its instantiation's list too.
     pub fn free_pref(&mut self, pid: PrefId) {
-        let pref = &mut self.prefs[pid as usize];
+        let pref = &mut self.prefs[pid];
         if pref.freed {
             return;
         }
@@ -276,7 +288,7 @@ impl DecideState {
             }
         }
         if let Some(i) = pref.inst.take() {
-            let inst = &mut self.insts[i as usize];
+            let inst = &mut self.insts[i];
             if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {
                 inst.prefs.remove(pos);
             }

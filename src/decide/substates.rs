@@ -335,11 +335,9 @@ impl AgentCore {
         }
         // 9.6 prints the depth message before the new state's WMEs and line.
         if level as i64 > self.settings.max_goal_depth {
-            let msg = format!(
-                "\nGoal stack depth exceeded {} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n",
-                self.settings.max_goal_depth
-            );
-            self.out(&msg);
+            self.emit(&TraceEvent::GoalDepthExceeded {
+                max_depth: self.settings.max_goal_depth,
+            });
             // 9.6 stops the run here without halting the agent: a later `run` goes on
             // deeper, with the same message at each new state (checked on soar-sml 9.6.5).
             self.decider.depth_exceeded = true;
@@ -369,6 +367,7 @@ impl AgentCore {
             wmes,
             slot_changed: true,
             made: Vec::new(),
+                learned_below: false,
         });
     }
 
@@ -443,7 +442,7 @@ impl AgentCore {
         else {
             return;
         };
-        let p = &self.decider.prefs[pid as usize];
+        let p = &self.decider.prefs[pid];
         let what = (p.id, p.attr, p.value);
         self.decider.goals[gi].made.push((pid, what));
         // A long-lived substate keeps only the preferences that still stand (amortized).
@@ -458,12 +457,12 @@ impl AgentCore {
 
     /// Whether preference `pid` is still the one a firing of `state` made saying `what`.
     fn pref_stands(&self, pid: PrefId, what: (Sym, Sym, Sym), state: Sym) -> bool {
-        let p = &self.decider.prefs[pid as usize];
+        let p = &self.decider.prefs[pid];
         p.alive
             && !p.freed
             && (p.id, p.attr, p.value) == what
             && p.inst
-                .is_none_or(|i| self.decider.insts[i as usize].goal == Some(state))
+                .is_none_or(|i| self.decider.insts[i].goal == Some(state))
     }
 
     /// 9.6's trace 5 lists the standing preferences of a removed state's firings as

@@ -45,7 +45,7 @@ impl AgentCore {
         }
         let mut removed = Vec::new();
         for &pid in new_prefs {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
             if kind == PrefType::Reject && o_support && p.alive {
                 removed.clear();
@@ -64,7 +64,7 @@ impl AgentCore {
             }
         }
         for &pid in new_prefs.iter().rev() {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             if !p.alive {
                 continue;
             }
@@ -164,7 +164,7 @@ impl AgentCore {
             // kind oldest first: that sets their timetags (checked on 9.6).
             for kind in [PrefType::Require, PrefType::Acceptable] {
                 for &pid in slot.prefs.iter().rev() {
-                    let p = &self.decider.prefs[pid as usize];
+                    let p = &self.decider.prefs[pid];
                     if p.kind == kind {
                         want.insert(p.value, large);
                     }
@@ -333,7 +333,7 @@ fn update_touched_values(
     for &v in touched.iter() {
         let (mut acceptable, mut rejected) = (false, false);
         for pid in slot.prefs_for(v) {
-            match prefs[pid as usize].kind {
+            match prefs[pid].kind {
                 PrefType::Reject => rejected = true,
                 PrefType::Acceptable => acceptable = true,
                 _ => {}
@@ -361,7 +361,7 @@ fn update_touched_values(
         let mut ordered = Vec::with_capacity(add.len());
         for (&pid, &v) in slot.prefs.iter().zip(slot.values()) {
             if let Ok(i) = add.binary_search(&v) {
-                if !done[i] && prefs[pid as usize].kind == PrefType::Acceptable {
+                if !done[i] && prefs[pid].kind == PrefType::Acceptable {
                     done[i] = true;
                     ordered.push(v);
                 }
@@ -385,7 +385,7 @@ fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> 
             rejects.contains(&v)
         } else {
             slot.prefs.iter().any(|&q| {
-                let q = &prefs[q as usize];
+                let q = &prefs[q];
                 q.kind == PrefType::Reject && q.value == v
             })
         }
@@ -393,7 +393,7 @@ fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> 
     let rejects: FxHashSet<Sym> = if large {
         slot.prefs
             .iter()
-            .map(|&q| &prefs[q as usize])
+            .map(|&q| &prefs[q])
             .filter(|q| q.kind == PrefType::Reject)
             .map(|q| q.value)
             .collect()
@@ -401,7 +401,7 @@ fn wanted_values<'a>(slot: &Slot, prefs: &[Preference], out: &'a mut Wanted) -> 
         FxHashSet::default()
     };
     for &pid in &slot.prefs {
-        let p = &prefs[pid as usize];
+        let p = &prefs[pid];
         if p.kind == PrefType::Acceptable && !rejected(p.value, &rejects) {
             out.insert(p.value, large);
         }

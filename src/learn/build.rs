@@ -432,7 +432,7 @@ impl AgentCore {
         }
         let mut actions = Vec::new();
         for &r in results {
-            let p = self.decider.prefs[r as usize].clone();
+            let p = self.decider.prefs[r].clone();
             let origin = p.origin.clone();
             let ids = origin.as_ref().map_or([0; 4], |o| o.ids);
             let make = origin.as_ref().and_then(|o| {

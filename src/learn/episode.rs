@@ -13,6 +13,7 @@ use crate::decide::state::{ImpasseKind, InstId, Instantiation, PrefId};
 use crate::production::Production;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use rustc_hash::FxHashSet;
 use std::sync::Arc;
 
@@ -73,7 +74,7 @@ impl AgentCore {
             .iter()
             .copied()
             .filter(|&p| {
-                let l = self.sym_level(self.decider.prefs[p as usize].id);
+                let l = self.sym_level(self.decider.prefs[p].id);
                 l > 0 && l < level
             })
             .collect();
@@ -87,7 +88,7 @@ impl AgentCore {
                 continue;
             }
             results.push(r);
-            let p = &self.decider.prefs[r as usize];
+            let p = &self.decider.prefs[r];
             let target = self.sym_level(p.id);
             let linked: Vec<Sym> = [Some(p.value), p.referent].into_iter().flatten().collect();
             for x in linked {
@@ -95,7 +96,7 @@ impl AgentCore {
                     queue.extend(
                         made.iter()
                             .copied()
-                            .filter(|&q| self.decider.prefs[q as usize].id == y),
+                            .filter(|&q| self.decider.prefs[q].id == y),
                     );
                     let mut on_y = self.decider.slots.keys_of(y);
                     on_y.sort();
@@ -143,7 +144,7 @@ impl AgentCore {
         let t = self.symbols.str("t");
         let mut bt = Backtrace::new(level);
         for &r in &results {
-            if let Some(o) = self.decider.prefs[r as usize].origin.clone() {
+            if let Some(o) = self.decider.prefs[r].origin.clone() {
                 bt.result(&o, quiescence, t);
             }
         }
@@ -164,6 +165,14 @@ impl AgentCore {
             LearnMode::Only => goal.is_some_and(|g| self.learn.force_learn.contains(&g)),
             LearnMode::Except => !goal.is_some_and(|g| self.learn.dont_learn.contains(&g)),
         };
+        // `chunk bottom-only`: a state above one that learned a rule learns none.
+        let want_chunk = want_chunk
+            && !(self.settings.chunk.bottom_only
+                && self
+                    .decider
+                    .goals
+                    .iter()
+                    .any(|g| g.level == level && g.learned_below));
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
         self.learn.substates_analyzed += 1;
         // The rule whose firing made the result: max-dupes counts per rule, per phase.
@@ -177,9 +186,7 @@ impl AgentCore {
         if want_chunk && !bt.tested_quiescence {
             if self.learn.chunks_this_phase >= self.settings.max_chunks {
                 if self.settings.warnings {
-                    self.output.push_str(
-                        "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
-                    );
+                    self.emit(&TraceEvent::MaxChunksReached);
                 }
             } else if dupes >= self.settings.max_dupes {
                 // This rule's results keep giving rules already known: give up on it for
@@ -202,6 +209,7 @@ impl AgentCore {
                             chunk = Some((l.id, p));
                         }
                         self.print_learned(&name);
+                        self.rule_learned_at(level);
                     }
                 }
             }
@@ -282,14 +290,14 @@ impl AgentCore {
                 vars: Default::default(),
                 base: source.base.clone(),
                 generation: source.generation,
-                level: self.decider.insts[inst_id as usize]
+                level: self.decider.insts[inst_id]
                     .goal
                     .map_or(0, |g| self.sym_level(g)),
             }),
         };
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
-            let mut p = self.decider.prefs[r as usize].clone();
+            let mut p = self.decider.prefs[r].clone();
             let ids = match &recorded {
                 Some((t, prod)) => action_idents(t, prod, k),
                 None => p
@@ -314,14 +322,14 @@ impl AgentCore {
             if o_reject {
                 self.decider.results_taken_by_o_rejects.push(r);
             }
-            self.decider.insts[inst_id as usize].prefs.push(pid);
+            self.decider.insts[inst_id].prefs.push(pid);
             new_prefs.push(pid);
             clones.push(pid);
         }
         // The learned rule's instantiation belongs to its match goal: a substate there
         // lists the copies among its firings' preferences when it goes (checked on
         // soar-sml 9.6.5: agent learn-lookahead, trace 5).
-        let goal = self.decider.insts[inst_id as usize].goal;
+        let goal = self.decider.insts[inst_id].goal;
         if goal.is_some_and(|g| self.sym_level(g) >= 2) {
             for &pid in clones.iter().rev() {
                 self.note_goal_pref(goal, pid);
@@ -344,6 +352,11 @@ impl AgentCore {
             self.learn.chunk_name_count = 0;
         }
         self.learn.chunk_name_count += 1;
+        if self.settings.chunk.naming_style == crate::learn::settings::NamingStyle::Numbered {
+            // 9.6 counts two for each name it makes.
+            self.learn.chunk_number += 2;
+            return format!("chunk{}", self.learn.chunk_number - 1);
+        }
         let prefix = match source.generation {
             0 => "chunk".to_string(),
             g => format!("chunkx{}", g + 1),
@@ -427,7 +440,7 @@ impl AgentCore {
         };
         let prefs: Vec<_> = results
             .iter()
-            .map(|&r| self.decider.prefs[r as usize].clone())
+            .map(|&r| self.decider.prefs[r].clone())
             .collect();
         if prefs
             .iter()
@@ -460,7 +473,7 @@ impl AgentCore {
             crate::decide::support::goal_among(self, bt.grounds.iter().map(|g| g.cond.wme.id));
         let inst = Instantiation {
             prod: ProdId(u32::MAX),
-            token: 0,
+            token: TokId::new(0),
             goal,
             o_support,
             prefs: Vec::new(),
@@ -500,10 +513,11 @@ impl AgentCore {
             self.learn.justifications_since_init += 1;
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
             if self.settings.learning_trace >= 2 {
-                self.output.push_str(&format!(
-                    "\n\nLearning new rule {name}\n\n{}\n",
-                    crate::printer::production_text(&prod).trim_end()
-                ));
+                let text = crate::printer::production_text(&prod);
+                self.emit(&TraceEvent::LearnedRule {
+                    name,
+                    text: Some(&text),
+                });
             }
             self.learn.justifications.push(Justification {
                 production: Arc::new(prod),
@@ -513,20 +527,31 @@ impl AgentCore {
         id
     }
 
+    /// A rule was learned from the substate below `level`: the states above that substate
+    /// learn no more under `bottom-only`, and `chunk interrupt` stops the run after this
+    /// phase, with 9.6's notice.
+    fn rule_learned_at(&mut self, level: u32) {
+        for g in self.decider.goals.iter_mut().filter(|g| g.level < level) {
+            g.learned_below = true;
+        }
+        if self.settings.chunk.interrupt && !self.decider.rhs_interrupted {
+            self.decider.rhs_interrupted = true;
+            self.emit(&TraceEvent::LearningInterrupt);
+        }
+    }
+
     /// `trace -L 1` prints the new rule's name, `-L 2` the rule too.
     fn print_learned(&mut self, name: &str) {
         match self.settings.learning_trace {
             0 => {}
-            1 => self
-                .output
-                .push_str(&format!("\n\nLearning new rule {name}\n")),
+            1 => self.emit(&TraceEvent::LearnedRule { name, text: None }),
             _ => {
                 if let Some(p) = self.production(name) {
                     let text = crate::printer::production_text(p);
-                    self.output.push_str(&format!(
-                        "\n\nLearning new rule {name}\n\n{}\n",
-                        text.trim_end()
-                    ));
+                    self.emit(&TraceEvent::LearnedRule {
+                        name,
+                        text: Some(&text),
+                    });
                 }
             }
         }
@@ -561,7 +586,7 @@ impl AgentCore {
             .negations
             .violated_by(&new, &self.wm, &self.symbols, |i, s| {
                 insts
-                    .get(i as usize)
+                    .get(i.index())
                     .is_some_and(|x| x.alive && x.serial == s)
             });
         let end = self.matches.retractions.len();
@@ -618,9 +643,9 @@ impl AgentCore {
             }
         }
         let mut held = 0;
-        if self.decider.insts[inst as usize].o_support {
-            for &pid in &self.decider.insts[inst as usize].prefs {
-                let p = &self.decider.prefs[pid as usize];
+        if self.decider.insts[inst].o_support {
+            for &pid in &self.decider.insts[inst].prefs {
+                let p = &self.decider.prefs[pid];
                 if p.o_support && p.alive && !p.freed {
                     self.decider.held_by_justification.insert(pid, serial);
                     held += 1;

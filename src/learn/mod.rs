@@ -8,7 +8,9 @@ mod build;
 mod episode;
 mod negations;
 mod record;
+pub mod settings;
 
+use crate::decide::ids::InstId;
 use crate::production::Production;
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
@@ -85,6 +87,8 @@ pub struct LearnState {
     /// The count used in chunk names (`t<dc>-<n>`).
     pub chunk_name_count: u64,
     pub chunk_name_dc: u64,
+    /// The counter of `chunk naming-style numbered` names (incremented twice per name).
+    pub chunk_number: u64,
     /// The justification name counter (incremented twice per name, as in 9.6).
     pub justification_counter: u64,
     pub justifications_learned: u64,
@@ -109,7 +113,7 @@ pub struct LearnState {
     /// Live justifications, by serial.
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
-    pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(u32, u64)>>,
+    pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(InstId, u64)>>,
     /// The WMEs each live justification is listed under in `justified_by_wme`, by serial.
     pub grounds_of: FxHashMap<u64, Vec<(WmeId, u64)>>,
     /// The superstate negations of live justifications: a new WME that matches one
@@ -126,6 +130,8 @@ impl LearnState {
     pub fn reset_for_init(&mut self) {
         self.init_count += 1;
         self.justification_counter = 0;
+        self.chunk_name_dc = 0;
+        self.chunk_name_count = 0;
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();

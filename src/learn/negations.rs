@@ -13,6 +13,7 @@ use super::InstTrace;
 use crate::ast::Relation;
 use crate::production::{Cond, Condition, Term, Test};
 use crate::rete::tests::{relation_holds, Op};
+use crate::decide::ids::InstId;
 use crate::symbols::{Sym, Symbols};
 use crate::wm::{Wme, WorkingMemory};
 
@@ -49,7 +50,7 @@ enum Pattern {
 /// One justification's negations.
 #[derive(Debug)]
 struct Watched {
-    inst: u32,
+    inst: InstId,
     serial: u64,
     /// Each negation as the conjunction whose match violates it.
     negations: Vec<Vec<Pattern>>,
@@ -86,7 +87,7 @@ impl WatchedNegations {
     /// Watches the negations (conditions of `trace`'s rule) of justification `inst`.
     pub fn watch(
         &mut self,
-        inst: u32,
+        inst: InstId,
         serial: u64,
         negations: &[(Arc<InstTrace>, &Condition)],
         syms: &Symbols,
@@ -151,8 +152,8 @@ impl WatchedNegations {
         new: &Wme,
         wm: &WorkingMemory,
         syms: &Symbols,
-        alive: impl Fn(u32, u64) -> bool,
-    ) -> Vec<(u32, u64, u8)> {
+        alive: impl Fn(InstId, u64) -> bool,
+    ) -> Vec<(InstId, u64, u8)> {
         let attr = new.attr;
         if self.any_attr == 0 && self.attrs.get(&attr).is_none_or(|&n| n == 0) {
             return Vec::new();

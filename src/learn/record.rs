@@ -97,7 +97,7 @@ impl AgentCore {
             .decider
             .inst_by_token
             .get(&(p, t))
-            .and_then(|&i| self.decider.insts[i as usize].goal)
+            .and_then(|&i| self.decider.insts[i].goal)
             .map_or(0, |g| self.sym_level(g));
         let trace = Arc::new(InstTrace {
             base,
@@ -122,7 +122,7 @@ impl AgentCore {
                 ident(&m.value),
                 m.referent.as_ref().map_or(0, ident),
             ];
-            self.decider.prefs[pid as usize].origin = Some(Arc::new(PrefOrigin {
+            self.decider.prefs[pid].origin = Some(Arc::new(PrefOrigin {
                 trace: trace.clone(),
                 ids,
                 action: Some(ai),
@@ -149,7 +149,7 @@ impl AgentCore {
     fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         slot.prefs_for(wme.value).find_map(|pid| {
-            let p = &self.decider.prefs[pid as usize];
+            let p = &self.decider.prefs[pid];
             let kind_ok = match p.kind {
                 PrefType::Acceptable => true,
                 PrefType::Require => wme.acceptable,

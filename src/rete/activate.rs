@@ -9,7 +9,7 @@
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
 use super::tests::{relation_holds, Field, JoinTest, Operand};
-use super::{Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
+use super::{AmemId, Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::{SymData, Symbols};
 use crate::wm::WmeId;
 
@@ -101,16 +101,16 @@ impl Rete {
     /// candidate lists gave.
     #[inline(always)]
     fn node_tests_pass(&self, n: NodeId, t: TokId, w: WmeId, new_depth: u32, s: &Symbols) -> bool {
-        let skip = self.nodes[n as usize].hash_test as usize;
+        let skip = self.nodes[n].hash_test as usize;
         self.tests_pass_but(self.join_tests(n), skip, t, w, new_depth, s)
     }
 
     /// The WME of the ancestor token (of `t`, inclusive) at `depth`.
     pub(crate) fn wme_at_depth(&self, t: TokId, depth: u32) -> WmeId {
-        if t == NIL {
+        if t == TokId::NONE {
             return NIL_WME;
         }
-        let tok = &self.tokens[t as usize];
+        let tok = &self.tokens[t];
         if depth > tok.depth {
             return NIL_WME;
         }
@@ -121,7 +121,7 @@ impl Rete {
     /// their list order (see `link_to_amem`).
     pub(crate) fn right_activate_successors(
         &mut self,
-        a: u32,
+        a: AmemId,
         w: WmeId,
         syms: &Symbols,
         sink: &mut dyn MatchSink,
@@ -137,7 +137,7 @@ impl Rete {
         // compares it with an integer (identifiers and attributes are left to the full test).
         let mut value_int: Option<Option<i64>> = None;
         let base = self.succ_scratch.len();
-        for s in self.amems[a as usize].successors.values() {
+        for s in self.amems[a].successors.values() {
             if let (Some(pre), false) = (&s.pre, s.left_unlinked) {
                 let int = match pre.field {
                     Field::Value if pre.int_order.is_some() => {
@@ -156,7 +156,7 @@ impl Rete {
         }
         for i in base..self.succ_scratch.len() {
             let n = self.succ_scratch[i].node;
-            if self.nodes[n as usize].alive {
+            if self.nodes[n].alive {
                 self.right_activation(n, w, syms, sink);
             }
         }
@@ -165,36 +165,36 @@ impl Rete {
 
     fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
         self.right_activations += 1;
-        match self.nodes[n as usize].kind {
+        match self.nodes[n].kind {
             Kind::Join { left_unlinked, .. } => {
-                let parent = self.nodes[n as usize].parent;
+                let parent = self.nodes[n].parent;
                 if left_unlinked {
                     self.relink_left(n);
                 }
-                if self.nodes[parent as usize].token_count == 0 {
+                if self.nodes[parent].token_count == 0 {
                     self.unlink_right(n);
                     return;
                 }
-                let depth = self.nodes[parent as usize].depth + 1;
+                let depth = self.nodes[parent].depth + 1;
                 if !self.wme_tests_pass(n, w, depth, syms) {
                     return;
                 }
                 let blockable = matches!(
-                    self.nodes[parent as usize].kind,
+                    self.nodes[parent].kind,
                     Kind::Negative { .. } | Kind::Ncc { .. }
                 );
                 let base = self.scratch.len();
                 self.push_token_candidates(parent, n, w);
                 for i in base..self.scratch.len() {
-                    let t = self.scratch[i];
-                    if blockable && self.links[t as usize].results != NIL {
+                    let t = TokId::new(self.scratch[i]);
+                    if blockable && self.links[t].results != NIL {
                         continue;
                     }
-                    if self.doom.active && self.tokens[t as usize].doomed && self.may_skip_doomed(n)
+                    if self.doom.active && self.tokens[t].doomed && self.may_skip_doomed(n)
                     {
                         continue;
                     }
-                    if self.tokens[t as usize].alive
+                    if self.tokens[t].alive
                         && self.wmes[w.0 as usize].is_some()
                         && self.node_tests_pass(n, t, w, depth, syms)
                     {
@@ -204,19 +204,19 @@ impl Rete {
                 self.scratch.truncate(base);
             }
             Kind::Negative { .. } => {
-                let depth = self.nodes[n as usize].depth + 1;
+                let depth = self.nodes[n].depth + 1;
                 if !self.wme_tests_pass(n, w, depth, syms) {
                     return;
                 }
                 let base = self.scratch.len();
                 self.push_token_candidates(n, n, w);
                 for i in base..self.scratch.len() {
-                    let t = self.scratch[i];
-                    if !self.tokens[t as usize].alive || self.wmes[w.0 as usize].is_none() {
+                    let t = TokId::new(self.scratch[i]);
+                    if !self.tokens[t].alive || self.wmes[w.0 as usize].is_none() {
                         continue;
                     }
                     if self.node_tests_pass(n, t, w, depth, syms) {
-                        if self.links[t as usize].results == NIL {
+                        if self.links[t].results == NIL {
                             self.delete_descendants(t, syms, sink);
                         }
                         self.add_neg_result(t, w);
@@ -237,7 +237,7 @@ impl Rete {
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
-        let children = self.nodes[n as usize].children.as_slice();
+        let children = self.nodes[n].children.as_slice();
         if children.len() == 1 {
             // The common case needs no copy of the list.
             let c = children[0];
@@ -247,10 +247,10 @@ impl Rete {
             return;
         }
         let base = self.scratch.len();
-        self.scratch.extend(children.iter().rev());
+        self.scratch.extend(children.iter().rev().map(|c| c.raw()));
         for i in base..self.scratch.len() {
-            let c = self.scratch[i];
-            if !self.nodes[c as usize].alive || !self.tokens[t as usize].alive {
+            let c = NodeId::new(self.scratch[i]);
+            if !self.nodes[c].alive || !self.tokens[t].alive {
                 continue;
             }
             if w != NIL_WME && self.wmes[w.0 as usize].is_none() {
@@ -262,8 +262,8 @@ impl Rete {
     }
 
     fn child_may_activate(&self, c: NodeId, t: TokId, w: WmeId) -> bool {
-        self.nodes[c as usize].alive
-            && self.tokens[t as usize].alive
+        self.nodes[c].alive
+            && self.tokens[t].alive
             && (w == NIL_WME || self.wmes[w.0 as usize].is_some())
     }
 
@@ -276,7 +276,7 @@ impl Rete {
         sink: &mut dyn MatchSink,
     ) {
         self.left_activations += 1;
-        match self.nodes[n as usize].kind {
+        match self.nodes[n].kind {
             Kind::Root => {}
             Kind::Memory => {
                 let nt = self.new_token(n, t, w);
@@ -289,23 +289,23 @@ impl Rete {
             } => {
                 if right_unlinked {
                     self.relink_right(n, syms);
-                    if self.amems[amem as usize].count == 0 {
+                    if self.amems[amem].count == 0 {
                         self.unlink_left(n);
                         return;
                     }
                 }
-                let depth = self.tokens[t as usize].depth + 1;
+                let depth = self.tokens[t].depth + 1;
                 let base = self.scratch.len();
                 self.push_amem_candidates(amem, n, t);
                 let batch = self.doom.active;
-                let t_doomed = batch && self.tokens[t as usize].doomed;
+                let t_doomed = batch && self.tokens[t].doomed;
                 for i in base..self.scratch.len() {
                     let wm = WmeId(self.scratch[i]);
                     if batch && (t_doomed || self.wme_doomed(wm)) && self.may_skip_doomed(n) {
                         continue;
                     }
                     if self.wmes[wm.0 as usize].is_some()
-                        && self.tokens[t as usize].alive
+                        && self.tokens[t].alive
                         && self.node_tests_pass(n, t, wm, depth, syms)
                     {
                         self.activate_children(n, t, wm, syms, sink);
@@ -334,7 +334,7 @@ impl Rete {
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
-        match self.nodes[n as usize].kind {
+        match self.nodes[n].kind {
             Kind::Negative {
                 amem,
                 right_unlinked,
@@ -344,7 +344,7 @@ impl Rete {
                     self.relink_right(n, syms);
                 }
                 let nt = self.new_token(n, t, w);
-                let depth = self.tokens[nt as usize].depth + 1;
+                let depth = self.tokens[nt].depth + 1;
                 let base = self.scratch.len();
                 self.push_amem_candidates(amem, n, nt);
                 for i in base..self.scratch.len() {
@@ -354,7 +354,7 @@ impl Rete {
                     }
                 }
                 self.scratch.truncate(base);
-                if self.links[nt as usize].results == NIL {
+                if self.links[nt].results == NIL {
                     self.activate_children(n, nt, NIL_WME, syms, sink);
                 }
             }
@@ -362,14 +362,14 @@ impl Rete {
                 let nt = self.new_token(n, t, w);
                 // Results the subnetwork found before this token existed (Doorenbos, section 2.8):
                 // those whose ancestor above the subnetwork is this token's parent.
-                let owner_depth = match self.nodes[partner as usize].kind {
+                let owner_depth = match self.nodes[partner].kind {
                     Kind::NccPartner { owner_depth, .. } => owner_depth,
                     _ => 0,
                 };
                 let buffered = self.ncc_buffers.remove(&partner).unwrap_or_default();
                 let mut keep = Vec::new();
                 for r in buffered {
-                    if !self.tokens[r as usize].alive {
+                    if !self.tokens[r].alive {
                         continue;
                     }
                     if self.result_owner_parent(r, owner_depth) == t {
@@ -381,7 +381,7 @@ impl Rete {
                 if !keep.is_empty() {
                     self.ncc_buffers.insert(partner, keep);
                 }
-                if self.links[nt as usize].results == NIL {
+                if self.links[nt].results == NIL {
                     self.activate_children(n, nt, NIL_WME, syms, sink);
                 }
             }
@@ -395,7 +395,7 @@ impl Rete {
                 let owner = self.find_ncc_owner(ncc, owner_parent);
                 match owner {
                     Some(o) => {
-                        let had = self.links[o as usize].results != NIL;
+                        let had = self.links[o].results != NIL;
                         self.add_ncc_result(o, r);
                         if !had {
                             self.delete_descendants(o, syms, sink);
@@ -415,33 +415,33 @@ impl Rete {
     pub(crate) fn live_tokens(&self, n: NodeId) -> Vec<TokId> {
         let mut toks = self.node_tokens(n);
         if matches!(
-            self.nodes[n as usize].kind,
+            self.nodes[n].kind,
             Kind::Negative { .. } | Kind::Ncc { .. }
         ) {
-            toks.retain(|t| self.links[*t as usize].results == NIL);
+            toks.retain(|t| self.links[*t].results == NIL);
         }
         toks
     }
 
     fn result_owner_parent(&self, r: TokId, owner_depth: u32) -> TokId {
         let mut x = r;
-        while x != NIL && self.tokens[x as usize].depth > owner_depth {
-            x = self.tokens[x as usize].parent;
+        while x != TokId::NONE && self.tokens[x].depth > owner_depth {
+            x = self.tokens[x].parent;
         }
-        if x != NIL {
-            self.tokens[x as usize].parent
+        if x != TokId::NONE {
+            self.tokens[x].parent
         } else {
-            NIL
+            TokId::NONE
         }
     }
 
     fn find_ncc_owner(&self, ncc: NodeId, owner_parent: TokId) -> Option<TokId> {
-        let mut t = self.nodes[ncc as usize].first_token;
-        while t != NIL {
-            if self.tokens[t as usize].parent == owner_parent {
+        let mut t = self.nodes[ncc].first_token;
+        while t != TokId::NONE {
+            if self.tokens[t].parent == owner_parent {
                 return Some(t);
             }
-            t = self.tokens[t as usize].next_in_node;
+            t = self.tokens[t].next_in_node;
         }
         None
     }

@@ -5,7 +5,8 @@
 
 use super::tests::{Field, JoinTest, Op, Operand};
 use super::{
-    AlphaKey, AmemId, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, Shared, NIL, NIL_WME,
+    AlphaKey, AmemId, Kind, MatchSink, NodeId, ProdId, ProdInfo, Rete, Shared, TokId, NIL,
+    NIL_WME,
     NO_HASH_TEST,
 };
 use crate::ast::Head;
@@ -113,7 +114,7 @@ impl Rete {
         }
         let pid = ProdId(self.prods.len() as u32);
         let mut bindings = Bindings::default();
-        let mut cond_nodes = vec![NIL; p.conditions.len()];
+        let mut cond_nodes = vec![NodeId::NONE; p.conditions.len()];
         let mut positives = 0;
         let cur = self.build_conditions(
             &p.conditions,
@@ -128,7 +129,7 @@ impl Rete {
         let action_key = action_key(p, &bindings);
         let twin = self
             .all_children(parent)
-            .find_map(|c| match self.nodes[c as usize].kind {
+            .find_map(|c| match self.nodes[c].kind {
                 Kind::Production { prod } => self
                     .production(prod)
                     .filter(|i| *i.action_key == *action_key)
@@ -155,8 +156,8 @@ impl Rete {
 
     fn next_depth(&self, cur: Cur) -> u32 {
         match cur {
-            Cur::Holder(h) => self.nodes[h as usize].depth + 1,
-            Cur::Join(j) => self.nodes[self.nodes[j as usize].parent as usize].depth + 1,
+            Cur::Holder(h) => self.nodes[h].depth + 1,
+            Cur::Join(j) => self.nodes[self.nodes[j].parent].depth + 1,
         }
     }
 
@@ -168,15 +169,15 @@ impl Rete {
             Cur::Holder(h) => h,
             Cur::Join(j) => {
                 let existing = self.all_children(j).find(|&c| {
-                    self.nodes[c as usize].kind == Kind::Memory
-                        && self.nodes[c as usize].hash.get() == key
+                    self.nodes[c].kind == Kind::Memory
+                        && self.nodes[c].hash.get() == key
                 });
                 if let Some(m) = existing {
                     return m;
                 }
                 let depth = self.next_depth(cur);
                 let m = self.new_node(Kind::Memory, j, depth);
-                self.nodes[m as usize].hash = super::HashKey::new(key);
+                self.nodes[m].hash = super::HashKey::new(key);
                 self.attach(j, m, true);
                 self.fill_new_node(m, syms, &mut super::NullSink);
                 m
@@ -189,11 +190,11 @@ impl Rete {
     /// back, again at the head, when one is left). The memory's place among its siblings
     /// (negative nodes, other memories, production nodes) follows those moves.
     fn move_memory_to_head(&mut self, m: NodeId) {
-        if self.nodes[m as usize].kind != Kind::Memory {
+        if self.nodes[m].kind != Kind::Memory {
             return;
         }
-        let parent = self.nodes[m as usize].parent;
-        let children = &mut self.nodes[parent as usize].children;
+        let parent = self.nodes[m].parent;
+        let children = &mut self.nodes[parent].children;
         if let Some(pos) = children.as_slice().iter().position(|&c| c == m) {
             children.remove(pos);
             children.push(m);
@@ -204,7 +205,7 @@ impl Rete {
     /// thousands of rules is not walked for each new one).
     fn has_one_join_child(&self, m: NodeId) -> bool {
         self.all_children(m)
-            .filter(|&c| matches!(self.nodes[c as usize].kind, Kind::Join { .. }))
+            .filter(|&c| matches!(self.nodes[c].kind, Kind::Join { .. }))
             .take(2)
             .count()
             == 1
@@ -212,11 +213,11 @@ impl Rete {
 
     /// Every child of `n`, linked or not.
     fn all_children(&self, n: NodeId) -> impl Iterator<Item = NodeId> + '_ {
-        let mut c = self.nodes[n as usize].first_child;
+        let mut c = self.nodes[n].first_child;
         std::iter::from_fn(move || {
             let this = c;
-            (this != NIL).then(|| {
-                c = self.nodes[this as usize].next_sibling;
+            (this != NodeId::NONE).then(|| {
+                c = self.nodes[this].next_sibling;
                 this
             })
         })
@@ -224,16 +225,16 @@ impl Rete {
 
     /// Takes `child` out of its parent's list of all children.
     fn remove_from_all_children(&mut self, parent: NodeId, child: NodeId) {
-        let next = self.nodes[child as usize].next_sibling;
-        if self.nodes[parent as usize].first_child == child {
-            self.nodes[parent as usize].first_child = next;
+        let next = self.nodes[child].next_sibling;
+        if self.nodes[parent].first_child == child {
+            self.nodes[parent].first_child = next;
             return;
         }
-        let mut c = self.nodes[parent as usize].first_child;
-        while c != NIL {
-            let after = self.nodes[c as usize].next_sibling;
+        let mut c = self.nodes[parent].first_child;
+        while c != NodeId::NONE {
+            let after = self.nodes[c].next_sibling;
             if after == child {
-                self.nodes[c as usize].next_sibling = next;
+                self.nodes[c].next_sibling = next;
                 return;
             }
             c = after;
@@ -243,9 +244,9 @@ impl Rete {
     /// Links `child` under `parent`: at the head of the children (activated first), or at
     /// the tail when `head` is false.
     fn attach(&mut self, parent: NodeId, child: NodeId, head: bool) {
-        let first = self.nodes[parent as usize].first_child;
-        self.nodes[child as usize].next_sibling = first;
-        let p = &mut self.nodes[parent as usize];
+        let first = self.nodes[parent].first_child;
+        self.nodes[child].next_sibling = first;
+        let p = &mut self.nodes[parent];
         p.first_child = child;
         if head {
             p.children.push(child);
@@ -268,7 +269,7 @@ impl Rete {
                 Condition::Positive(c) => {
                     // The depth its WME will have: one below the holder it joins from.
                     let depth = match cur {
-                        Cur::Holder(h) => self.nodes[h as usize].depth + 1,
+                        Cur::Holder(h) => self.nodes[h].depth + 1,
                         Cur::Join(_) => self.next_depth(cur) + 1,
                     };
                     // (The tests are built in a reused buffer: most are a list some node
@@ -300,14 +301,14 @@ impl Rete {
                 }
                 Condition::Ncc(inner) => {
                     let h = self.holder_under(cur, None, syms);
-                    let owner_depth = self.nodes[h as usize].depth + 1;
+                    let owner_depth = self.nodes[h].depth + 1;
                     let mut local = bindings.clone();
                     let sub = self.build_conditions(inner, Cur::Holder(h), &mut local, syms, None);
                     let sub_parent = cur_node(sub);
                     let pdepth = self.next_depth(sub);
                     let partner = self.new_node(
                         Kind::NccPartner {
-                            ncc: NIL,
+                            ncc: NodeId::NONE,
                             owner_depth,
                         },
                         sub_parent,
@@ -318,7 +319,7 @@ impl Rete {
                     // The subnetwork is activated before the NCC node (Doorenbos, section 2.8).
                     self.attach(h, ncc, false);
                     if let Kind::NccPartner { ncc: slot, .. } =
-                        &mut self.nodes[partner as usize].kind
+                        &mut self.nodes[partner].kind
                     {
                         *slot = ncc;
                     }
@@ -344,9 +345,9 @@ impl Rete {
         // `scripts/gen_rules.py counter`).
         let list = self.test_lists.find(tests)?;
         let same = |n: NodeId| self.node_test_list(n) == Some(list);
-        if !self.nodes[parent as usize].wide {
+        if !self.nodes[parent].wide {
             return self.all_children(parent).find(|&c| {
-                share_key(&self.nodes[c as usize].kind) == Some((kind, amem)) && same(c)
+                share_key(&self.nodes[c].kind) == Some((kind, amem)) && same(c)
             });
         }
         let nodes = self.share.get(&(parent, kind, amem, list))?;
@@ -356,19 +357,19 @@ impl Rete {
     /// Records a new join or negative child `n` of `parent` (already attached) for sharing:
     /// in the share index once the parent has more than [`NARROW`] children.
     fn add_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
-        if self.nodes[parent as usize].wide {
+        if self.nodes[parent].wide {
             self.index_shared(parent, kind, amem, n);
             return;
         }
         if self.all_children(parent).take(NARROW + 1).count() <= NARROW {
             return;
         }
-        self.nodes[parent as usize].wide = true;
+        self.nodes[parent].wide = true;
         // Oldest first, as they would have been indexed one by one.
         let mut children: Vec<NodeId> = self.all_children(parent).collect();
         children.reverse();
         for c in children {
-            if let Some((k, a)) = share_key(&self.nodes[c as usize].kind) {
+            if let Some((k, a)) = share_key(&self.nodes[c].kind) {
                 self.index_shared(parent, k, a, c);
             }
         }
@@ -395,14 +396,14 @@ impl Rete {
 
     /// The test list of a join or negative node (see `test_lists.rs`).
     fn node_test_list(&self, n: NodeId) -> Option<u32> {
-        match self.nodes[n as usize].kind {
+        match self.nodes[n].kind {
             Kind::Join { tests, .. } | Kind::Negative { tests, .. } => Some(tests),
             _ => None,
         }
     }
 
     fn remove_shared(&mut self, parent: NodeId, kind: u8, amem: AmemId, n: NodeId) {
-        if !self.nodes[parent as usize].wide {
+        if !self.nodes[parent].wide {
             return;
         }
         let Some(list) = self.node_test_list(n) else {
@@ -435,11 +436,11 @@ impl Rete {
     ) -> NodeId {
         let amem = self.amem_for(key);
         if let Some(c) = self.shared(h, 0, amem, tests) {
-            self.amems[amem as usize].refs -= 1;
+            self.amems[amem].refs -= 1;
             return c;
         }
         let list = self.test_lists.intern(tests);
-        let depth = self.nodes[h as usize].depth;
+        let depth = self.nodes[h].depth;
         if self.has_one_join_child(h) {
             self.move_memory_to_head(h);
         }
@@ -456,18 +457,18 @@ impl Rete {
         self.attach(h, j, true);
         self.add_shared(h, 0, amem, j);
         self.hash_node(j, h, tests, depth + 1);
-        self.nodes[j as usize].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
+        self.nodes[j].same_amem_ancestor = self.find_same_amem_ancestor(j, amem);
         // Rete/UL: a join with an empty parent or an empty alpha memory starts unlinked; an
         // empty parent wins, so thousands of new joins on one alpha memory are not all its
         // successors (the first WME there would unlink each of them in turn). Unlinked on
         // the right, it is not linked first: relinking finds its place afresh.
-        if self.nodes[h as usize].token_count == 0 {
-            if let Kind::Join { right_unlinked, .. } = &mut self.nodes[j as usize].kind {
+        if self.nodes[h].token_count == 0 {
+            if let Kind::Join { right_unlinked, .. } = &mut self.nodes[j].kind {
                 *right_unlinked = true;
             }
         } else {
             self.link_to_amem(j, amem, syms);
-            if self.amems[amem as usize].count == 0 {
+            if self.amems[amem].count == 0 {
                 self.unlink_left_pub(j);
             }
         }
@@ -484,7 +485,7 @@ impl Rete {
     ) -> NodeId {
         let amem = self.amem_for(key);
         if let Some(c) = self.shared(parent, 1, amem, tests) {
-            self.amems[amem as usize].refs -= 1;
+            self.amems[amem].refs -= 1;
             return c;
         }
         let list = self.test_lists.intern(tests);
@@ -500,10 +501,10 @@ impl Rete {
         self.attach(parent, n, true);
         self.add_shared(parent, 1, amem, n);
         self.hash_node(n, n, tests, depth + 1);
-        self.nodes[n as usize].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
+        self.nodes[n].same_amem_ancestor = self.find_same_amem_ancestor(n, amem);
         self.link_to_amem(n, amem, syms);
         self.fill_new_node(n, syms, &mut super::NullSink);
-        if self.nodes[n as usize].token_count == 0 {
+        if self.nodes[n].token_count == 0 {
             self.unlink_right(n);
         }
         n
@@ -514,16 +515,16 @@ impl Rete {
     /// Fills a newly built token holder with the matches its parent already has
     /// (Doorenbos `update-new-node-with-matches-from-above`).
     fn fill_new_node(&mut self, n: NodeId, syms: &Symbols, sink: &mut dyn MatchSink) {
-        let parent = self.nodes[n as usize].parent;
+        let parent = self.nodes[n].parent;
         // Nothing to fill from (the common case while loading): no kind to copy, no lists.
-        let source = match self.nodes[parent as usize].kind {
-            Kind::Join { .. } => self.nodes[parent as usize].parent,
+        let source = match self.nodes[parent].kind {
+            Kind::Join { .. } => self.nodes[parent].parent,
             _ => parent,
         };
-        if self.nodes[source as usize].first_token == NIL {
+        if self.nodes[source].first_token == TokId::NONE {
             return;
         }
-        let pkind = self.nodes[parent as usize].kind.clone();
+        let pkind = self.nodes[parent].kind.clone();
         match pkind {
             Kind::Root | Kind::Memory => {
                 for t in self.node_tokens(parent).into_iter().rev() {
@@ -532,18 +533,18 @@ impl Rete {
             }
             Kind::Negative { .. } | Kind::Ncc { .. } => {
                 for t in self.node_tokens(parent).into_iter().rev() {
-                    if self.links[t as usize].results == NIL {
+                    if self.links[t].results == NIL {
                         self.left_activation(n, t, NIL_WME, syms, sink);
                     }
                 }
             }
             Kind::Join { amem, tests, .. } => {
-                let grand = self.nodes[parent as usize].parent;
-                let depth = self.nodes[grand as usize].depth + 1;
+                let grand = self.nodes[parent].parent;
+                let depth = self.nodes[grand].depth + 1;
                 let items = self.amem_items(amem);
                 for t in self.live_tokens(grand).into_iter().rev() {
                     for &w in items.iter().rev() {
-                        if self.tokens[t as usize].alive
+                        if self.tokens[t].alive
                             && self.tests_pass(self.test_lists.get(tests), t, w, depth, syms)
                         {
                             self.left_activation(n, t, w, syms, sink);
@@ -556,12 +557,12 @@ impl Rete {
     }
 
     pub(crate) fn unlink_left_pub(&mut self, n: NodeId) {
-        let parent = self.nodes[n as usize].parent;
-        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
+        let parent = self.nodes[n].parent;
+        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n].kind {
             *left_unlinked = true;
         }
         self.mirror_left_unlinked(n, true);
-        self.nodes[parent as usize].children.retain(|c| *c != n);
+        self.nodes[parent].children.retain(|c| *c != n);
     }
 
     /// Removes a production and every node no other production uses; its matches retract.
@@ -581,22 +582,22 @@ impl Rete {
         let mut n = n;
         loop {
             if n == self.root
-                || !self.nodes[n as usize].alive
-                || self.nodes[n as usize].first_child != NIL
+                || !self.nodes[n].alive
+                || self.nodes[n].first_child != NodeId::NONE
             {
                 return;
             }
-            let kind = self.nodes[n as usize].kind.clone();
+            let kind = self.nodes[n].kind.clone();
             // Tokens first (an NCC node's tokens take their partner results with them).
             loop {
-                let t = self.nodes[n as usize].first_token;
-                if t == NIL {
+                let t = self.nodes[n].first_token;
+                if t == TokId::NONE {
                     break;
                 }
                 self.delete_token_and_descendants(t, syms, sink);
             }
-            let parent_of = self.nodes[n as usize].parent;
-            if let (Kind::Join { .. }, Some((d, f))) = (&kind, self.nodes[n as usize].hash.get()) {
+            let parent_of = self.nodes[n].parent;
+            if let (Kind::Join { .. }, Some((d, f))) = (&kind, self.nodes[n].hash.get()) {
                 self.release_left_key(parent_of, d, f);
             }
             match &kind {
@@ -607,15 +608,15 @@ impl Rete {
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
                     if !self.is_right_unlinked(n) {
-                        let key = self.nodes[n as usize].amem_key;
-                        self.amems[amem as usize].successors.remove(&key);
+                        let key = self.nodes[n].amem_key;
+                        self.amems[amem].successors.remove(&key);
                     }
                     self.release_amem(amem);
                 }
                 _ => {}
             }
-            let parent = self.nodes[n as usize].parent;
-            self.nodes[parent as usize].children.retain(|c| *c != n);
+            let parent = self.nodes[n].parent;
+            self.nodes[parent].children.retain(|c| *c != n);
             self.remove_from_all_children(parent, n);
             self.free_node(n);
             if matches!(kind, Kind::Join { .. }) && self.has_one_join_child(parent) {
@@ -627,7 +628,7 @@ impl Rete {
                 self.delete_node_and_unused_ancestors(partner, syms, sink);
             }
             // The partner's branch may already have taken the parent with it.
-            if !self.nodes[parent as usize].alive {
+            if !self.nodes[parent].alive {
                 return;
             }
             n = parent;
@@ -640,7 +641,7 @@ impl Rete {
     /// the test (`Node::hash_test`).
     fn hash_node(&mut self, n: NodeId, holder: NodeId, tests: &[JoinTest], new_depth: u32) {
         if let Some((i, (d, f))) = hash_test_of(tests, new_depth) {
-            let node = &mut self.nodes[n as usize];
+            let node = &mut self.nodes[n];
             node.hash = super::HashKey::new(Some((d, f)));
             // Past 255 the place saturates to NO_HASH_TEST (255), and the pair skips test
             // 255 instead: harmless, since only a goal test and identifier equalities with

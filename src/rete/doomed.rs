@@ -97,27 +97,27 @@ impl Rete {
                 *doomed_in.entry(a).or_default() += 1;
             }
             let mut t = first;
-            while t != NIL {
+            while t != TokId::NONE {
                 stack.push(t);
-                t = self.tokens[t as usize].next_of_wme;
+                t = self.tokens[t].next_of_wme;
             }
             while let Some(t) = stack.pop() {
-                let tok = &mut self.tokens[t as usize];
+                let tok = &mut self.tokens[t];
                 if tok.doomed {
                     continue;
                 }
                 tok.doomed = true;
                 let mut c = tok.first_child;
-                while c != NIL {
+                while c != TokId::NONE {
                     stack.push(c);
-                    c = self.tokens[c as usize].next_sib;
+                    c = self.tokens[c].next_sib;
                 }
             }
         }
         // What each memory holds once the additions are in, against what goes.
         let mut held: FxHashMap<AmemId, u32> = doomed_in
             .keys()
-            .map(|&a| (a, self.amems[a as usize].count))
+            .map(|&a| (a, self.amems[a].count))
             .collect();
         for &(attr, value, acceptable) in added {
             for a in self.alpha_targets(attr, value, acceptable) {
@@ -147,16 +147,16 @@ impl Rete {
             rw.doomed = false;
             let mut stack = Vec::new();
             let mut t = rw.tokens;
-            while t != NIL {
+            while t != TokId::NONE {
                 stack.push(t);
-                t = self.tokens[t as usize].next_of_wme;
+                t = self.tokens[t].next_of_wme;
             }
             while let Some(t) = stack.pop() {
-                self.tokens[t as usize].doomed = false;
-                let mut c = self.tokens[t as usize].first_child;
-                while c != NIL {
+                self.tokens[t].doomed = false;
+                let mut c = self.tokens[t].first_child;
+                while c != TokId::NONE {
                     stack.push(c);
-                    c = self.tokens[c as usize].next_sib;
+                    c = self.tokens[c].next_sib;
                 }
             }
         }
@@ -191,7 +191,7 @@ impl Rete {
         let memories_held = below
             .memories
             .iter()
-            .all(|&m| self.nodes[m as usize].token_count > 0);
+            .all(|&m| self.nodes[m].token_count > 0);
         let amems_kept = below.amems.iter().all(|a| !self.doom.emptied.contains(a));
         if memories_held && amems_kept {
             self.doom.passed.insert(n);
@@ -210,19 +210,19 @@ impl Rete {
                 Kind::Negative { .. } | Kind::Ncc { .. } | Kind::NccPartner { .. }
             )
         };
-        let mut p = self.nodes[n as usize].parent;
-        while p != NIL {
-            if blocking(&self.nodes[p as usize].kind) {
+        let mut p = self.nodes[n].parent;
+        while p != NodeId::NONE {
+            if blocking(&self.nodes[p].kind) {
                 return None;
             }
-            p = self.nodes[p as usize].parent;
+            p = self.nodes[p].parent;
         }
         let (mut memories, mut amems) = (Vec::new(), Vec::new());
         let mut stack = vec![n];
         while let Some(x) = stack.pop() {
-            let mut c = self.nodes[x as usize].first_child;
-            while c != NIL {
-                match self.nodes[c as usize].kind {
+            let mut c = self.nodes[x].first_child;
+            while c != NodeId::NONE {
+                match self.nodes[c].kind {
                     Kind::Memory => memories.push(c),
                     Kind::Join { amem, .. } => amems.push(amem),
                     Kind::Production { .. } => {}
@@ -233,7 +233,7 @@ impl Rete {
                     return None;
                 }
                 stack.push(c);
-                c = self.nodes[c as usize].next_sibling;
+                c = self.nodes[c].next_sibling;
             }
         }
         amems.sort_unstable();

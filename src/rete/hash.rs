@@ -34,20 +34,20 @@ pub(crate) struct TokKey {
 impl TokKey {
     pub(crate) fn new(holder: NodeId, d: u32, f: Field, v: Sym) -> Self {
         TokKey {
-            holder_value: (u64::from(holder) << 32) | u64::from(v.0),
+            holder_value: (u64::from(holder.raw()) << 32) | u64::from(v.0),
             depth_field: HashKey::new(Some((d, f))),
         }
     }
 
     /// Whether this bucket is the holder's on key `(d, f)`.
     fn is_key_of(&self, holder: NodeId, d: u32, f: Field) -> bool {
-        (self.holder_value >> 32) as u32 == holder && self.depth_field == HashKey::new(Some((d, f)))
+        (self.holder_value >> 32) as u32 == holder.raw() && self.depth_field == HashKey::new(Some((d, f)))
     }
 }
 
 /// The right-index key of (alpha memory, identifier), packed into one word.
 pub(crate) fn amem_id_key(a: AmemId, id: Sym) -> u64 {
-    (u64::from(a) << 32) | u64::from(id.0)
+    (u64::from(a.raw()) << 32) | u64::from(id.0)
 }
 
 /// One token's membership in one left-index bucket.
@@ -77,9 +77,9 @@ impl Rete {
     /// Indexes every entry of an alpha memory that has outgrown scanning, oldest first (so
     /// that head insertion leaves the newest at the head).
     pub(crate) fn index_amem(&mut self, a: AmemId) {
-        self.amems[a as usize].indexed = true;
-        let mut entries = Vec::with_capacity(self.amems[a as usize].count as usize);
-        let mut e = self.amems[a as usize].first;
+        self.amems[a].indexed = true;
+        let mut entries = Vec::with_capacity(self.amems[a].count as usize);
+        let mut e = self.amems[a].first;
         while e != NIL {
             entries.push(e);
             e = self.rm[e as usize].next;
@@ -109,8 +109,8 @@ impl Rete {
     /// `n`'s key, when it has one.
     #[inline(always)]
     pub(crate) fn push_amem_candidates(&mut self, a: AmemId, n: NodeId, t: TokId) {
-        let Some((d, f)) = self.nodes[n as usize].hash.get() else {
-            let mut e = self.amems[a as usize].first;
+        let Some((d, f)) = self.nodes[n].hash.get() else {
+            let mut e = self.amems[a].first;
             while e != NIL {
                 self.scratch.push(self.rm[e as usize].wme.0);
                 e = self.rm[e as usize].next;
@@ -118,11 +118,11 @@ impl Rete {
             return;
         };
         // Nearly always the token's cached key (its holder's first key is this join's).
-        let holder = self.tokens[t as usize].node;
+        let holder = self.tokens[t].node;
         let Some(id) = self.holder_key_value(holder, t, d, f) else {
             return;
         };
-        let am = &self.amems[a as usize];
+        let am = &self.amems[a];
         if !am.indexed {
             // A few entries: filtering them is cheaper than the hash probe, and gives the
             // same WMEs in the same (newest first) order.
@@ -154,24 +154,24 @@ impl Rete {
     /// WME `w`, newest first: only those whose value at `n`'s key is `w`'s identifier, when
     /// it has one.
     pub(crate) fn push_token_candidates(&mut self, holder: NodeId, n: NodeId, w: WmeId) {
-        let Some((d, f)) = self.nodes[n as usize].hash.get() else {
+        let Some((d, f)) = self.nodes[n].hash.get() else {
             self.push_all_tokens(holder);
             return;
         };
         let id = self.wme(w).id;
-        let h = &self.nodes[holder as usize];
+        let h = &self.nodes[holder];
         match h.left_mode {
             LeftMode::Indexed => {
                 let key = TokKey::new(holder, d, f, id);
                 let mut e = self.tok_by_key.get(&key).copied().unwrap_or(NIL);
                 while e != NIL {
-                    self.scratch.push(self.hentries[e as usize].tok);
+                    self.scratch.push(self.hentries[e as usize].tok.raw());
                     e = self.hentries[e as usize].next;
                 }
             }
-            LeftMode::Uniform if h.first_token != NIL && self.is_first_key(holder, d, f) => {
+            LeftMode::Uniform if h.first_token != TokId::NONE && self.is_first_key(holder, d, f) => {
                 // Every token has the head's value: all of them, or none.
-                if self.tokens[h.first_token as usize].key == id {
+                if self.tokens[h.first_token].key == id {
                     self.push_all_tokens(holder);
                 }
             }
@@ -180,31 +180,31 @@ impl Rete {
                 // has them.
                 let cached = self.is_first_key(holder, d, f);
                 let mut t = h.first_token;
-                while t != NIL {
+                while t != TokId::NONE {
                     let v = if cached {
-                        some_value(self.tokens[t as usize].key)
+                        some_value(self.tokens[t].key)
                     } else {
                         self.key_value(t, d, f)
                     };
                     if v == Some(id) {
-                        self.scratch.push(t);
+                        self.scratch.push(t.raw());
                     }
-                    t = self.tokens[t as usize].next_in_node;
+                    t = self.tokens[t].next_in_node;
                 }
             }
         }
     }
 
     fn push_all_tokens(&mut self, holder: NodeId) {
-        let mut t = self.nodes[holder as usize].first_token;
-        while t != NIL {
-            self.scratch.push(t);
-            t = self.tokens[t as usize].next_in_node;
+        let mut t = self.nodes[holder].first_token;
+        while t != TokId::NONE {
+            self.scratch.push(t.raw());
+            t = self.tokens[t].next_in_node;
         }
     }
 
     fn is_first_key(&self, holder: NodeId, d: u32, f: Field) -> bool {
-        matches!(self.nodes[holder as usize].left_keys.as_slice().first(), Some(k) if k.0 == d && k.1 == f)
+        matches!(self.nodes[holder].left_keys.as_slice().first(), Some(k) if k.0 == d && k.1 == f)
     }
 
     /// A token's value at an index key, if it has a WME at that depth.
@@ -223,7 +223,7 @@ impl Rete {
         f: Field,
     ) -> Option<Sym> {
         if self.is_first_key(holder, d, f) {
-            some_value(self.tokens[t as usize].key)
+            some_value(self.tokens[t].key)
         } else {
             self.key_value(t, d, f)
         }
@@ -234,23 +234,23 @@ impl Rete {
         let value = key
             .and_then(|(d, f)| self.key_value(t, d, f))
             .unwrap_or(NO_VALUE);
-        self.tokens[t as usize].key = value;
+        self.tokens[t].key = value;
     }
 
     fn first_key(&self, holder: NodeId) -> Option<(u32, Field)> {
-        let k = self.nodes[holder as usize].left_keys.as_slice().first()?;
+        let k = self.nodes[holder].left_keys.as_slice().first()?;
         Some((k.0, k.1))
     }
 
     /// Caches a new token's key and keeps its holder's [`LeftMode`] true.
     pub(crate) fn token_added_to_holder(&mut self, holder: NodeId, t: TokId) {
         self.cache_key(t, self.first_key(holder));
-        let h = &self.nodes[holder as usize];
+        let h = &self.nodes[holder];
         match h.left_mode {
             LeftMode::Indexed => self.index_token(holder, t),
             LeftMode::Uniform => {
-                let older = self.tokens[t as usize].next_in_node;
-                if older != NIL && self.tokens[older as usize].key != self.tokens[t as usize].key {
+                let older = self.tokens[t].next_in_node;
+                if older != TokId::NONE && self.tokens[older].key != self.tokens[t].key {
                     self.index_holder(holder);
                 }
             }
@@ -262,15 +262,15 @@ impl Rete {
     /// A memory past scanning size: `Uniform` if it has one key and its tokens share their
     /// value there, otherwise indexed.
     fn choose_left_mode(&mut self, holder: NodeId) {
-        let h = &self.nodes[holder as usize];
-        if h.left_keys.len() == 1 && h.first_token != NIL {
-            let v = self.tokens[h.first_token as usize].key;
+        let h = &self.nodes[holder];
+        if h.left_keys.len() == 1 && h.first_token != TokId::NONE {
+            let v = self.tokens[h.first_token].key;
             let mut t = h.first_token;
-            while t != NIL && self.tokens[t as usize].key == v {
-                t = self.tokens[t as usize].next_in_node;
+            while t != TokId::NONE && self.tokens[t].key == v {
+                t = self.tokens[t].next_in_node;
             }
-            if t == NIL {
-                self.nodes[holder as usize].left_mode = LeftMode::Uniform;
+            if t == TokId::NONE {
+                self.nodes[holder].left_mode = LeftMode::Uniform;
                 return;
             }
         }
@@ -283,7 +283,7 @@ impl Rete {
             tok: t,
             prev: NIL,
             next: NIL,
-            next_of_tok: self.tokens[t as usize].hfirst,
+            next_of_tok: self.tokens[t].hfirst,
         };
         let e = alloc(&mut self.hentries, &mut self.free_hentries, entry);
         let head = self.tok_by_key.insert(key, e).unwrap_or(NIL);
@@ -291,7 +291,7 @@ impl Rete {
         if head != NIL {
             self.hentries[head as usize].prev = e;
         }
-        self.tokens[t as usize].hfirst = e;
+        self.tokens[t].hfirst = e;
     }
 
     fn hentry_unlink(&mut self, e: u32) {
@@ -313,10 +313,10 @@ impl Rete {
 
     /// Indexes a new token under every key of its holder.
     fn index_token(&mut self, holder: NodeId, t: TokId) {
-        for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
+        for i in 0..self.nodes[holder].left_keys.len() {
+            let (d, f, _) = self.nodes[holder].left_keys.as_slice()[i];
             let v = if i == 0 {
-                some_value(self.tokens[t as usize].key)
+                some_value(self.tokens[t].key)
             } else {
                 self.key_value(t, d, f)
             };
@@ -328,19 +328,19 @@ impl Rete {
 
     /// Takes a token out of every index it is in.
     pub(crate) fn unindex_token(&mut self, t: TokId) {
-        let mut e = self.tokens[t as usize].hfirst;
+        let mut e = self.tokens[t].hfirst;
         while e != NIL {
             let next = self.hentries[e as usize].next_of_tok;
             self.hentry_unlink(e);
             e = next;
         }
-        self.tokens[t as usize].hfirst = NIL;
+        self.tokens[t].hfirst = NIL;
     }
 
     /// Gives a holder an index key for a hashed node and indexes its tokens by it (the
     /// holder is a join's parent, or a negative node itself).
     pub(crate) fn add_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
-        let keys = &mut self.nodes[holder as usize].left_keys;
+        let keys = &mut self.nodes[holder].left_keys;
         if let Some(k) = keys
             .as_mut_slice()
             .iter_mut()
@@ -353,7 +353,7 @@ impl Rete {
         if keys.len() == 1 {
             self.recache_keys(holder);
         }
-        let h = &self.nodes[holder as usize];
+        let h = &self.nodes[holder];
         match h.left_mode {
             LeftMode::Indexed => self.index_tokens_on(holder, d, f),
             _ if h.token_count > SMALL_BETA => self.choose_left_mode(holder),
@@ -382,16 +382,16 @@ impl Rete {
     /// Indexes every token of a holder under every key (it outgrew scanning, or lost its
     /// one shared value).
     pub(crate) fn index_holder(&mut self, holder: NodeId) {
-        self.nodes[holder as usize].left_mode = LeftMode::Indexed;
-        for i in 0..self.nodes[holder as usize].left_keys.len() {
-            let (d, f, _) = self.nodes[holder as usize].left_keys.as_slice()[i];
+        self.nodes[holder].left_mode = LeftMode::Indexed;
+        for i in 0..self.nodes[holder].left_keys.len() {
+            let (d, f, _) = self.nodes[holder].left_keys.as_slice()[i];
             self.index_tokens_on(holder, d, f);
         }
     }
 
     /// Drops one use of a holder's key; the last use drops its index entries.
     pub(crate) fn release_left_key(&mut self, holder: NodeId, d: u32, f: Field) {
-        let keys = &mut self.nodes[holder as usize].left_keys;
+        let keys = &mut self.nodes[holder].left_keys;
         let Some(pos) = keys.as_slice().iter().position(|k| k.0 == d && k.1 == f) else {
             return;
         };
@@ -403,12 +403,12 @@ impl Rete {
         if pos == 0 {
             self.recache_keys(holder);
         }
-        if self.nodes[holder as usize].left_keys.is_empty() {
-            self.nodes[holder as usize].left_mode = LeftMode::Scan;
+        if self.nodes[holder].left_keys.is_empty() {
+            self.nodes[holder].left_mode = LeftMode::Scan;
         }
         for t in self.node_tokens(holder) {
             // Rebuild the token's entry chain without this key's entries.
-            let mut e = self.tokens[t as usize].hfirst;
+            let mut e = self.tokens[t].hfirst;
             let mut kept = Vec::new();
             while e != NIL {
                 let entry = self.hentries[e as usize];
@@ -424,7 +424,7 @@ impl Rete {
                 self.hentries[k as usize].next_of_tok = next;
                 next = k;
             }
-            self.tokens[t as usize].hfirst = next;
+            self.tokens[t].hfirst = next;
         }
     }
 }

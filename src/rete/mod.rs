@@ -32,14 +32,31 @@ use rustc_hash::FxHashMap;
 use small_list::SmallList;
 use tests::{Field, JoinTest};
 
+use crate::ids::{id_type, Id};
 use crate::symbols::{Sym, SymData, Symbols};
 use crate::wm::WmeId;
 
+/// The end of a list of untyped entries (alpha-memory entries, negative join results, index
+/// entries); the typed handles have their own `NONE`, the same value.
 pub(crate) const NIL: u32 = u32::MAX;
 
-pub type NodeId = u32;
-pub type TokId = u32;
-pub type AmemId = u32;
+id_type! {
+    /// A beta node: its place in `Rete::nodes`.
+    pub struct NodeId;
+    index Node;
+}
+
+id_type! {
+    /// A token (a partial or complete match): its place in `Rete::tokens` and `Rete::links`.
+    pub struct TokId;
+    index Token, ResultLinks;
+}
+
+id_type! {
+    /// An alpha memory: its place in `Rete::amems`.
+    pub struct AmemId;
+    index Amem;
+}
 
 /// A production in the network.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -72,7 +89,7 @@ pub(crate) struct AlphaKey {
 /// See `Rete::attr_amems`.
 #[derive(Debug, Clone, Copy)]
 struct AttrAmems {
-    /// `(attr, any value)`, by `acceptable as usize`; NIL when there is none.
+    /// `(attr, any value)`, by `acceptable as usize`; `AmemId::NONE` when there is none.
     open_value: [AmemId; 2],
     /// How many memories test `(attr, constant value)`.
     valued: u32,
@@ -80,7 +97,7 @@ struct AttrAmems {
 
 impl AttrAmems {
     const NONE: AttrAmems = AttrAmems {
-        open_value: [NIL; 2],
+        open_value: [AmemId::NONE; 2],
         valued: 0,
     };
 }
@@ -171,7 +188,7 @@ pub(crate) struct RWme {
     /// four (attribute and value each constant or not), so no heap list is needed.
     pub rm: [u32; 4],
     /// Tokens whose `wme` is this one (intrusive list through `Token::next_of_wme`).
-    pub tokens: u32,
+    pub tokens: TokId,
     /// Negative join results naming this WME.
     pub neg_results: u32,
     /// Whether the batch of changes in progress removes it (see `doomed.rs`).
@@ -219,7 +236,7 @@ pub(crate) struct Node {
     pub first_child: NodeId,
     pub next_sibling: NodeId,
     /// Token holders: head of the intrusive list of tokens in this node.
-    pub first_token: u32,
+    pub first_token: TokId,
     pub token_count: u32,
     /// Depth of the tokens this node holds (root token: 0).
     pub depth: u32,
@@ -240,7 +257,7 @@ pub(crate) struct Node {
     /// Join and negative nodes: the place among their alpha memory's successors (ascending
     /// = activation order), while linked.
     pub amem_key: u64,
-    /// Join and negative nodes: the nearest ancestor on the same alpha memory (NIL if none),
+    /// Join and negative nodes: the nearest ancestor on the same alpha memory (`NONE` if none),
     /// found when the node is built.
     pub same_amem_ancestor: NodeId,
 }
@@ -337,7 +354,8 @@ const _: () = assert!(std::mem::size_of::<Token>() == 64);
 /// A token that is freed leaves them as [`ResultLinks::NONE`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct ResultLinks {
-    /// Negative node tokens: head of their join results. NCC tokens: head of their results.
+    /// Negative node tokens: head of their join results (in `Rete::neg`). NCC tokens: head
+    /// of their results (a [`TokId`]'s raw value).
     pub results: u32,
     /// NCC partner result tokens: their owner, and their links in the owner's result list.
     pub owner: TokId,
@@ -348,9 +366,9 @@ pub(crate) struct ResultLinks {
 impl ResultLinks {
     pub const NONE: ResultLinks = ResultLinks {
         results: NIL,
-        owner: NIL,
-        next_result: NIL,
-        prev_result: NIL,
+        owner: TokId::NONE,
+        next_result: TokId::NONE,
+        prev_result: TokId::NONE,
     };
 }
 
@@ -383,7 +401,7 @@ impl Shared {
 /// What the network knows of a production (kept for every rule, so exactly sized). The
 /// network joins the top-level conditions in the order the rule lists them (they come
 /// reordered), so no order is kept.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone)]
 pub struct ProdInfo {
     pub(crate) pnode: NodeId,
     /// The number of positive top-level conditions.
@@ -513,8 +531,8 @@ impl Rete {
             scratch: Vec::new(),
             succ_scratch: Vec::new(),
             emptied_succ: Vec::new(),
-            root: 0,
-            root_token: 0,
+            root: NodeId::new(0),
+            root_token: TokId::new(0),
             doom: Default::default(),
             network_version: 0,
             right_activations: 0,
@@ -523,8 +541,8 @@ impl Rete {
             mark_alphas: false,
             alpha_marks: Vec::new(),
         };
-        r.root = r.new_node(Kind::Root, NIL, 0);
-        r.root_token = r.new_token(r.root, NIL, NIL_WME);
+        r.root = r.new_node(Kind::Root, NodeId::NONE, 0);
+        r.root_token = r.new_token(r.root, TokId::NONE, NIL_WME);
         r
     }
 
@@ -533,9 +551,9 @@ impl Rete {
             kind,
             parent,
             children: SmallList::Empty,
-            first_child: NIL,
-            next_sibling: NIL,
-            first_token: NIL,
+            first_child: NodeId::NONE,
+            next_sibling: NodeId::NONE,
+            first_token: TokId::NONE,
             token_count: 0,
             depth,
             alive: true,
@@ -545,7 +563,7 @@ impl Rete {
             left_mode: LeftMode::Scan,
             wide: false,
             amem_key: 0,
-            same_amem_ancestor: NIL,
+            same_amem_ancestor: NodeId::NONE,
         };
         self.network_version += 1;
         alloc(&mut self.nodes, &mut self.free_nodes, node)
@@ -553,18 +571,18 @@ impl Rete {
 
     pub(crate) fn free_node(&mut self, n: NodeId) {
         self.network_version += 1;
-        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = self.nodes[n as usize].kind
+        if let Kind::Join { tests, .. } | Kind::Negative { tests, .. } = self.nodes[n].kind
         {
             self.test_lists.release(tests);
         }
-        if let Kind::NccPartner { .. } = self.nodes[n as usize].kind {
+        if let Kind::NccPartner { .. } = self.nodes[n].kind {
             self.ncc_buffers.remove(&n);
         }
-        let node = &mut self.nodes[n as usize];
+        let node = &mut self.nodes[n];
         node.alive = false;
         node.children = SmallList::Empty;
-        node.first_child = NIL;
-        node.next_sibling = NIL;
+        node.first_child = NodeId::NONE;
+        node.next_sibling = NodeId::NONE;
         node.kind = Kind::Memory;
         node.hash = HashKey::NONE;
         node.hash_test = NO_HASH_TEST;
@@ -578,7 +596,7 @@ impl Rete {
 
     pub(crate) fn amem_for(&mut self, key: AlphaKey) -> AmemId {
         if let Some(&a) = self.amem_index.get(&key) {
-            self.amems[a as usize].refs += 1;
+            self.amems[a].refs += 1;
             return a;
         }
         let amem = Amem {
@@ -615,7 +633,7 @@ impl Rete {
     }
 
     pub(crate) fn release_amem(&mut self, a: AmemId) {
-        let am = &mut self.amems[a as usize];
+        let am = &mut self.amems[a];
         am.refs -= 1;
         if am.refs > 0 {
             return;
@@ -628,7 +646,7 @@ impl Rete {
             if let Some(rw) = self.wmes[w.0 as usize].as_mut() {
                 rm_slots_remove(&mut rw.rm, e);
                 let id = rw.id;
-                if self.amems[a as usize].indexed {
+                if self.amems[a].indexed {
                     self.amem_by_id.remove(&hash::amem_id_key(a, id));
                 }
             }
@@ -638,10 +656,10 @@ impl Rete {
         self.amem_index.remove(&key);
         let e = self.attr_amems_mut(key.attr);
         match key.value {
-            None => e.open_value[usize::from(key.acceptable)] = NIL,
+            None => e.open_value[usize::from(key.acceptable)] = AmemId::NONE,
             Some(_) => e.valued -= 1,
         }
-        let am = &mut self.amems[a as usize];
+        let am = &mut self.amems[a];
         am.first = NIL;
         am.count = 0;
         am.successors.clear();
@@ -649,7 +667,7 @@ impl Rete {
     }
 
     fn amem_insert(&mut self, a: AmemId, w: WmeId) {
-        let head = self.amems[a as usize].first;
+        let head = self.amems[a].first;
         let entry = RmEntry {
             wme: w,
             id: self.wme(w).id,
@@ -663,7 +681,7 @@ impl Rete {
         if head != NIL {
             self.rm[head as usize].prev = e;
         }
-        let am = &mut self.amems[a as usize];
+        let am = &mut self.amems[a];
         am.first = e;
         am.count += 1;
         let (indexed, count) = (am.indexed, am.count);
@@ -686,7 +704,7 @@ impl Rete {
             wme,
             ..
         } = self.rm[e as usize];
-        if self.amems[amem as usize].indexed {
+        if self.amems[amem].indexed {
             if let Some(id) = self.wmes[wme.0 as usize].as_ref().map(|rw| rw.id) {
                 self.id_index_remove(amem, id, e);
             }
@@ -694,12 +712,12 @@ impl Rete {
         if prev != NIL {
             self.rm[prev as usize].next = next;
         } else {
-            self.amems[amem as usize].first = next;
+            self.amems[amem].first = next;
         }
         if next != NIL {
             self.rm[next as usize].prev = prev;
         }
-        let am = &mut self.amems[amem as usize];
+        let am = &mut self.amems[amem];
         am.count -= 1;
         if am.count == 0 {
             am.indexed = false;
@@ -709,8 +727,8 @@ impl Rete {
 
     /// WMEs of an alpha memory, head (newest) first.
     pub(crate) fn amem_items(&self, a: AmemId) -> Vec<WmeId> {
-        let mut out = Vec::with_capacity(self.amems[a as usize].count as usize);
-        let mut e = self.amems[a as usize].first;
+        let mut out = Vec::with_capacity(self.amems[a].count as usize);
+        let mut e = self.amems[a].first;
         while e != NIL {
             out.push(self.rm[e as usize].wme);
             e = self.rm[e as usize].next;
@@ -739,7 +757,7 @@ impl Rete {
             value,
             acceptable,
             rm: [NIL; 4],
-            tokens: NIL,
+            tokens: TokId::NONE,
             neg_results: NIL,
             doomed: false,
         });
@@ -752,9 +770,9 @@ impl Rete {
         if self.mark_alphas {
             self.alpha_marks.clear();
         }
-        for &am in targets.iter().take_while(|&&a| a != NIL) {
+        for &am in targets.iter().take_while(|&&a| a != AmemId::NONE) {
             if self.mark_alphas {
-                let key = self.amems[am as usize].key;
+                let key = self.amems[am].key;
                 let table = (u8::from(key.attr.is_some()) << 1) | u8::from(key.value.is_some());
                 self.alpha_marks.push((table, sink.retraction_count()));
             }
@@ -762,9 +780,9 @@ impl Rete {
         }
     }
 
-    /// The alpha memories a WME with this attribute and value goes into, NIL-padded.
+    /// The alpha memories a WME with this attribute and value goes into, `NONE`-padded.
     pub(crate) fn alpha_targets(&self, attr: Sym, value: Sym, acceptable: bool) -> [AmemId; 4] {
-        let mut targets = [NIL; 4];
+        let mut targets = [AmemId::NONE; 4];
         let mut n = 0;
         // Least specific first: open attribute (then its constant values), then the
         // constant attribute (then its constant values).
@@ -773,7 +791,7 @@ impl Rete {
         for (a, e) in [(None, attrless), (Some(attr), with_attr)] {
             let Some(e) = e else { continue };
             let open = e.open_value[usize::from(acceptable)];
-            if open != NIL {
+            if open != AmemId::NONE {
                 targets[n] = open;
                 n += 1;
             }
@@ -822,12 +840,12 @@ impl Rete {
         for e in rm.into_iter().take_while(|&e| e != NIL) {
             let amem = self.rm[e as usize].amem;
             self.amem_remove_entry(e);
-            if self.amems[amem as usize].count == 0 {
+            if self.amems[amem].count == 0 {
                 // Empty alpha memory: its joins need no left activations (Rete/UL).
                 let mut succ = std::mem::take(&mut self.emptied_succ);
                 succ.clear();
                 succ.extend(
-                    self.amems[amem as usize]
+                    self.amems[amem]
                         .successors
                         .values()
                         .map(|s| s.node),
@@ -838,8 +856,10 @@ impl Rete {
         }
         // Tokens built on this WME go, with their descendants.
         loop {
-            let t = self.wmes[w.0 as usize].as_ref().map_or(NIL, |x| x.tokens);
-            if t == NIL {
+            let t = self.wmes[w.0 as usize]
+                .as_ref()
+                .map_or(TokId::NONE, |x| x.tokens);
+            if t == TokId::NONE {
                 break;
             }
             self.delete_token_and_descendants(t, syms, sink);
@@ -854,8 +874,8 @@ impl Rete {
             }
             let owner = self.neg[r as usize].owner;
             self.remove_neg_result(r);
-            if self.tokens[owner as usize].alive && self.links[owner as usize].results == NIL {
-                let node = self.tokens[owner as usize].node;
+            if self.tokens[owner].alive && self.links[owner].results == NIL {
+                let node = self.tokens[owner].node;
                 self.activate_children(node, owner, NIL_WME, syms, sink);
             }
         }
@@ -880,7 +900,7 @@ impl Rete {
     /// Marks a linked join left-unlinked; false if it was unlinked on either side already
     /// (a join is never unlinked on both sides, Doorenbos, section 4.3).
     fn mark_left_unlinked(&mut self, n: NodeId) -> bool {
-        match &mut self.nodes[n as usize].kind {
+        match &mut self.nodes[n].kind {
             Kind::Join {
                 left_unlinked,
                 right_unlinked,
@@ -896,12 +916,12 @@ impl Rete {
 
     /// Keeps [`Succ::left_unlinked`] in step with the node's flag.
     pub(crate) fn mirror_left_unlinked(&mut self, n: NodeId, unlinked: bool) {
-        let node = &self.nodes[n as usize];
+        let node = &self.nodes[n];
         let (Kind::Join { amem, .. } | Kind::Negative { amem, .. }) = node.kind else {
             return;
         };
         let key = node.amem_key;
-        if let Some(s) = self.amems[amem as usize].successors.get_mut(&key) {
+        if let Some(s) = self.amems[amem].successors.get_mut(&key) {
             if s.node == n {
                 s.left_unlinked = unlinked;
             }
@@ -911,8 +931,8 @@ impl Rete {
     /// Takes a join out of its parent's children: its alpha memory is empty.
     fn unlink_left(&mut self, n: NodeId) {
         if self.mark_left_unlinked(n) {
-            let parent = self.nodes[n as usize].parent;
-            self.nodes[parent as usize].children.retain(|c| *c != n);
+            let parent = self.nodes[n].parent;
+            self.nodes[parent].children.retain(|c| *c != n);
         }
     }
 
@@ -922,8 +942,8 @@ impl Rete {
             // Few: each leaves its parent's list on its own (no sets to build).
             for &n in nodes {
                 if self.mark_left_unlinked(n) {
-                    let parent = self.nodes[n as usize].parent;
-                    self.nodes[parent as usize].children.retain(|c| *c != n);
+                    let parent = self.nodes[n].parent;
+                    self.nodes[parent].children.retain(|c| *c != n);
                 }
             }
             return;
@@ -931,20 +951,20 @@ impl Rete {
         let mut by_parent: FxHashMap<NodeId, rustc_hash::FxHashSet<NodeId>> = FxHashMap::default();
         for &n in nodes {
             if self.mark_left_unlinked(n) {
-                let parent = self.nodes[n as usize].parent;
+                let parent = self.nodes[n].parent;
                 by_parent.entry(parent).or_default().insert(n);
             }
         }
         for (parent, gone) in by_parent {
-            self.nodes[parent as usize]
+            self.nodes[parent]
                 .children
                 .retain(|c| !gone.contains(c));
         }
     }
 
     fn relink_left(&mut self, n: NodeId) {
-        let parent = self.nodes[n as usize].parent;
-        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n as usize].kind {
+        let parent = self.nodes[n].parent;
+        if let Kind::Join { left_unlinked, .. } = &mut self.nodes[n].kind {
             if !*left_unlinked {
                 return;
             }
@@ -953,13 +973,13 @@ impl Rete {
             return;
         }
         self.mirror_left_unlinked(n, false);
-        self.nodes[parent as usize].children.push(n);
+        self.nodes[parent].children.push(n);
     }
 
     /// Takes a join or negative node out of its alpha memory's successors: it has no tokens
     /// to join with.
     pub(crate) fn unlink_right(&mut self, n: NodeId) {
-        let amem = match &mut self.nodes[n as usize].kind {
+        let amem = match &mut self.nodes[n].kind {
             Kind::Join {
                 amem,
                 right_unlinked,
@@ -985,13 +1005,13 @@ impl Rete {
             }
             _ => return,
         };
-        let key = self.nodes[n as usize].amem_key;
-        self.amems[amem as usize].successors.remove(&key);
+        let key = self.nodes[n].amem_key;
+        self.amems[amem].successors.remove(&key);
     }
 
     /// Puts a node back among its alpha memory's successors.
     pub(crate) fn relink_right(&mut self, n: NodeId, syms: &Symbols) {
-        let amem = match &mut self.nodes[n as usize].kind {
+        let amem = match &mut self.nodes[n].kind {
             Kind::Join {
                 amem,
                 right_unlinked,
@@ -1020,15 +1040,15 @@ impl Rete {
     /// firing order of rules matched by one WME: 9.6 activates from the head.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId, syms: &Symbols) {
         const GAP: u64 = 1 << 20;
-        let mut a = self.nodes[n as usize].same_amem_ancestor;
-        while a != NIL && self.is_right_unlinked(a) {
-            a = self.nodes[a as usize].same_amem_ancestor;
+        let mut a = self.nodes[n].same_amem_ancestor;
+        while a != NodeId::NONE && self.is_right_unlinked(a) {
+            a = self.nodes[a].same_amem_ancestor;
         }
-        let succ = &self.amems[amem as usize].successors;
-        let key = if a == NIL {
+        let succ = &self.amems[amem].successors;
+        let key = if a == NodeId::NONE {
             succ.keys().next_back().map_or(GAP, |&k| k + GAP)
         } else {
-            let at = self.nodes[a as usize].amem_key;
+            let at = self.nodes[a].amem_key;
             let before = succ.range(..at).next_back().map_or(0, |(&k, _)| k);
             if at - before >= 2 {
                 before + (at - before) / 2
@@ -1037,16 +1057,16 @@ impl Rete {
                 return self.link_to_amem(n, amem, syms);
             }
         };
-        self.nodes[n as usize].amem_key = key;
+        self.nodes[n].amem_key = key;
         let pre = self.prefilter(n, syms);
         let left_unlinked = matches!(
-            self.nodes[n as usize].kind,
+            self.nodes[n].kind,
             Kind::Join {
                 left_unlinked: true,
                 ..
             }
         );
-        self.amems[amem as usize].successors.insert(
+        self.amems[amem].successors.insert(
             key,
             Succ {
                 node: n,
@@ -1088,7 +1108,7 @@ impl Rete {
 
     /// The tests of a join or negative node (none for other kinds), read in place.
     pub(crate) fn join_tests(&self, n: NodeId) -> &[JoinTest] {
-        match &self.nodes[n as usize].kind {
+        match &self.nodes[n].kind {
             Kind::Join { tests, .. } | Kind::Negative { tests, .. } => self.test_lists.get(*tests),
             _ => &[],
         }
@@ -1096,7 +1116,7 @@ impl Rete {
 
     /// Spreads an alpha memory's successor keys out again, keeping their order.
     fn respace_successors(&mut self, amem: AmemId) {
-        let nodes: Vec<Succ> = self.amems[amem as usize]
+        let nodes: Vec<Succ> = self.amems[amem]
             .successors
             .values()
             .copied()
@@ -1104,35 +1124,35 @@ impl Rete {
         let mut fresh = std::collections::BTreeMap::new();
         for (i, n) in nodes.into_iter().enumerate() {
             let key = (i as u64 + 1) << 20;
-            self.nodes[n.node as usize].amem_key = key;
+            self.nodes[n.node].amem_key = key;
             fresh.insert(key, n);
         }
-        self.amems[amem as usize].successors = fresh;
+        self.amems[amem].successors = fresh;
     }
 
     /// The nearest ancestor of `n` that is a join or negative node on `amem` (none when `n`
     /// is the memory's only user, which spares the walk up a long rule).
     pub(crate) fn find_same_amem_ancestor(&self, n: NodeId, amem: AmemId) -> NodeId {
-        if self.amems[amem as usize].refs <= 1 {
-            return NIL;
+        if self.amems[amem].refs <= 1 {
+            return NodeId::NONE;
         }
-        let mut p = self.nodes[n as usize].parent;
-        while p != NIL {
-            match self.nodes[p as usize].kind {
+        let mut p = self.nodes[n].parent;
+        while p != NodeId::NONE {
+            match self.nodes[p].kind {
                 Kind::Join { amem: m, .. } | Kind::Negative { amem: m, .. } if m == amem => {
                     return p
                 }
-                Kind::Root => return NIL,
+                Kind::Root => return NodeId::NONE,
                 _ => {}
             }
-            p = self.nodes[p as usize].parent;
+            p = self.nodes[p].parent;
         }
-        NIL
+        NodeId::NONE
     }
 
     pub(crate) fn is_right_unlinked(&self, n: NodeId) -> bool {
         matches!(
-            self.nodes[n as usize].kind,
+            self.nodes[n].kind,
             Kind::Join {
                 right_unlinked: true,
                 ..
@@ -1157,8 +1177,8 @@ impl Rete {
         };
         let mut chain = Vec::new();
         let mut t = token;
-        while t != NIL {
-            let tok = &self.tokens[t as usize];
+        while t != TokId::NONE {
+            let tok = &self.tokens[t];
             if tok.wme != NIL_WME {
                 chain.push(tok.wme);
             }
@@ -1177,7 +1197,7 @@ impl Rete {
     /// none), for reading many bindings of one match.
     pub(crate) fn token_wmes(&self, token: TokId, out: &mut Vec<WmeId>) {
         out.clear();
-        if token == NIL {
+        if token == TokId::NONE {
             return;
         }
         out.extend_from_slice(self.token_row(token));
@@ -1185,7 +1205,7 @@ impl Rete {
 
     /// A token's row: its and its ancestors' WMEs by depth.
     pub(crate) fn token_row(&self, t: TokId) -> &[WmeId] {
-        let tok = &self.tokens[t as usize];
+        let tok = &self.tokens[t];
         let start = tok.row as usize;
         &self.rows[start..=start + tok.depth as usize]
     }
@@ -1201,8 +1221,8 @@ impl Rete {
                 r as u32
             }
         };
-        if parent != NIL {
-            let from = self.tokens[parent as usize].row as usize;
+        if parent != TokId::NONE {
+            let from = self.tokens[parent].row as usize;
             self.rows
                 .copy_within(from..from + depth as usize, row as usize);
         }
@@ -1225,11 +1245,11 @@ impl Rete {
     pub(crate) fn condition_id_places(&self, info: &ProdInfo) -> Vec<(u32, tests::Field)> {
         let mut places = Vec::new();
         for &n in info.cond_nodes.iter() {
-            let node = &self.nodes[n as usize];
+            let node = &self.nodes[n];
             if !matches!(node.kind, Kind::Join { .. }) {
                 continue;
             }
-            let own = (self.nodes[node.parent as usize].depth + 1, tests::Field::Id);
+            let own = (self.nodes[node.parent].depth + 1, tests::Field::Id);
             let place = node.hash.get().unwrap_or(own);
             if !places.contains(&place) {
                 places.push(place);
@@ -1242,8 +1262,8 @@ impl Rete {
     pub(crate) fn chain_wmes(&self, token: TokId) -> impl Iterator<Item = WmeId> + '_ {
         let mut t = token;
         std::iter::from_fn(move || {
-            while t != NIL {
-                let tok = &self.tokens[t as usize];
+            while t != TokId::NONE {
+                let tok = &self.tokens[t];
                 t = tok.parent;
                 if tok.wme != NIL_WME {
                     return Some(tok.wme);
@@ -1297,7 +1317,7 @@ impl Rete {
     }
 
     fn count_matches_at(&self, n: NodeId, syms: &Symbols) -> usize {
-        let node = &self.nodes[n as usize];
+        let node = &self.nodes[n];
         if node.holds_tokens() {
             return self.live_tokens(n).len();
         }
@@ -1305,7 +1325,7 @@ impl Rete {
             Kind::Join { amem, tests, .. } => {
                 // Joins hold nothing: count the pairs that pass.
                 let parent = node.parent;
-                let depth = self.nodes[parent as usize].depth + 1;
+                let depth = self.nodes[parent].depth + 1;
                 let items = self.amem_items(*amem);
                 let mut c = 0;
                 for t in self.live_tokens(parent) {
@@ -1337,15 +1357,15 @@ pub(crate) const NO_HASH_TEST: u8 = u8::MAX;
 
 /// Puts `value` in a free slot of `items` (or a new one) and returns its index: the arenas
 /// of nodes, tokens, alpha memories and list entries all allocate this way.
-pub(crate) fn alloc<T>(items: &mut impl Arena<T>, free: &mut Vec<u32>, value: T) -> u32 {
+pub(crate) fn alloc<I: Id, T>(items: &mut impl Arena<T>, free: &mut Vec<I>, value: T) -> I {
     match free.pop() {
         Some(i) => {
-            items[i as usize] = value;
+            items[i.index()] = value;
             i
         }
         None => {
             items.push_item(value);
-            (items.item_count() - 1) as u32
+            I::from_index(items.item_count() - 1)
         }
     }
 }

@@ -13,28 +13,28 @@ use crate::wm::WmeId;
 
 impl Rete {
     pub(crate) fn new_token(&mut self, node: NodeId, parent: TokId, wme: WmeId) -> TokId {
-        let depth = if parent == NIL {
+        let depth = if parent == TokId::NONE {
             0
         } else {
-            self.tokens[parent as usize].depth + 1
+            self.tokens[parent].depth + 1
         };
         self.tokens_made += 1;
-        let head = self.nodes[node as usize].first_token;
+        let head = self.nodes[node].first_token;
         let doomed = self.doom.active
-            && ((parent != NIL && self.tokens[parent as usize].doomed)
+            && ((parent != TokId::NONE && self.tokens[parent].doomed)
                 || (wme != NIL_WME && self.wme_doomed(wme)));
         let tok = Token {
             node,
             parent,
             wme,
             depth,
-            first_child: NIL,
-            next_sib: NIL,
-            prev_sib: NIL,
+            first_child: TokId::NONE,
+            next_sib: TokId::NONE,
+            prev_sib: TokId::NONE,
             next_in_node: head,
-            prev_in_node: NIL,
-            next_of_wme: NIL,
-            prev_of_wme: NIL,
+            prev_in_node: TokId::NONE,
+            next_of_wme: TokId::NONE,
+            prev_of_wme: TokId::NONE,
             hfirst: NIL,
             row: 0,
             key: NO_VALUE,
@@ -43,35 +43,35 @@ impl Rete {
         };
         let row = self.alloc_row(parent, depth, wme);
         let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
-        if self.links.len() <= t as usize {
-            self.links.resize(t as usize + 1, ResultLinks::NONE);
+        if self.links.len() <= t.index() {
+            self.links.resize(t.index() + 1, ResultLinks::NONE);
         }
-        self.tokens[t as usize].row = row;
-        if head != NIL {
-            self.tokens[head as usize].prev_in_node = t;
+        self.tokens[t].row = row;
+        if head != TokId::NONE {
+            self.tokens[head].prev_in_node = t;
         }
-        let n = &mut self.nodes[node as usize];
+        let n = &mut self.nodes[node];
         n.first_token = t;
         n.token_count += 1;
-        if parent != NIL {
-            let first = self.tokens[parent as usize].first_child;
-            self.tokens[t as usize].next_sib = first;
-            if first != NIL {
-                self.tokens[first as usize].prev_sib = t;
+        if parent != TokId::NONE {
+            let first = self.tokens[parent].first_child;
+            self.tokens[t].next_sib = first;
+            if first != TokId::NONE {
+                self.tokens[first].prev_sib = t;
             }
-            self.tokens[parent as usize].first_child = t;
+            self.tokens[parent].first_child = t;
         }
         if wme != NIL_WME {
             if let Some(rw) = self.wmes[wme.0 as usize].as_mut() {
                 let first = rw.tokens;
                 rw.tokens = t;
-                self.tokens[t as usize].next_of_wme = first;
-                if first != NIL {
-                    self.tokens[first as usize].prev_of_wme = t;
+                self.tokens[t].next_of_wme = first;
+                if first != TokId::NONE {
+                    self.tokens[first].prev_of_wme = t;
                 }
             }
         }
-        if !self.nodes[node as usize].left_keys.is_empty() {
+        if !self.nodes[node].left_keys.is_empty() {
             self.token_added_to_holder(node, t);
         }
         t
@@ -79,11 +79,11 @@ impl Rete {
 
     /// Tokens held by a node, head (newest) first.
     pub(crate) fn node_tokens(&self, n: NodeId) -> Vec<TokId> {
-        let mut out = Vec::with_capacity(self.nodes[n as usize].token_count as usize);
-        let mut t = self.nodes[n as usize].first_token;
-        while t != NIL {
+        let mut out = Vec::with_capacity(self.nodes[n].token_count as usize);
+        let mut t = self.nodes[n].first_token;
+        while t != TokId::NONE {
             out.push(t);
-            t = self.tokens[t as usize].next_in_node;
+            t = self.tokens[t].next_in_node;
         }
         out
     }
@@ -95,8 +95,8 @@ impl Rete {
         sink: &mut dyn MatchSink,
     ) {
         loop {
-            let c = self.tokens[t as usize].first_child;
-            if c == NIL {
+            let c = self.tokens[t].first_child;
+            if c == TokId::NONE {
                 break;
             }
             self.delete_token_and_descendants(c, syms, sink);
@@ -111,21 +111,21 @@ impl Rete {
         sink: &mut dyn MatchSink,
     ) {
         self.delete_descendants(t, syms, sink);
-        let tok = self.tokens[t as usize];
+        let tok = self.tokens[t];
         let node = tok.node;
         if tok.hfirst != NIL {
             self.unindex_token(t);
         }
         // Out of the node's memory.
-        if tok.prev_in_node != NIL {
-            self.tokens[tok.prev_in_node as usize].next_in_node = tok.next_in_node;
+        if tok.prev_in_node != TokId::NONE {
+            self.tokens[tok.prev_in_node].next_in_node = tok.next_in_node;
         } else {
-            self.nodes[node as usize].first_token = tok.next_in_node;
+            self.nodes[node].first_token = tok.next_in_node;
         }
-        if tok.next_in_node != NIL {
-            self.tokens[tok.next_in_node as usize].prev_in_node = tok.prev_in_node;
+        if tok.next_in_node != TokId::NONE {
+            self.tokens[tok.next_in_node].prev_in_node = tok.prev_in_node;
         }
-        let n = &mut self.nodes[node as usize];
+        let n = &mut self.nodes[node];
         n.token_count -= 1;
         if n.token_count == 0 {
             // Its last token took its last index entries with it.
@@ -133,82 +133,82 @@ impl Rete {
         }
         // Out of its WME's list.
         if tok.wme != NIL_WME {
-            if tok.prev_of_wme != NIL {
-                self.tokens[tok.prev_of_wme as usize].next_of_wme = tok.next_of_wme;
+            if tok.prev_of_wme != TokId::NONE {
+                self.tokens[tok.prev_of_wme].next_of_wme = tok.next_of_wme;
             } else if let Some(rw) = self.wmes[tok.wme.0 as usize].as_mut() {
                 rw.tokens = tok.next_of_wme;
             }
-            if tok.next_of_wme != NIL {
-                self.tokens[tok.next_of_wme as usize].prev_of_wme = tok.prev_of_wme;
+            if tok.next_of_wme != TokId::NONE {
+                self.tokens[tok.next_of_wme].prev_of_wme = tok.prev_of_wme;
             }
         }
         // Out of its parent's children.
-        if tok.parent != NIL {
-            if tok.prev_sib != NIL {
-                self.tokens[tok.prev_sib as usize].next_sib = tok.next_sib;
+        if tok.parent != TokId::NONE {
+            if tok.prev_sib != TokId::NONE {
+                self.tokens[tok.prev_sib].next_sib = tok.next_sib;
             } else {
-                self.tokens[tok.parent as usize].first_child = tok.next_sib;
+                self.tokens[tok.parent].first_child = tok.next_sib;
             }
-            if tok.next_sib != NIL {
-                self.tokens[tok.next_sib as usize].prev_sib = tok.prev_sib;
+            if tok.next_sib != TokId::NONE {
+                self.tokens[tok.next_sib].prev_sib = tok.prev_sib;
             }
         }
-        match self.nodes[node as usize].kind {
+        match self.nodes[node].kind {
             Kind::Negative { .. } => {
                 loop {
-                    let r = self.links[t as usize].results;
+                    let r = self.links[t].results;
                     if r == NIL {
                         break;
                     }
                     self.remove_neg_result(r);
                 }
-                if self.nodes[node as usize].token_count == 0 {
+                if self.nodes[node].token_count == 0 {
                     self.unlink_right(node);
                 }
             }
             Kind::Ncc { .. } => loop {
-                let r = self.links[t as usize].results;
-                if r == NIL {
+                let r = TokId::new(self.links[t].results);
+                if r == TokId::NONE {
                     break;
                 }
                 self.unlink_ncc_result(t, r);
-                self.links[r as usize].owner = NIL;
+                self.links[r].owner = TokId::NONE;
                 self.delete_token_and_descendants(r, syms, sink);
             },
             Kind::Production { prod } => sink.unmatched(prod, t),
             _ => {}
         }
-        if self.nodes[node as usize].token_count == 0 {
+        if self.nodes[node].token_count == 0 {
             // An empty memory: its joins need no right activations (Rete/UL).
             // (Unlinking on the right leaves the children list as it is.)
-            for i in 0..self.nodes[node as usize].children.len() {
-                let c = self.nodes[node as usize].children.as_slice()[i];
-                if matches!(self.nodes[c as usize].kind, Kind::Join { .. }) {
+            for i in 0..self.nodes[node].children.len() {
+                let c = self.nodes[node].children.as_slice()[i];
+                if matches!(self.nodes[c].kind, Kind::Join { .. }) {
                     self.unlink_right(c);
                 }
             }
         }
         // Only an NCC partner's tokens have an owner (its links go with it).
-        if matches!(self.nodes[node as usize].kind, Kind::NccPartner { .. }) {
-            let owner = self.links[t as usize].owner;
-            if owner != NIL && self.tokens[owner as usize].alive {
+        if matches!(self.nodes[node].kind, Kind::NccPartner { .. }) {
+            let owner = self.links[t].owner;
+            if owner != TokId::NONE && self.tokens[owner].alive {
                 self.unlink_ncc_result(owner, t);
-                if self.links[owner as usize].results == NIL {
+                if self.links[owner].results == NIL {
                     // The conjunction no longer matches: the owner's match goes on
                     // (Doorenbos, section 2.8).
-                    let onode = self.tokens[owner as usize].node;
+                    let onode = self.tokens[owner].node;
                     self.activate_children(onode, owner, NIL_WME, syms, sink);
                 }
             }
-            self.links[t as usize] = ResultLinks::NONE;
+            self.links[t] = ResultLinks::NONE;
         }
-        self.tokens[t as usize].alive = false;
+        self.tokens[t].alive = false;
         self.free_row(tok.row, tok.depth);
         self.free_tokens.push(t);
     }
 
     pub(crate) fn add_neg_result(&mut self, owner: TokId, w: WmeId) {
-        let tok_head = self.links[owner as usize].results;
+        let tok_head = self.links[owner].results;
         let wme_head = self.wmes[w.0 as usize]
             .as_ref()
             .map_or(NIL, |x| x.neg_results);
@@ -224,7 +224,7 @@ impl Rete {
         if tok_head != NIL {
             self.neg[tok_head as usize].prev_tok = id;
         }
-        self.links[owner as usize].results = id;
+        self.links[owner].results = id;
         if wme_head != NIL {
             self.neg[wme_head as usize].prev_wme = id;
         }
@@ -245,7 +245,7 @@ impl Rete {
         if prev_tok != NIL {
             self.neg[prev_tok as usize].next_tok = next_tok;
         } else {
-            self.links[owner as usize].results = next_tok;
+            self.links[owner].results = next_tok;
         }
         if next_tok != NIL {
             self.neg[next_tok as usize].prev_tok = prev_tok;
@@ -262,31 +262,31 @@ impl Rete {
     }
 
     pub(crate) fn add_ncc_result(&mut self, owner: TokId, r: TokId) {
-        let head = self.links[owner as usize].results;
-        let rt = &mut self.links[r as usize];
+        let head = TokId::new(self.links[owner].results);
+        let rt = &mut self.links[r];
         rt.owner = owner;
         rt.next_result = head;
-        rt.prev_result = NIL;
-        if head != NIL {
-            self.links[head as usize].prev_result = r;
+        rt.prev_result = TokId::NONE;
+        if head != TokId::NONE {
+            self.links[head].prev_result = r;
         }
-        self.links[owner as usize].results = r;
+        self.links[owner].results = r.raw();
     }
 
     fn unlink_ncc_result(&mut self, owner: TokId, r: TokId) {
         let (prev, next) = (
-            self.links[r as usize].prev_result,
-            self.links[r as usize].next_result,
+            self.links[r].prev_result,
+            self.links[r].next_result,
         );
-        if prev != NIL {
-            self.links[prev as usize].next_result = next;
+        if prev != TokId::NONE {
+            self.links[prev].next_result = next;
         } else {
-            self.links[owner as usize].results = next;
+            self.links[owner].results = next.raw();
         }
-        if next != NIL {
-            self.links[next as usize].prev_result = prev;
+        if next != TokId::NONE {
+            self.links[next].prev_result = prev;
         }
-        self.links[r as usize].next_result = NIL;
-        self.links[r as usize].prev_result = NIL;
+        self.links[r].next_result = TokId::NONE;
+        self.links[r].prev_result = TokId::NONE;
     }
 }

@@ -35,6 +35,7 @@ mod math;
 mod numeric;
 pub mod table;
 mod text;
+
 mod wmefns;
 mod xml;
 
@@ -47,7 +48,7 @@ use crate::wm::{WmeId, WorkingMemory};
 use std::collections::BTreeMap;
 
 pub use numeric::NumericRhsFn;
-pub use text::{c_fixed, value_text};
+pub use text::{c_fixed, c_general, value_text};
 
 /// A function registered by the embedding program: `(agent name, argument string) -> result`.
 pub type RhsFn = Box<dyn FnMut(&str, &str) -> String>;
@@ -556,7 +557,7 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
         match registry.call(function, ctx.agent_name, &argument) {
             Some(Ok(r)) => r,
             Some(Err(why)) => {
-                report_host_error(ctx.output, &why);
+                report_host_error(ctx.output, ctx.symbols, &why);
                 format!("Error: {why}")
             }
             None => format!("Error: Nobody was registered to implement rhs function {function}"),
@@ -572,17 +573,16 @@ fn host_error(ctx: &mut RhsContext, function: &str, why: &str) -> Sym {
     } else {
         format!("rhs function {function} failed: {why}")
     };
-    report_host_error(ctx.output, &why);
+    report_host_error(ctx.output, ctx.symbols, &why);
     ctx.str_sym(&format!("Error: {why}"))
 }
 
-fn report_host_error(output: &mut String, why: &str) {
-    if !output.is_empty() && !output.ends_with('\n') {
-        output.push('\n');
-    }
-    output.push_str("Error: ");
-    output.push_str(why);
-    output.push('\n');
+fn report_host_error(output: &mut String, symbols: &Symbols, why: &str) {
+    let event = crate::trace_events::TraceEvent::RhsError {
+        message: &format!("Error: {why}"),
+        fresh_line: true,
+    };
+    crate::trace_text::TraceText96.write(output, true, symbols, &event);
 }
 
 /// `cmd` (SML): every argument is preceded by a space (9.6's `first` flag is never set,

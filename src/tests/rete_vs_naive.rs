@@ -413,12 +413,13 @@ struct Events {
 impl MatchSink for Events {
     fn matched(&mut self, p: ProdId, t: TokId) {
         if !self.live.insert((p.0, t)) {
-            self.bad.push(format!("duplicate match {p:?} {t}"));
+            self.bad.push(format!("duplicate match {p:?} {}", t.raw()));
         }
     }
     fn unmatched(&mut self, p: ProdId, t: TokId) {
         if !self.live.remove(&(p.0, t)) {
-            self.bad.push(format!("retracting unknown match {p:?} {t}"));
+            self.bad
+                .push(format!("retracting unknown match {p:?} {}", t.raw()));
         }
     }
 }

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Writes the command goldens: what the official Soar 9.6 kernel (pip package soar-sml)
+answers to each command of tests/commands/NAME.cmds. tests/command_goldens.rs gives the same
+commands to rusoar and compares, command by command. Goldens are never edited by hand.
+
+  Commands  tests/commands/NAME.cmds: one command per line, given in order to one fresh
+            agent through ExecuteCommandLine, from the repository's root (so `source
+            tests/commands/agents/X.soar` works). Blank lines and lines starting with `#`
+            are skipped.
+  Golden    tests/golden/commands/NAME.txt: for each command a line `>>> COMMAND`, then
+            what it printed: the print callback's text followed by the command's result,
+            with a newline added when the text does not end with one. A failing command
+            gives one line `!!! MESSAGE`, the first line of its result (rusoar: the
+            diagnostic's message).
+
+usage: python3 scripts/command_goldens.py           write the goldens
+       python3 scripts/command_goldens.py --check   exit 1 if any golden would change
+"""
+import difflib
+import glob
+import os
+import sys
+
+import soar_sml as sml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+COMMANDS = os.path.join(ROOT, "tests", "commands")
+GOLDEN = os.path.join(ROOT, "tests", "golden", "commands")
+
+
+def commands_of(path):
+    with open(path) as f:
+        lines = [l.rstrip("\n") for l in f]
+    return [l for l in lines if l.strip() and not l.lstrip().startswith("#")]
+
+
+def golden_text(kernel, name, commands):
+    agent = kernel.CreateAgent(name)
+    printed = []
+    agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, lambda *a: printed.append(a[-1]), None)
+    out = []
+    for c in commands:
+        printed.clear()
+        result = agent.ExecuteCommandLine(c)
+        out.append(f">>> {c}\n")
+        if agent.GetLastCommandLineResult():
+            text = "".join(printed) + result
+            if text and not text.endswith("\n"):
+                text += "\n"
+            out.append(text)
+        else:
+            out.append(f"!!! {result.splitlines()[0] if result else ''}\n")
+    kernel.DestroyAgent(agent)
+    return "".join(out)
+
+
+def main():
+    check = "--check" in sys.argv[1:]
+    os.chdir(ROOT)
+    kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
+    os.makedirs(GOLDEN, exist_ok=True)
+    changed = 0
+    for path in sorted(glob.glob(os.path.join(COMMANDS, "*.cmds"))):
+        name = os.path.basename(path)[:-5]
+        text = golden_text(kernel, name, commands_of(path))
+        target = os.path.join(GOLDEN, name + ".txt")
+        old = open(target).read() if os.path.exists(target) else None
+        if old == text:
+            continue
+        changed += 1
+        if check:
+            sys.stdout.writelines(difflib.unified_diff(
+                (old or "").splitlines(True), text.splitlines(True), target + " (stored)",
+                target + " (official kernel)"))
+        else:
+            with open(target, "w") as f:
+                f.write(text)
+            print("wrote", os.path.relpath(target, ROOT))
+    kernel.Shutdown()
+    if check and changed:
+        print(f"{changed} command golden(s) differ from the official kernel's output")
+        sys.exit(1)
+
+
+if __name__ == "__main__":
+    main()
