@@ -56,7 +56,31 @@ Conventions (tests/conformance.rs follows the same ones):
             The print callback's text during `run 50`, then run's result text, go to
             tests/golden/traces/NAME.LEVEL.txt, whole (a newline added if the text does not
             end with one). tests/trace_goldens.rs runs the same commands in rusoar and
-            compares the text line for line.
+            compares the text line for line. TRACE_AGENTS may name long-run agents
+            (`long/NAME`, tests/agents/long/NAME.soar): their traces go to
+            tests/golden/traces/long/.
+
+  Long runs for the agents in tests/agents/long/ (each with its number of decisions in
+            LONG_RUNS), in a fresh agent of the official kernel:
+                srand 1
+                watch 0
+                source /abs/path/tests/agents/long/NAME.soar
+                run N
+                stats
+                print --depth 2 s1
+                print --justifications
+            tests/golden/long/NAME.txt holds `run: N`, then `--- counts ---` with the counts
+            above (run decisions, run firings, decisions, elaboration cycles, production
+            firings, wm size; halted is yes if run's result says `An agent halted during
+            the run.`) and
+              wm mean           `M mean` of `stats`' WM size line (three decimals)
+              wm maximum        `X maximum` of the same line
+              justifications    `+ J justifications` of `stats`, 0 without that line
+            then `--- print --depth 2 s1 ---` and `--- print --justifications ---`, each
+            followed by that command's result text, whole (a newline added if it does not
+            end with one). The prints come straight after `stats`: 9.6 wraps a printed
+            object's lines by the column the previous output left it at.
+            tests/conformance.rs runs the same commands in rusoar and compares the text.
 
 usage: python3 scripts/goldens.py [--out DIR]   write goldens to DIR (default tests/golden)
        python3 scripts/goldens.py --check       regenerate into a temporary folder and exit
@@ -100,9 +124,22 @@ TRACE_AGENTS = [
     "support-retraction",
     "wait-snc",
     "water-jug",
+    "long/factorization",
+    "long/fifteen-puzzle",
 ]
 TRACE_LEVELS = [2, 3, 4, 5]
 TRACE_RUN = "run 50"
+
+# Agents in tests/agents/long/ and the number of decisions each runs for its end-state
+# golden (tests/golden/long/NAME.txt). The factorization stops where two justifications
+# are alive in 9.6.
+LONG = os.path.join(AGENTS, "long")
+LONG_RUNS = {
+    "factorization": 99300,
+    "fifteen-puzzle": 5000,
+}
+WM_SIZE = re.compile(r"^WM size: (\d+) current, ([\d.]+) mean, (\d+) maximum", re.M)
+JUSTIFICATIONS = re.compile(r"^\s*\+ (\d+) justifications?\b", re.M)
 
 DECISION = re.compile(r"^\s+\d+: ")
 RUN_RESULT = re.compile(
@@ -213,6 +250,70 @@ def trace_agent(kernel, path, level):
         kernel.DestroyAgent(agent)
 
 
+def ends_with_newline(text):
+    return text if text.endswith("\n") else text + "\n"
+
+
+def long_run(kernel, name):
+    """The end-state golden of one long run (see the module doc)."""
+    path = os.path.join(LONG, name + ".soar")
+    if name not in LONG_RUNS:
+        raise AgentError("%s: no number of decisions in LONG_RUNS" % path)
+    agent = kernel.CreateAgent("long")
+    try:
+
+        def cmd(c):
+            r = agent.ExecuteCommandLine(c)
+            if not agent.GetLastCommandLineResult():
+                raise AgentError("%s: `%s` failed:\n%s" % (path, c, r))
+            return r
+
+        cmd("srand 1")
+        cmd("watch 0")
+        loaded = cmd("source %s" % path)
+        if "warning" in loaded.lower():
+            raise AgentError("%s: warnings while loading:\n%s" % (path, loaded))
+        # No print callback: with watch 0 the trace holds nothing the golden uses, and a
+        # halt shows in run's result (`An agent halted during the run.`).
+        run_result = cmd("run %d" % LONG_RUNS[name])
+        stats = cmd("stats")
+        printed = cmd("print --depth 2 s1")
+        justifications = cmd("print --justifications")
+        m = RUN_RESULT.search(run_result)
+        wm = WM_SIZE.search(stats)
+        if not m or not wm:
+            raise AgentError("%s: no run summary or WM size in %r" % (path, stats))
+        counts = [
+            ("run decisions", m.group(1)),
+            ("run firings", m.group(2) or "0"),
+            ("halted", "yes" if "An agent halted during the run." in run_result else "no"),
+        ]
+        for key, rx in STATS:
+            counts.append((key, rx.search(stats).group(1)))
+        j = JUSTIFICATIONS.search(stats)
+        counts += [
+            ("wm mean", wm.group(2)),
+            ("wm maximum", wm.group(3)),
+            ("justifications", j.group(1) if j else "0"),
+        ]
+        return (
+            "run: %d\n--- counts ---\n" % LONG_RUNS[name]
+            + "".join("%s: %s\n" % kv for kv in counts)
+            + "--- print --depth 2 s1 ---\n"
+            + ends_with_newline(printed)
+            + "--- print --justifications ---\n"
+            + ends_with_newline(justifications)
+        )
+    finally:
+        kernel.DestroyAgent(agent)
+
+
+def long_names():
+    if not os.path.isdir(LONG):
+        return []
+    return sorted(f[: -len(".soar")] for f in os.listdir(LONG) if f.endswith(".soar"))
+
+
 def agent_names():
     return sorted(f[: -len(".soar")] for f in os.listdir(AGENTS) if f.endswith(".soar"))
 
@@ -240,7 +341,7 @@ def generate(out_dir):
                 ) as f:
                     f.write(rules)
         traces = os.path.join(out_dir, "traces")
-        os.makedirs(traces, exist_ok=True)
+        os.makedirs(os.path.join(traces, "long"), exist_ok=True)
         wanted = set()
         for name in TRACE_AGENTS:
             for level in TRACE_LEVELS:
@@ -249,19 +350,31 @@ def generate(out_dir):
                 text = trace_agent(kernel, os.path.join(AGENTS, name + ".soar"), level)
                 with open(os.path.join(traces, f), "w", newline="\n") as out:
                     out.write(text)
-        for f in os.listdir(traces):
-            if f.endswith(".txt") and f not in wanted:
-                os.remove(os.path.join(traces, f))
+        for sub in ["", "long/"]:
+            for f in os.listdir(os.path.join(traces, sub)):
+                if f.endswith(".txt") and sub + f not in wanted:
+                    os.remove(os.path.join(traces, sub + f))
+        long_dir = os.path.join(out_dir, "long")
+        os.makedirs(long_dir, exist_ok=True)
+        names = long_names()
+        for name in names:
+            with open(os.path.join(long_dir, name + ".txt"), "w", newline="\n") as out:
+                out.write(long_run(kernel, name))
+        for f in os.listdir(long_dir):
+            if f.endswith(".txt") and f[: -len(".txt")] not in names:
+                os.remove(os.path.join(long_dir, f))
     finally:
         kernel.Shutdown()
 
 
 def golden_files(folder):
-    """The golden files under folder: NAME.txt, NAME.rules.txt and traces/NAME.L.txt."""
+    """The golden files under folder: NAME.txt, NAME.rules.txt, traces/NAME.L.txt,
+    traces/long/NAME.L.txt and long/NAME.txt."""
     found = set(f for f in os.listdir(folder) if f.endswith(".txt"))
-    traces = os.path.join(folder, "traces")
-    if os.path.isdir(traces):
-        found |= set("traces/" + f for f in os.listdir(traces) if f.endswith(".txt"))
+    for sub in ["traces", "traces/long", "long"]:
+        d = os.path.join(folder, sub)
+        if os.path.isdir(d):
+            found |= set(sub + "/" + f for f in os.listdir(d) if f.endswith(".txt"))
     return found
 
 

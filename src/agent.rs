@@ -548,6 +548,11 @@ pub struct AgentCore {
     pub(crate) substate_removals: Vec<(crate::decide::state::SubstateLine, crate::wm::Wme)>,
     /// Whether those substates went for their GDS (9.6 lists them in another order).
     pub(crate) substates_by_gds: bool,
+    /// For a GDS removal: the timetag of the WME whose removal took the substates, and
+    /// the slots of the preferences the substates' firings made, in the order 9.6 removes
+    /// those preferences (see `trace_removed_wmes`).
+    pub(crate) gds_trigger: Option<u64>,
+    pub(crate) substate_slot_order: Vec<(Sym, Sym)>,
     /// Rust functions the embedding program registered for `exec`.
     pub rhs_registry: crate::rhs::Registry,
     /// Called at the input phase of every decision (the environment's hook).
@@ -591,6 +596,8 @@ impl AgentCore {
             removed_wmes: None,
             substate_removals: Vec::new(),
             substates_by_gds: false,
+            gds_trigger: None,
+            substate_slot_order: Vec::new(),
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             inputs: crate::inputs::InputTable::default(),
@@ -767,9 +774,10 @@ impl AgentCore {
 
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
         self.wm.get(w)?;
+        let rule_retractions = self.matches.retractions.len();
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
-        self.justification_wme_removed(w, wme.timetag);
+        self.justification_wme_removed(w, wme.timetag, rule_retractions);
         if self.events.any() {
             self.events
                 .send(&crate::events::AgentEvent::WmeRemoved(wme));

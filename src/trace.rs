@@ -249,19 +249,28 @@ pub fn match_wme_lines(agent: &AgentCore, ws: &[WmeId]) -> String {
 }
 
 /// The level a preference is traced at: 9.6 prints the level of the instantiation's goal
-/// (a result made in a substate says `[level 2]` though its id is on the top state).
+/// (a result made in a substate says `[level 2]` though its id is on the top state), also
+/// once the instantiation has retracted and an o-supported preference outlives it.
 fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
     let s = &agent.symbols;
-    let goal_level = p
-        .inst
-        .and_then(|i| agent.decider.insts[i].goal)
-        .and_then(|g| s.id_data(g))
-        .map(|d| d.level);
+    let goal_level = match p.inst {
+        Some(i) => agent.decider.insts[i]
+            .goal
+            .and_then(|g| s.id_data(g))
+            .map(|d| d.level),
+        None => p.origin.as_ref().map(|o| o.trace.level).filter(|&l| l > 0),
+    };
     goal_level.unwrap_or_else(|| s.id_data(p.id).map_or(1, |d| d.level))
 }
 
-/// The justification or rule whose firing made a preference.
-fn pref_rule<'a>(agent: &'a AgentCore, p: &crate::decide::state::Preference) -> Option<&'a str> {
+/// The justification or rule whose firing made a preference. An o-supported preference
+/// keeps naming its justification after the justification retracted (9.6 keeps the
+/// justification while its preferences live; soar-sml 9.6.5, agent long/fifteen-puzzle,
+/// trace 5: `(E7 ^symbolic-value failure +  :O ) [level 2] (justify1)`).
+fn pref_rule<'a>(
+    agent: &'a AgentCore,
+    p: &'a crate::decide::state::Preference,
+) -> Option<&'a str> {
     let justification = p
         .inst
         .map(|i| agent.decider.insts[i].serial)
@@ -269,6 +278,9 @@ fn pref_rule<'a>(agent: &'a AgentCore, p: &crate::decide::state::Preference) -> 
         .and_then(|serial| agent.learn.justification_names.get(&serial));
     if let Some(name) = justification {
         return Some(name.as_str());
+    }
+    if let Some(o) = p.origin.as_ref().filter(|o| p.inst.is_none() && o.trace.prod.is_none()) {
+        return Some(o.trace.name.as_str());
     }
     p.inst
         .map(|i| agent.decider.insts[i].prod)
@@ -598,6 +610,8 @@ impl AgentCore {
         };
         let substates = std::mem::take(&mut self.substate_removals);
         let by_gds = std::mem::take(&mut self.substates_by_gds);
+        let trigger = self.gds_trigger.take();
+        let slot_order = std::mem::take(&mut self.substate_slot_order);
         let wmes: Vec<(usize, Wme)> = wmes.into_iter().enumerate().collect();
         let op = self.symbols.find_str("operator");
         let context = |agent: &AgentCore, w: &Wme| Some(w.attr) == op && agent.symbols.is_goal(w.id);
@@ -612,15 +626,37 @@ impl AgentCore {
         // the goals', then their impasse WMEs, and the selected operators after those
         // (checked on soar-sml 9.6.5: substate-results, learn-justification,
         // tests/data/traces/substate.soar). When a GDS change takes them: the memories'
-        // structure, their operator `+` WMEs, their slot WMEs, the garbage, the slot
-        // decisions, their impasse WMEs, their selected operators (agent gds).
+        // structure, the rest of the garbage (newest first), the goals' operator WMEs, the
+        // substates' operator `+` WMEs, the slot decisions made before the WME that took
+        // them, the WMEs of the slots the substates' preferences were in (slot by slot in
+        // the order those preferences go, each slot's oldest first), that WME and the
+        // decisions after it, their impasse WMEs, their selected operators (agents gds,
+        // learn-lookahead, long/fifteen-puzzle, long/factorization).
         let with_substates = !substates.is_empty();
+        let trigger_at = trigger.and_then(|tt| {
+            wmes.iter()
+                .find(|(i, w)| decided.contains(i) && w.timetag == tt)
+                .map(|&(i, _)| i)
+        });
+        let in_slot = |w: &Wme| slot_order.iter().position(|&k| k == (w.id, w.attr));
         let rank = |agent: &AgentCore, (i, w): &(usize, Wme)| -> (u8, i64, u8) {
             if !context(agent, w) {
-                if decided.contains(i) {
-                    (if by_gds { 6 } else { 10 }, *i as i64, 0)
+                if by_gds {
+                    if decided.contains(i) {
+                        match trigger_at {
+                            Some(t) if *i < t => (3, *i as i64, 0),
+                            _ => (6, *i as i64, 0),
+                        }
+                    } else if let Some(k) = in_slot(w) {
+                        (4, k as i64, 0)
+                    } else {
+                        // Right after the memories' structure, newest first.
+                        (0, (1 << 48) - w.timetag as i64, 0)
+                    }
+                } else if decided.contains(i) {
+                    (10, *i as i64, 0)
                 } else {
-                    (if by_gds { 4 } else { 2 }, -(w.timetag as i64), 0)
+                    (2, -(w.timetag as i64), 0)
                 }
             } else {
                 let tt = plus
@@ -629,6 +665,7 @@ impl AgentCore {
                     .map_or(w.timetag, |&(_, tt)| tt);
                 match (with_substates && !by_gds, w.acceptable) {
                     (true, false) => (9, tt as i64, 0),
+                    _ if by_gds => (1, tt as i64, u8::from(!w.acceptable)),
                     _ => (5, tt as i64, u8::from(!w.acceptable)),
                 }
             }
@@ -641,14 +678,18 @@ impl AgentCore {
                 (SubstateLine::Memories, _) => (0, k, 0),
                 (SubstateLine::Other, false) => (1, -(w.timetag as i64), 0),
                 (SubstateLine::OperatorPlus, false) => (3, w.timetag as i64, 0),
-                (SubstateLine::OperatorPlus, true) => (1, w.timetag as i64, 0),
-                (SubstateLine::Other, true) => (3, -(w.timetag as i64), 0),
+                (SubstateLine::OperatorPlus, true) => (2, w.timetag as i64, 0),
+                (SubstateLine::Other, true) => match in_slot(&w) {
+                    Some(s) => (4, s as i64, 0),
+                    None => (0, (1 << 48) - w.timetag as i64, 0),
+                },
                 (SubstateLine::Impasse, _) => (7, k, 0),
                 (SubstateLine::Selected, _) => (8, k, 0),
             };
             lines.push((r, w));
         }
-        lines.sort_by_key(|(r, _)| *r);
+        // Within a slot, oldest first.
+        lines.sort_by_key(|(r, w)| (*r, if r.0 == 4 && by_gds { w.timetag } else { 0 }));
         for (_, w) in lines {
             self.trace_wme(false, &w);
         }

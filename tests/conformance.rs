@@ -6,8 +6,12 @@
 //! conventions (which lines are decision lines, which counts, where they come from) are
 //! documented at the top of `scripts/goldens.py`; this file follows them.
 //!
+//! Long runs (`tests/agents/long/`) are compared by their end state only: `stats` counts
+//! and what `print` shows after N decisions (`tests/golden/long/NAME.txt`).
+//!
 //! With `CONFORMANCE_OUT=DIR`, rusoar's own text for each agent (same format as a golden)
-//! is written to `DIR/NAME.txt`, for `diff -r tests/golden DIR`.
+//! is written to `DIR/NAME.txt` (`DIR/long/NAME.txt` for long runs), for
+//! `diff -r tests/golden DIR`.
 //!
 //! Agents on which rusoar does not match yet are listed in [`KNOWN_DIFFERENCES`] with the
 //! reason. The test fails if any other agent differs, and also if a listed agent has started
@@ -334,6 +338,148 @@ fn check_rules(name: &str, ours: &str, problems: &mut Vec<String>, matching: &mu
     }
 }
 
+/// The numbers of `stats`' `WM size: N current, M mean, X maximum` line.
+fn wm_size_line(stats: &str) -> Option<(String, String, String)> {
+    let line = stats.lines().find_map(|l| l.strip_prefix("WM size: "))?;
+    let mut parts = line.split(", ");
+    let mut field = |suffix: &str| {
+        parts
+            .next()?
+            .strip_suffix(suffix)
+            .map(str::to_string)
+            .filter(|n| !n.is_empty())
+    };
+    Some((field(" current")?, field(" mean")?, field(" maximum")?))
+}
+
+/// `J` of `stats`' `+ J justifications` line, 0 without one.
+fn justification_count(stats: &str) -> String {
+    stats
+        .lines()
+        .find_map(|l| {
+            let n = l.trim_start().strip_prefix("+ ")?;
+            let digits: String = n.chars().take_while(char::is_ascii_digit).collect();
+            (!digits.is_empty() && n[digits.len()..].starts_with(" justification"))
+                .then_some(digits)
+        })
+        .unwrap_or_else(|| "0".into())
+}
+
+/// The text a newline ends (one added if it has none).
+fn ends_with_newline(text: String) -> String {
+    if text.ends_with('\n') {
+        text
+    } else {
+        text + "\n"
+    }
+}
+
+/// A long run of `tests/agents/long/NAME.soar` as `scripts/goldens.py` runs it in the
+/// official kernel (`srand 1`, `watch 0`, `source`, `run N`, `stats`, `print --depth 2
+/// s1`, `print --justifications`), in the format of `tests/golden/long/NAME.txt`.
+fn long_run(path: &Path, decisions: u64) -> String {
+    let mut interp = Agent::default();
+    interp.set_working_directory(root());
+    let script = format!("srand 1\nwatch 0\nsource {}", path.display());
+    let mut text = format!("run: {decisions}\n--- counts ---\n");
+    if let Err(d) = interp.source_text("<conformance>", &script) {
+        text.push_str(&format!("[loading failed: {}]\n", d.message()));
+    }
+    interp.take_output();
+    let run = command(&mut interp, &format!("run {decisions}"));
+    let stats = command(&mut interp, "stats");
+    let printed = command(&mut interp, "print --depth 2 s1");
+    let justifications = command(&mut interp, "print --justifications");
+    let (run_decisions, run_firings) = run_counts(&run).unwrap_or_else(|| ("?".into(), "?".into()));
+    let halted = if run.contains("An agent halted during the run.") {
+        "yes"
+    } else {
+        "no"
+    };
+    let (_, mean, maximum) =
+        wm_size_line(&stats).unwrap_or_else(|| ("?".into(), "?".into(), "?".into()));
+    let mut counts = vec![
+        ("run decisions", run_decisions),
+        ("run firings", run_firings),
+        ("halted", halted.to_string()),
+    ];
+    for (key, what) in [
+        ("decisions", "decisions"),
+        ("elaboration cycles", "elaboration cycles"),
+        ("production firings", "production firings"),
+        ("wm size", "wm size"),
+    ] {
+        counts.push((key, stats_count(&stats, what).unwrap_or_else(|| "?".into())));
+    }
+    counts.push(("wm mean", mean));
+    counts.push(("wm maximum", maximum));
+    counts.push(("justifications", justification_count(&stats)));
+    for (key, value) in counts {
+        text.push_str(&format!("{key}: {value}\n"));
+    }
+    text.push_str("--- print --depth 2 s1 ---\n");
+    text.push_str(&ends_with_newline(printed));
+    text.push_str("--- print --justifications ---\n");
+    text.push_str(&ends_with_newline(justifications));
+    text
+}
+
+/// Long runs end in the official kernel's state: every agent in `tests/agents/long/` runs
+/// for the decisions its golden (`tests/golden/long/NAME.txt`, first line `run: N`) names,
+/// and the counts of `stats` (justifications included) and what `print` shows of the top
+/// state must equal the golden.
+#[test]
+fn long_runs_end_in_the_official_kernels_state() {
+    let dir = root().join("tests/agents/long");
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .expect("tests/agents/long exists")
+        .filter_map(|e| {
+            let name = e.ok()?.file_name().into_string().ok()?;
+            name.strip_suffix(".soar").map(str::to_string)
+        })
+        .collect();
+    names.sort();
+    assert!(!names.is_empty(), "no agents in tests/agents/long");
+    let mut problems = Vec::new();
+    for name in &names {
+        let golden_path = root().join("tests/golden/long").join(format!("{name}.txt"));
+        let Ok(golden) = std::fs::read_to_string(&golden_path) else {
+            problems.push(format!(
+                "{name}: no golden {}; run `python3 scripts/goldens.py`",
+                golden_path.display()
+            ));
+            continue;
+        };
+        let Some(decisions) = golden
+            .lines()
+            .next()
+            .and_then(|l| l.strip_prefix("run: "))
+            .and_then(|n| n.parse::<u64>().ok())
+        else {
+            problems.push(format!("{name}: the golden does not start with `run: N`"));
+            continue;
+        };
+        let ours = long_run(&dir.join(format!("{name}.soar")), decisions);
+        if let Some(out) = std::env::var_os("CONFORMANCE_OUT") {
+            let out = PathBuf::from(out).join("long");
+            std::fs::create_dir_all(&out).expect("CONFORMANCE_OUT can be made");
+            std::fs::write(out.join(format!("{name}.txt")), &ours).expect("written");
+        }
+        if ours != golden {
+            problems.push(format!(
+                "{name}: differs from tests/golden/long/{name}.txt\n{}",
+                diff(&golden, &ours, 60)
+            ));
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "{} problem(s):\n\n{}",
+        problems.len(),
+        problems.join("\n\n")
+    );
+}
+
 #[test]
 fn decision_lines_and_counts_are_extracted_as_goldens_py_does() {
     assert!(is_decision_line("     1:    O: O1 (a)"));
@@ -364,6 +510,15 @@ fn decision_lines_and_counts_are_extracted_as_goldens_py_does() {
         Some("5314")
     );
     assert_eq!(stats_count(stats, "wm size").as_deref(), Some("29"));
+    assert_eq!(
+        wm_size_line(stats),
+        Some(("29".into(), "31.494".into(), "36".into()))
+    );
+    assert_eq!(justification_count(stats), "0");
+    assert_eq!(
+        justification_count("5 productions (0 default, 5 user, 0 chunks)\n   + 2 justifications\n"),
+        "2"
+    );
     let d = diff("a\nb\nc\n", "a\nx\nc\n", 10);
     assert!(d.contains("- b\n+ x\n"), "{d}");
 }

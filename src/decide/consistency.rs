@@ -44,7 +44,7 @@ impl AgentCore {
     }
 
     /// A goal without an operator whose impasse the preferences no longer give (another
-    /// impasse, other items, or a choice) loses its substates at once, as 9.6's consistency
+    /// kind of impasse, or a choice) loses its substates at once, as 9.6's consistency
     /// check removes them; the next decision decides the slot again.
     pub(super) fn check_impasse_consistency(&mut self, key: (Sym, Sym)) {
         let Some(gi) = self.decider.goals.iter().position(|g| g.state == key.0) else {
@@ -60,17 +60,15 @@ impl AgentCore {
         let Some((kind, on_operator)) = sub.impasse else {
             return;
         };
-        let same_items = |items: &[Sym]| {
-            items.len() == sub.items.len() && items.iter().all(|i| sub.items.contains(i))
-        };
+        // The same kind of impasse is consistent whatever its items: the next decision
+        // brings them up to date (checked on soar-sml 9.6.5: a tied candidate evaluated
+        // worst leaves the tie, which goes on with the others).
         let consistent = match procedure::candidates(&self.slot_prefs(key)) {
             Ok(_) => false,
             Err(Outcome::NoCandidates) => kind == ImpasseKind::NoChange && !on_operator,
-            Err(Outcome::Tie(items)) => kind == ImpasseKind::Tie && same_items(&items),
-            Err(Outcome::Conflict(items)) => kind == ImpasseKind::Conflict && same_items(&items),
-            Err(Outcome::ConstraintFailure(items)) => {
-                kind == ImpasseKind::ConstraintFailure && same_items(&items)
-            }
+            Err(Outcome::Tie(_)) => kind == ImpasseKind::Tie,
+            Err(Outcome::Conflict(_)) => kind == ImpasseKind::Conflict,
+            Err(Outcome::ConstraintFailure(_)) => kind == ImpasseKind::ConstraintFailure,
             Err(Outcome::Winner(_)) => false,
         };
         if consistent {
@@ -91,9 +89,9 @@ impl AgentCore {
             });
         }
         if self.settings.trace.preferences {
-            // Before the substates' `<=WM:` lines, as 9.6 lists them.
+            // Before the substates' `<=WM:` lines, as 9.6 lists them (not again below).
             for k in (gi + 1..self.decider.goals.len()).rev() {
-                let made = std::mem::take(&mut self.decider.goals[k].made);
+                let made = self.decider.goals[k].made.clone();
                 let state = self.decider.goals[k].state;
                 self.trace_removed_prefs(state, &made);
             }
@@ -101,6 +99,7 @@ impl AgentCore {
         if self.settings.trace.wmes {
             self.trace_substate_wmes_removed(gi);
         }
+        self.remove_held_objects(gi);
         self.remove_goals_below(gi);
     }
 

@@ -148,6 +148,7 @@ impl AgentCore {
         }
         let start = std::time::Instant::now();
         self.do_phase_timed(phase, one_cycle);
+        self.release_justifications();
         let i = match phase {
             Phase::Input => 0,
             Phase::Propose => 1,
@@ -267,8 +268,9 @@ impl AgentCore {
     /// `has_pending(true)` for the apply phase: retractions of instantiations whose goal
     /// has gone (a substate removed in this phase) do not keep it going; 9.6 processes
     /// them in the next propose phase, with no active goal.
+    /// Justifications retract the same way (9.6's matcher holds them like rules).
     fn has_pending_in_apply(&self) -> bool {
-        if self.matches.has_assertions() || !self.decider.justification_retractions.is_empty() {
+        if self.matches.has_assertions() {
             return true;
         }
         let live = |i: InstId| {
@@ -276,7 +278,12 @@ impl AgentCore {
                 .goal
                 .is_none_or(|g| self.symbols.is_goal(g))
         };
-        self.decider.waiting_retractions.iter().any(|&i| live(i))
+        let justification = |&(i, serial, _): &(InstId, u64, usize)| {
+            let inst = &self.decider.insts[i];
+            inst.alive && inst.serial == serial && live(i)
+        };
+        self.decider.justification_retractions.iter().any(justification)
+            || self.decider.waiting_retractions.iter().any(|&i| live(i))
             || self.matches.retractions.iter().any(|k| {
                 let Some(&i) = self.decider.inst_by_token.get(k) else {
                     return true;

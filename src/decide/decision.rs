@@ -65,6 +65,7 @@ impl AgentCore {
                     if let Some(wme) = self.wm.get(w).copied() {
                         self.trace_wme(true, &wme);
                     }
+                    self.flush_impasse_item_updates();
                     self.classify_new_matches();
                     self.decider.wme_changes += 1;
                     self.decider.goals[gi].operator = Some((o, w));
@@ -84,13 +85,17 @@ impl AgentCore {
                 Outcome::Conflict(items) => (ImpasseKind::Conflict, true, items),
                 Outcome::ConstraintFailure(items) => (ImpasseKind::ConstraintFailure, true, items),
             };
-            // The same impasse again changes nothing here: look further down.
+            // The same impasse again keeps its substate, its items brought up to date (the
+            // candidates of a tie may change while it lasts): look further down.
             let same = self
                 .decider
                 .goals
                 .get(gi + 1)
-                .is_some_and(|g| g.impasse == Some((kind, on_operator)) && g.items == items);
+                .is_some_and(|g| g.impasse == Some((kind, on_operator)));
             if same {
+                if self.decider.goals[gi + 1].items != items {
+                    self.update_impasse_items(gi + 1, items);
+                }
                 continue;
             }
             if gi + 1 < n || kind != ImpasseKind::NoChange || on_operator {
@@ -100,6 +105,7 @@ impl AgentCore {
             self.impasse(gi, kind, on_operator, items);
             return;
         }
+        self.flush_impasse_item_updates();
         // Nothing decidable: the bottom goal made no progress.
         if let Some(last) = n.checked_sub(1) {
             let on_operator = self.decider.goals[last].operator.is_some();
@@ -198,5 +204,80 @@ impl AgentCore {
             .filter(|w| w.attr == name && !w.acceptable)
             .map(|w| self.symbols.text(w.value))
             .collect()
+    }
+
+    /// An impasse that stays gets the current candidates as its items (decide.cpp
+    /// `update_impasse_items`): for `^item` and then `^non-numeric`, its WMEs are walked
+    /// newest first, a count that changed is replaced at once, an item no longer a
+    /// candidate goes, then each new candidate is added in candidate order. The changes
+    /// are traced and matched with the phase's others ([`Self::flush_impasse_item_updates`]).
+    fn update_impasse_items(&mut self, sub: usize, items: Vec<Sym>) {
+        let n = self.symbols.int(items.len() as i64);
+        for (item, count) in [("item", "item-count"), ("non-numeric", "non-numeric-count")] {
+            let item = self.symbols.str(item);
+            let count = self.symbols.str(count);
+            let state = self.decider.goals[sub].state;
+            let mut kept = Vec::new();
+            let wmes = self.decider.goals[sub].wmes.clone();
+            for &w in wmes.iter().rev() {
+                let Some(wme) = self.wm.get(w).copied() else {
+                    continue;
+                };
+                let gone = if wme.attr == count {
+                    if wme.value == n {
+                        false
+                    } else {
+                        let added = self.wm.add(state, count, n, false);
+                        self.decider.goals[sub].wmes.push(added);
+                        self.decider.item_updates.0.push(added);
+                        true
+                    }
+                } else if wme.attr == item {
+                    if items.contains(&wme.value) {
+                        kept.push(wme.value);
+                        false
+                    } else {
+                        true
+                    }
+                } else {
+                    false
+                };
+                if gone {
+                    self.decider.goals[sub].wmes.retain(|&x| x != w);
+                    self.decider.item_updates.1.push(w);
+                }
+            }
+            for &it in &items {
+                if !kept.contains(&it) {
+                    let added = self.wm.add(state, item, it, false);
+                    self.decider.goals[sub].wmes.push(added);
+                    self.decider.item_updates.0.push(added);
+                }
+            }
+        }
+        self.decider.goals[sub].items = items;
+    }
+
+    /// The impasse WMEs [`Self::update_impasse_items`] changed reach the trace and the
+    /// matcher as 9.6's buffered changes do: after any newer addition of the phase, the
+    /// additions newest first, then the removals, the last made first.
+    pub(super) fn flush_impasse_item_updates(&mut self) {
+        if self.decider.item_updates.0.is_empty() && self.decider.item_updates.1.is_empty() {
+            return;
+        }
+        let (added, removed) = std::mem::take(&mut self.decider.item_updates);
+        self.decider.wme_changes += (added.len() + removed.len()) as u64;
+        for &w in added.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme(true, &wme);
+                self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
+            }
+        }
+        for &w in removed.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme(false, &wme);
+                self.remove_wme(w);
+            }
+        }
     }
 }

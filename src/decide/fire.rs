@@ -261,8 +261,7 @@ impl AgentCore {
         self.send_rule_event(self.decider.insts[inst_id].prod, true);
         let serial = self.decider.insts[inst_id].serial;
         if serial != 0 {
-            let o = self.decider.insts[inst_id].o_support;
-            self.forget_justification(serial, o);
+            self.justification_retracted(inst_id, serial);
         }
         let inst = &mut self.decider.insts[inst_id];
         inst.alive = false;

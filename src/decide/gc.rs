@@ -22,6 +22,7 @@ impl AgentCore {
     /// where the output is now. Returns how many bytes of text went in at `at`.
     pub(super) fn collect_garbage_traced_at(&mut self, at: Option<usize>) -> usize {
         let traced_gone = std::mem::take(&mut self.decider.prefs_traced_gone);
+        let wmes_traced = std::mem::take(&mut self.decider.wmes_traced_gone);
         if self.decider.gc_candidates.is_empty() {
             return 0;
         }
@@ -93,7 +94,9 @@ impl AgentCore {
                 self.decider.slots.recycle(slot);
             }
             if self.wm.get(w).is_some() {
-                removed_lines.push(wme);
+                if !wmes_traced.contains(&wme.timetag) {
+                    removed_lines.push(wme);
+                }
                 self.remove_wme(w);
             }
         }

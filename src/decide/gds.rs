@@ -117,7 +117,16 @@ impl AgentCore {
             .min();
         if let Some(top_index) = top_index.filter(|&i| i > 0) {
             if self.settings.trace.wmes && self.removed_wmes.is_some() {
+                let goal = self.decider.goals[top_index].state;
+                self.gds_trigger = removes
+                    .iter()
+                    .find(|&&(w, tt)| {
+                        self.wm.get(w).is_some_and(|x| x.timetag == tt)
+                            && self.decider.gds.get(&w) == Some(&goal)
+                    })
+                    .map(|&(_, tt)| tt);
                 self.collect_substate_removals(top_index - 1);
+                self.substate_slot_order = self.substate_pref_slots(top_index - 1);
                 self.substates_by_gds = true;
             }
             self.remove_goal_and_below(top_index);

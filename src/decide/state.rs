@@ -176,6 +176,9 @@ pub struct DecideState {
     /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the
     /// garbage collection after it does not list them again.
     pub(crate) prefs_traced_gone: Vec<PrefId>,
+    /// WMEs (by timetag) a removed substate's trace has just listed as gone: the garbage
+    /// collection after it does not list them again.
+    pub(crate) wmes_traced_gone: Vec<u64>,
     /// Substate preferences whose result copy (with its justification's support) is an
     /// o-supported reject: in 9.6 the result itself becomes that o-reject, so the original
     /// is neither traced nor asserted.
@@ -195,6 +198,10 @@ pub struct DecideState {
     /// impasses are checked for consistency at the next one (9.6 keeps a slot's changed
     /// flag until it is checked).
     pub consistency_pending: Vec<(Sym, Sym)>,
+    /// Impasse WMEs the decision phase added and removed to bring an impasse's items up to
+    /// date, in that order: they reach the trace and the matcher with the phase's other
+    /// changes (see `update_impasse_items`).
+    pub(crate) item_updates: (Vec<WmeId>, Vec<WmeId>),
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
@@ -202,6 +209,11 @@ pub struct DecideState {
     /// (instantiation, serial, place among the rule retractions it goes before: an
     /// index into `MatchSet::retractions`, `usize::MAX` after them all).
     pub justification_retractions: Vec<(InstId, u64, usize)>,
+    /// The o-supported preferences that retracted justifications left in preference memory,
+    /// with the justification's serial: the justification lives until they are all gone.
+    pub held_by_justification: FxHashMap<PrefId, u64>,
+    /// Serials of justifications that lost such a preference since it was last looked at.
+    pub released_justification_prefs: Vec<u64>,
     /// Retractions of matches at a goal below the active one, waiting for a cycle in which
     /// their goal is the active goal, oldest first.
     pub waiting_retractions: Vec<InstId>,
@@ -270,6 +282,11 @@ impl DecideState {
         pref.freed = true;
         pref.alive = false;
         pref.origin = None;
+        if !self.held_by_justification.is_empty() {
+            if let Some(serial) = self.held_by_justification.remove(&pid) {
+                self.released_justification_prefs.push(serial);
+            }
+        }
         if let Some(i) = pref.inst.take() {
             let inst = &mut self.insts[i];
             if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {

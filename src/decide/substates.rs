@@ -6,30 +6,128 @@ use super::state::{Goal, ImpasseKind, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
+
+/// A WME of an object a removed substate holds, with its handle.
+type ObjectWme = (crate::wm::WmeId, crate::wm::Wme);
 
 impl AgentCore {
     /// The `<=WM:` lines 9.6 prints for the architecture WMEs of the substates below goal
     /// `gi` when a consistency check removes them within a phase: the smem and epmem links'
     /// children, the links, the state's own WMEs, then the `^non-numeric` and the `^item`
     /// WMEs (each group oldest first; seen on 9.6).
+    ///
+    /// The substates' own objects go with them: those their other slots hold come first,
+    /// the last held first, each one's WMEs oldest first; those their operator slots hold
+    /// come after the state's own WMEs, newest first, before the operator `+` WMEs
+    /// (soar-sml 9.6.5, agents learn-lookahead and long/fifteen-puzzle: the evaluation
+    /// objects, the memories, `^name selection`, `^evaluation`, the proposed operator's
+    /// `^superoperator` and `^name`, then `^operator E5 +`). The garbage collection does
+    /// not list them again.
     pub(super) fn trace_substate_wmes_removed(&mut self, gi: usize) {
         let lines = self.substate_lines(gi);
         let memories = lines.iter().take_while(|(group, _)| *group <= 2).count();
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        let (held, proposed) = self.substate_objects(gi, &made);
+        for (_, wme) in &held {
+            self.trace_wme(false, wme);
+        }
         for (_, wme) in &lines[..memories] {
             self.trace_wme(false, wme);
         }
         // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
-        // the memories' structure, oldest first, the operator `+` WMEs last (soar-sml 9.6.5,
-        // agent learn-lookahead: `^name selection`, `^evaluation`, then `^operator E5 +`).
-        let mut made = self.substate_slot_wmes(gi);
-        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
-        for (_, wme) in made {
+        // the memories' structure, oldest first, the operator `+` WMEs last.
+        for &(plus, wme) in &made {
+            if plus {
+                continue;
+            }
             self.trace_wme(false, &wme);
+        }
+        for (_, wme) in &proposed {
+            self.trace_wme(false, wme);
+        }
+        for &(plus, wme) in &made {
+            if plus {
+                self.trace_wme(false, &wme);
+            }
         }
         for (_, wme) in &lines[memories..] {
             self.trace_wme(false, wme);
         }
+        let traced = held.iter().chain(&proposed).map(|(_, w)| w.timetag);
+        self.decider.wmes_traced_gone.extend(traced);
+    }
+
+    /// A consistency check removes the substates below goal `gi`: the objects their other
+    /// slots hold go first, before the states' own WMEs, in the order the trace lists them
+    /// (see [`Self::trace_substate_wmes_removed`]): 9.6 takes them out of the matcher in
+    /// that order, so their alpha memories empty before the states' matches go, which
+    /// sets where the matcher's joins stand when they come back (checked on soar-sml
+    /// 9.6.5: agent long/fifteen-puzzle, trace 3, the order of the selection rules that a
+    /// second selection state's first evaluation fires).
+    pub(super) fn remove_held_objects(&mut self, gi: usize) {
+        let mut made = self.substate_slot_wmes(gi);
+        made.sort_by_key(|&(plus, wme)| (plus, wme.timetag));
+        let (held, _) = self.substate_objects(gi, &made);
+        for (w, wme) in held {
+            if self.wm.get(w).is_none_or(|x| x.timetag != wme.timetag) {
+                continue;
+            }
+            if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
+                for &pid in &slot.prefs {
+                    self.decider.free_pref(pid);
+                }
+                for sw in slot.wmes.values().rev() {
+                    if sw != w {
+                        self.remove_wme(sw);
+                    }
+                }
+                self.decider.slots.recycle(slot);
+            }
+            self.remove_wme(w);
+        }
+    }
+
+    /// The WMEs of the objects local to the substates below `gi` that their slot WMEs
+    /// `made` (as [`Self::trace_substate_wmes_removed`] orders them) hold: those of the
+    /// objects other slots hold, the last held first, each one's oldest first; and those
+    /// of the objects the operator slots hold, newest first.
+    fn substate_objects(
+        &self,
+        gi: usize,
+        made: &[(bool, crate::wm::Wme)],
+    ) -> (Vec<ObjectWme>, Vec<ObjectWme>) {
+        let levels: Vec<u32> = self.decider.goals[gi + 1..].iter().map(|g| g.level).collect();
+        let local = |v: Sym| {
+            !self.symbols.is_goal(v)
+                && self
+                    .symbols
+                    .id_data(v)
+                    .is_some_and(|d| levels.contains(&d.level))
+        };
+        let mut seen = FxHashSet::default();
+        let mut held = Vec::new();
+        let mut proposed = Vec::new();
+        for &(plus, wme) in made.iter().rev() {
+            if !local(wme.value) || !seen.insert(wme.value) {
+                continue;
+            }
+            let mut of: Vec<ObjectWme> = self
+                .wm
+                .of_id(wme.value)
+                .filter_map(|w| Some((w, self.wm.get(w).copied()?)))
+                .collect();
+            if plus {
+                of.sort_by_key(|(_, w)| std::cmp::Reverse(w.timetag));
+                proposed.extend(of);
+            } else {
+                of.sort_by_key(|(_, w)| w.timetag);
+                held.extend(of);
+            }
+        }
+        proposed.sort_by_key(|(_, w)| std::cmp::Reverse(w.timetag));
+        (held, proposed)
     }
 
     /// An operator removal or a GDS change takes the substates below goal `gi` away: their
@@ -60,6 +158,31 @@ impl AgentCore {
             }
         }
         self.substate_removals.extend(out);
+    }
+
+    /// The slots of the standing preferences the firings of the goals below `gi` made, in
+    /// the order 9.6 removes those preferences with the goals (deepest goal first, as
+    /// [`Self::trace_removed_prefs`] lists them), each slot once; only the slots that hold
+    /// no other preference (a WME something else supports goes with the garbage).
+    pub(crate) fn substate_pref_slots(&self, gi: usize) -> Vec<(Sym, Sym)> {
+        let mut order: Vec<(Sym, Sym)> = Vec::new();
+        let mut theirs = FxHashSet::default();
+        for g in self.decider.goals[gi + 1..].iter().rev() {
+            for (pid, what) in self.standing_prefs(g.state, &g.made) {
+                theirs.insert(pid);
+                let slot = (what.0, what.1);
+                if !order.contains(&slot) {
+                    order.push(slot);
+                }
+            }
+        }
+        order.retain(|key| {
+            self.decider
+                .slots
+                .get(key)
+                .is_none_or(|slot| slot.prefs.iter().all(|p| theirs.contains(p)))
+        });
+        order
     }
 
     /// The WMEs in the slots of the goals below `gi` (those rules made on them), lowest
@@ -141,6 +264,7 @@ impl AgentCore {
         let parent = self.decider.goals[gi].state;
         let level = self.decider.goals[gi].level + 1;
         if kind == ImpasseKind::NoChange && !on_operator && self.settings.wait_snc {
+            self.flush_impasse_item_updates();
             // Waiting: the bottom state's own line again, impasse included, as 9.6 prints.
             if self.settings.trace.decisions {
                 self.emit(&TraceEvent::State {
@@ -225,6 +349,7 @@ impl AgentCore {
                 self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
             }
         }
+        self.flush_impasse_item_updates();
         if self.settings.trace.decisions {
             self.emit(&TraceEvent::State {
                 cycle: self.decider.d_cycle_count,
@@ -256,6 +381,7 @@ impl AgentCore {
             if self.settings.trace.preferences {
                 self.trace_removed_prefs(g.state, &g.made);
             }
+            self.remove_goal_prefs(g.state, &g.made);
             if let Some((_, w)) = g.operator {
                 self.remove_wme(w);
             }
@@ -284,9 +410,30 @@ impl AgentCore {
         self.collect_garbage();
     }
 
+    /// A removed substate's firings' preferences leave preference memory with it, those
+    /// on objects of the states above too: an o-supported result's own preference goes,
+    /// and its WME stays only while the learned rule's copy supports it (Soar manual,
+    /// ch. 2, "Justifications: Support for results"; 9.6 removes a goal's preferences
+    /// with it). The state's own slots go with the state.
+    fn remove_goal_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
+        for (pid, what) in self.standing_prefs(state, made) {
+            if what.0 == state {
+                continue;
+            }
+            let key = (what.0, what.1);
+            if let Some(slot) = self.decider.slots.id_of(&key) {
+                if self.decider.slots.slot_mut(slot).remove(pid, what.2) {
+                    self.mark_changed(key, Some(slot));
+                    self.decider.slots.drop_if_empty(slot);
+                    self.decider.free_pref(pid);
+                }
+            }
+        }
+    }
+
     /// Keeps a substate firing's preference with its goal (a firing's newest first), for
     /// [`Self::trace_removed_prefs`].
-    pub(super) fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
+    pub(crate) fn note_goal_pref(&mut self, goal: Option<Sym>, pid: PrefId) {
         let Some(gi) = self
             .decider
             .goals
@@ -324,12 +471,31 @@ impl AgentCore {
     /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
     /// justification-negation).
     pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
-        let mut seen = FxHashSet::default();
-        for &(pid, what) in made {
-            if self.pref_stands(pid, what, state) && seen.insert(pid) {
-                self.trace_pref('-', pid);
-                self.decider.prefs_traced_gone.push(pid);
+        for (pid, _) in self.standing_prefs(state, made) {
+            if self.decider.prefs_traced_gone.contains(&pid) {
+                continue;
             }
+            self.trace_pref('-', pid);
+            self.decider.prefs_traced_gone.push(pid);
         }
+    }
+
+    /// The preferences of `made` (a goal's, oldest first) that still stand, in that order.
+    /// A handle is reused once its preference is freed: only its last entry can be the
+    /// preference it now holds.
+    fn standing_prefs(
+        &self,
+        state: Sym,
+        made: &[(PrefId, (Sym, Sym, Sym))],
+    ) -> Vec<(PrefId, (Sym, Sym, Sym))> {
+        let mut last: FxHashMap<PrefId, usize> = FxHashMap::default();
+        for (k, &(pid, _)) in made.iter().enumerate() {
+            last.insert(pid, k);
+        }
+        made.iter()
+            .enumerate()
+            .filter(|&(k, &(pid, what))| last[&pid] == k && self.pref_stands(pid, what, state))
+            .map(|(_, &x)| x)
+            .collect()
     }
 }

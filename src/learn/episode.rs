@@ -290,6 +290,9 @@ impl AgentCore {
                 vars: Default::default(),
                 base: source.base.clone(),
                 generation: source.generation,
+                level: self.decider.insts[inst_id]
+                    .goal
+                    .map_or(0, |g| self.sym_level(g)),
             }),
         };
         let mut clones = Vec::with_capacity(results.len());
@@ -322,6 +325,15 @@ impl AgentCore {
             self.decider.insts[inst_id].prefs.push(pid);
             new_prefs.push(pid);
             clones.push(pid);
+        }
+        // The learned rule's instantiation belongs to its match goal: a substate there
+        // lists the copies among its firings' preferences when it goes (checked on
+        // soar-sml 9.6.5: agent learn-lookahead, trace 5).
+        let goal = self.decider.insts[inst_id].goal;
+        if goal.is_some_and(|g| self.sym_level(g) >= 2) {
+            for &pid in clones.iter().rev() {
+                self.note_goal_pref(goal, pid);
+            }
         }
         // Still results one level up: learn again from this instantiation.
         if owner_level >= 2 {
@@ -469,20 +481,22 @@ impl AgentCore {
             serial,
         };
         let id = self.decider.alloc_inst(inst);
+        let mut watched = Vec::with_capacity(bt.grounds.len());
         for g in &bt.grounds {
             let key = (g.cond.wme_id, g.cond.wme.timetag);
             if self.wm.get(key.0).is_some_and(|w| w.timetag == key.1) {
-                self.learn
-                    .justified_by_wme
-                    .entry(key)
-                    .or_default()
-                    .push((id, serial));
+                let list = self.learn.justified_by_wme.entry(key).or_default();
+                if list.last() != Some(&(id, serial)) {
+                    list.push((id, serial));
+                    watched.push(key);
+                }
             } else {
                 self.decider
                     .justification_retractions
                     .push((id, serial, usize::MAX));
             }
         }
+        self.learn.grounds_of.insert(serial, watched);
         let negations = self.superstate_negations(bt);
         if !negations.is_empty() {
             let list: Vec<_> = negations
@@ -589,26 +603,89 @@ impl AgentCore {
         }
     }
 
-    /// A justification's instantiation lost a WME: its retraction is queued.
-    pub(crate) fn justification_wme_removed(&mut self, w: crate::wm::WmeId, timetag: u64) {
+    /// A justification's instantiation lost a WME: its retraction is queued, before the
+    /// rules' retractions the same removal made (from `at` on) and the newest
+    /// justification first: 9.6's matcher drops the WME's newest matches first, and the
+    /// justifications' are newer than the rules' (checked on soar-sml 9.6.5: agent
+    /// long/fifteen-puzzle, trace 3, where a move retracts the evaluations' justifications
+    /// after the old proposals, oldest first).
+    pub(crate) fn justification_wme_removed(
+        &mut self,
+        w: crate::wm::WmeId,
+        timetag: u64,
+        at: usize,
+    ) {
         // Most removals meet no justification: skip the hash probe then.
         if self.learn.justified_by_wme.is_empty() {
             return;
         }
         if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
-            let after_rules = usize::MAX;
             self.decider
                 .justification_retractions
-                .extend(list.into_iter().map(|(i, s)| (i, s, after_rules)));
+                .extend(list.into_iter().rev().map(|(i, s)| (i, s, at)));
         }
     }
 
-    /// A justification retracted: it leaves the list unless o-supported results keep it
-    /// (9.6 keeps it while its preferences live).
-    pub(crate) fn forget_justification(&mut self, serial: u64, o_support: bool) {
-        if !o_support {
-            self.learn.justification_names.remove(&serial);
-            self.learn.justifications.retain(|j| j.serial != serial);
+    /// A justification retracted. Its i-supported preferences go with it, and so does the
+    /// justification; o-supported ones stay in preference memory (Soar manual, ch. 2,
+    /// "Justifications: Support for results"), and the justification with them until the
+    /// last of them is removed (checked on soar-sml 9.6.5: agent long/fifteen-puzzle, whose
+    /// o-supported evaluation results live as long as the selection state).
+    pub(crate) fn justification_retracted(&mut self, inst: InstId, serial: u64) {
+        // Its WMEs no longer retract it (those that stay would otherwise keep it listed
+        // for as long as they last).
+        for key in self.learn.grounds_of.remove(&serial).unwrap_or_default() {
+            if let Some(list) = self.learn.justified_by_wme.get_mut(&key) {
+                list.retain(|&(_, s)| s != serial);
+                if list.is_empty() {
+                    self.learn.justified_by_wme.remove(&key);
+                }
+            }
         }
+        let mut held = 0;
+        if self.decider.insts[inst].o_support {
+            for &pid in &self.decider.insts[inst].prefs {
+                let p = &self.decider.prefs[pid];
+                if p.o_support && p.alive && !p.freed {
+                    self.decider.held_by_justification.insert(pid, serial);
+                    held += 1;
+                }
+            }
+        }
+        if held == 0 {
+            self.forget_justification(serial);
+        } else {
+            self.learn.held_prefs.insert(serial, held);
+        }
+    }
+
+    /// Retracted justifications whose last o-supported preference has gone leave the list.
+    pub(crate) fn release_justifications(&mut self) {
+        if self.decider.released_justification_prefs.is_empty() {
+            return;
+        }
+        let released = std::mem::take(&mut self.decider.released_justification_prefs);
+        let mut gone = FxHashSet::default();
+        for &serial in &released {
+            if let Some(n) = self.learn.held_prefs.get_mut(&serial) {
+                *n -= 1;
+                if *n == 0 {
+                    self.learn.held_prefs.remove(&serial);
+                    self.learn.justification_names.remove(&serial);
+                    gone.insert(serial);
+                }
+            }
+        }
+        if !gone.is_empty() {
+            self.learn.justifications.retain(|j| !gone.contains(&j.serial));
+        }
+        let mut released = released;
+        released.clear();
+        self.decider.released_justification_prefs = released;
+    }
+
+    fn forget_justification(&mut self, serial: u64) {
+        self.learn.justification_names.remove(&serial);
+        self.learn.justifications.retain(|j| j.serial != serial);
     }
 }

@@ -53,6 +53,8 @@ pub struct InstTrace {
     /// (`chunk*r*...` is 1, `chunkx2*r*...` 2): names of chunks learned from this firing.
     pub base: String,
     pub generation: u32,
+    /// The level of the instantiation's match goal (traced with its preferences).
+    pub level: u32,
 }
 
 /// Where a preference came from: the firing and the identities of its fields.
@@ -112,10 +114,15 @@ pub struct LearnState {
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
     pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(InstId, u64)>>,
+    /// The WMEs each live justification is listed under in `justified_by_wme`, by serial.
+    pub grounds_of: FxHashMap<u64, Vec<(WmeId, u64)>>,
     /// The superstate negations of live justifications: a new WME that matches one
     /// retracts it.
     pub negations: negations::WatchedNegations,
     pub next_serial: u64,
+    /// Retracted justifications kept by o-supported preferences: how many of those are
+    /// still in preference memory, by serial.
+    pub held_prefs: FxHashMap<u64, u32>,
 }
 
 impl LearnState {
@@ -128,6 +135,8 @@ impl LearnState {
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
+        self.grounds_of.clear();
+        self.held_prefs.clear();
         self.negations.clear();
         self.force_learn.clear();
         self.dont_learn.clear();

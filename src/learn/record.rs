@@ -93,9 +93,16 @@ impl AgentCore {
             });
         }
         let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
+        let level = self
+            .decider
+            .inst_by_token
+            .get(&(p, t))
+            .and_then(|&i| self.decider.insts[i].goal)
+            .map_or(0, |g| self.sym_level(g));
         let trace = Arc::new(InstTrace {
             base,
             generation,
+            level,
             name: prod.name.clone(),
             prod: Some(prod.clone()),
             conds,
