@@ -568,6 +568,8 @@ pub struct AgentCore {
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
     pub(crate) multi_attributes: crate::rete::reorder::MultiAttributes,
+    /// Rules whose firings are traced whatever the trace settings (`production watch`).
+    pub(crate) watched_rules: std::collections::HashSet<String>,
 }
 
 impl AgentCore {
@@ -605,6 +607,7 @@ impl AgentCore {
             learn: crate::learn::LearnState::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
+            watched_rules: Default::default(),
         }
     }
 
@@ -651,6 +654,7 @@ impl AgentCore {
     pub fn excise(&mut self, name: &str) -> bool {
         match self.productions.shift_remove(name) {
             Some(l) => {
+                self.watched_rules.remove(name);
                 self.by_id[l.id.0 as usize] = None;
                 self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true

@@ -281,6 +281,21 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
     Ok(prod)
 }
 
+/// Only the conditions of a parsed rule, without the checks a loaded rule must pass (for
+/// `production find`, which reads a pattern of conditions).
+pub fn compile_conditions(p: &ast::Production) -> Result<Vec<Condition>, Diagnostic> {
+    let mut ph = Placeholders {
+        source: Some(p),
+        ..Placeholders::default()
+    };
+    let mut out = CompileOutput::default();
+    let mut conditions = Vec::new();
+    for c in &p.conditions {
+        compile_condition(c, &mut ph, &mut conditions, &mut out)?;
+    }
+    Ok(conditions)
+}
+
 fn compile_flags(p: &ast::Production) -> Result<Flags, Diagnostic> {
     let mut f = Flags::default();
     for (flag, span) in &p.flags {

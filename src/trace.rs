@@ -17,6 +17,32 @@ pub fn wme_internal(agent: &AgentCore, w: &Wme) -> String {
     out
 }
 
+/// A symbol as `print` shows it; with `--varprint`, identifiers as variables (`<S1>`).
+pub fn sym_shown(agent: &AgentCore, s: Sym, varprint: bool) -> String {
+    if varprint && agent.symbols.is_id(s) {
+        format!("<{}>", agent.symbols.text(s))
+    } else {
+        agent.symbols.text(s)
+    }
+}
+
+/// One WME on a line of its own: `(id ^attr value[ +])`, with `internal` its timetag first
+/// (`(tt: id ^attr value)`), with `varprint` identifiers as variables.
+pub fn wme_line(agent: &AgentCore, w: &Wme, internal: bool, varprint: bool) -> String {
+    let tt = if internal {
+        format!("{}: ", w.timetag)
+    } else {
+        String::new()
+    };
+    format!(
+        "({tt}{} ^{} {}{})",
+        sym_shown(agent, w.id, varprint),
+        sym_shown(agent, w.attr, varprint),
+        sym_shown(agent, w.value, varprint),
+        if w.acceptable { " +" } else { "" }
+    )
+}
+
 /// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.
 pub fn sorted_wmes(agent: &AgentCore, id: Sym) -> Vec<Wme> {
     let mut ws: Vec<Wme> = agent
@@ -44,6 +70,7 @@ pub fn print_object_at(
     id: Sym,
     depth: usize,
     internal: bool,
+    varprint: bool,
     start_col: usize,
 ) -> String {
     let mut out = String::new();
@@ -75,7 +102,7 @@ pub fn print_object_at(
         id,
         0,
         depth,
-        internal,
+        (internal, varprint),
         &owners,
         &mut printed,
         &mut out,
@@ -90,7 +117,7 @@ fn print_rec(
     id: Sym,
     level: usize,
     depth: usize,
-    internal: bool,
+    (internal, varprint): (bool, bool),
     owners: &std::collections::HashMap<Sym, usize>,
     printed: &mut std::collections::HashSet<Sym>,
     out: &mut String,
@@ -108,30 +135,40 @@ fn print_rec(
     if internal {
         for w in &wmes {
             out.push_str(&indent);
-            out.push_str(&wme_internal(agent, w));
+            out.push_str(&wme_line(agent, w, true, varprint));
             out.push('\n');
         }
     } else {
-        let head = format!("{indent}({}", agent.symbols.text(id));
-        let mut line = head.clone();
+        let mut line = format!("{indent}({}", sym_shown(agent, id, varprint));
+        // 9.6 measures the line without the brackets `--varprint` adds (observed).
+        let mut width = indent.len() + 1 + agent.symbols.text(id).len();
         for w in &wmes {
             let item = format!(
+                " ^{} {}{}",
+                sym_shown(agent, w.attr, varprint),
+                sym_shown(agent, w.value, varprint),
+                if w.acceptable { " +" } else { "" }
+            );
+            let item_width = format!(
                 " ^{} {}{}",
                 agent.symbols.text(w.attr),
                 agent.symbols.text(w.value),
                 if w.acceptable { " +" } else { "" }
-            );
+            )
+            .len();
             // 9.6 wraps when the item would reach column 79, also before the first attribute
             // (`(I4` alone on its line); checked against the official kernel at both edges.
-            if *col + line.len() + item.len() >= 79 {
+            if *col + width + item_width >= 79 {
                 out.push_str(&line);
                 out.push('\n');
                 *col = 0;
                 // Continuation lines start 7 columns in, under the first attribute
                 // (observed).
                 line = format!("{indent}       {}", &item[1..]);
+                width = indent.len() + 7 + item_width - 1;
             } else {
                 line.push_str(&item);
+                width += item_width;
             }
         }
         line.push(')');
@@ -147,7 +184,7 @@ fn print_rec(
                     w.value,
                     level + 1,
                     depth,
-                    internal,
+                    (internal, varprint),
                     owners,
                     printed,
                     out,

@@ -121,3 +121,58 @@ fn print_wraps_from_the_stream_column_as_9_6_does() {
         assert_eq!(out(&mut i, "print I4"), expected, "{w}");
     }
 }
+
+/// What is not golden-able: the absolute path `--filename` shows, the GDS listing in
+/// rusoar's order (9.6 lists it in its rete's order), and the `production` sub-commands
+/// rusoar refuses.
+#[test]
+fn filename_gds_and_unsupported_production_commands() {
+    let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/agents");
+    let mut i = Agent::default();
+    i.set_working_directory(dir.clone());
+    i.source_text("setup", "source gds.soar\nwatch 0\nrun 5")
+        .unwrap();
+    i.take_output();
+    let path = dir.join("gds.soar").display().to_string();
+    assert_eq!(
+        output(&mut i, "print -F -n gds*propose*work"),
+        format!("{path}: gds*propose*work \n")
+    );
+    let full = output(&mut i, "print -F gds*propose*work");
+    assert!(full.starts_with(&format!("# source file: {path}\nsp {{gds*propose*work\n")));
+    let gds = output(&mut i, "print --gds -T");
+    assert!(
+        gds.contains("  For Goal  S2  (18: S1 ^flag on)\n  For Goal  S2  (19: O2 ^name work)\n"),
+        "{gds}"
+    );
+    assert!(gds.contains("  For Goal  S1  : No GDS for this goal.\n  For Goal  S2  \n                (18: S1 ^flag on)\n"), "{gds}");
+    for (cmd, msg) in [
+        (
+            "production memory-usage",
+            "production memory-usage: not supported by rusoar",
+        ),
+        (
+            "memories",
+            "production memory-usage: not supported by rusoar",
+        ),
+        (
+            "production break -s gds*propose*work",
+            "production break --set: not yet supported by rusoar",
+        ),
+        (
+            "pbreak gds*propose*work",
+            "pbreak: not yet supported by rusoar",
+        ),
+    ] {
+        let err = i.source_text("t", cmd).unwrap_err();
+        assert_eq!(err.message(), msg, "{cmd}");
+    }
+    // Excising a watched rule forgets it is watched.
+    assert_eq!(
+        output(
+            &mut i,
+            "pwatch gds*propose*work\nexcise gds*propose*work\npwatch"
+        ),
+        "1 production excised.\nNo watched productions found.\n"
+    );
+}

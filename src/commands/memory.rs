@@ -109,51 +109,6 @@ impl Interpreter {
         }
     }
 
-    /// `print <id>` and `print <timetag>` with `--depth` and `--internal`.
-    pub(super) fn print_memory(
-        &mut self,
-        ctx: &Ctx,
-        target: &str,
-        depth: usize,
-        internal: bool,
-        tree: bool,
-    ) -> CmdResult {
-        if let Some(id) = self.agent.symbols.find_id(target) {
-            if tree {
-                return Ok(super::printing::print_tree(
-                    &self.agent,
-                    id,
-                    depth,
-                    internal,
-                ));
-            }
-            return Ok(crate::trace::print_object_at(
-                &self.agent,
-                id,
-                depth,
-                internal,
-                self.print_column(),
-            ));
-        }
-        if let Ok(tt) = target.parse::<u64>() {
-            if let Some(w) = self.agent.wm.by_timetag(tt) {
-                if let Some(wme) = self.agent.wm.get(w) {
-                    return Ok(format!(
-                        "{}\n",
-                        crate::trace::wme_internal(&self.agent, wme)
-                    ));
-                }
-            }
-            return Err(ctx.error(format!("No WME with timetag {tt}.")));
-        }
-        if is_identifier_shaped(target) {
-            return Ok(format!(
-                "There is no identifier {}.",
-                target.to_ascii_uppercase()
-            ));
-        }
-        Err(super::not_yet(ctx, "print"))
-    }
 }
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words

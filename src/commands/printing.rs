@@ -4,8 +4,7 @@
 
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
-use crate::trace::{sorted_wmes, wme_internal};
-use crate::wm::Wme;
+use crate::trace::{sorted_wmes, wme_line};
 use std::collections::HashSet;
 
 /// The values of `o ^name`, as a decision line shows them: `(a b)`, or nothing.
@@ -70,25 +69,20 @@ pub fn print_stack(agent: &AgentCore, states: bool, operators: bool) -> String {
     out
 }
 
-/// `(id ^attr value[ +])`
-fn wme_plain(agent: &AgentCore, w: &Wme) -> String {
-    let s = &agent.symbols;
-    format!(
-        "({} ^{} {}{})",
-        s.text(w.id),
-        s.text(w.attr),
-        s.text(w.value),
-        if w.acceptable { " +" } else { "" }
-    )
-}
-
 /// `print --tree [--depth n] [--internal] id`: one WME per line, each identifier's WMEs
 /// right under the WME that leads to it (indented two spaces per level), each identifier
-/// expanded once.
-pub fn print_tree(agent: &AgentCore, id: Sym, depth: usize, internal: bool) -> String {
+/// expanded once; `varprint` shows identifiers as variables.
+pub fn print_tree(
+    agent: &AgentCore,
+    id: Sym,
+    depth: usize,
+    internal: bool,
+    varprint: bool,
+) -> String {
     let mut out = String::new();
     let mut seen = HashSet::from([id]);
-    tree_rec(agent, id, 0, depth.max(1), internal, &mut seen, &mut out);
+    let style = (internal, varprint);
+    tree_rec(agent, id, 0, depth.max(1), style, &mut seen, &mut out);
     out
 }
 
@@ -97,20 +91,16 @@ fn tree_rec(
     id: Sym,
     level: usize,
     depth: usize,
-    internal: bool,
+    style: (bool, bool),
     seen: &mut HashSet<Sym>,
     out: &mut String,
 ) {
     for w in sorted_wmes(agent, id) {
         out.push_str(&"  ".repeat(level));
-        out.push_str(&if internal {
-            wme_internal(agent, &w)
-        } else {
-            wme_plain(agent, &w)
-        });
+        out.push_str(&wme_line(agent, &w, style.0, style.1));
         out.push('\n');
         if level + 1 < depth && agent.symbols.is_id(w.value) && seen.insert(w.value) {
-            tree_rec(agent, w.value, level + 1, depth, internal, seen, out);
+            tree_rec(agent, w.value, level + 1, depth, style, seen, out);
         }
     }
 }

@@ -1,6 +1,6 @@
-//! `sp`, `print <rule>`, `production excise` (Soar manual, ch. 9, `sp`, `print`, `production`).
+//! `sp`, `production excise` (Soar manual, ch. 9, `sp`, `print`, `production`).
 
-use super::options::{self, opt, opt_arg};
+use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::Added;
 use crate::commands::tokenizer::WordKind;
@@ -105,155 +105,6 @@ impl Interpreter {
         }
     }
 
-    /// `print`: rules by name, `--all`/`-a` lists rule names newest first, `--stack` the goal
-    /// stack; an identifier or timetag prints working memory (`print_memory`, memory.rs).
-    pub(super) fn cmd_print(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        let specs = [
-            opt('a', "all"),
-            opt('c', "chunks"),
-            opt('D', "defaults"),
-            opt('j', "justifications"),
-            opt('u', "user"),
-            opt('r', "rl"),
-            opt('T', "template"),
-            opt('f', "full"),
-            opt('F', "filename"),
-            opt('n', "name"),
-            opt('i', "internal"),
-            opt('t', "tree"),
-            opt('e', "exact"),
-            opt('s', "stack"),
-            opt('o', "operators"),
-            opt('S', "states"),
-            opt('v', "varprint"),
-            opt('g', "gds"),
-            opt_arg('d', "depth"),
-        ];
-        // The depth is checked as the options are read, before any later bad option and
-        // before the target (9.6: `wmes`, which is `print -depth 0 -internal`, fails with
-        // the depth message).
-        let bad_depth = |p: &options::Parsed| {
-            p.value("depth")
-                .is_some_and(|d| d.parse::<usize>().is_err())
-        };
-        let parsed = match options::parse(args, &specs) {
-            Ok(p) => p,
-            Err(m) => {
-                let read_before_error = (0..args.len())
-                    .rev()
-                    .find_map(|k| options::parse(&args[..k], &specs).ok());
-                if read_before_error.as_ref().is_some_and(bad_depth) {
-                    return Err(ctx.error("Non-negative depth expected."));
-                }
-                return Err(ctx.error(m));
-            }
-        };
-        if bad_depth(&parsed) {
-            return Err(ctx.error("Non-negative depth expected."));
-        }
-        if parsed.has("stack") {
-            if !parsed.args.is_empty() {
-                return Err(ctx.error("No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack."));
-            }
-            return Ok(super::printing::print_stack(
-                &self.agent,
-                parsed.has("states"),
-                parsed.has("operators"),
-            ));
-        }
-        if parsed.has("states") || parsed.has("operators") {
-            return Err(ctx.error(
-                "Options --operators (-o) and --states (-S) are only valid when printing the stack.",
-            ));
-        }
-        if parsed.has("all")
-            || parsed.has("user")
-            || parsed.has("chunks")
-            || parsed.has("defaults")
-            || parsed.has("justifications")
-        {
-            // Newest first, each kind as its option selects (chunks, and the live
-            // justifications, which are not in the rule list).
-            let all = parsed.has("all");
-            let mut s = String::new();
-            for p in self.agent.productions().rev() {
-                let kind_wanted = if p.flags.chunk {
-                    parsed.has("chunks")
-                } else if p.flags.default {
-                    parsed.has("defaults")
-                } else {
-                    parsed.has("user")
-                };
-                if all || kind_wanted {
-                    s.push_str(&crate::printer::rereadable(&p.name));
-                    s.push_str(" \n");
-                }
-            }
-            if all || parsed.has("justifications") {
-                for j in self.agent.learn.justifications.iter().rev() {
-                    s.push_str(&j.production.name);
-                    s.push_str(" \n");
-                }
-            }
-            return Ok(s);
-        }
-        let Some(target) = parsed.args.first() else {
-            // 9.6: a bare `print` prints nothing; options without a target are a misuse.
-            if parsed.options.is_empty() {
-                return Ok(String::new());
-            }
-            return Err(ctx.error(
-                "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
-            ));
-        };
-        if parsed.args.len() > 1 {
-            // 9.6 reads several words as a WME pattern, which must start with `(`.
-            return Ok(format!(
-                "Expected '(' to begin wme pattern not string '{target}' or char ' '\n"
-            ));
-        }
-        // `print |a quoted name|`: the word keeps its pipes; the rule name does not.
-        let unquoted;
-        let target = match target.strip_prefix('|').and_then(|t| t.strip_suffix('|')) {
-            Some(inner) => {
-                unquoted = inner.replace("\\|", "|").replace("\\\\", "\\");
-                &unquoted
-            }
-            None => target,
-        };
-        if let Some(p) = self.agent.production(target) {
-            return Ok(format!("{}\n", crate::printer::production_text(p)));
-        }
-        if let Some(j) = self
-            .agent
-            .learn
-            .justifications
-            .iter()
-            .find(|j| j.production.name == *target)
-        {
-            return Ok(format!(
-                "{}\n",
-                crate::printer::production_text(&j.production)
-            ));
-        }
-        if looks_like_wm_target(target) {
-            let depth = match parsed.value("depth") {
-                Some(d) => d
-                    .parse::<usize>()
-                    .map_err(|_| ctx.error("Non-negative depth expected."))?,
-                None => self.agent.settings.print_depth,
-            };
-            return self.print_memory(
-                ctx,
-                target,
-                depth,
-                parsed.has("internal"),
-                parsed.has("tree"),
-            );
-        }
-        Ok(format!("No production named {target}"))
-    }
-
     /// `production excise NAME...|--all`, and the other `production` sub-commands' errors.
     pub(super) fn cmd_production(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         match args.first().map(String::as_str) {
@@ -261,6 +112,12 @@ impl Interpreter {
             Some("matches") => self.cmd_matches(ctx, &args[1..]),
             Some("firing-counts") => self.cmd_firing_counts(ctx, &args[1..]),
             Some("optimize-attribute") => self.cmd_optimize_attribute(ctx, &args[1..]),
+            Some("find") => self.cmd_production_find(ctx, &args[1..]),
+            Some("break") => self.cmd_production_break(ctx, &args[1..]),
+            Some("watch") => self.cmd_production_watch(ctx, &args[1..]),
+            Some("memory-usage") => Err(ctx
+                .error("production memory-usage: not supported by rusoar")
+                .with_note("9.6 counts the tokens its rete holds for each rule; rusoar's matcher keeps its partial matches differently, so it has no such counts to show")),
             Some(_) | None => Err(super::not_yet(ctx, "production")),
         }
     }
@@ -319,8 +176,13 @@ impl Interpreter {
             self.report.excised += n;
             return Ok(excised_text(n));
         }
+        if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
+            // rusoar has no reinforcement-learning rules (Soar manual, ch. 5,
+            // "Reinforcement Learning"), so there are none to excise.
+            return Ok(excised_text(0));
+        }
         if parsed.has("rl") {
-            return Err(super::not_yet(ctx, "excise --rl"));
+            return Err(super::not_yet(ctx, "excise --rl with other options"));
         }
         // The kinds of rule an option names (Soar manual, chapter 9, `excise`): `--task` is
         // every rule but the default ones.
@@ -380,14 +242,6 @@ type RuleKind = fn(&Flags) -> bool;
 /// `excise`'s result, as 9.6 words it.
 fn excised_text(n: usize) -> String {
     format!("{n} production{} excised.", if n == 1 { "" } else { "s" })
-}
-
-/// An identifier (`S1`) or a timetag: things `print` shows from working memory.
-fn looks_like_wm_target(s: &str) -> bool {
-    crate::lexer::is_identifier_shaped(s)
-        || s.parse::<u64>().is_ok()
-        || s.starts_with('<')
-        || s.starts_with('(')
 }
 
 /// The production name at the start of an `sp` body (a symbol or `|quoted|` constant), as

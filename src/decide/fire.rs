@@ -31,7 +31,8 @@ impl AgentCore {
         }
         counts[p.0 as usize] += 1;
         self.send_rule_event(p, false);
-        let traced = self.settings.trace.firings_of(&rule.flags);
+        let traced = self.settings.trace.firings_of(&rule.flags)
+            || (!self.watched_rules.is_empty() && self.watched_rules.contains(self.production_name(p)));
         if traced {
             let mut out = std::mem::take(&mut self.output);
             let event = crate::trace_events::TraceEvent::Firing {

@@ -1,0 +1,512 @@
+//! The `print` command (Soar manual, ch. 9, `print`): rules by name or by kind, the goal
+//! stack, the goal dependency sets, and working memory by identifier, timetag, context
+//! variable or WME pattern. Texts and error messages as the official 9.6 kernel prints them.
+
+use super::options::{self, opt, opt_arg};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::agent::AgentCore;
+use crate::production::Production;
+use crate::symbols::Sym;
+use crate::trace::{print_object_at, wme_line};
+use crate::wm::Wme;
+
+const NO_ARGUMENT: &str =
+    "No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack.";
+
+/// How `print` shows working memory.
+#[derive(Debug, Clone, Copy)]
+struct WmStyle {
+    depth: usize,
+    internal: bool,
+    tree: bool,
+    varprint: bool,
+    exact: bool,
+}
+
+/// How a listed or named rule is shown: `--full` or `--name` (the later one wins) and
+/// `--filename`.
+#[derive(Debug, Clone, Copy)]
+struct RuleStyle {
+    full: Option<bool>,
+    filename: bool,
+}
+
+impl Interpreter {
+    /// `print [options] [rule | identifier | timetag | context variable | (pattern)]`.
+    pub(super) fn cmd_print(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        let specs = [
+            opt('a', "all"),
+            opt('c', "chunks"),
+            opt('D', "defaults"),
+            opt('j', "justifications"),
+            opt('u', "user"),
+            opt('r', "rl"),
+            opt('T', "template"),
+            opt('f', "full"),
+            opt('F', "filename"),
+            opt('n', "name"),
+            opt('i', "internal"),
+            opt('t', "tree"),
+            opt('e', "exact"),
+            opt('s', "stack"),
+            opt('o', "operators"),
+            opt('S', "states"),
+            opt('v', "varprint"),
+            opt('g', "gds"),
+            opt_arg('d', "depth"),
+        ];
+        // The depth is checked as the options are read, before any later bad option and
+        // before the target (9.6: `wmes`, which is `print -depth 0 -internal`, fails with
+        // the depth message).
+        let bad_depth = |p: &options::Parsed| {
+            p.value("depth")
+                .is_some_and(|d| d.parse::<usize>().is_err())
+        };
+        let parsed = match options::parse(args, &specs) {
+            Ok(p) => p,
+            Err(m) => {
+                let read_before_error = (0..args.len())
+                    .rev()
+                    .find_map(|k| options::parse(&args[..k], &specs).ok());
+                if read_before_error.as_ref().is_some_and(bad_depth) {
+                    return Err(ctx.error("Non-negative depth expected."));
+                }
+                return Err(ctx.error(m));
+            }
+        };
+        if bad_depth(&parsed) {
+            return Err(ctx.error("Non-negative depth expected."));
+        }
+        if parsed.has("exact") && (parsed.has("depth") || parsed.has("tree")) {
+            return Err(ctx.error("No depth/tree flags allowed when printing exact."));
+        }
+        if parsed.has("stack") {
+            if !parsed.args.is_empty() {
+                return Err(ctx.error(NO_ARGUMENT));
+            }
+            return Ok(super::printing::print_stack(
+                &self.agent,
+                parsed.has("states"),
+                parsed.has("operators"),
+            ));
+        }
+        if parsed.has("states") || parsed.has("operators") {
+            return Err(ctx.error(
+                "Options --operators (-o) and --states (-S) are only valid when printing the stack.",
+            ));
+        }
+        if parsed.args.is_empty() && (parsed.has("depth") || parsed.has("tree")) {
+            return Err(ctx.error(
+                "Syntax: print [options] [production_name]\nprint [options] identifier|timetag|pattern",
+            ));
+        }
+        let rule_style = RuleStyle {
+            // `--internal` lists rules in full too (observed on 9.6).
+            full: parsed
+                .options
+                .iter()
+                .rev()
+                .find_map(|(o, _)| match *o {
+                    "full" => Some(true),
+                    "name" => Some(false),
+                    _ => None,
+                })
+                .or(parsed.has("internal").then_some(true)),
+            filename: parsed.has("filename"),
+        };
+        let kinds = ["all", "user", "chunks", "defaults", "justifications", "rl", "template"];
+        let listing = kinds.iter().any(|k| parsed.has(k));
+        let mut out = String::new();
+        if parsed.has("gds") {
+            if !parsed.args.is_empty() {
+                return Err(ctx.error(NO_ARGUMENT));
+            }
+            out.push_str(&gds_listing(&self.agent));
+        }
+        if listing && !parsed.args.is_empty() {
+            return Err(ctx.error(NO_ARGUMENT));
+        }
+        if parsed.args.is_empty() {
+            // With no kind named, every rule (9.6: `print` alone is `print --all`).
+            let wanted = |k: &str| !listing || parsed.has("all") || parsed.has(k);
+            out.push_str(&self.rule_listing(&wanted, rule_style));
+            return Ok(out);
+        }
+        let style = WmStyle {
+            depth: match parsed.value("depth") {
+                Some(d) => d
+                    .parse::<usize>()
+                    .map_err(|_| ctx.error("Non-negative depth expected."))?,
+                None => self.agent.settings.print_depth,
+            },
+            internal: parsed.has("internal"),
+            tree: parsed.has("tree"),
+            varprint: parsed.has("varprint"),
+            exact: parsed.has("exact"),
+        };
+        if parsed.args.len() > 1 || parsed.args[0].starts_with('(') {
+            // Several words are one WME pattern.
+            return Ok(self.print_pattern(&parsed.args.join(" "), style));
+        }
+        let target = &parsed.args[0];
+        // `print |a quoted name|`: the word keeps its pipes; the rule name does not.
+        let unquoted;
+        let name = match target.strip_prefix('|').and_then(|t| t.strip_suffix('|')) {
+            Some(inner) => {
+                unquoted = inner.replace("\\|", "|").replace("\\\\", "\\");
+                &unquoted
+            }
+            None => target,
+        };
+        if let Some(p) = self.agent.production(name) {
+            return Ok(self.rule_text(p, rule_style, true));
+        }
+        if let Some(j) = self
+            .agent
+            .learn
+            .justifications
+            .iter()
+            .find(|j| j.production.name == *name)
+        {
+            return Ok(self.rule_text(&j.production, rule_style, true));
+        }
+        if let Some(var) = target.strip_prefix('<').and_then(|t| t.strip_suffix('>')) {
+            return Ok(match context_variable(&self.agent, var) {
+                Ok(Some(id)) => self.print_id(id, style),
+                Ok(None) => format!("There is no current <{var}>.\n"),
+                Err(()) => "Expected identifier (or context variable)\n".to_string(),
+            });
+        }
+        if let Some(id) = self.agent.symbols.find_id(target) {
+            return Ok(self.print_id(id, style));
+        }
+        if let Ok(tt) = target.parse::<u64>() {
+            // A timetag prints the object its WME belongs to.
+            let id = self
+                .agent
+                .wm
+                .by_timetag(tt)
+                .and_then(|w| self.agent.wm.get(w))
+                .map(|w| w.id);
+            return Ok(match id {
+                Some(id) => self.print_id(id, style),
+                None => format!("No wme {tt} in working memory."),
+            });
+        }
+        if crate::lexer::is_identifier_shaped(target) {
+            return Ok(format!(
+                "There is no identifier {}.",
+                target.to_ascii_uppercase()
+            ));
+        }
+        Ok(format!("No production named {target}\n"))
+    }
+
+    /// An object: `--exact` and `--internal` show one WME per line, `--tree` one WME per
+    /// line under the WME leading to it, else the object with `--depth` levels below it.
+    fn print_id(&self, id: Sym, style: WmStyle) -> String {
+        let agent = &self.agent;
+        if style.tree {
+            return super::printing::print_tree(
+                agent,
+                id,
+                style.depth,
+                style.internal,
+                style.varprint,
+            );
+        }
+        print_object_at(
+            agent,
+            id,
+            style.depth,
+            style.internal,
+            style.varprint,
+            self.print_column(),
+        )
+    }
+
+    /// `print (id ^attr value [+])`: each WME that matches, with `--exact` alone, else the
+    /// object it belongs to, once per WME. A malformed pattern prints 9.6's message.
+    fn print_pattern(&self, text: &str, style: WmStyle) -> String {
+        let pattern = match parse_pattern(&self.agent, text) {
+            Ok(p) => p,
+            Err(message) => return format!("{message}\n"),
+        };
+        let mut out = String::new();
+        for w in self.agent.wm.all() {
+            let Some(wme) = self.agent.wm.get(w) else {
+                continue;
+            };
+            if !pattern.matches(wme) {
+                continue;
+            }
+            if style.exact {
+                out.push_str(&wme_line(&self.agent, wme, style.internal, style.varprint));
+                out.push('\n');
+            } else {
+                out.push_str(&self.print_id(wme.id, style));
+            }
+        }
+        out
+    }
+
+    /// The rules of the kinds `wanted` selects, newest first, then the justifications.
+    fn rule_listing(&self, wanted: &dyn Fn(&str) -> bool, style: RuleStyle) -> String {
+        let mut s = String::new();
+        for p in self.agent.productions().rev() {
+            let kind = if p.flags.chunk {
+                "chunks"
+            } else if p.flags.default {
+                "defaults"
+            } else if p.flags.template {
+                "template"
+            } else {
+                "user"
+            };
+            // A template rule is also listed with the user rules.
+            if wanted(kind) || (kind == "template" && wanted("user")) {
+                s.push_str(&self.rule_text(p, style, false));
+            }
+        }
+        if wanted("justifications") {
+            for j in self.agent.learn.justifications.iter().rev() {
+                s.push_str(&self.rule_text(&j.production, style, false));
+            }
+        }
+        s
+    }
+
+    /// One rule: its text (`--full`, the default for a rule named alone), or its name;
+    /// `--filename` adds the file it was loaded from.
+    fn rule_text(&self, p: &Production, style: RuleStyle, named: bool) -> String {
+        let file = || self.rule_file(p);
+        if style.full.unwrap_or(named) {
+            let mut s = String::new();
+            if style.filename {
+                s.push_str(&format!("# source file: {}\n", file()));
+            }
+            s.push_str(&crate::printer::production_text(p));
+            s.push('\n');
+            s
+        } else {
+            // Justifications are listed by their bare names.
+            let name = if self.agent.production(&p.name).is_some() {
+                crate::printer::rereadable(&p.name)
+            } else {
+                p.name.clone()
+            };
+            if style.filename {
+                format!("{}: {name} \n", file())
+            } else {
+                format!("{name} \n")
+            }
+        }
+    }
+
+    /// The file a rule was sourced from, or 9.6's `_unknown_` for one typed or learned.
+    fn rule_file(&self, p: &Production) -> String {
+        let name = self.sources.name(p.span.file);
+        if self
+            .report
+            .per_file
+            .contains_key(std::path::Path::new(name))
+        {
+            name.to_string()
+        } else {
+            "_unknown_".to_string()
+        }
+    }
+}
+
+/// `<s>`, `<o>`, `<ss>`, `<so>`, `<ts>`: the bottom state, its operator, the state above it
+/// and that state's operator, the top state. `Ok(None)` when there is none; `Err` for any
+/// other variable.
+fn context_variable(agent: &AgentCore, var: &str) -> Result<Option<Sym>, ()> {
+    let goals = &agent.decider.goals;
+    let bottom = goals.last();
+    let above = goals.len().checked_sub(2).and_then(|i| goals.get(i));
+    Ok(match var.to_ascii_lowercase().as_str() {
+        "s" => Some(bottom.map_or(agent.top.state, |g| g.state)),
+        "o" => bottom.and_then(|g| g.operator).map(|(o, _)| o),
+        "ss" => above.map(|g| g.state),
+        "so" => above.and_then(|g| g.operator).map(|(o, _)| o),
+        "ts" => Some(agent.top.state),
+        _ => return Err(()),
+    })
+}
+
+/// One field of a WME pattern: `*`, or a symbol (`None` when no such symbol exists, so
+/// nothing matches).
+#[derive(Debug, Clone, Copy)]
+enum Field {
+    Any,
+    Is(Option<Sym>),
+}
+
+impl Field {
+    fn matches(self, s: Sym) -> bool {
+        match self {
+            Field::Any => true,
+            Field::Is(x) => x == Some(s),
+        }
+    }
+}
+
+struct Pattern {
+    id: Field,
+    attr: Field,
+    value: Field,
+    acceptable: bool,
+}
+
+impl Pattern {
+    fn matches(&self, w: &Wme) -> bool {
+        self.id.matches(w.id)
+            && self.attr.matches(w.attr)
+            && self.value.matches(w.value)
+            && self.acceptable == w.acceptable
+    }
+}
+
+/// The words of a pattern: `(`, `)`, `^` and `+` alone, other runs of characters whole.
+fn pattern_tokens(text: &str) -> Vec<String> {
+    let mut toks = Vec::new();
+    let mut cur = String::new();
+    for c in text.chars() {
+        if c.is_whitespace() || "()^".contains(c) {
+            if !cur.is_empty() {
+                toks.push(std::mem::take(&mut cur));
+            }
+            if !c.is_whitespace() {
+                toks.push(c.to_string());
+            }
+        } else {
+            cur.push(c);
+        }
+    }
+    if !cur.is_empty() {
+        toks.push(cur);
+    }
+    toks
+}
+
+/// Reads `(id ^attr value [+])` with 9.6's messages for what is missing.
+fn parse_pattern(agent: &AgentCore, text: &str) -> Result<Pattern, String> {
+    let toks = pattern_tokens(text);
+    let mut it = toks.iter().map(String::as_str).peekable();
+    match it.next() {
+        Some("(") => {}
+        Some(other) => {
+            return Err(format!(
+                "Expected '(' to begin wme pattern not string '{other}' or char ' '"
+            ))
+        }
+        None => return Err("Expected '(' to begin wme pattern".into()),
+    }
+    let id = field(agent, it.next())?;
+    if it.next() != Some("^") {
+        return Err("Expected ^ in wme pattern".into());
+    }
+    let attr = field(agent, it.next())?;
+    let value = field(agent, it.next())?;
+    let acceptable = it.next_if_eq(&"+").is_some();
+    if it.next() != Some(")") || it.next().is_some() {
+        return Err("Expected ')' to end wme pattern".into());
+    }
+    Ok(Pattern {
+        id,
+        attr,
+        value,
+        acceptable,
+    })
+}
+
+fn field(agent: &AgentCore, tok: Option<&str>) -> Result<Field, String> {
+    const NOT_A_SYMBOL: &str = "Expected identifier or constant in wme pattern";
+    let Some(tok) = tok else {
+        return Err(NOT_A_SYMBOL.into());
+    };
+    if tok == "*" {
+        return Ok(Field::Any);
+    }
+    if matches!(tok, "(" | ")" | "^" | "+") || tok.contains('.') && tok.parse::<f64>().is_err()
+    {
+        return Err(NOT_A_SYMBOL.into());
+    }
+    if let Some(var) = tok.strip_prefix('<').and_then(|t| t.strip_suffix('>')) {
+        return match context_variable(agent, var) {
+            Ok(Some(s)) => Ok(Field::Is(Some(s))),
+            Ok(None) => Err(format!("There is no current <{var}>.")),
+            Err(()) => Err("Expected identifier (or context variable)".into()),
+        };
+    }
+    let symbols = &agent.symbols;
+    if crate::lexer::is_identifier_shaped(tok) {
+        return Ok(Field::Is(symbols.find_id(tok)));
+    }
+    let constant = if crate::lexer::is_int_lexeme(tok) {
+        tok.parse::<i64>().ok().map(crate::ast::Constant::Int)
+    } else {
+        None
+    };
+    let constant = constant.or_else(|| {
+        tok.parse::<f64>()
+            .ok()
+            .filter(|_| tok.contains('.'))
+            .map(crate::ast::Constant::Float)
+    });
+    let constant = constant.unwrap_or_else(|| {
+        let s = tok
+            .strip_prefix('|')
+            .and_then(|t| t.strip_suffix('|'))
+            .unwrap_or(tok);
+        crate::ast::Constant::Str(s.to_string())
+    });
+    Ok(Field::Is(symbols.find_constant(&constant)))
+}
+
+/// `print --gds`: each WME of a goal dependency set, then each goal's set (9.6 lists both in
+/// its rete's order; rusoar by timetag).
+fn gds_listing(agent: &AgentCore) -> String {
+    let mut s = String::from(
+        "********************* Current GDS **************************\nstepping thru all wmes in rete, looking for any that are in a gds...\n",
+    );
+    let mut members: Vec<(Wme, Sym)> = agent
+        .decider
+        .gds
+        .iter()
+        .filter_map(|(w, g)| agent.wm.get(*w).map(|x| (*x, *g)))
+        .collect();
+    members.sort_by_key(|(w, _)| w.timetag);
+    for (w, g) in &members {
+        s.push_str(&format!(
+            "  For Goal  {}  {}\n",
+            agent.symbols.text(*g),
+            wme_line(agent, w, true, false)
+        ));
+    }
+    s.push_str("************************************************************\n");
+    let goals: Vec<Sym> = if agent.decider.goals.is_empty() {
+        vec![agent.top.state]
+    } else {
+        agent.decider.goals.iter().map(|g| g.state).collect()
+    };
+    for g in goals {
+        let mine: Vec<&Wme> = members
+            .iter()
+            .filter(|(_, x)| *x == g)
+            .map(|(w, _)| w)
+            .collect();
+        let name = agent.symbols.text(g);
+        if mine.is_empty() {
+            s.push_str(&format!("  For Goal  {name}  : No GDS for this goal.\n"));
+        } else {
+            s.push_str(&format!("  For Goal  {name}  \n"));
+            for w in mine {
+                s.push_str(&format!("                {}\n", wme_line(agent, w, true, false)));
+            }
+        }
+    }
+    s.push_str("************************************************************\n");
+    s
+}
