@@ -12,6 +12,8 @@ impl Interpreter {
         match args.first().map(String::as_str) {
             Some("add") => self.cmd_wm_add(ctx, &args[1..]),
             Some("remove") => self.cmd_wm_remove(ctx, &args[1..]),
+            // 9.6's text, its spelling included.
+            None => Err(ctx.error("The 'wm' commands contains commands and settings related to working memomory: add, remove, activation and watch.")),
             _ => Err(super::not_yet(ctx, "wm")),
         }
     }
@@ -52,7 +54,7 @@ impl Interpreter {
     /// `wm remove <timetag>`: an unknown timetag does nothing, as in 9.6.
     fn cmd_wm_remove(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let Some(tt) = args.first().and_then(|a| a.parse::<u64>().ok()) else {
-            return Err(ctx.error("Syntax: wm remove timetag"));
+            return Err(ctx.error("Syntax: wm remove <time-tag>"));
         };
         if let Some(w) = self.agent.wm.by_timetag(tt) {
             self.agent.remove_wme(w);

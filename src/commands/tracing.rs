@@ -428,7 +428,7 @@ fn trace_listing(t: &TraceFlags, learning: u8) -> String {
         match t.wme_detail {
             WmeDetail::None => "none",
             WmeDetail::Timetags => "timetag",
-            WmeDetail::Full => "full",
+            WmeDetail::Full => "full detail",
         },
         "--nowmes, --timetags, --fullwmes",
     ));
@@ -443,7 +443,7 @@ fn trace_listing(t: &TraceFlags, learning: u8) -> String {
         "Rules learned (verbosity level)",
         match learning {
             0 => "none (0)",
-            1 => "rule names (1)",
+            1 => "rule name (1)",
             _ => "full rules (2)",
         },
         "-L, --learning [0-2]",
