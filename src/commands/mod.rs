@@ -504,7 +504,7 @@ impl Interpreter {
             "dirs" => Ok(self.cmd_dirs()),
             "ls" => self.cmd_ls(&ctx),
             "echo" => Ok(cmd_echo(args)),
-            "alias" => self.cmd_alias(&ctx, args),
+            "alias" => self.cmd_alias(args),
             "learn" => self.cmd_learn(&ctx, args),
             "chunk" => self.cmd_chunk(&ctx, args),
             "soar" => self.cmd_soar(&ctx, args),

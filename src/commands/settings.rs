@@ -350,7 +350,7 @@ impl Interpreter {
         s
     }
 
-    pub(super) fn cmd_alias(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+    pub(super) fn cmd_alias(&mut self, args: &[String]) -> CmdResult {
         match args {
             [] => Ok(self.aliases.listing()),
             // 9.6 removes or shows an alias that does not exist without a word.
