@@ -48,9 +48,24 @@ fn value_number(v: f64) -> String {
 
 impl Interpreter {
     pub(super) fn cmd_preferences(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
-        let specs = [opt('n', "names"), opt('w', "wmes")];
+        let specs = [
+            opt('n', "names"),
+            opt('w', "wmes"),
+            opt('t', "timetags"),
+            opt('o', "object"),
+        ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
-        let names = parsed.has("names") || parsed.has("wmes");
+        // 9.6's listings of the matched WMEs and of a whole object are not built yet.
+        for (option, shown) in [
+            ("wmes", "preferences --wmes"),
+            ("timetags", "preferences --timetags"),
+            ("object", "preferences --object"),
+        ] {
+            if parsed.has(option) {
+                return Err(super::not_yet(ctx, shown));
+            }
+        }
+        let names = parsed.has("names");
         let agent = &mut self.agent;
         let id = match parsed.args.first() {
             Some(text) => agent
@@ -94,9 +109,14 @@ impl Interpreter {
                     "  This is probably an io- or arch-wme and does not have preferences\n".into(),
                 );
             }
+            // The id as typed (9.6 does not upper-case it here).
+            let typed = parsed
+                .args
+                .first()
+                .cloned()
+                .unwrap_or_else(|| agent.symbols.text(id));
             return Err(ctx.error(format!(
-                "Could not find prefs for the id,attribute pair: {} {attr_text}\nAn Error occured trying to print the prefs.",
-                agent.symbols.text(id)
+                "Could not find prefs for the id,attribute pair: {typed} {attr_text}\nAn Error occured trying to print the prefs."
             )));
         }
         let context = attr_text == "operator" && agent.symbols.is_goal(id);

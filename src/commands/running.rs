@@ -52,6 +52,9 @@ impl Interpreter {
             opt('g', "goal"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        if parsed.has("goal") {
+            return Err(super::not_yet(ctx, "run --goal"));
+        }
         if parsed.args.len() > 1 {
             return Err(ctx.error(
                 "Syntax: run  [-f|count]\nrun -[d|e|o|p][s][un][g] [f|count]\nrun -[d|e|o|p][un] count [-i e|p|d|o]",
