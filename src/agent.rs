@@ -539,6 +539,8 @@ pub struct AgentCore {
     /// (9.6 starts some trace lines on a fresh line only).
     pub output_line_start: bool,
     /// The default trace listener: writes the trace events as 9.6's text into `output`.
+    /// Set from outside (Ctrl-C) to stop a run within its current elaboration cycle.
+    pub(crate) interrupt: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     pub(crate) trace_text: crate::trace_text::TraceText96,
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
@@ -594,6 +596,7 @@ impl AgentCore {
             rng: crate::rng::Mt19937::default(),
             output: String::new(),
             output_line_start: false,
+            interrupt: None,
             trace_text: crate::trace_text::TraceText96,
             removed_wmes: None,
             substate_removals: Vec::new(),

@@ -249,3 +249,42 @@ fn input_handles_survive_init_soar() {
     agent.io().update(sensor, 2).unwrap();
     assert_eq!(agent.io().value(sensor).unwrap(), Value::Int(2));
 }
+
+/// An apply phase that never ends (each firing makes the next match, under a huge
+/// max-elaborations) stops within an elaboration cycle of the interrupt, and goes on at the
+/// next run.
+#[test]
+fn an_interrupt_stops_an_endless_phase() {
+    let mut agent = Agent::default();
+    agent
+        .source_text(
+            "t",
+            "soar max-elaborations 30000000\n\
+             sp {propose (state <s> ^superstate nil) --> (<s> ^operator <o> +) (<o> ^name count)}\n\
+             sp {start (state <s> ^superstate nil) --> (<s> ^n 0)}\n\
+             sp {apply (state <s> ^operator.name count ^n <n>) --> (<s> ^n <n> - (+ <n> 1) +)}\n",
+        )
+        .unwrap();
+    let flag = agent.interrupt_flag();
+    let setter = std::thread::spawn(move || {
+        std::thread::sleep(std::time::Duration::from_millis(300));
+        flag.store(true, std::sync::atomic::Ordering::SeqCst);
+    });
+    let started = std::time::Instant::now();
+    let run = agent.run(1, RunUnit::Forever).unwrap();
+    setter.join().unwrap();
+    assert_eq!(run.stop, StopReason::Interrupted);
+    assert!(started.elapsed() < std::time::Duration::from_secs(20));
+    let firings = agent.firings();
+    assert!(firings > 2, "{firings}");
+    // The flag is cleared: the next run goes on in the same phase.
+    let flag = agent.interrupt_flag();
+    let setter = std::thread::spawn(move || {
+        std::thread::sleep(std::time::Duration::from_millis(100));
+        flag.store(true, std::sync::atomic::Ordering::SeqCst);
+    });
+    let again = agent.run(1, RunUnit::Forever).unwrap();
+    setter.join().unwrap();
+    assert_eq!(again.stop, StopReason::Interrupted);
+    assert!(agent.firings() > firings);
+}

@@ -287,17 +287,24 @@ pub fn run(agent: &mut Agent) -> bool {
         let _ = editor.load_history(h);
     }
 
-    // Ctrl-C while a command runs: the handler sets the flag and `run` stops at the next
-    // decision. At the prompt the terminal is in raw mode and rustyline sees Ctrl-C itself.
+    // Ctrl-C while a command runs: the handler sets the flag and `run` stops within the
+    // current elaboration cycle. At the prompt the terminal is in raw mode and rustyline
+    // sees Ctrl-C itself.
     let interrupt = agent.interrupt_flag();
     {
         let flag = Arc::clone(&interrupt);
-        // A second Ctrl-C before the run has stopped (a decision that never ends) leaves.
+        // Only a third Ctrl-C before the run has stopped (a firing that never ends) leaves.
+        let pressed = std::sync::atomic::AtomicU8::new(0);
         let handler = move || {
-            if flag.swap(true, Ordering::SeqCst) {
-                eprintln!("\nInterrupted twice: leaving rusoar.");
+            if !flag.swap(true, Ordering::SeqCst) {
+                pressed.store(1, Ordering::SeqCst);
+                return;
+            }
+            if pressed.fetch_add(1, Ordering::SeqCst) >= 2 {
+                eprintln!("\nInterrupted three times: leaving rusoar.");
                 std::process::exit(130);
             }
+            eprintln!("\nStopping at the end of the current elaboration cycle; Ctrl-C once more leaves rusoar.");
         };
         if let Err(e) = ctrlc::set_handler(handler) {
             eprintln!("warning: Ctrl-C will not interrupt a run ({e})");

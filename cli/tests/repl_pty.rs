@@ -84,9 +84,13 @@ fn a_session_in_a_pseudo_terminal() {
     assert!(decisions > 3, "the run stopped at once: {count}");
     // Still alive: the prompt counts the decisions run, and commands still work.
     let (_, prompt) = p.exp_regex(r"soar \d+> ").unwrap();
-    // The run started in cycle 1, so 9.6's count is the cycle counter itself, which is one
-    // ahead of the decisions made after a stop at the end of a cycle.
-    assert_eq!(prompt, format!("soar {}> ", decisions - 1), "after {count}");
+    // The run started in cycle 1, so 9.6's count is the cycle counter itself: one ahead of
+    // the decisions made when the run stops after the decision phase of a cycle, equal to
+    // them when it stops (within an elaboration cycle) before it.
+    assert!(
+        prompt == format!("soar {}> ", decisions - 1) || prompt == format!("soar {decisions}> "),
+        "{prompt} after {count}"
+    );
     p.send_line("echo still here").unwrap();
     p.exp_string("still here").unwrap();
 

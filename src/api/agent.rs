@@ -365,9 +365,10 @@ impl Agent {
         total
     }
 
-    /// A flag that stops a run at the end of the current decision when set from anywhere
-    /// (a Ctrl-C handler, another thread); the run reports [`StopReason::Interrupted`] and
-    /// clears it.
+    /// A flag that stops a run when set from anywhere (a Ctrl-C handler, another thread):
+    /// within the current elaboration cycle, even in a phase that would go on for ever
+    /// (the phase goes on at the next run). The run reports [`StopReason::Interrupted`] and
+    /// clears the flag.
     pub fn interrupt_flag(&mut self) -> Arc<AtomicBool> {
         let flag = self
             .interrupt

@@ -187,10 +187,11 @@ impl Interpreter {
         self.print_col.get()
     }
 
-    /// A flag that, once set, stops the current `run` after the decision cycle's output
-    /// phase (through the `soar stop` mechanism); the run then reports `Interrupted.` and
-    /// clears the flag. The REPL's Ctrl-C handler sets it.
+    /// A flag that, once set, stops the current `run` after the elaboration cycle it is in
+    /// (the phase goes on at the next run); the run then reports `Interrupted.` and clears
+    /// the flag. The REPL's Ctrl-C handler sets it.
     pub fn set_interrupt(&mut self, flag: Arc<AtomicBool>) {
+        self.agent.interrupt = Some(Arc::clone(&flag));
         self.interrupt = Some(flag);
     }
 

@@ -167,6 +167,19 @@ impl AgentCore {
         }
     }
 
+    /// The interrupt flag is set (Ctrl-C, [`crate::Agent::interrupt_flag`]): the run stops
+    /// after the current elaboration cycle, and the phase goes on at the next run.
+    fn interrupt_requested(&mut self) -> bool {
+        let set = self
+            .interrupt
+            .as_ref()
+            .is_some_and(|f| f.load(std::sync::atomic::Ordering::Relaxed));
+        if set {
+            self.decider.stop_requested = true;
+        }
+        set
+    }
+
     /// A sample of the WM size for `stats`, taken at the end of each phase.
     fn sample_wm_size(&mut self) {
         let n = self.wm.len() as u64;
@@ -201,7 +214,10 @@ impl AgentCore {
                     if self.max_elaborations_reached(Phase::Decide) {
                         break;
                     }
-                    if one_cycle && self.has_pending(false) && !self.decider.halted {
+                    if (one_cycle || self.interrupt_requested())
+                        && self.has_pending(false)
+                        && !self.decider.halted
+                    {
                         return;
                     }
                 }
@@ -235,7 +251,10 @@ impl AgentCore {
                     if self.max_elaborations_reached(Phase::Output) {
                         break;
                     }
-                    if one_cycle && self.has_pending(true) && !self.decider.halted {
+                    if (one_cycle || self.interrupt_requested())
+                        && self.has_pending(true)
+                        && !self.decider.halted
+                    {
                         return;
                     }
                 }
