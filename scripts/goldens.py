@@ -123,6 +123,7 @@ TRACE_AGENTS = [
     "support-declared",
     "support-retraction",
     "wait-snc",
+    "vs-sort",
     "water-jug",
     "long/factorization",
     "long/fifteen-puzzle",
