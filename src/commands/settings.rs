@@ -23,6 +23,7 @@ impl Interpreter {
     /// (9.6 reads it as `-o -f -f` and aborts the load).
     pub(super) fn cmd_learn(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let mut args = args.to_vec();
+        let soar8_except = args.iter().any(|a| a == "-except");
         for (i, a) in args.iter_mut().enumerate() {
             if let Some((old, new)) = LEARN_SOAR8.iter().find(|(old, _)| a == old) {
                 let nine_six = match *new {
@@ -58,6 +59,16 @@ impl Interpreter {
             opt('P', "no-desirability-prefs"),
         ];
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
+        // 9.6 passes `--except` on as a setting `chunk` rejects; Soar 8's `-except` meant
+        // `chunk except`, which is what it gets.
+        if parsed.has("except") && !soar8_except {
+            return Err(ctx.error(
+                "Invalid argument for chunking command. Use 'chunk ?' to see a list of valid settings.",
+            ));
+        }
+        let deprecated = |chunk: &str| {
+            format!("Warning:  'learn' has been deprecated.  New corresponding command is: chunk{chunk}\n")
+        };
         // 9.6 applies the given modes in a fixed order, whatever the order on the line
         // (`learn -de` and `learn -ed` both end "never"), reporting each one.
         let mut text = String::new();
@@ -69,15 +80,37 @@ impl Interpreter {
         ] {
             if names.iter().any(|n| parsed.has(n)) {
                 self.agent.settings.learn = mode;
-                text.push_str(&format!(
-                    "learn is now {}\nWarning:  'learn' has been deprecated.  New corresponding command is: chunk {}\n",
-                    mode.word(),
-                    mode.word()
-                ));
+                text.push_str(&format!("learn is now {}\n", mode.word()));
+                text.push_str(&deprecated(&format!(" {}", mode.word())));
             }
         }
+        // The other options become `chunk` settings; 9.6 echoes only some of them.
+        let c = &mut self.agent.settings.chunk;
+        for (option, switch, on, echoed) in [
+            ("all-levels", "bottom-only", false, true),
+            ("bottom-up", "bottom-only", true, true),
+            ("local-negations", "allow-local-negations", true, true),
+            ("no-local-negations", "allow-local-negations", false, false),
+            ("desirability-prefs", "add-osk", true, false),
+            ("no-desirability-prefs", "add-osk", false, false),
+        ] {
+            if !parsed.has(option) {
+                continue;
+            }
+            if let Some(slot) = c.switch(switch) {
+                *slot = on;
+            }
+            let word = if on { "on" } else { "off" };
+            if echoed {
+                text.push_str(&format!("{switch} is now {word}\n"));
+            }
+            text.push_str(&deprecated(&format!(" {switch} {word}")));
+        }
         if text.is_empty() {
-            return Ok(format!("learn is {}\n", self.agent.settings.learn.word()));
+            // `learn` and `learn --list`: the chunking summary.
+            let mut summary = super::chunk_listing::summary(&self.agent);
+            summary.push_str(&deprecated(""));
+            return Ok(summary);
         }
         Ok(text)
     }
