@@ -465,11 +465,23 @@ impl AgentCore {
             .is_some_and(|p| self.settings.trace.firings_of(&p.flags));
         if traced {
             self.emit(&TraceEvent::Retraction { rule: &name });
-            let (p, t) = {
-                let i = &self.decider.insts[inst];
-                (i.prod, i.token)
-            };
-            self.trace_match_wmes(p, t);
+            // The WMEs it fired on, as listed then: the match's token is gone by now.
+            match self.decider.traced_match_wmes.remove(&inst) {
+                Some(wmes) => self.emit_match_wmes(&wmes, true),
+                None => {
+                    let (p, t) = {
+                        let i = &self.decider.insts[inst];
+                        (i.prod, i.token)
+                    };
+                    let wmes: Vec<Wme> = self
+                        .rete
+                        .match_wmes(p, t)
+                        .into_iter()
+                        .filter_map(|w| self.wm.get(w).copied())
+                        .collect();
+                    self.emit_match_wmes(&wmes, true);
+                }
+            }
             let prefs = self.decider.insts[inst].prefs.clone();
             self.trace_instantiation_prefs(&prefs);
         }
@@ -515,6 +527,17 @@ impl AgentCore {
             };
             self.write_event(&mut out, &event);
             self.output = out;
+            if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {
+                // The WMEs it was built on (kept when it was made), then its preferences.
+                let wmes = self
+                    .decider
+                    .traced_match_wmes
+                    .remove(&inst)
+                    .unwrap_or_default();
+                self.emit_match_wmes(&wmes, true);
+                let prefs = self.decider.insts[inst].prefs.clone();
+                self.trace_instantiation_prefs(&prefs);
+            }
         }
         self.trace_retracted_prefs(inst);
     }
@@ -600,10 +623,15 @@ impl AgentCore {
     /// or one ` (16: S1 ^operator O1)` a line, then ` -->`. (9.6 lists them in its
     /// reordered condition order, ours in the written order; and its `--fullwmes` prints
     /// some as `WME with time tag 16`.)
-    pub(crate) fn trace_match_wmes(&mut self, p: crate::rete::ProdId, t: crate::rete::TokId) {
+    /// Returns the WMEs listed, for the retraction to list again.
+    pub(crate) fn trace_match_wmes(
+        &mut self,
+        p: crate::rete::ProdId,
+        t: crate::rete::TokId,
+    ) -> Vec<Wme> {
         let detail = self.settings.trace.wme_detail;
         if detail == crate::agent::WmeDetail::None {
-            return;
+            return Vec::new();
         }
         let wmes: Vec<Wme> = self
             .rete
@@ -611,10 +639,19 @@ impl AgentCore {
             .into_iter()
             .filter_map(|w| self.wm.get(w).copied())
             .collect();
-        self.emit(&TraceEvent::MatchWmes {
-            wmes: &wmes,
-            full: detail == crate::agent::WmeDetail::Full,
-        });
+        self.emit_match_wmes(&wmes, false);
+        wmes
+    }
+
+    fn emit_match_wmes(&mut self, wmes: &[Wme], retracting: bool) {
+        let detail = self.settings.trace.wme_detail;
+        if detail != crate::agent::WmeDetail::None {
+            self.emit(&TraceEvent::MatchWmes {
+                wmes,
+                full: detail == crate::agent::WmeDetail::Full,
+                retracting,
+            });
+        }
     }
 
     /// The instantiation's preferences, one a line, newest first (with `--timetags` or
@@ -623,11 +660,12 @@ impl AgentCore {
         if self.settings.trace.wme_detail == crate::agent::WmeDetail::None {
             return;
         }
-        // Without its instantiation: at its identifier's level, with no rule.
+        // At the level of the goal its instantiation matched (a result made in a substate
+        // says `[level 2]`, as in 9.6), with no rule.
         let mut out = std::mem::take(&mut self.output);
         for &pid in prefs.iter().rev() {
             let pref = &self.decider.prefs[pid];
-            let level = self.symbols.id_data(pref.id).map_or(1, |d| d.level);
+            let level = pref_level(self, pref);
             self.write_event(&mut out, &TraceEvent::InstantiationPreference { pref, level });
         }
         self.output = out;

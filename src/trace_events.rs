@@ -42,7 +42,11 @@ pub(crate) enum TraceEvent<'a> {
     Retraction { rule: &'a str },
     /// The WMEs a traced firing or retraction matched: timetags only, or in `full`
     /// (`trace --timetags`, `--fullwmes`).
-    MatchWmes { wmes: &'a [Wme], full: bool },
+    MatchWmes {
+        wmes: &'a [Wme],
+        full: bool,
+        retracting: bool,
+    },
     /// A selected operator leaves its slot because its proposal no longer matches
     /// (`trace --consistency`).
     OperatorRemoval { wme: Option<&'a Wme> },

@@ -75,14 +75,24 @@ impl TraceText96 {
             TraceEvent::Retraction { rule } => {
                 let _ = write!(out, "\nRetracting {rule}\n");
             }
-            TraceEvent::MatchWmes { wmes, full } => {
+            TraceEvent::MatchWmes {
+                wmes,
+                full,
+                retracting,
+            } => {
+                // 9.6's `--fullwmes` prints a firing's WMEs on substates' objects whole and
+                // names the others, and all of a retraction's, by their timetags (observed
+                // on every agent compared).
                 for w in wmes {
-                    out.push(' ');
-                    if full {
+                    let top_level = symbols.id_data(w.id).is_none_or(|d| d.level <= 1);
+                    if full && (top_level || retracting) {
+                        let _ = writeln!(out, "WME with time tag {}", w.timetag);
+                    } else if full {
+                        out.push(' ');
                         wme_text(out, symbols, w);
                         out.push('\n');
                     } else {
-                        let _ = write!(out, "{}", w.timetag);
+                        let _ = write!(out, " {}", w.timetag);
                     }
                 }
                 out.push_str(" -->\n");

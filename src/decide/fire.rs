@@ -31,6 +31,7 @@ impl AgentCore {
         }
         counts[p.0 as usize] += 1;
         self.send_rule_event(p, false);
+        let mut traced_wmes = Vec::new();
         let traced = self.settings.trace.firings_of(&rule.flags)
             || (!self.watched_rules.is_empty() && self.watched_rules.contains(self.production_name(p)));
         if traced {
@@ -40,7 +41,7 @@ impl AgentCore {
             };
             self.write_event(&mut out, &event);
             self.output = out;
-            self.trace_match_wmes(p, t);
+            traced_wmes = self.trace_match_wmes(p, t);
         }
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         let mut args = std::mem::take(&mut self.decider.rhs_args);
@@ -69,6 +70,9 @@ impl AgentCore {
         }
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
+        if !traced_wmes.is_empty() {
+            self.decider.traced_match_wmes.insert(inst_id, traced_wmes);
+        }
         let mut new_ids = std::mem::take(&mut self.decider.rhs_new_ids);
         new_ids.clear();
         new_ids.resize(rule.new_vars.len(), None);

@@ -153,6 +153,9 @@ pub struct DecideState {
     /// `decide select`: the operator the next decision takes when it is proposed, as
     /// typed with its first letter upper-cased (9.6 compares the text).
     pub(crate) forced_operator: Option<String>,
+    /// The WMEs a traced firing listed (`trace --timetags`, `--fullwmes`), by
+    /// instantiation: its retraction lists them again, after its match is gone.
+    pub(crate) traced_match_wmes: FxHashMap<InstId, Vec<crate::wm::Wme>>,
     /// `decide predict` seeded the generator with this before predicting: the next
     /// decision seeds it the same way, so that it makes the predicted choice.
     pub(crate) predict_seed: Option<u32>,
@@ -262,6 +265,9 @@ impl DecideState {
 
     /// Frees a retracted instantiation (nothing refers to it any more).
     pub fn free_inst(&mut self, i: InstId) {
+        if !self.traced_match_wmes.is_empty() {
+            self.traced_match_wmes.remove(&i);
+        }
         let inst = &mut self.insts[i];
         inst.alive = false;
         let mut list = std::mem::take(&mut inst.prefs);

@@ -481,6 +481,14 @@ impl AgentCore {
             serial,
         };
         let id = self.decider.alloc_inst(inst);
+        if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {
+            // What its retraction lists (`trace --timetags`): the WMEs it was built on,
+            // newest first, as 9.6 lists a justification's.
+            let mut wmes: Vec<crate::wm::Wme> = bt.grounds.iter().map(|g| g.cond.wme).collect();
+            wmes.sort_by(|a, b| b.timetag.cmp(&a.timetag));
+            wmes.dedup();
+            self.decider.traced_match_wmes.insert(id, wmes);
+        }
         let mut watched = Vec::with_capacity(bt.grounds.len());
         for g in &bt.grounds {
             let key = (g.cond.wme_id, g.cond.wme.timetag);
