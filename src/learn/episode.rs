@@ -485,7 +485,7 @@ impl AgentCore {
             // What its retraction lists (`trace --timetags`): the WMEs it was built on,
             // newest first, as 9.6 lists a justification's.
             let mut wmes: Vec<crate::wm::Wme> = bt.grounds.iter().map(|g| g.cond.wme).collect();
-            wmes.sort_by(|a, b| b.timetag.cmp(&a.timetag));
+            wmes.sort_by_key(|w| std::cmp::Reverse(w.timetag));
             wmes.dedup();
             self.decider.traced_match_wmes.insert(id, wmes);
         }
