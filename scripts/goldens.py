@@ -105,14 +105,18 @@ RUN = "run 1000"
 # Agents whose whole trace at levels 2 to 5 is kept as a golden (tests/trace_goldens.rs).
 TRACE_AGENTS = [
     "blocks-world",
+    "float-negative-zero",
     "gds",
     "halt",
     "impasse-conflict",
     "impasse-state-no-change",
     "justification-negation",
+    "learn-conjunctions",
+    "learn-impasse-names",
     "learn-justification",
     "learn-lookahead",
     "learn-negation",
+    "learn-negation-order",
     "missionaries-cannibals",
     "o-reject",
     "prefs-binary",

@@ -40,7 +40,7 @@ pub(crate) fn chunk_base(name: &str, is_chunk: bool) -> (String, u32) {
     if parts.last().is_some_and(|p| {
         matches!(
             *p,
-            "Tie" | "Conflict" | "Failure" | "OpNoChange" | "StateNoChange"
+            "Tie" | "Conflict" | "Failure" | "OpNoChange"
         )
     }) {
         parts.pop();
@@ -345,6 +345,8 @@ impl AgentCore {
     }
 
     /// `chunk*<rule>*[<impasse>*]t[<init+1>-]<dc>-<n>` as the official kernel names chunks.
+    /// The impasse is that of the goal the result goes to, when that goal is a substate;
+    /// 9.6 calls every no-change `OpNoChange` there, a state no-change too.
     fn chunk_name(&mut self, source: &InstTrace, level: u32) -> String {
         let dc = self.decider.d_cycle_count;
         if self.learn.chunk_name_dc != dc {
@@ -367,12 +369,11 @@ impl AgentCore {
             .iter()
             .find(|g| g.level + 1 == level)
             .and_then(|g| g.impasse)
-            .map(|(kind, on_op)| match kind {
+            .map(|(kind, _)| match kind {
                 ImpasseKind::Tie => "Tie*",
                 ImpasseKind::Conflict => "Conflict*",
                 ImpasseKind::ConstraintFailure => "Failure*",
-                ImpasseKind::NoChange if on_op => "OpNoChange*",
-                ImpasseKind::NoChange => "StateNoChange*",
+                ImpasseKind::NoChange => "OpNoChange*",
             })
             .unwrap_or("");
         let init = if self.learn.init_count > 0 {
