@@ -135,6 +135,8 @@ impl LearnState {
         self.justification_counter = 0;
         self.chunk_name_dc = 0;
         self.chunk_name_count = 0;
+        self.justification_name_dc = 0;
+        self.justification_name_count = 0;
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();
