@@ -120,6 +120,7 @@ TRACE_AGENTS = [
     "learn-negation",
     "learn-negation-order",
     "learn-only",
+    "learn-only-substates",
     "missionaries-cannibals",
     "o-reject",
     "prefs-binary",

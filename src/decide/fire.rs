@@ -167,7 +167,8 @@ impl AgentCore {
         // Results of a substate firing are learned from at once (Soar manual, chapter 2,
         // "Results"): a justification or a chunk takes them over.
         if level >= 2 && self.settings.trace.chunk_warnings {
-            self.note_state_not_learning(level, p);
+            let rule = self.production_name(p).to_string();
+            self.note_state_not_learning(level, &rule);
         }
         if level >= 2 {
             let new_ids: FxHashMap<String, Sym> = rule

@@ -337,6 +337,11 @@ impl AgentCore {
                 self.note_goal_pref(goal, pid);
             }
         }
+        // The learned rule's instantiation is a firing in its own state, which 9.6 learns
+        // from in turn (and warns about, when that state keeps from learning).
+        if owner_level >= 2 && self.settings.trace.chunk_warnings {
+            self.note_state_not_learning(owner_level, &trace.name);
+        }
         // Still results one level up: learn again from this instantiation.
         if owner_level >= 2 {
             let again = self.find_results(&clones, owner_level);
@@ -349,7 +354,7 @@ impl AgentCore {
     /// `chunk only` and `chunk except` say, for each firing in a substate that they keep
     /// from learning, that it will not be learned from (9.6 does so whether or not the
     /// firing made results).
-    pub(crate) fn note_state_not_learning(&mut self, level: u32, rule: ProdId) {
+    pub(crate) fn note_state_not_learning(&mut self, level: u32, rule: &str) {
         let Some(state) = self
             .decider
             .goals
@@ -364,10 +369,9 @@ impl AgentCore {
             LearnMode::Except if self.learn.dont_learn.contains(&state) => true,
             _ => return,
         };
-        let rule = self.production_name(rule).to_string();
         let state = self.symbols.text(state);
         self.emit(&TraceEvent::NotLearning {
-            rule: &rule,
+            rule,
             state: &state,
             flagged,
         });
