@@ -623,6 +623,9 @@ impl AgentCore {
         let conds = std::mem::take(&mut p.conditions);
         p.conditions =
             crate::rete::reorder::reorder_owned(conds, &self.symbols, &self.multi_attributes);
+        if p.flags.chunk || p.flags.justification {
+            crate::rete::reorder::equality_first(&mut p.conditions);
+        }
         self.rete.share_var_names(&mut p.conditions);
         let replaced = self.excise(&p.name);
         let id = match self

@@ -433,8 +433,10 @@ fn is_fraction(s: &str) -> bool {
     i == b.len() && i > exp_start
 }
 
+/// A float constant; `-0.0` reads as `0.0`, as Soar keeps no negative zero (its floats
+/// print, compare and compute as `0.000000`).
 fn float_tok(lexeme: &str) -> Tok {
-    Tok::Float(lexeme.parse::<f64>().unwrap_or(0.0))
+    Tok::Float(lexeme.parse::<f64>().unwrap_or(0.0) + 0.0)
 }
 
 /// `[A-Za-z][0-9]+`: lexes as an identifier in Soar; a constant with its letter upper-cased
@@ -523,6 +525,7 @@ mod tests {
         assert_eq!(toks("5."), vec![Tok::Float(5.0)]);
         assert_eq!(toks(" .5"), vec![Tok::Float(0.5)]);
         assert_eq!(toks("-0.5"), vec![Tok::Float(-0.5)]);
+        assert!(matches!(toks("-0.0")[..], [Tok::Float(f)] if f.is_sign_positive()));
     }
 
     #[test]

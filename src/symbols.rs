@@ -117,7 +117,10 @@ impl Symbols {
         x
     }
 
+    /// A float constant. A negative zero becomes `0.0` (adding `0.0` does it): Soar has
+    /// one zero, which prints as `0.000000` in `write`, the trace and `print` alike.
     pub fn float(&mut self, f: f64) -> Sym {
+        let f = f + 0.0;
         let key = f.to_bits();
         if let Some(&x) = self.floats.get(&key) {
             return x;
@@ -141,7 +144,7 @@ impl Symbols {
         match c {
             crate::ast::Constant::Str(s) => self.find_str(s),
             crate::ast::Constant::Int(i) => self.ints.get(i).copied(),
-            crate::ast::Constant::Float(f) => self.floats.get(&f.to_bits()).copied(),
+            crate::ast::Constant::Float(f) => self.floats.get(&(f + 0.0).to_bits()).copied(),
         }
     }
 

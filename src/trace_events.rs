@@ -86,9 +86,17 @@ pub(crate) enum TraceEvent<'a> {
     MixedOperatorElaborations { rule: &'a str },
     /// A no-change impasse made a goal deeper than max-goal-depth: the run stops.
     GoalDepthExceeded { max_depth: i64 },
-    /// The phase learned max-chunks rules already: a result gets no new rule (warnings
-    /// on).
+    /// The phase learned max-chunks rules already: a result gets no new rule
+    /// (`trace --chunk-warnings`).
     MaxChunksReached,
+    /// A firing in a substate that `chunk only` (not flagged by `force-learn`) or
+    /// `chunk except` (flagged by `dont-learn`) keeps from learning
+    /// (`trace --chunk-warnings`).
+    NotLearning {
+        rule: &'a str,
+        state: &'a str,
+        flagged: bool,
+    },
     /// A rule or justification was learned (`trace --learning`): its name, and the rule's
     /// text when the setting prints rules.
     LearnedRule { name: &'a str, text: Option<&'a str> },

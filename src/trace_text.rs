@@ -196,9 +196,27 @@ impl TraceText96 {
                     "\nGoal stack depth exceeded {max_depth} on a no-change impasse.\nSoar appears to be in an infinite loop.  \nContinuing to subgoal may cause Soar to \nexceed the program stack of your system.\n"
                 );
             }
-            TraceEvent::MaxChunksReached => out.push_str(
-                "\nWarning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
-            ),
+            TraceEvent::MaxChunksReached => {
+                fresh_line(out, line_start);
+                out.push_str(
+                    "Warning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
+                );
+            }
+            TraceEvent::NotLearning {
+                rule,
+                state,
+                flagged,
+            } => {
+                let why = if flagged {
+                    "was flagged to prevent learning"
+                } else {
+                    "was not flagged for learning"
+                };
+                let _ = write!(
+                    out,
+                    "\nWill not attempt to learn a chunk for match of {rule} because state {state} {why}"
+                );
+            }
             TraceEvent::LearnedRule { name, text } => {
                 let _ = write!(out, "\n\nLearning new rule {name}\n");
                 if let Some(text) = text {

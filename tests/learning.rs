@@ -176,3 +176,20 @@ fn removed_substate_lists_its_results_at_trace_5() {
                     <=WM: ";
     assert!(out.contains(expected), "{out}");
 }
+
+/// Justifications named like chunks count from 1 again in each run's decisions after
+/// `init-soar` (9.6 prints `justify*sub*res*t2-3-1` in the second run of `learn-only`).
+#[test]
+fn justification_names_count_again_after_init_soar() {
+    let mut interp = Agent::default();
+    interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
+    run(&mut interp, "srand 1");
+    run(&mut interp, "source tests/agents/learn-only.soar");
+    run(&mut interp, "watch 0");
+    run(&mut interp, "run 100");
+    run(&mut interp, "init-soar");
+    run(&mut interp, "watch 5");
+    let second = run(&mut interp, "run 50");
+    assert!(second.contains("(justify*sub*res*t2-3-1)"), "{second}");
+    assert!(second.contains("(justify*sub*neg*t2-3-2)"), "{second}");
+}

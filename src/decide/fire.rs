@@ -170,6 +170,10 @@ impl AgentCore {
         }
         // Results of a substate firing are learned from at once (Soar manual, chapter 2,
         // "Results"): a justification or a chunk takes them over.
+        if level >= 2 && self.settings.trace.chunk_warnings {
+            let rule = self.production_name(p).to_string();
+            self.note_state_not_learning(level, &rule);
+        }
         if level >= 2 {
             let new_ids: FxHashMap<String, Sym> = rule
                 .new_vars

@@ -22,8 +22,17 @@ pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sy
     ctx.log_channels_off = agent.settings.log_channels_off;
     let result = crate::rhs::call(name, args, &mut ctx);
     let (halt, interrupt) = (ctx.halt, ctx.interrupt);
+    let (dont_learn, force_learn) = (ctx.dont_learn, ctx.force_learn);
     let fresh_line = ctx.error_fresh_line;
     drop(ctx);
+    // The states `chunk except` and `chunk only` go by (Soar manual, ch. 4, "Chunking is
+    // not possible for some states").
+    if let Some(s) = dont_learn {
+        agent.learn.dont_learn.insert(s);
+    }
+    if let Some(s) = force_learn {
+        agent.learn.force_learn.insert(s);
+    }
     if halt {
         agent.decider.halted = true;
     }

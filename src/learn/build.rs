@@ -125,14 +125,19 @@ impl Builder<'_> {
     }
 
     /// A variable of a rule's test, as the chunk names it; `None` when the chunk cannot
-    /// test it (its identity is not bound by the chunk's conditions).
+    /// test it (its identity is not bound by the chunk's conditions, nor is its identifier
+    /// one the conditions match: `(<ss> -^prefix object)` where `<ss>` came through the
+    /// substate's `^superstate` is kept on the state the chunk tests).
     fn var_term(&mut self, trace: &InstTrace, v: &str) -> Option<Term> {
         let &(ident, sym) = trace.vars.get(v)?;
         if !self.namer.variablize {
             return Some(self.term(sym, ident, None));
         }
         let root = self.bt.find(ident);
-        if self.bt.literal.contains_key(&root) || self.bound.contains(&root) {
+        if self.bt.literal.contains_key(&root)
+            || self.bound.contains(&root)
+            || self.ground_ids.contains_key(&sym)
+        {
             return Some(self.term(sym, ident, None));
         }
         if self.agent.symbols.is_id(sym) {
@@ -159,12 +164,15 @@ impl Builder<'_> {
         }
     }
 
+    /// A field's equality test with the other tests on it: the equality comes first, as
+    /// 9.6 prints a chunk's conjunctive tests (`^num3 { <n1> << 2 3 >> }`).
     fn field_test(&mut self, main: Term, extra: Vec<Test>) -> Test {
         if extra.is_empty() {
             Test::Equal(main)
         } else {
-            let mut ts = extra;
+            let mut ts = Vec::with_capacity(extra.len() + 1);
             ts.push(Test::Equal(main));
+            ts.extend(extra);
             Test::conjunction(ts)
         }
     }
@@ -179,9 +187,15 @@ impl Builder<'_> {
     ) -> Option<Condition> {
         match c {
             Condition::Positive(x) | Condition::Negative(x) => {
+                // A local value is named after its attribute, as in positive conditions.
+                let under = match &x.attr {
+                    Test::Equal(Term::Const(Constant::Str(a))) => a.chars().next(),
+                    _ => None,
+                }
+                .filter(char::is_ascii_alphabetic);
                 let mut fields = Vec::with_capacity(3);
-                for t in [&x.id, &x.attr, &x.value] {
-                    fields.push(self.negated_test(trace, t, locals)?);
+                for (t, hint) in [(&x.id, None), (&x.attr, None), (&x.value, under)] {
+                    fields.push(self.negated_test(trace, t, hint, locals)?);
                 }
                 let value = fields.pop()?;
                 let attr = fields.pop()?;
@@ -209,10 +223,13 @@ impl Builder<'_> {
         }
     }
 
+    /// A test of a negated condition; a variable local to it is named after `hint` (its
+    /// attribute's first letter) if given, else after the rule's variable.
     fn negated_test(
         &mut self,
         trace: &InstTrace,
         t: &Test,
+        hint: Option<char>,
         locals: &mut FxHashMap<String, String>,
     ) -> Option<Test> {
         let term = |b: &mut Self, term: &Term, locals: &mut FxHashMap<String, String>| match term {
@@ -220,9 +237,8 @@ impl Builder<'_> {
             Term::Var(v) => Some(Term::Var(match locals.get(&**v) {
                 Some(n) => n.as_str().into(),
                 None => {
-                    let letter = v
-                        .chars()
-                        .nth(1)
+                    let letter = hint
+                        .or_else(|| v.chars().nth(1))
                         .filter(char::is_ascii_alphabetic)
                         .unwrap_or('v');
                     let n = b.namer.fresh(letter.to_ascii_lowercase());
@@ -239,7 +255,16 @@ impl Builder<'_> {
             Test::Conjunction(ts) => {
                 let mut out = Vec::with_capacity(ts.len());
                 for x in ts.iter() {
-                    out.push(self.negated_test(trace, x, locals)?);
+                    out.push(self.negated_test(trace, x, hint, locals)?);
+                }
+                // An equality on a variable of the negation's own goes first (9.6:
+                // `-^c { <c1> << x y >> }`); one the chunk binds elsewhere stays where the
+                // rule has it (`-^w { <> 5 <a1> }`).
+                let local = ts.iter().position(|x| {
+                    matches!(x, Test::Equal(Term::Var(v)) if !trace.vars.contains_key(&**v))
+                });
+                if let Some(k) = local {
+                    out[..=k].rotate_right(1);
                 }
                 Test::conjunction(out)
             }
@@ -318,6 +343,9 @@ impl AgentCore {
                 out.push((n, prod));
             }
         }
+        // 9.6 gathers them front first: the learned rule lists them last found first,
+        // which decides the order among negations that become testable together.
+        out.reverse();
         out
     }
 

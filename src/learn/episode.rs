@@ -40,7 +40,7 @@ pub(crate) fn chunk_base(name: &str, is_chunk: bool) -> (String, u32) {
     if parts.last().is_some_and(|p| {
         matches!(
             *p,
-            "Tie" | "Conflict" | "Failure" | "OpNoChange" | "StateNoChange"
+            "Tie" | "Conflict" | "Failure" | "OpNoChange"
         )
     }) {
         parts.pop();
@@ -185,9 +185,12 @@ impl AgentCore {
             .unwrap_or(0);
         if want_chunk && !bt.tested_quiescence {
             if self.learn.chunks_this_phase >= self.settings.max_chunks {
-                if self.settings.warnings {
+                // 9.6 learns nothing then, not even a justification: the results stay
+                // with the substate's firing.
+                if self.settings.trace.chunk_warnings {
                     self.emit(&TraceEvent::MaxChunksReached);
                 }
+                return;
             } else if dupes >= self.settings.max_dupes {
                 // This rule's results keep giving rules already known: give up on it for
                 // the rest of the phase (its result gets a justification).
@@ -245,8 +248,7 @@ impl AgentCore {
                 let named = chunk.is_none();
                 let o = self.justification_support(&bt, &results);
                 let name = if named {
-                    self.learn.justification_counter += 2;
-                    format!("justify{}", self.learn.justification_counter - 1)
+                    self.justification_name(source, level)
                 } else {
                     chunk.as_ref().map(|c| c.1.name.clone()).unwrap_or_default()
                 };
@@ -335,6 +337,11 @@ impl AgentCore {
                 self.note_goal_pref(goal, pid);
             }
         }
+        // The learned rule's instantiation is a firing in its own state, which 9.6 learns
+        // from in turn (and warns about, when that state keeps from learning).
+        if owner_level >= 2 && self.settings.trace.chunk_warnings {
+            self.note_state_not_learning(owner_level, &trace.name);
+        }
         // Still results one level up: learn again from this instantiation.
         if owner_level >= 2 {
             let again = self.find_results(&clones, owner_level);
@@ -344,7 +351,61 @@ impl AgentCore {
         }
     }
 
+    /// `chunk only` and `chunk except` say, for each firing in a substate that they keep
+    /// from learning, that it will not be learned from (9.6 does so whether or not the
+    /// firing made results).
+    pub(crate) fn note_state_not_learning(&mut self, level: u32, rule: &str) {
+        let Some(state) = self
+            .decider
+            .goals
+            .iter()
+            .find(|g| g.level == level)
+            .map(|g| g.state)
+        else {
+            return;
+        };
+        let flagged = match self.settings.learn {
+            LearnMode::Only if !self.learn.force_learn.contains(&state) => false,
+            LearnMode::Except if self.learn.dont_learn.contains(&state) => true,
+            _ => return,
+        };
+        let state = self.symbols.text(state);
+        self.emit(&TraceEvent::NotLearning {
+            rule,
+            state: &state,
+            flagged,
+        });
+    }
+
+    /// A justification's name: `justify<n>` (odd numbers) with learning off; with learning
+    /// on, named like a chunk (`justify*<rule>*t<dc>-<n>`), counted apart from chunks (a
+    /// result in a state `chunk only` or `chunk except` keeps from learning, or one that
+    /// tested `^quiescence t`).
+    fn justification_name(&mut self, source: &InstTrace, level: u32) -> String {
+        if self.settings.learn == LearnMode::Never
+            || self.settings.chunk.naming_style == crate::learn::settings::NamingStyle::Numbered
+        {
+            self.learn.justification_counter += 2;
+            return format!("justify{}", self.learn.justification_counter - 1);
+        }
+        let dc = self.decider.d_cycle_count;
+        if self.learn.justification_name_dc != dc {
+            self.learn.justification_name_dc = dc;
+            self.learn.justification_name_count = 0;
+        }
+        self.learn.justification_name_count += 1;
+        let count = self.learn.justification_name_count;
+        let name = self.rule_style_name("justify", source, level, count);
+        if self.productions_contains(&name) {
+            format!("{name}-{}", self.learn.justifications_learned)
+        } else {
+            name
+        }
+    }
+
     /// `chunk*<rule>*[<impasse>*]t[<init+1>-]<dc>-<n>` as the official kernel names chunks.
+    /// The impasse is that of the goal the result goes to, when that goal is a substate;
+    /// 9.6 calls every no-change `OpNoChange` there, a state no-change too.
     fn chunk_name(&mut self, source: &InstTrace, level: u32) -> String {
         let dc = self.decider.d_cycle_count;
         if self.learn.chunk_name_dc != dc {
@@ -357,9 +418,22 @@ impl AgentCore {
             self.learn.chunk_number += 2;
             return format!("chunk{}", self.learn.chunk_number - 1);
         }
+        let count = self.learn.chunk_name_count;
+        let name = self.rule_style_name("chunk", source, level, count);
+        if self.productions_contains(&name) {
+            format!("{name}-{}", self.learn.chunks_learned)
+        } else {
+            name
+        }
+    }
+
+    /// `<kind>*<rule>*[<impasse>*]t[<init+1>-]<dc>-<count>`, `<kind>x<g>` for a rule
+    /// learned from a learned rule of generation `g - 1`.
+    fn rule_style_name(&self, kind: &str, source: &InstTrace, level: u32, count: u64) -> String {
+        let dc = self.decider.d_cycle_count;
         let prefix = match source.generation {
-            0 => "chunk".to_string(),
-            g => format!("chunkx{}", g + 1),
+            0 => kind.to_string(),
+            g => format!("{kind}x{}", g + 1),
         };
         let suffix = self
             .decider
@@ -367,12 +441,11 @@ impl AgentCore {
             .iter()
             .find(|g| g.level + 1 == level)
             .and_then(|g| g.impasse)
-            .map(|(kind, on_op)| match kind {
+            .map(|(kind, _)| match kind {
                 ImpasseKind::Tie => "Tie*",
                 ImpasseKind::Conflict => "Conflict*",
                 ImpasseKind::ConstraintFailure => "Failure*",
-                ImpasseKind::NoChange if on_op => "OpNoChange*",
-                ImpasseKind::NoChange => "StateNoChange*",
+                ImpasseKind::NoChange => "OpNoChange*",
             })
             .unwrap_or("");
         let init = if self.learn.init_count > 0 {
@@ -380,15 +453,7 @@ impl AgentCore {
         } else {
             String::new()
         };
-        let name = format!(
-            "{prefix}*{}*{suffix}t{init}{dc}-{}",
-            source.base, self.learn.chunk_name_count
-        );
-        if self.productions_contains(&name) {
-            format!("{name}-{}", self.learn.chunks_learned)
-        } else {
-            name
-        }
+        format!("{prefix}*{}*{suffix}t{init}{dc}-{count}", source.base)
     }
 
     fn productions_contains(&self, name: &str) -> bool {

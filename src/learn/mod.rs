@@ -87,6 +87,9 @@ pub struct LearnState {
     /// The count used in chunk names (`t<dc>-<n>`).
     pub chunk_name_count: u64,
     pub chunk_name_dc: u64,
+    /// The same for justifications named like chunks (learning on).
+    pub justification_name_count: u64,
+    pub justification_name_dc: u64,
     /// The counter of `chunk naming-style numbered` names (incremented twice per name).
     pub chunk_number: u64,
     /// The justification name counter (incremented twice per name, as in 9.6).
@@ -132,6 +135,8 @@ impl LearnState {
         self.justification_counter = 0;
         self.chunk_name_dc = 0;
         self.chunk_name_count = 0;
+        self.justification_name_dc = 0;
+        self.justification_name_count = 0;
         self.justifications.clear();
         self.justification_names.clear();
         self.justified_by_wme.clear();

@@ -658,7 +658,8 @@ fn write_trace_log_and_learning_flags_as_the_official_kernel() {
         ("abc", "abc"),
         ("|a b|", "a b"),
         ("1.5", "1.500000"),
-        ("-0.0", "-0.000000"),
+        // Soar has no negative zero: 9.6 writes `-0.0` as 0.000000.
+        ("-0.0", "0.000000"),
         ("<s>", "S1"),
         ("||", ""),
         ("|x\\|y|", "x|y"),

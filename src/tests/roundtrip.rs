@@ -1235,8 +1235,12 @@ fn load(text: &str, name: &str) -> Result<Production, String> {
 fn as_loaded(p: &Production) -> Production {
     let mut syms = crate::symbols::Symbols::new();
     reorder::intern_in_text_order(p, &mut syms);
+    let mut conditions = reorder::reorder(&p.conditions, &syms);
+    if p.flags.chunk || p.flags.justification {
+        reorder::equality_first(&mut conditions);
+    }
     Production {
-        conditions: reorder::reorder(&p.conditions, &syms),
+        conditions,
         ..p.clone()
     }
 }

@@ -67,6 +67,31 @@ pub fn reorder_owned(
     reorder_list(conds, required, roots, &outside, &rank, &multi, &mut 0)
 }
 
+/// Puts each conjunctive test of a positive condition with its equality test first, the
+/// others keeping their order: a learned rule's tests read so in 9.6
+/// (`^num3 { <n1> << 2 3 >> }`), where a rule written by hand, reordered, has its equality
+/// test last. (Negations keep the tests the learned rule was built with.)
+pub fn equality_first(conds: &mut [Condition]) {
+    fn field(t: &mut Test) {
+        if let Test::Conjunction(ts) = t {
+            if let Some(k) = ts.iter().position(|x| matches!(x, Test::Equal(_))) {
+                ts[..=k].rotate_right(1);
+            }
+        }
+    }
+    for c in conds {
+        match c {
+            Condition::Positive(p) => {
+                field(&mut p.id);
+                field(&mut p.attr);
+                field(&mut p.value);
+            }
+            Condition::Negative(_) => {}
+            Condition::Ncc(cs) => equality_first(cs),
+        }
+    }
+}
+
 /// Interns the name and the constants of a rule in the order 9.6's parser creates them: the
 /// name, then the conditions, then the actions, left to right.
 pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbols) {
