@@ -121,6 +121,7 @@ TRACE_AGENTS = [
     "learn-negation-order",
     "learn-only",
     "learn-only-substates",
+    "learn-tie-result",
     "missionaries-cannibals",
     "o-reject",
     "prefs-binary",

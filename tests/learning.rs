@@ -193,3 +193,37 @@ fn justification_names_count_again_after_init_soar() {
     assert!(second.contains("(justify*sub*res*t2-3-1)"), "{second}");
     assert!(second.contains("(justify*sub*neg*t2-3-2)"), "{second}");
 }
+
+/// `trace -L 2` prints each justification as 9.6 does (the texts below are the official
+/// kernel's): its conditions last found first, `state` on each state's first condition;
+/// with learning on (`chunk only` here) the rule's relational tests and RHS calls are
+/// kept over the symbols, with learning off they are not.
+#[test]
+fn justifications_print_as_the_official_kernel_prints_them() {
+    let text = |agent: &str, after: &str| {
+        let mut interp = Agent::default();
+        interp.set_working_directory(env!("CARGO_MANIFEST_DIR"));
+        run(&mut interp, "srand 1");
+        run(&mut interp, &format!("source tests/agents/{agent}.soar"));
+        run(&mut interp, after);
+        run(&mut interp, "trace -L 2");
+        run(&mut interp, "run 50")
+    };
+    let only = text("learn-only", "echo");
+    for want in [
+        "sp {justify*sub*res*t3-1\n    :justification ;# not reloadable\n    (state S1 ^num3 2 ^operator O1)\n    (O1 ^name go)\n    -->\n    (S1 ^res 2)\n}",
+        "sp {justify*sub*neg*t3-2\n    :justification ;# not reloadable\n    (O1 ^name go)\n    (state S1 ^operator O1 -^prefix object)\n    -->\n    (S1 ^res2 yes)\n}",
+    ] {
+        assert!(only.contains(want), "{only}");
+    }
+    let off = text("learn-justification", "echo");
+    let want = "sp {justify3\n    :justification ;# not reloadable\n    (O1 ^name go)\n    (state S1 ^operator O1)\n    -->\n    (S1 ^done yes)\n}";
+    assert!(off.contains(want), "{off}");
+    let conj = text("learn-conjunctions", "chunk only");
+    for want in [
+        "    (state S1 ^num3 { << 2 3 >> 2 } ^operator O1)\n",
+        "    (state S1 ^a { > 1 <> 3 2 } ^b { < 9 3 } ^c { << 4 5 >> >= 1 <=> 4 4 }\n          ^d 4 ^operator O1)\n    (O1 ^name go)\n    -->\n    (S1 ^res2 (+ 2 3 4 4))\n}",
+    ] {
+        assert!(conj.contains(want), "{conj}");
+    }
+}

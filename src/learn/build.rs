@@ -82,6 +82,10 @@ struct Builder<'a> {
     /// The identity set each identifier of the conditions has (an action naming the same
     /// identifier through another identity gets the same variable).
     ground_ids: FxHashMap<Sym, Ident>,
+    /// The rule's relational tests and RHS function calls are carried over: always for a
+    /// chunk, for a justification only with learning on (9.6 builds it as it builds a
+    /// chunk then, without variables).
+    keep_tests: bool,
 }
 
 impl Builder<'_> {
@@ -100,6 +104,10 @@ impl Builder<'_> {
         if is_id && !self.bound.contains(&root) {
             if let Some(&r) = self.ground_ids.get(&sym) {
                 root = r;
+            } else if let Some(n) = self.namer.by_sym.get(&sym) {
+                // An identifier the conditions test without an identity (one a tie's
+                // ^item led to): its variable there.
+                return Term::Var(n.as_str().into());
             }
         }
         if root != 0 {
@@ -165,10 +173,15 @@ impl Builder<'_> {
     }
 
     /// A field's equality test with the other tests on it: the equality comes first, as
-    /// 9.6 prints a chunk's conjunctive tests (`^num3 { <n1> << 2 3 >> }`).
+    /// 9.6 prints a chunk's conjunctive tests (`^num3 { <n1> << 2 3 >> }`); a
+    /// justification's comes last (`^num3 { << 2 3 >> 2 }`).
     fn field_test(&mut self, main: Term, extra: Vec<Test>) -> Test {
         if extra.is_empty() {
             Test::Equal(main)
+        } else if !self.namer.variablize {
+            let mut ts = extra;
+            ts.push(Test::Equal(main));
+            Test::conjunction(ts)
         } else {
             let mut ts = Vec::with_capacity(extra.len() + 1);
             ts.push(Test::Equal(main));
@@ -234,6 +247,8 @@ impl Builder<'_> {
     ) -> Option<Test> {
         let term = |b: &mut Self, term: &Term, locals: &mut FxHashMap<String, String>| match term {
             Term::Var(v) if trace.vars.contains_key(&**v) => b.var_term(trace, v),
+            // A justification keeps the rule's own names for them (`-^t-done <t*1>`).
+            Term::Var(v) if !b.namer.variablize => Some(Term::Var(v.clone())),
             Term::Var(v) => Some(Term::Var(match locals.get(&**v) {
                 Some(n) => n.as_str().into(),
                 None => {
@@ -263,7 +278,7 @@ impl Builder<'_> {
                 let local = ts.iter().position(|x| {
                     matches!(x, Test::Equal(Term::Var(v)) if !trace.vars.contains_key(&**v))
                 });
-                if let Some(k) = local {
+                if let Some(k) = local.filter(|_| self.namer.variablize) {
                     out[..=k].rotate_right(1);
                 }
                 Test::conjunction(out)
@@ -281,7 +296,9 @@ impl Builder<'_> {
         ident: Ident,
         under: Option<Sym>,
     ) -> RhsTerm {
-        if let (Some(trace), Some(RhsTerm::Call(f)), true) = (trace, orig, self.namer.variablize) {
+        // (A justification keeps the call too, over the symbols, `(+ 5 1)`, when
+        // learning is on.)
+        if let (Some(trace), Some(RhsTerm::Call(f)), true) = (trace, orig, self.keep_tests) {
             if let Some(call) = self.call(trace, f) {
                 return RhsTerm::Call(Box::new(call));
             }
@@ -368,6 +385,7 @@ impl AgentCore {
             },
             bound: FxHashSet::default(),
             ground_ids: FxHashMap::default(),
+            keep_tests: variablize || self.settings.learn != crate::agent::LearnMode::Never,
         };
         for g in &bt.grounds {
             let w = g.cond.wme;
@@ -404,14 +422,15 @@ impl AgentCore {
             let attr = b.term(w.attr, g.cond.ids[1], None);
             let value = b.term(w.value, g.cond.ids[2], Some(w.attr));
             let mut tests = [Vec::new(), Vec::new(), Vec::new()];
-            if let Some(o) = &orig {
+            // With learning off, a justification tests the symbols themselves, nothing more.
+            if let Some(o) = orig.as_ref().filter(|_| b.keep_tests) {
                 for (k, t) in [&o.id, &o.attr, &o.value].into_iter().enumerate() {
                     b.extra_tests(&g.trace, t, &mut tests[k]);
                 }
             }
             for (k, &i) in g.cond.ids.iter().enumerate() {
                 let root = bt.find(i);
-                if i == 0 || !constrained.insert(root) {
+                if !b.keep_tests || i == 0 || !constrained.insert(root) {
                     continue;
                 }
                 for c in bt.constraints.iter().filter(|c| bt.find(c.ident) == root) {
@@ -448,6 +467,23 @@ impl AgentCore {
                 goal,
                 span: orig.map(|o| o.span).unwrap_or_default(),
             }));
+        }
+        if !variablize {
+            // A justification is not reordered: 9.6 lists its conditions last found first,
+            // and marks each state it tests (`(state S1 ^superstate nil)`,
+            // `(state S2 ^superstate S1)`) on the first condition of it.
+            conditions.reverse();
+            let mut marked: FxHashSet<Sym> = FxHashSet::default();
+            for (c, g) in conditions.iter_mut().zip(bt.grounds.iter().rev()) {
+                if let Condition::Positive(c) = c {
+                    let id = g.cond.wme.id;
+                    c.goal = if self.symbols.is_goal(id) && marked.insert(id) {
+                        Head::State
+                    } else {
+                        Head::None
+                    };
+                }
+            }
         }
         for (n, prod) in self.superstate_negations(bt) {
             let c = &prod.conditions[n.cond];

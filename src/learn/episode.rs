@@ -585,12 +585,17 @@ impl AgentCore {
             self.learn.justifications_learned += 1;
             self.learn.justifications_since_init += 1;
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
-            if self.settings.learning_trace >= 2 {
-                let text = crate::printer::production_text(&prod);
-                self.emit(&TraceEvent::LearnedRule {
-                    name,
-                    text: Some(&text),
-                });
+            match self.settings.learning_trace {
+                0 => {}
+                // `trace -L 1` names justifications as it names chunks.
+                1 => self.emit(&TraceEvent::LearnedRule { name, text: None }),
+                _ => {
+                    let text = crate::printer::production_text(&prod);
+                    self.emit(&TraceEvent::LearnedRule {
+                        name,
+                        text: Some(&text),
+                    });
+                }
             }
             self.learn.justifications.push(Justification {
                 production: Arc::new(prod),
