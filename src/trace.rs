@@ -469,16 +469,8 @@ impl AgentCore {
             match self.decider.traced_match_wmes.remove(&inst) {
                 Some(wmes) => self.emit_match_wmes(&wmes, true),
                 None => {
-                    let (p, t) = {
-                        let i = &self.decider.insts[inst];
-                        (i.prod, i.token)
-                    };
-                    let wmes: Vec<Wme> = self
-                        .rete
-                        .match_wmes(p, t)
-                        .into_iter()
-                        .filter_map(|w| self.wm.get(w).copied())
-                        .collect();
+                    let i = &self.decider.insts[inst];
+                    let wmes = self.match_wme_list(i.prod, i.token);
                     self.emit_match_wmes(&wmes, true);
                 }
             }
@@ -633,14 +625,18 @@ impl AgentCore {
         if detail == crate::agent::WmeDetail::None {
             return Vec::new();
         }
-        let wmes: Vec<Wme> = self
-            .rete
+        let wmes = self.match_wme_list(p, t);
+        self.emit_match_wmes(&wmes, false);
+        wmes
+    }
+
+    /// The WMEs of a match that are still in working memory, in the rule's order.
+    fn match_wme_list(&self, p: crate::rete::ProdId, t: crate::rete::TokId) -> Vec<Wme> {
+        self.rete
             .match_wmes(p, t)
             .into_iter()
             .filter_map(|w| self.wm.get(w).copied())
-            .collect();
-        self.emit_match_wmes(&wmes, false);
-        wmes
+            .collect()
     }
 
     fn emit_match_wmes(&mut self, wmes: &[Wme], retracting: bool) {
