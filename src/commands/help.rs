@@ -13,12 +13,12 @@ const USAGE: &[(&str, &str)] = &[
     ("cd", "cd [directory]\n\nChanges the working directory (no argument: the starting one)."),
     (
         "chunk",
-        "chunk [always|never|only|except]\nchunk ?\nchunk max-chunks [n]\nchunk max-dupes [n]\n\nShows or sets when Soar learns rules, and the learning limits; `chunk` alone prints the summary, `chunk ?` every setting.",
+        "chunk [always|never|only|except]\nchunk ?\nchunk max-chunks|max-dupes [n]\nchunk naming-style [numbered|rule]\nchunk bottom-only|interrupt|explain-interrupt|warning-interrupt [on|off]\nchunk automatically-create-singletons|add-ltm-links|add-osk [on|off]\nchunk allow-local-negations|allow-opaque [on|off]\nchunk singleton [-r] [type attribute type]\n\nShows or sets when Soar learns rules and how: `chunk` alone prints the summary, `chunk ?` every setting with its value. `interrupt` stops a run after a rule is learned; `bottom-only` keeps a state from learning once a state below it has; `singleton` lists, adds or removes the patterns of WMEs unique in a state.",
     ),
     ("debug", "debug allocate|internal-symbols|port|time ...\n\nKernel debugging aids."),
     (
         "decide",
-        "decide indifferent-selection [-b|-g|-f|-l|-x] [-e value] [-t value]\ndecide numeric-indifferent-mode [--avg|--sum]\ndecide srand [seed]\ndecide select|predict ...\n\nSettings of the decision procedure: the exploration policy and its parameters, and the random seed.",
+        "decide\ndecide ?\ndecide indifferent-selection [-b|-g|-f|-l|-x|-s]\ndecide indifferent-selection -e|-t [value]\ndecide indifferent-selection -p epsilon|temperature [exponential|linear]\ndecide indifferent-selection -r epsilon|temperature exponential|linear [rate]\ndecide indifferent-selection -a [on|off]\ndecide numeric-indifferent-mode [--avg|--sum]\ndecide select [operator-id]\ndecide predict\ndecide set-random-seed [seed]     (alias: srand)\n\nSettings of the decision procedure: the exploration policy and its parameters, their reduction after each decision (-a), how numeric preferences combine, and the random seed. `select` makes the next decision take a proposed operator; `predict` says what the next decision will do.",
     ),
     ("dirs", "dirs\n\nPrints the directory stack, current directory first."),
     ("echo", "echo [-n|--nonewline] words...\n\nPrints the words joined by single spaces, then a newline."),
@@ -30,21 +30,21 @@ const USAGE: &[(&str, &str)] = &[
     ("help", "help [command]\n\nLists the commands, or shows how to use one of them (an alias is explained by its expansion)."),
     (
         "learn",
-        "learn [-e|--on] [-d|--off] [-o|--only] [-E|--except] [-l|--list] ...\n\nDeprecated spelling of `chunk`: shows or sets when Soar learns rules.",
+        "learn [-l] [-e|-d|-o] [-a|-b] [-n|-N] [-p|-P]\n\nDeprecated spelling of `chunk`: the summary, when Soar learns rules (-e always, -d never, -o only), bottom-only (-b on, -a off), local negations (-n, -N) and operator selection knowledge (-p, -P).",
     ),
     (
         "load",
-        "load file [-v] path        (alias: source)\nload library|percepts|rete-network ...\n\nRuns the commands of a file, from the file's directory; stops at the first failing command.",
+        "load file [-d] path        (alias: source)\nload library|percepts|rete-network ...\n\nRuns the commands of a file, from the file's directory; stops at the first failing command. -d leaves out the summary of rules sourced.",
     ),
     ("ls", "ls\n\nLists the files of the working directory."),
     (
         "output",
-        "output [print-depth n|warnings on|off|agent-writes on|off|...]\n\nSettings of what Soar prints.",
+        "output\noutput ?\noutput enabled|callbacks|console|echo-commands|warnings|agent-writes [on|off]\noutput agent-logs channel on|off\noutput print-depth [n]\noutput log [-A] file | --add text | --close\noutput command-to-file [-a] file command...\n\nSettings of what Soar prints and where: everything (enabled), what rules write, the channels of the log function, print's default depth, a log file of the commands and what they printed, one command's text to a file.",
     ),
     ("popd", "popd\n\nReturns to the directory saved by the last pushd."),
     (
         "preferences",
-        "preferences [id [attribute]] [-n|--none] [-N|--names] [-t|--timetags] [-w|--wmes] [-o|--object]\n\nLists the preferences for a slot (default: S1 ^operator).",
+        "preferences [id [attribute]] [-n|--names]\n\nLists the preferences for a slot (default: the lowest state's ^operator), with the selection probabilities of an operator slot; -n names the rule behind each.",
     ),
     (
         "print",
@@ -59,20 +59,23 @@ const USAGE: &[(&str, &str)] = &[
     ("rl", "rl ...\n\nReinforcement learning (not implemented in rusoar)."),
     (
         "run",
-        "run [count] [-d|-e|-p|-o] [-s] [-u|-n] [-g]\n\nRuns the decision cycle: `count` decisions (-d, the default when a count is given), elaborations (-e), phases (-p) or output cycles (-o). With no count and no unit it runs until the agent halts, or until Ctrl-C in the REPL. `run 1` stops before the next apply phase.",
+        "run [count] [-d|-e|-p|-o] [-s] [-u|-n]\n\nRuns the decision cycle: `count` decisions (-d, the default when a count is given), elaborations (-e), phases (-p) or output cycles (-o). With no count and no unit it runs until the agent halts, or until Ctrl-C in the REPL. Decisions are counted at the stop phase (`soar stop-phase`, apply by default): `run 1` stops before the next apply phase, `run 0` goes on to it.",
     ),
     ("save", "save ...\n\nSaves agent state (not implemented in rusoar)."),
     ("smem", "smem ...\n\nSemantic memory (not implemented in rusoar)."),
     (
         "soar",
-        "soar init|stop|version\nsoar max-elaborations|max-goal-depth|max-nil-output-cycles|stop-phase|wait-snc [value]\n\nReinitializes the agent (init), stops a run (stop), or shows and sets the kernel's settings.",
+        "soar\nsoar ?\nsoar init|stop|version\nsoar max-elaborations|max-goal-depth|max-nil-output-cycles|max-dc-time|max-gp|max-memory-usage [n]\nsoar stop-phase [input|propose|apply|output]\nsoar wait-snc|timers|keep-all-top-oprefs|tcl [on|off]\n\nReinitializes the agent (init), stops a run (stop), or shows and sets the kernel's settings; `soar` alone prints the summary, `soar ?` every setting.",
     ),
     ("sp", "sp {name [\"doc\"] [:flags] conditions --> actions}\n\nLoads a rule; a rule with the same name is replaced."),
-    ("stats", "stats\n\nPrints counts of rules, decisions, elaboration cycles, firings and working memory."),
+    (
+        "stats",
+        "stats [-s|-d|-a]\n\nPrints counts of rules, decisions, elaboration cycles, firings and working memory (-s, the default), the decisions made (-d), or the agent's counters (-a).",
+    ),
     ("svs", "svs ...\n\nSpatial visual system (not implemented in rusoar)."),
     (
         "trace",
-        "trace [0-5]\n\nSets how much of the run is traced: 0 nothing, 1 decisions, 2 phases, 3 rule firings, 4 working-memory changes, 5 preferences.",
+        "trace [0-5]\ntrace [flags]\n\nSets how much of the run is traced: 0 nothing, 1 decisions, 2 phases, 3 rule firings, 4 working-memory changes, 5 preferences; single flags (-d, -p, -w, -r, -L 0-2, --timetags, --fullwmes, ...) set one kind each. `trace` alone lists every setting.",
     ),
     ("visualize", "visualize ...\n\nGraph output of memories (not implemented in rusoar)."),
     (
