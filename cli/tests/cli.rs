@@ -19,6 +19,19 @@ fn rusoar(args: &[&str]) -> Output {
         .expect("the rusoar binary runs")
 }
 
+/// `rusoar` with no arguments, reading `input` on standard input.
+fn rusoar_stdin(input: &[u8]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rusoar"))
+        .current_dir(root())
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child.stdin.take().unwrap().write_all(input).unwrap();
+    child.wait_with_output().unwrap()
+}
+
 fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).into_owned()
 }
@@ -93,22 +106,9 @@ fn repeated_c_options_run_in_order_with_source() {
 
 #[test]
 fn commands_on_standard_input() {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rusoar"))
-        .current_dir(root())
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(
-            b"echo from stdin\nsp {piped\n   (state <s> ^superstate nil)\n-->\n   (write |hi|)}\nprint piped\n",
-        )
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let out = rusoar_stdin(
+        b"echo from stdin\nsp {piped\n   (state <s> ^superstate nil)\n-->\n   (write |hi|)}\nprint piped\n",
+    );
     let stdout = text(&out.stdout);
     assert!(out.status.success(), "{stdout}\n{}", text(&out.stderr));
     assert!(stdout.contains("from stdin"), "{stdout}");
@@ -142,19 +142,7 @@ fn a_failing_c_exits_nonzero_with_a_located_diagnostic() {
     assert!(!text(&out.stdout).contains("never"));
 
     // So does standard input: each error is printed, the rest runs, the status says so.
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_rusoar"))
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    child
-        .stdin
-        .take()
-        .unwrap()
-        .write_all(b"echo one\nbogus-command\necho two\n")
-        .unwrap();
-    let out = child.wait_with_output().unwrap();
+    let out = rusoar_stdin(b"echo one\nbogus-command\necho two\n");
     assert!(!out.status.success());
     assert!(
         text(&out.stdout).contains("one\ntwo\n"),

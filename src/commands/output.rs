@@ -112,8 +112,9 @@ impl Interpreter {
                     .truncate(!append)
                     .open(&path)
                     .map_err(|e| {
+                        // `args` follow `log`: the file name is the command's last word.
                         Diagnostic::error(format!("Failed to open log file {name}: {e}"))
-                            .at(ctx.arg_span(args.len() - 1))
+                            .at(ctx.arg_span(args.len()))
                     })?;
                 let opened = format!("Log file '{name}' open.\n");
                 let mut log = OutputLog { file };

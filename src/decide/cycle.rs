@@ -81,7 +81,12 @@ impl AgentCore {
         let mut decision_start = std::time::Instant::now();
         let max_nil = u64::try_from(self.settings.max_nil_output_cycles.max(1)).unwrap_or(1);
         let mut nil_cycles = 0u64;
-        let mut output_stamp = self.output_link_stamp();
+        // Read only for output cycles: it walks the output-link.
+        let mut output_stamp = if unit == RunUnit::OutputCycles {
+            self.output_link_stamp()
+        } else {
+            (0, 0)
+        };
         while !self.decider.halted
             && !self.decider.stop_requested
             && !self.decider.depth_exceeded

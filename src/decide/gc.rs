@@ -8,6 +8,20 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 
 impl AgentCore {
+    /// A slot taken out with its object: its preferences are freed and its WMEs other
+    /// than `keep` (which the caller removes in its own order) leave working memory.
+    pub(super) fn discard_slot(&mut self, slot: super::slot::Slot, keep: WmeId) {
+        for &pid in &slot.prefs {
+            self.decider.free_pref(pid);
+        }
+        for sw in slot.wmes.values().rev() {
+            if sw != keep {
+                self.remove_wme(sw);
+            }
+        }
+        self.decider.slots.recycle(slot);
+    }
+
     /// Removes WMEs no longer linked to a goal or the io link. Only identifiers that lost a
     /// link can have become unlinked: each is searched upward for a goal, and the structure
     /// below one that has none goes (cycles included).
@@ -83,15 +97,7 @@ impl AgentCore {
                         self.write_pref_event(&mut pref_lines, true, false, pid);
                     }
                 }
-                for &pid in &slot.prefs {
-                    self.decider.free_pref(pid);
-                }
-                for sw in slot.wmes.values().rev() {
-                    if sw != w {
-                        self.remove_wme(sw);
-                    }
-                }
-                self.decider.slots.recycle(slot);
+                self.discard_slot(slot, w);
             }
             if self.wm.get(w).is_some() {
                 if !wmes_traced.contains(&wme.timetag) {

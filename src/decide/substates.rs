@@ -75,15 +75,7 @@ impl AgentCore {
                 continue;
             }
             if let Some(slot) = self.decider.slots.remove(&(wme.id, wme.attr)) {
-                for &pid in &slot.prefs {
-                    self.decider.free_pref(pid);
-                }
-                for sw in slot.wmes.values().rev() {
-                    if sw != w {
-                        self.remove_wme(sw);
-                    }
-                }
-                self.decider.slots.recycle(slot);
+                self.discard_slot(slot, w);
             }
             self.remove_wme(w);
         }
