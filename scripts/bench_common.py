@@ -1,5 +1,5 @@
 """Timing helpers shared by the side-by-side benchmarks (bench_counter.py,
-bench_decisions.py, bench_slam_workload.py): `run D` of one agent file in the official 9.6
+bench_slam_workload.py): `run D` of one agent file in the official 9.6
 kernel (pip package soar-sml) and in rusoar (in-process, examples/time_run.rs)."""
 import os
 import re

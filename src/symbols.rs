@@ -39,6 +39,25 @@ pub struct IdData {
     pub is_impasse: bool,
 }
 
+/// An identifier's name (`S12`), written without the formatting machinery: justifications
+/// name every identifier they test this way, thousands of times a second.
+fn id_text(letter: u8, mut number: u64) -> String {
+    let mut digits = [0u8; 20];
+    let mut at = digits.len();
+    loop {
+        at -= 1;
+        digits[at] = b'0' + (number % 10) as u8;
+        number /= 10;
+        if number == 0 {
+            break;
+        }
+    }
+    let mut text = String::with_capacity(1 + digits.len() - at);
+    text.push(letter as char);
+    text.extend(digits[at..].iter().map(|&d| d as char));
+    text
+}
+
 /// The symbol table of one agent. Counters live here and are reset by `init-soar`.
 #[derive(Debug, Default)]
 pub struct Symbols {
@@ -251,7 +270,7 @@ impl Symbols {
             SymData::Str(x) => crate::printer::rereadable(x),
             SymData::Int(i) => i.to_string(),
             SymData::Float(f) => crate::printer::float_text(*f),
-            SymData::Id(d) => format!("{}{}", d.letter as char, d.number),
+            SymData::Id(d) => id_text(d.letter, d.number),
         }
     }
 

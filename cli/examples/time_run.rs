@@ -1,9 +1,9 @@
-//! Times `run 1000` on agents in-process, for scripts/bench_decisions.py: for each agent
+//! Times `run 1000` on agents in-process, for scripts/bench_agents.py: for each agent
 //! file given, `repeat` fresh agents each run `srand 1`, `watch 0`, `source FILE`,
 //! then `run 1000` under the clock; prints `NAME decisions firings median_seconds`.
 //!
-//! usage: cargo run --release -p rusoar-cli --example time_run -- REPEAT [--run N] FILE...
-//! (`--run N`: time `run N` instead of `run 1000`)
+//! usage: cargo run --release -p rusoar-cli --example time_run -- REPEAT [--run N] FILE[@D]...
+//! (`--run N`: time `run N` instead of `run 1000`; `FILE@D`: time `run D` for that file)
 
 use rusoar::Agent;
 use std::time::Instant;
@@ -31,8 +31,11 @@ fn main() {
         args.next();
         decisions = args.next().and_then(|n| n.parse().ok()).unwrap_or(1000);
     }
-    let run = format!("run {decisions}");
-    for file in args {
+    for arg in args {
+        let (file, run) = match arg.rsplit_once('@') {
+            Some((file, d)) if d.parse::<u64>().is_ok() => (file.to_string(), format!("run {d}")),
+            _ => (arg.clone(), format!("run {decisions}")),
+        };
         let mut times = Vec::with_capacity(repeat);
         let mut stats = String::new();
         for _ in 0..repeat {

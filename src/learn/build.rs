@@ -86,6 +86,8 @@ struct Builder<'a> {
     /// chunk, for a justification only with learning on (9.6 builds it as it builds a
     /// chunk then, without variables).
     keep_tests: bool,
+    /// A justification's identifiers by name, each named once per rule.
+    id_names: FxHashMap<Sym, std::sync::Arc<str>>,
 }
 
 impl Builder<'_> {
@@ -95,7 +97,12 @@ impl Builder<'_> {
         if !self.namer.variablize {
             return if is_id {
                 // Justifications print their identifiers bare (`(state S1 ^operator O1)`).
-                Term::Var(self.agent.symbols.text(sym).into())
+                let symbols = &self.agent.symbols;
+                let name = self
+                    .id_names
+                    .entry(sym)
+                    .or_insert_with(|| symbols.text(sym).into());
+                Term::Var(name.clone())
             } else {
                 Term::Const(constant_of(self.agent, sym))
             };
@@ -386,8 +393,11 @@ impl AgentCore {
             bound: FxHashSet::default(),
             ground_ids: FxHashMap::default(),
             keep_tests: variablize || self.settings.learn != crate::agent::LearnMode::Never,
+            id_names: FxHashMap::default(),
         };
-        for g in &bt.grounds {
+        // Which identities and identifiers the conditions bind: only a chunk's variables
+        // need them.
+        for g in bt.grounds.iter().filter(|_| variablize) {
             let w = g.cond.wme;
             for (&i, s) in g.cond.ids.iter().zip([w.id, w.attr, w.value]) {
                 if i != 0 {
@@ -399,8 +409,8 @@ impl AgentCore {
             }
         }
         // Variables are named where they are first tested for equality (9.6: `^to <t1>`,
-        // even when a relational test elsewhere names it first).
-        for g in &bt.grounds {
+        // even when a relational test elsewhere names it first). A justification has none.
+        for g in bt.grounds.iter().filter(|_| variablize) {
             let w = g.cond.wme;
             b.term(w.id, g.cond.ids[0], None);
             b.term(w.attr, g.cond.ids[1], None);
@@ -415,7 +425,7 @@ impl AgentCore {
                 g.cond
                     .cond
                     .and_then(|ci| match g.trace.prod.as_ref()?.conditions.get(ci)? {
-                        Condition::Positive(c) => Some(c.clone()),
+                        Condition::Positive(c) => Some(c),
                         _ => None,
                     });
             let id = b.term(w.id, g.cond.ids[0], None);
@@ -423,7 +433,7 @@ impl AgentCore {
             let value = b.term(w.value, g.cond.ids[2], Some(w.attr));
             let mut tests = [Vec::new(), Vec::new(), Vec::new()];
             // With learning off, a justification tests the symbols themselves, nothing more.
-            if let Some(o) = orig.as_ref().filter(|_| b.keep_tests) {
+            if let Some(o) = orig.filter(|_| b.keep_tests) {
                 for (k, t) in [&o.id, &o.attr, &o.value].into_iter().enumerate() {
                     b.extra_tests(&g.trace, t, &mut tests[k]);
                 }
@@ -496,8 +506,8 @@ impl AgentCore {
         }
         let mut actions = Vec::new();
         for &r in results {
-            let p = self.decider.prefs[r].clone();
-            let origin = p.origin.clone();
+            let p = &self.decider.prefs[r];
+            let origin = p.origin.as_ref();
             let ids = origin.as_ref().map_or([0; 4], |o| o.ids);
             let make = origin.as_ref().and_then(|o| {
                 let prod = o.trace.prod.as_ref()?;
