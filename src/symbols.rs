@@ -58,6 +58,36 @@ fn id_text(letter: u8, mut number: u64) -> String {
     text
 }
 
+impl Default for Known {
+    /// Placeholders that name no symbol, until `Symbols::new` looks the constants up.
+    fn default() -> Self {
+        let none = Sym(u32::MAX);
+        Known {
+            operator: none,
+            state: none,
+            type_: none,
+            superstate: none,
+            reward_link: none,
+            epmem: none,
+            smem: none,
+            command: none,
+            result: none,
+            present_id: none,
+            attribute: none,
+            impasse: none,
+            choices: none,
+            multiple: none,
+            none,
+            quiescence: none,
+            t: none,
+            item: none,
+            item_count: none,
+            non_numeric: none,
+            non_numeric_count: none,
+        }
+    }
+}
+
 /// The symbol table of one agent. Counters live here and are reset by `init-soar`.
 #[derive(Debug, Default)]
 pub struct Symbols {
@@ -76,6 +106,35 @@ pub struct Symbols {
     /// insert; a learning or SLAM run makes hundreds of thousands).
     ids: [Vec<Sym>; 26],
     counters: [u64; 26],
+    /// The constants the decision cycle itself writes and reads, looked up once.
+    pub known: Known,
+}
+
+/// Constants the architecture uses on every substate and firing (all among the start-up
+/// constants, so naming them here changes no symbol's creation order).
+#[derive(Debug, Clone, Copy)]
+pub struct Known {
+    pub operator: Sym,
+    pub state: Sym,
+    pub type_: Sym,
+    pub superstate: Sym,
+    pub reward_link: Sym,
+    pub epmem: Sym,
+    pub smem: Sym,
+    pub command: Sym,
+    pub result: Sym,
+    pub present_id: Sym,
+    pub attribute: Sym,
+    pub impasse: Sym,
+    pub choices: Sym,
+    pub multiple: Sym,
+    pub none: Sym,
+    pub quiescence: Sym,
+    pub t: Sym,
+    pub item: Sym,
+    pub item_count: Sym,
+    pub non_numeric: Sym,
+    pub non_numeric_count: Sym,
 }
 
 impl Symbols {
@@ -94,6 +153,29 @@ impl Symbols {
                 s.int(n);
             }
         }
+        s.known = Known {
+            operator: s.str("operator"),
+            state: s.str("state"),
+            type_: s.str("type"),
+            superstate: s.str("superstate"),
+            reward_link: s.str("reward-link"),
+            epmem: s.str("epmem"),
+            smem: s.str("smem"),
+            command: s.str("command"),
+            result: s.str("result"),
+            present_id: s.str("present-id"),
+            attribute: s.str("attribute"),
+            impasse: s.str("impasse"),
+            choices: s.str("choices"),
+            multiple: s.str("multiple"),
+            none: s.str("none"),
+            quiescence: s.str("quiescence"),
+            t: s.str("t"),
+            item: s.str("item"),
+            item_count: s.str("item-count"),
+            non_numeric: s.str("non-numeric"),
+            non_numeric_count: s.str("non-numeric-count"),
+        };
         s
     }
 

@@ -317,7 +317,7 @@ fn pref_rule<'a>(
         return Some(name.as_str());
     }
     if let Some(o) = p.origin.as_ref().filter(|o| p.inst.is_none() && o.trace.prod.is_none()) {
-        return Some(o.trace.name.as_str());
+        return Some(&o.trace.name);
     }
     p.inst
         .map(|i| agent.decider.insts[i].prod)

@@ -273,57 +273,51 @@ impl AgentCore {
             d.is_goal = true;
             d.is_impasse = true;
         }
-        let mut wmes = Vec::new();
-        let mut add = |agent: &mut AgentCore, id: Sym, attr: &str, value: Sym| {
-            let a = agent.symbols.str(attr);
+        let k = self.symbols.known;
+        let mut wmes = Vec::with_capacity(16 + 2 * items.len());
+        let mut add = |agent: &mut AgentCore, id: Sym, attr: Sym, value: Sym| {
             // Into working memory now; the matcher gets them below, newest first.
-            wmes.push(agent.wm.add(id, a, value, false));
+            wmes.push(agent.wm.add(id, attr, value, false));
         };
-        let state = self.symbols.str("state");
-        add(self, s, "type", state);
-        add(self, s, "superstate", parent);
+        add(self, s, k.type_, k.state);
+        add(self, s, k.superstate, parent);
         let r = self.symbols.new_id('R', level);
-        add(self, s, "reward-link", r);
+        add(self, s, k.reward_link, r);
         let e = self.symbols.new_id('E', level);
-        add(self, s, "epmem", e);
+        add(self, s, k.epmem, e);
         let c = self.symbols.new_id('C', level);
-        add(self, e, "command", c);
+        add(self, e, k.command, c);
         let r2 = self.symbols.new_id('R', level);
-        add(self, e, "result", r2);
+        add(self, e, k.result, r2);
         let one = self.symbols.int(1);
-        add(self, e, "present-id", one);
+        add(self, e, k.present_id, one);
         let l = self.symbols.new_id('L', level);
-        add(self, s, "smem", l);
+        add(self, s, k.smem, l);
         let c2 = self.symbols.new_id('C', level);
-        add(self, l, "command", c2);
+        add(self, l, k.command, c2);
         let r3 = self.symbols.new_id('R', level);
-        add(self, l, "result", r3);
-        let attr = self
-            .symbols
-            .str(if on_operator { "operator" } else { "state" });
-        add(self, s, "attribute", attr);
+        add(self, l, k.result, r3);
+        let attr = if on_operator { k.operator } else { k.state };
+        add(self, s, k.attribute, attr);
         let imp = self.symbols.str(kind.word());
-        add(self, s, "impasse", imp);
-        let choices = self.symbols.str(
-            if matches!(kind, ImpasseKind::Tie | ImpasseKind::Conflict) {
-                "multiple"
-            } else {
-                "none"
-            },
-        );
-        add(self, s, "choices", choices);
-        let t = self.symbols.str("t");
-        add(self, s, "quiescence", t);
+        add(self, s, k.impasse, imp);
+        let choices = if matches!(kind, ImpasseKind::Tie | ImpasseKind::Conflict) {
+            k.multiple
+        } else {
+            k.none
+        };
+        add(self, s, k.choices, choices);
+        add(self, s, k.quiescence, k.t);
         if !items.is_empty() {
             for &it in &items {
-                add(self, s, "item", it);
+                add(self, s, k.item, it);
             }
             let n = self.symbols.int(items.len() as i64);
-            add(self, s, "item-count", n);
+            add(self, s, k.item_count, n);
             for &it in &items {
-                add(self, s, "non-numeric", it);
+                add(self, s, k.non_numeric, it);
             }
-            add(self, s, "non-numeric-count", n);
+            add(self, s, k.non_numeric_count, n);
         }
         // 9.6 prints the depth message before the new state's WMEs and line.
         if level as i64 > self.settings.max_goal_depth {

@@ -271,7 +271,7 @@ impl AgentCore {
         let trace = match &recorded {
             Some((t, _)) => t.clone(),
             None => Arc::new(InstTrace {
-                name: name.clone(),
+                name: name.as_str().into(),
                 prod: None,
                 conds: bt
                     .grounds

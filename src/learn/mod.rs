@@ -43,18 +43,54 @@ pub struct TraceCond {
 /// instantiation itself may retract before a later result backtraces through it).
 #[derive(Debug)]
 pub struct InstTrace {
-    pub name: String,
+    pub name: Arc<str>,
     /// The rule fired (none for a justification).
     pub prod: Option<Arc<Production>>,
     pub conds: Vec<TraceCond>,
     /// Each variable of the rule: its identity and what it was bound to (or made).
-    pub vars: FxHashMap<String, (Ident, Sym)>,
+    pub vars: TraceVars,
     /// The user rule at the origin of a chunk, and how many learning steps away it is
     /// (`chunk*r*...` is 1, `chunkx2*r*...` 2): names of chunks learned from this firing.
-    pub base: String,
+    pub base: Arc<str>,
     pub generation: u32,
     /// The level of the instantiation's match goal (traced with its preferences).
     pub level: u32,
+}
+
+/// A firing's variables in name order, each with its identity and symbol: a small sorted
+/// list, as a rule has a few variables and every substate firing records them.
+#[derive(Debug, Default)]
+pub struct TraceVars(Vec<(Arc<str>, (Ident, Sym))>);
+
+impl TraceVars {
+    /// The variables, sorted here by name.
+    pub fn new(mut vars: Vec<(Arc<str>, (Ident, Sym))>) -> Self {
+        vars.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        TraceVars(vars)
+    }
+
+    pub fn get(&self, var: &str) -> Option<&(Ident, Sym)> {
+        self.0
+            .binary_search_by(|(k, _)| (**k).cmp(var))
+            .ok()
+            .map(|i| &self.0[i].1)
+    }
+
+    pub fn contains_key(&self, var: &str) -> bool {
+        self.get(var).is_some()
+    }
+}
+
+/// A rule's name and the names of the chunks learned from its firings, shared by every
+/// recorded firing of it.
+#[derive(Debug, Clone)]
+pub struct TraceNames {
+    pub name: Arc<str>,
+    pub base: Arc<str>,
+    pub generation: u32,
+    /// For each positive condition, the binding index (in the rule's bindings) of the
+    /// variable each field tests for equality; `u32::MAX` for none.
+    pub cond_bindings: Arc<[[u32; 3]]>,
 }
 
 /// Where a preference came from: the firing and the identities of its fields.
@@ -101,7 +137,11 @@ pub struct LearnState {
     pub chunks_this_phase: i64,
     /// Duplicate chunks learned in the current phase, by the rule whose firing made the
     /// result (max-dupes is per rule, per phase in 9.6).
-    pub dupes_this_phase: FxHashMap<String, i64>,
+    pub dupes_this_phase: FxHashMap<Arc<str>, i64>,
+    /// The names each fired rule's recorded firings share, by rule.
+    pub trace_names: FxHashMap<crate::rete::ProdId, TraceNames>,
+    /// Scratch for recording a firing: each binding's identity.
+    pub binding_idents: Vec<Ident>,
     pub duplicates: u64,
     /// `chunk`'s counts since the last `init-soar` (9.6 resets them there): chunks,
     /// justifications, and learning episodes that got as far as building either.

@@ -3,7 +3,7 @@
 //! for each local WME, the preference that made it. Top-state firings are never backtraced
 //! and record nothing (speed).
 
-use super::{Ident, InstTrace, PrefOrigin, TraceCond};
+use super::{Ident, InstTrace, PrefOrigin, TraceCond, TraceNames, TraceVars};
 use crate::agent::AgentCore;
 use crate::decide::procedure::PrefType;
 use crate::decide::state::PrefId;
@@ -33,22 +33,31 @@ impl AgentCore {
         new_ids: &FxHashMap<String, Sym>,
         made: &[(PrefId, usize)],
     ) -> Option<Arc<InstTrace>> {
-        let mut vars: FxHashMap<String, (Ident, Sym)> = FxHashMap::default();
+        let names = self.trace_names(p, prod);
+        let mut vars: Vec<(Arc<str>, (Ident, Sym))> = Vec::new();
+        // Each binding's identity (0 when unbound), by binding index.
+        let mut binding_idents = std::mem::take(&mut self.learn.binding_idents);
+        binding_idents.clear();
         if let Some(info) = self.rete.production(p) {
             // The bindings are in name order, as the identities are numbered.
             let first = self.learn.new_idents(info.bindings.len() + new_ids.len());
+            vars.reserve(info.bindings.len() + new_ids.len());
             for (k, (v, (depth, field))) in info.bindings.iter().enumerate() {
                 if let Some(s) = self.rete.bound_value(t, depth, field) {
-                    vars.insert(v.to_string(), (first + k as u64, s));
+                    vars.push((v.clone(), (first + k as u64, s)));
+                    binding_idents.push(first + k as u64);
+                } else {
+                    binding_idents.push(0);
                 }
             }
             let mut made_ids: Vec<(&String, &Sym)> = new_ids.iter().collect();
             made_ids.sort();
             let base = first + vars.len() as u64;
             for (k, (v, s)) in made_ids.into_iter().enumerate() {
-                vars.insert(v.clone(), (base + k as u64, *s));
+                vars.push((v.as_str().into(), (base + k as u64, *s)));
             }
         }
+        let vars = TraceVars::new(vars);
         let wmes = self.rete.match_wmes(p, t);
         let positives = prod
             .conditions
@@ -56,19 +65,20 @@ impl AgentCore {
             .enumerate()
             .filter(|(_, c)| matches!(c, Condition::Positive(_)));
         let mut conds = Vec::with_capacity(wmes.len());
-        for ((ci, c), &w) in positives.zip(wmes.iter()) {
-            let (Condition::Positive(c), Some(wme)) = (c, self.wm.get(w).copied()) else {
+        for (((ci, c), &w), fields) in positives.zip(wmes.iter()).zip(names.cond_bindings.iter())
+        {
+            let (Condition::Positive(_), Some(wme)) = (c, self.wm.get(w).copied()) else {
                 continue;
             };
             let wme_level = self.symbols.id_data(wme.id).map_or(0, |d| d.level);
-            let ident = |t: &Test| equality_var(t).and_then(|v| vars.get(v)).map_or(0, |x| x.0);
+            let ident = |b: u32| binding_idents.get(b as usize).copied().unwrap_or(0);
             // Any substate WME may be local to a later episode one level up.
             let support = if wme_level >= 2 {
                 self.supporting_origin(&wme)
             } else {
                 None
             };
-            let ids = [ident(&c.id), ident(&c.attr), ident(&c.value)];
+            let ids = fields.map(ident);
             // An impasse's `^item` stands for the acceptable preference it shows, in the
             // state above (9.6 backtraces to `(S1 ^operator O1 +)`, E:look3).
             if let Some(acc) = self.item_preference_wme(&wme) {
@@ -92,7 +102,6 @@ impl AgentCore {
                 support,
             });
         }
-        let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
         let level = self
             .decider
             .inst_by_token
@@ -100,10 +109,10 @@ impl AgentCore {
             .and_then(|&i| self.decider.insts[i].goal)
             .map_or(0, |g| self.sym_level(g));
         let trace = Arc::new(InstTrace {
-            base,
-            generation,
+            base: names.base,
+            generation: names.generation,
             level,
-            name: prod.name.clone(),
+            name: names.name,
             prod: Some(prod.clone()),
             conds,
             vars,
@@ -128,18 +137,54 @@ impl AgentCore {
                 action: Some(ai),
             }));
         }
+        self.learn.binding_idents = binding_idents;
         Some(trace)
+    }
+
+    /// The names a rule's recorded firings share, made once per rule (a cached entry
+    /// stands only while the rule it was made for holds the id).
+    fn trace_names(&mut self, p: ProdId, prod: &Production) -> TraceNames {
+        if let Some(n) = self.learn.trace_names.get(&p) {
+            if *n.name == *prod.name {
+                return n.clone();
+            }
+        }
+        let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
+        // For each positive condition, the binding index of the variable each field tests
+        // for equality (`u32::MAX`: none).
+        let bindings = self.rete.production(p).map(|info| &info.bindings);
+        let index = |t: &Test| {
+            equality_var(t)
+                .and_then(|v| bindings?.index_of(v))
+                .map_or(u32::MAX, |i| i as u32)
+        };
+        let cond_bindings = prod
+            .conditions
+            .iter()
+            .filter_map(|c| match c {
+                Condition::Positive(c) => Some([index(&c.id), index(&c.attr), index(&c.value)]),
+                _ => None,
+            })
+            .collect();
+        let names = TraceNames {
+            name: prod.name.as_str().into(),
+            base: base.into(),
+            generation,
+            cond_bindings,
+        };
+        self.learn.trace_names.insert(p, names.clone());
+        names
     }
 
     /// For `(G ^item X)` of a tie or conflict substate G: the WME `(S ^operator X +)` of
     /// the state above.
     fn item_preference_wme(&self, wme: &crate::wm::Wme) -> Option<crate::wm::WmeId> {
-        if self.symbols.find_str("item") != Some(wme.attr) || !self.symbols.is_goal(wme.id) {
+        if self.symbols.known.item != wme.attr || !self.symbols.is_goal(wme.id) {
             return None;
         }
         let gi = self.decider.goals.iter().position(|g| g.state == wme.id)?;
         let above = self.decider.goals.get(gi.checked_sub(1)?)?.state;
-        let op = self.symbols.find_str("operator")?;
+        let op = self.symbols.known.operator;
         let slot = self.decider.slots.get(&(above, op))?;
         slot.wmes.get(&(wme.value, true))
     }

@@ -24,10 +24,16 @@ impl VarBindings {
             .map(|i| &self.0[i].1)
     }
 
-    /// Each variable with where it is bound, in name order.
-    pub fn iter(&self) -> impl Iterator<Item = (&str, (u32, Field))> {
-        self.0.iter().map(|(k, b)| (&**k, *b))
+    /// The position of a variable among the bindings (name order).
+    pub fn index_of(&self, var: &str) -> Option<usize> {
+        self.0.binary_search_by(|(k, _)| (**k).cmp(var)).ok()
     }
+
+    /// Each variable (its shared name) with where it is bound, in name order.
+    pub fn iter(&self) -> impl Iterator<Item = (&std::sync::Arc<str>, (u32, Field))> {
+        self.0.iter().map(|(k, b)| (k, *b))
+    }
+
 
     pub(crate) fn len(&self) -> usize {
         self.0.len()
