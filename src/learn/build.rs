@@ -253,7 +253,7 @@ impl Builder<'_> {
         locals: &mut FxHashMap<String, String>,
     ) -> Option<Test> {
         let term = |b: &mut Self, term: &Term, locals: &mut FxHashMap<String, String>| match term {
-            Term::Var(v) if trace.vars.contains_key(&**v) => b.var_term(trace, v),
+            Term::Var(v) if trace.vars.contains_key(v) => b.var_term(trace, v),
             // A justification keeps the rule's own names for them (`-^t-done <t*1>`).
             Term::Var(v) if !b.namer.variablize => Some(Term::Var(v.clone())),
             Term::Var(v) => Some(Term::Var(match locals.get(&**v) {
@@ -283,7 +283,7 @@ impl Builder<'_> {
                 // `-^c { <c1> << x y >> }`); one the chunk binds elsewhere stays where the
                 // rule has it (`-^w { <> 5 <a1> }`).
                 let local = ts.iter().position(|x| {
-                    matches!(x, Test::Equal(Term::Var(v)) if !trace.vars.contains_key(&**v))
+                    matches!(x, Test::Equal(Term::Var(v)) if !trace.vars.contains_key(v))
                 });
                 if let Some(k) = local.filter(|_| self.namer.variablize) {
                     out[..=k].rotate_right(1);

@@ -258,7 +258,7 @@ fn ptests(
     out: &mut Vec<PTest>,
 ) {
     let mut term = |x: &Term| match x {
-        Term::Var(v) => match trace.vars.get(&**v) {
+        Term::Var(v) => match trace.vars.get(v) {
             Some(&(_, s)) => PTerm::Sym(s),
             None => {
                 let n = locals.len();
