@@ -88,21 +88,14 @@ pub enum Help {
     Unknown,
 }
 
-/// `help NAME`. A command name gives its page; an alias gives the page of the command it
-/// expands to, under a line saying so; a unique prefix of a listed command gives that
-/// command's page and a prefix of several asks which one, as 9.6 does. Each page ends
-/// with the aliases that lead to its command, from the alias table in use.
+/// `help NAME`. A command name gives its page. As in 9.6, a unique prefix of a listed
+/// command gives that command's page, and a prefix of several asks which one (so the
+/// one-letter aliases `c`, `d`, `e`, `p`, `s` get 9.6's question). Any other alias gives the
+/// page of the command it expands to, under a line saying so. Each page ends with the
+/// aliases that lead to its command, from the alias table in use.
 pub fn help_for(name: &str, aliases: &Aliases) -> Help {
     if let Some(p) = page(name) {
         return Help::Page(with_aliases(name, p, aliases));
-    }
-    if let Some(expansion) = aliases.get(name) {
-        let head = format!("{name} is an alias for `{}`.\n", expansion.join(" "));
-        let target = expansion.first().map(String::as_str).unwrap_or_default();
-        return Help::Page(match page(target) {
-            Some(p) => format!("{head}\n{}", with_aliases(target, p, aliases)),
-            None => head,
-        });
     }
     let hits: Vec<&str> = if name.is_empty() {
         Vec::new()
@@ -110,13 +103,24 @@ pub fn help_for(name: &str, aliases: &Aliases) -> Help {
         listed().filter(|c| c.starts_with(name)).collect()
     };
     match hits.as_slice() {
-        [] => Help::Unknown,
-        [one] => Help::Page(with_aliases(one, page(one).unwrap_or_default(), aliases)),
-        [first @ .., last] => Help::Ambiguous(format!(
-            "I'm not sure which help page you want.  Did you mean {} or {last}?",
-            first.join(", ")
-        )),
+        [] => {}
+        [one] => return Help::Page(with_aliases(one, page(one).unwrap_or_default(), aliases)),
+        [first @ .., last] => {
+            return Help::Ambiguous(format!(
+                "I'm not sure which help page you want.  Did you mean {} or {last}?",
+                first.join(", ")
+            ))
+        }
     }
+    let Some(expansion) = aliases.get(name) else {
+        return Help::Unknown;
+    };
+    let head = format!("{name} is an alias for `{}`.\n", expansion.join(" "));
+    let target = expansion.first().map(String::as_str).unwrap_or_default();
+    Help::Page(match page(target) {
+        Some(p) => format!("{head}\n{}", with_aliases(target, p, aliases)),
+        None => head,
+    })
 }
 
 /// A page followed by the aliases whose expansion starts with `command`.

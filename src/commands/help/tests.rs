@@ -255,6 +255,10 @@ fn every_alias_leads_to_a_page() {
     for name in aliases.names() {
         let target = &aliases.get(name).unwrap()[0];
         assert!(page(target).is_some(), "alias {name}: no page for {target}");
+        // An alias that starts a command name gets 9.6's answer for prefixes instead.
+        if listed().any(|c| c.starts_with(name)) {
+            continue;
+        }
         let Help::Page(text) = help_for(name, &aliases) else {
             panic!("help {name}: no page");
         };
