@@ -548,14 +548,14 @@ impl Interpreter {
         result
     }
 
-    /// `help [command]`: the list, or one command's usage (an alias: its expansion's).
+    /// `help [command]`: the list, or one command's manual page (an alias: its expansion's).
     fn cmd_help(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let Some(name) = args.first() else {
             return Ok(help::listing());
         };
         match help::help_for(name, &self.aliases) {
-            Some(text) => Ok(text),
-            None => {
+            help::Help::Page(text) | help::Help::Ambiguous(text) => Ok(text),
+            help::Help::Unknown => {
                 let mut d = Diagnostic::error(format!("No such command '{name}'."))
                     .at(ctx.arg_span(0))
                     .with_label("not a command or alias");
