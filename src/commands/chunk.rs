@@ -91,7 +91,7 @@ impl Interpreter {
                 }
             }
             Some("singleton") => self.chunk_singleton(ctx, &args[1..]),
-            Some("stats") => Err(super::not_yet(ctx, "chunk stats")),
+            Some("stats") => Ok(super::chunk_stats::chunk_stats(&self.agent)),
             Some(name) => {
                 let Some(switch) = s.chunk.switch(name) else {
                     return Err(invalid());

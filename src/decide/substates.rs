@@ -315,6 +315,9 @@ impl AgentCore {
         let t = self.symbols.str("t");
         add(self, s, "quiescence", t);
         if !items.is_empty() {
+            // 9.6 backs each `^item` and `^non-numeric` with an instantiation of its own
+            // (counted by `chunk stats`).
+            self.learn.stats.item_instantiations += 2 * items.len() as u64;
             for &it in &items {
                 add(self, s, "item", it);
             }

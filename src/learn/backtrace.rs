@@ -43,8 +43,18 @@ pub struct Backtrace {
     parent: FxHashMap<Ident, Ident>,
     pub literal: FxHashMap<Ident, Sym>,
     visited: FxHashSet<*const InstTrace>,
-    /// Firings backtraced (for `chunk stats`).
+    /// Firings backtraced (for `chunk stats`), and the impasse items gone through (9.6
+    /// backtraces each through an instantiation of its own).
     pub firings: usize,
+    items: FxHashSet<u64>,
+    /// The variables of the firings backtraced: the identities the episode worked with.
+    pub identities: usize,
+    /// Fields where a condition met the action that made its WME: with an identity on
+    /// both sides, and with a literal tested on the condition's side.
+    pub propagations: usize,
+    pub propagations_blocked: usize,
+    /// Unions of two identity sets.
+    pub joins: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
 }
@@ -79,6 +89,7 @@ impl Backtrace {
         // The older identity stays the representative (stable variable names).
         let (keep, gone) = if ra < rb { (ra, rb) } else { (rb, ra) };
         self.parent.insert(gone, keep);
+        self.joins += 1;
         if let Some(l) = self.literal.remove(&gone) {
             self.literal.entry(keep).or_insert(l);
         }
@@ -96,8 +107,12 @@ impl Backtrace {
                 continue;
             }
             self.firings += 1;
+            self.identities += trace.vars.len();
             let mut locals = Vec::new();
             for c in &trace.conds {
+                if c.via_item && self.items.insert(c.wme.timetag) {
+                    self.firings += 1;
+                }
                 if c.level > 0 && c.level < self.level {
                     self.add_ground(c, &trace);
                     continue;
@@ -113,10 +128,14 @@ impl Backtrace {
                             // A literal tested on what was made from a variable: the
                             // chunk can only fire for that literal.
                             (0, made) => {
+                                self.propagations_blocked += 1;
                                 let r = self.find(made);
                                 self.literal.entry(r).or_insert(field);
                             }
-                            (tested, made) => self.join(tested, made),
+                            (tested, made) => {
+                                self.propagations += 1;
+                                self.join(tested, made)
+                            }
                         }
                     }
                     self.local_constraints(&trace, c, origin);

@@ -338,24 +338,9 @@ impl AgentCore {
     ) -> Vec<(&'b super::backtrace::Negation, Arc<Production>)> {
         let mut out = Vec::new();
         for n in &bt.negations {
-            let Some(prod) = n.trace.prod.clone() else {
+            let Some((id_level, prod)) = self.negation_level(n) else {
                 continue;
             };
-            let Some(c) = prod.conditions.get(n.cond) else {
-                continue;
-            };
-            let first = match c {
-                Condition::Negative(x) | Condition::Positive(x) => Some(x),
-                Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
-                    Condition::Positive(x) | Condition::Negative(x) => Some(x),
-                    _ => None,
-                }),
-            };
-            let id_level = first
-                .and_then(|x| equality_var(&x.id))
-                .and_then(|v| n.trace.vars.get(v))
-                .and_then(|&(_, s)| self.symbols.id_data(s))
-                .map_or(u32::MAX, |d| d.level);
             if id_level != 0 && id_level < bt.level {
                 out.push((n, prod));
             }
@@ -364,6 +349,36 @@ impl AgentCore {
         // which decides the order among negations that become testable together.
         out.reverse();
         out
+    }
+
+    /// The level of the identifier a negated condition of a backtraced firing tests
+    /// (`u32::MAX` when it names none), with the rule it belongs to.
+    fn negation_level(&self, n: &super::backtrace::Negation) -> Option<(u32, Arc<Production>)> {
+        let prod = n.trace.prod.clone()?;
+        let c = prod.conditions.get(n.cond)?;
+        let first = match c {
+            Condition::Negative(x) | Condition::Positive(x) => Some(x),
+            Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
+                Condition::Positive(x) | Condition::Negative(x) => Some(x),
+                _ => None,
+            }),
+        };
+        let id_level = first
+            .and_then(|x| equality_var(&x.id))
+            .and_then(|v| n.trace.vars.get(v))
+            .and_then(|&(_, s)| self.symbols.id_data(s))
+            .map_or(u32::MAX, |d| d.level);
+        Some((id_level, prod))
+    }
+
+    /// Whether the reasoning behind a result tested the absence of something in the
+    /// substate (Soar manual, ch. 4, "Using negated conditions about the substate"): a
+    /// chunk cannot carry such a test, so it may be wrong when that knowledge changes.
+    pub(crate) fn tests_local_negation(&self, bt: &Backtrace) -> bool {
+        bt.negations.iter().any(|n| {
+            self.negation_level(n)
+                .is_some_and(|(l, _)| l != u32::MAX && l >= bt.level)
+        })
     }
 
     /// The rule a backtrace gives: a chunk (`variablize`) or a justification.

@@ -80,6 +80,7 @@ impl AgentCore {
                         ids: [0, 0, ids[2]],
                         cond: None,
                         support: None,
+                        via_item: true,
                     });
                 }
             }
@@ -90,6 +91,7 @@ impl AgentCore {
                 ids,
                 cond: Some(ci),
                 support,
+                via_item: false,
             });
         }
         let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
