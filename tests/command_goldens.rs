@@ -36,6 +36,25 @@ fn neutral_title(text: &str) -> String {
         .collect()
 }
 
+/// The text with the counts of `chunk stats`' identity rows made neutral: 9.6 counts
+/// identities by its own bookkeeping (identity sets made and merged as each substate rule
+/// fires, in an order that differs from run to run on some agents), which rusoar's
+/// learner does not keep; docs/conformance.md lists the difference.
+fn neutral_identity_counts(text: &str) -> String {
+    const ROWS: [&str; 4] = [
+        "Identities created ",
+        "Identity propagations ",
+        "Identity propagations blocked ",
+        "Identities joined ",
+    ];
+    text.split_inclusive('\n')
+        .map(|line| match ROWS.iter().find(|r| line.starts_with(*r)) {
+            Some(r) => format!("{r}#\n"),
+            None => line.to_string(),
+        })
+        .collect()
+}
+
 /// What rusoar prints for one command, in the golden's form.
 fn rusoar_text(agent: &mut Agent, command: &str) -> String {
     match agent.execute(command) {
@@ -70,7 +89,8 @@ fn commands_print_what_the_official_kernel_prints() {
         let mut agent = Agent::new(&name);
         for (command, expected) in golden_blocks(&golden) {
             let got = rusoar_text(&mut agent, &command);
-            if neutral_title(&got) != neutral_title(&expected) {
+            let neutral = |t: &str| neutral_identity_counts(&neutral_title(t));
+            if neutral(&got) != neutral(&expected) {
                 failures.push(format!(
                     "{name}: `{command}`\n--- official\n{expected}--- rusoar\n{got}"
                 ));

@@ -195,3 +195,13 @@ fn output_log_and_command_to_file_write_files() {
     assert!(std::fs::read_to_string(&ctf).unwrap().ends_with("more\n\n"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// 9.6 prints `chunk stats` whatever follows it; rusoar prints it and says the rest is
+/// not used.
+#[test]
+fn chunk_stats_says_extra_words_are_not_used() {
+    let mut a = Agent::default();
+    let out = a.execute("chunk stats extra").unwrap();
+    assert!(out.contains("Explanation-Based Chunking Statistics"), "{out}");
+    assert!(out.contains("takes no arguments"), "{out}");
+}

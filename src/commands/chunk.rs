@@ -91,7 +91,18 @@ impl Interpreter {
                 }
             }
             Some("singleton") => self.chunk_singleton(ctx, &args[1..]),
-            Some("stats") => Ok(super::chunk_stats::chunk_stats(&self.agent)),
+            Some("stats") => {
+                // 9.6 prints the table whatever follows `stats`; rusoar does too, and says
+                // that the rest was not used.
+                if args.len() > 1 {
+                    self.warn(
+                        Diagnostic::warning("`chunk stats` takes no arguments: the rest is not used")
+                            .at(ctx.arg_span(1))
+                            .with_label("not used"),
+                    );
+                }
+                Ok(super::chunk_stats::chunk_stats(&self.agent))
+            }
             Some(name) => {
                 let Some(switch) = s.chunk.switch(name) else {
                     return Err(invalid());

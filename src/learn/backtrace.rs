@@ -55,6 +55,9 @@ pub struct Backtrace {
     pub propagations_blocked: usize,
     /// Unions of two identity sets.
     pub joins: usize,
+    /// Conditions that tested a WME another condition had already given to the rule
+    /// (they become one condition).
+    pub merged: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
 }
@@ -210,6 +213,7 @@ impl Backtrace {
     /// A superstate WME: the same WME tested twice joins the identities of both tests.
     fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>) {
         if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
+            self.merged += 1;
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);

@@ -225,6 +225,7 @@ impl AgentCore {
                         self.learn.learned_this_run += 1;
                         self.learn.chunks_this_phase += 1;
                         self.learn.stats.operational_constraints += constraints;
+                        self.learn.stats.conditions_merged += bt.merged as u64;
                         if local_negation {
                             self.learn.stats.local_negation_chunks += 1;
                         }
