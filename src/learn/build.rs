@@ -381,6 +381,39 @@ impl AgentCore {
         })
     }
 
+    /// The negations about the substate that a backtrace's reasoning tested, as 9.6's
+    /// warning shows them: over the symbols matched, a variable of the negation's own
+    /// kept (`(S2 -^blocker <b*1>)`).
+    pub(crate) fn local_negation_texts(&self, bt: &Backtrace) -> Vec<String> {
+        let mut b = Builder {
+            agent: self,
+            bt,
+            namer: Namer {
+                variablize: false,
+                by_ident: FxHashMap::default(),
+                by_sym: FxHashMap::default(),
+                counters: FxHashMap::default(),
+            },
+            bound: FxHashSet::default(),
+            ground_ids: FxHashMap::default(),
+            keep_tests: true,
+        };
+        let mut out = Vec::new();
+        for n in &bt.negations {
+            let Some((level, prod)) = self.negation_level(n) else {
+                continue;
+            };
+            if level == u32::MAX || level < bt.level {
+                continue;
+            }
+            let mut locals = FxHashMap::default();
+            if let Some(c) = b.negation(&n.trace, &prod.conditions[n.cond], &mut locals) {
+                out.push(crate::printer::cond_text_with(&c, false));
+            }
+        }
+        out
+    }
+
     /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
     pub(crate) fn build_learned_rule(
         &self,

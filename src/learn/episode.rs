@@ -175,6 +175,19 @@ impl AgentCore {
                     .goals
                     .iter()
                     .any(|g| g.level == level && g.learned_below));
+        // `chunk allow-local-negations off`: reasoning that tested the absence of substate
+        // knowledge gives a justification, not a chunk (Soar manual, ch. 4, "Using
+        // negated conditions about the substate"; checked on soar-sml 9.6.5: agent
+        // learn-local-negation-off).
+        let local_negation = self.tests_local_negation(&bt);
+        let refused = want_chunk && local_negation && !self.settings.chunk.allow_local_negations;
+        if refused && self.settings.trace.chunk_warnings {
+            let conditions = self.local_negation_texts(&bt);
+            self.emit(&TraceEvent::LocalNegationRefused {
+                conditions: &conditions,
+            });
+        }
+        let want_chunk = want_chunk && !refused;
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
         // The rule whose firing made the result: max-dupes counts per rule, per phase.
         let dupes_of = source.name.clone();
@@ -187,7 +200,6 @@ impl AgentCore {
         if want_chunk && bt.tested_quiescence {
             self.learn.stats.tested_quiescence += 1;
         }
-        let local_negation = self.tests_local_negation(&bt);
         if want_chunk && !bt.tested_quiescence {
             if self.learn.chunks_this_phase >= self.settings.max_chunks {
                 self.learn.stats.max_chunks += 1;
