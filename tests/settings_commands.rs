@@ -202,7 +202,10 @@ fn output_log_and_command_to_file_write_files() {
 fn chunk_stats_says_extra_words_are_not_used() {
     let mut a = Agent::default();
     let out = a.execute("chunk stats extra").unwrap();
-    assert!(out.contains("Explanation-Based Chunking Statistics"), "{out}");
+    assert!(
+        out.contains("Explanation-Based Chunking Statistics"),
+        "{out}"
+    );
     assert!(out.contains("takes no arguments"), "{out}");
 }
 
@@ -218,7 +221,11 @@ fn chunk_settings_without_effect_say_so() {
         "chunk singleton any foo constant",
     ] {
         let out = a.execute(cmd).unwrap();
-        assert!(out.contains("has no effect in rusoar yet") || out.contains("have no effect in rusoar yet"), "{cmd}: {out}");
+        assert!(
+            out.contains("has no effect in rusoar yet")
+                || out.contains("have no effect in rusoar yet"),
+            "{cmd}: {out}"
+        );
     }
     // allow-local-negations and bottom-only act: no such warning.
     let out = a.execute("chunk allow-local-negations off").unwrap();
