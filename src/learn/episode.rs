@@ -200,16 +200,17 @@ impl AgentCore {
         if want_chunk && bt.tested_quiescence {
             self.learn.stats.tested_quiescence += 1;
         }
-        if want_chunk && !bt.tested_quiescence {
-            if self.learn.chunks_this_phase >= self.settings.max_chunks {
-                self.learn.stats.max_chunks += 1;
-                // 9.6 learns nothing then, not even a justification: the results stay
-                // with the substate's firing.
-                if self.settings.trace.chunk_warnings {
-                    self.emit(&TraceEvent::MaxChunksReached);
-                }
-                return;
+        if want_chunk
+            && !bt.tested_quiescence
+            && self.learn.chunks_this_phase >= self.settings.max_chunks
+        {
+            self.learn.stats.max_chunks += 1;
+            // 9.6 learns nothing then, not even a justification: the results stay with the
+            // substate's firing.
+            if self.settings.trace.chunk_warnings {
+                self.emit(&TraceEvent::MaxChunksReached);
             }
+            return;
         }
         // 9.6 checks max-chunks before it analyzes the substate: a substate skipped for it
         // is neither counted nor backtraced in `chunk stats`.
