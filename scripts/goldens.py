@@ -116,6 +116,7 @@ TRACE_AGENTS = [
     "learn-impasse-names",
     "learn-justification",
     "learn-lookahead",
+    "learn-local-negation-off",
     "learn-max-chunks",
     "learn-negation",
     "learn-negation-order",

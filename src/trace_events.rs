@@ -89,6 +89,9 @@ pub(crate) enum TraceEvent<'a> {
     /// The phase learned max-chunks rules already: a result gets no new rule
     /// (`trace --chunk-warnings`).
     MaxChunksReached,
+    /// `chunk allow-local-negations off` kept a rule from being learned: its reasoning
+    /// tested these negations about the substate (`trace --chunk-warnings`).
+    LocalNegationRefused { conditions: &'a [String] },
     /// A firing in a substate that `chunk only` (not flagged by `force-learn`) or
     /// `chunk except` (flagged by `dont-learn`) keeps from learning
     /// (`trace --chunk-warnings`).

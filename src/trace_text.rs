@@ -202,6 +202,15 @@ impl TraceText96 {
                     "Warning: Maximum number of chunks reached.  Skipping opportunity to learn new rule.\n",
                 );
             }
+            TraceEvent::LocalNegationRefused { conditions } => {
+                // 9.6 leaves the line open after the last condition.
+                out.push_str(
+                    "\n*** Rule learned that used negative reasoning about local sub-state.***",
+                );
+                for c in conditions.iter() {
+                    let _ = write!(out, "\n   {c}");
+                }
+            }
             TraceEvent::NotLearning {
                 rule,
                 state,

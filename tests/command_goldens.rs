@@ -1,7 +1,8 @@
 //! The command goldens (`scripts/command_goldens.py`): each command of
 //! tests/commands/NAME.cmds, given in order to one fresh agent, prints what the official
 //! kernel printed for it (tests/golden/commands/NAME.txt), or fails with its message.
-//! The one difference allowed is the product's name in the title of the `soar` summary.
+//! The differences allowed: the product's name in the title of the `soar` summary, the
+//! identity counts of `chunk stats`, and rusoar's warnings (9.6 prints none there).
 
 use rusoar::Agent;
 use std::path::Path;
@@ -36,10 +37,56 @@ fn neutral_title(text: &str) -> String {
         .collect()
 }
 
+/// The text with the counts of `chunk stats`' identity rows made neutral: 9.6 counts
+/// identities by its own bookkeeping (identity sets made and merged as each substate rule
+/// fires, in an order that differs from run to run on some agents), which rusoar's
+/// learner does not keep; docs/conformance.md lists the difference.
+fn neutral_identity_counts(text: &str) -> String {
+    const ROWS: [&str; 4] = [
+        "Identities created ",
+        "Identity propagations ",
+        "Identity propagations blocked ",
+        "Identities joined ",
+    ];
+    text.split_inclusive('\n')
+        .map(|line| match ROWS.iter().find(|r| line.starts_with(*r)) {
+            Some(r) => format!("{r}#\n"),
+            None => line.to_string(),
+        })
+        .collect()
+}
+
+/// The text without rusoar's own warnings (about what 9.6 silently accepts, where 9.6
+/// prints nothing): each `warning: ...` line, the source excerpt under it and the blank
+/// line that ends it.
+fn without_warnings(text: &str) -> String {
+    let mut out = String::new();
+    let mut lines = text.split_inclusive('\n').peekable();
+    while let Some(line) = lines.next() {
+        if !line.starts_with("warning: ") {
+            out.push_str(line);
+            continue;
+        }
+        while let Some(next) = lines.peek() {
+            let t = next.trim_start_matches(|c: char| c.is_ascii_digit() || c == ' ');
+            if t.starts_with('│') || t.starts_with('┌') {
+                lines.next();
+            } else {
+                break;
+            }
+        }
+        if lines.peek().is_some_and(|l| l.trim().is_empty()) {
+            lines.next();
+        }
+    }
+    out
+}
+
 /// What rusoar prints for one command, in the golden's form.
 fn rusoar_text(agent: &mut Agent, command: &str) -> String {
     match agent.execute(command) {
-        Ok(mut text) => {
+        Ok(text) => {
+            let mut text = without_warnings(&text);
             if !text.is_empty() && !text.ends_with('\n') {
                 text.push('\n');
             }
@@ -70,7 +117,8 @@ fn commands_print_what_the_official_kernel_prints() {
         let mut agent = Agent::new(&name);
         for (command, expected) in golden_blocks(&golden) {
             let got = rusoar_text(&mut agent, &command);
-            if neutral_title(&got) != neutral_title(&expected) {
+            let neutral = |t: &str| neutral_identity_counts(&neutral_title(t));
+            if neutral(&got) != neutral(&expected) {
                 failures.push(format!(
                     "{name}: `{command}`\n--- official\n{expected}--- rusoar\n{got}"
                 ));

@@ -195,3 +195,39 @@ fn output_log_and_command_to_file_write_files() {
     assert!(std::fs::read_to_string(&ctf).unwrap().ends_with("more\n\n"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// 9.6 prints `chunk stats` whatever follows it; rusoar prints it and says the rest is
+/// not used.
+#[test]
+fn chunk_stats_says_extra_words_are_not_used() {
+    let mut a = Agent::default();
+    let out = a.execute("chunk stats extra").unwrap();
+    assert!(
+        out.contains("Explanation-Based Chunking Statistics"),
+        "{out}"
+    );
+    assert!(out.contains("takes no arguments"), "{out}");
+}
+
+/// The `chunk` settings rusoar lists but does not act on say so when they are set.
+#[test]
+fn chunk_settings_without_effect_say_so() {
+    let mut a = Agent::default();
+    for cmd in [
+        "chunk add-osk off",
+        "chunk automatically-create-singletons off",
+        "chunk allow-opaque off",
+        "chunk add-ltm-links on",
+        "chunk singleton any foo constant",
+    ] {
+        let out = a.execute(cmd).unwrap();
+        assert!(
+            out.contains("has no effect in rusoar yet")
+                || out.contains("have no effect in rusoar yet"),
+            "{cmd}: {out}"
+        );
+    }
+    // allow-local-negations and bottom-only act: no such warning.
+    let out = a.execute("chunk allow-local-negations off").unwrap();
+    assert_eq!(out, "allow-local-negations is now off\n");
+}

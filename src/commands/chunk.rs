@@ -91,7 +91,18 @@ impl Interpreter {
                 }
             }
             Some("singleton") => self.chunk_singleton(ctx, &args[1..]),
-            Some("stats") => Err(super::not_yet(ctx, "chunk stats")),
+            Some("stats") => {
+                // 9.6 prints the table whatever follows `stats`; rusoar does too, and says
+                // that the rest was not used.
+                if args.len() > 1 {
+                    self.warn(
+                        Diagnostic::warning("`chunk stats` takes no arguments: the rest is not used")
+                            .at(ctx.arg_span(1))
+                            .with_label("not used"),
+                    );
+                }
+                Ok(super::chunk_stats::chunk_stats(&self.agent))
+            }
             Some(name) => {
                 let Some(switch) = s.chunk.switch(name) else {
                     return Err(invalid());
@@ -100,7 +111,17 @@ impl Interpreter {
                     None => Ok(format!("{name} is {}\n", on_off(*switch))),
                     Some(v @ ("on" | "off")) => {
                         *switch = v == "on";
-                        Ok(format!("{name} is now {v}\n"))
+                        let out = format!("{name} is now {v}\n");
+                        if let Some(why) = without_effect(name) {
+                            self.warn(
+                                Diagnostic::warning(format!(
+                                    "`chunk {name}` is accepted and listed but has no effect in rusoar yet: {why}"
+                                ))
+                                .at(ctx.arg_span(0))
+                                .with_label("no effect yet"),
+                            );
+                        }
+                        Ok(out)
                     }
                     Some(_) => Err(invalid()),
                 }
@@ -134,6 +155,14 @@ impl Interpreter {
             value,
         };
         let text = pattern_text(&pattern);
+        self.warn(
+            Diagnostic::warning(format!(
+                "`chunk singleton` patterns are accepted and listed but have no effect in rusoar yet: {SINGLETONS_UNUSED}"
+            ))
+            .at(ctx.arg_span(0))
+            .with_label("no effect yet"),
+        );
+        let singletons = &mut self.agent.settings.chunk.singletons;
         if remove {
             return Ok(match singletons.iter().position(|p| *p == pattern) {
                 Some(i) => {
@@ -155,6 +184,20 @@ impl Interpreter {
         ));
         Ok(out)
     }
+}
+
+/// How rusoar's learner stands to the singleton patterns (Soar manual, ch. 4, "Chunking",
+/// singletons): it does not consult them.
+const SINGLETONS_UNUSED: &str = "conditions on one superstate WME always become one condition of the chunk, whatever the patterns say";
+
+/// Why a `chunk` switch that rusoar accepts changes nothing, for those that do not.
+fn without_effect(name: &str) -> Option<&'static str> {
+    Some(match name {
+        "add-osk" => "chunks never include operator selection knowledge (they are learned as with add-osk off)",
+        "automatically-create-singletons" => SINGLETONS_UNUSED,
+        "add-ltm-links" | "allow-opaque" => "rusoar has no long-term memories to recall knowledge from",
+        _ => return None,
+    })
 }
 
 fn on_off(b: bool) -> &'static str {

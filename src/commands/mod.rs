@@ -6,6 +6,7 @@
 pub mod aliases;
 mod chunk;
 mod chunk_listing;
+mod chunk_stats;
 mod decide;
 mod files;
 mod gp;

@@ -93,6 +93,9 @@ impl AgentCore {
                 .get(gi + 1)
                 .is_some_and(|g| g.impasse == Some((kind, on_operator)));
             if same {
+                // 9.6 brings the items up to date at each such decision, making their
+                // instantiations anew (counted by `chunk stats`).
+                self.learn.stats.item_instantiations += 2 * items.len() as u64;
                 if self.decider.goals[gi + 1].items != items {
                     self.update_impasse_items(gi + 1, items);
                 }

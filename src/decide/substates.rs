@@ -309,6 +309,9 @@ impl AgentCore {
         add(self, s, k.choices, choices);
         add(self, s, k.quiescence, k.t);
         if !items.is_empty() {
+            // 9.6 backs each `^item` and `^non-numeric` with an instantiation of its own
+            // (counted by `chunk stats`).
+            self.learn.stats.item_instantiations += 2 * items.len() as u64;
             for &it in &items {
                 add(self, s, k.item, it);
             }

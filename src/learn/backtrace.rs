@@ -43,8 +43,21 @@ pub struct Backtrace {
     parent: FxHashMap<Ident, Ident>,
     pub literal: FxHashMap<Ident, Sym>,
     visited: FxHashSet<*const InstTrace>,
-    /// Firings backtraced (for `chunk stats`).
+    /// Firings backtraced (for `chunk stats`), and the impasse items gone through (9.6
+    /// backtraces each through an instantiation of its own).
     pub firings: usize,
+    items: FxHashSet<u64>,
+    /// The variables of the firings backtraced: the identities the episode worked with.
+    pub identities: usize,
+    /// Fields where a condition met the action that made its WME: with an identity on
+    /// both sides, and with a literal tested on the condition's side.
+    pub propagations: usize,
+    pub propagations_blocked: usize,
+    /// Unions of two identity sets.
+    pub joins: usize,
+    /// Conditions that tested a WME another condition had already given to the rule
+    /// (they become one condition).
+    pub merged: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
 }
@@ -79,6 +92,7 @@ impl Backtrace {
         // The older identity stays the representative (stable variable names).
         let (keep, gone) = if ra < rb { (ra, rb) } else { (rb, ra) };
         self.parent.insert(gone, keep);
+        self.joins += 1;
         if let Some(l) = self.literal.remove(&gone) {
             self.literal.entry(keep).or_insert(l);
         }
@@ -96,8 +110,12 @@ impl Backtrace {
                 continue;
             }
             self.firings += 1;
+            self.identities += trace.vars.len();
             let mut locals = Vec::new();
             for c in &trace.conds {
+                if c.via_item && self.items.insert(c.wme.timetag) {
+                    self.firings += 1;
+                }
                 if c.level > 0 && c.level < self.level {
                     self.add_ground(c, &trace);
                     continue;
@@ -113,10 +131,14 @@ impl Backtrace {
                             // A literal tested on what was made from a variable: the
                             // chunk can only fire for that literal.
                             (0, made) => {
+                                self.propagations_blocked += 1;
                                 let r = self.find(made);
                                 self.literal.entry(r).or_insert(field);
                             }
-                            (tested, made) => self.join(tested, made),
+                            (tested, made) => {
+                                self.propagations += 1;
+                                self.join(tested, made)
+                            }
                         }
                     }
                     self.local_constraints(&trace, c, origin);
@@ -191,6 +213,7 @@ impl Backtrace {
     /// A superstate WME: the same WME tested twice joins the identities of both tests.
     fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>) {
         if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
+            self.merged += 1;
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);

@@ -345,24 +345,9 @@ impl AgentCore {
     ) -> Vec<(&'b super::backtrace::Negation, Arc<Production>)> {
         let mut out = Vec::new();
         for n in &bt.negations {
-            let Some(prod) = n.trace.prod.clone() else {
+            let Some((id_level, prod)) = self.negation_level(n) else {
                 continue;
             };
-            let Some(c) = prod.conditions.get(n.cond) else {
-                continue;
-            };
-            let first = match c {
-                Condition::Negative(x) | Condition::Positive(x) => Some(x),
-                Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
-                    Condition::Positive(x) | Condition::Negative(x) => Some(x),
-                    _ => None,
-                }),
-            };
-            let id_level = first
-                .and_then(|x| equality_var(&x.id))
-                .and_then(|v| n.trace.vars.get(v))
-                .and_then(|&(_, s)| self.symbols.id_data(s))
-                .map_or(u32::MAX, |d| d.level);
             if id_level != 0 && id_level < bt.level {
                 out.push((n, prod));
             }
@@ -370,6 +355,69 @@ impl AgentCore {
         // 9.6 gathers them front first: the learned rule lists them last found first,
         // which decides the order among negations that become testable together.
         out.reverse();
+        out
+    }
+
+    /// The level of the identifier a negated condition of a backtraced firing tests
+    /// (`u32::MAX` when it names none), with the rule it belongs to.
+    fn negation_level(&self, n: &super::backtrace::Negation) -> Option<(u32, Arc<Production>)> {
+        let prod = n.trace.prod.clone()?;
+        let c = prod.conditions.get(n.cond)?;
+        let first = match c {
+            Condition::Negative(x) | Condition::Positive(x) => Some(x),
+            Condition::Ncc(cs) => cs.iter().find_map(|x| match x {
+                Condition::Positive(x) | Condition::Negative(x) => Some(x),
+                _ => None,
+            }),
+        };
+        let id_level = first
+            .and_then(|x| equality_var(&x.id))
+            .and_then(|v| n.trace.vars.get(v))
+            .and_then(|&(_, s)| self.symbols.id_data(s))
+            .map_or(u32::MAX, |d| d.level);
+        Some((id_level, prod))
+    }
+
+    /// Whether the reasoning behind a result tested the absence of something in the
+    /// substate (Soar manual, ch. 4, "Using negated conditions about the substate"): a
+    /// chunk cannot carry such a test, so it may be wrong when that knowledge changes.
+    pub(crate) fn tests_local_negation(&self, bt: &Backtrace) -> bool {
+        bt.negations.iter().any(|n| {
+            self.negation_level(n)
+                .is_some_and(|(l, _)| l != u32::MAX && l >= bt.level)
+        })
+    }
+
+    /// The negations about the substate that a backtrace's reasoning tested, as 9.6's
+    /// warning shows them: over the symbols matched, a variable of the negation's own
+    /// kept (`(S2 -^blocker <b*1>)`).
+    pub(crate) fn local_negation_texts(&self, bt: &Backtrace) -> Vec<String> {
+        let mut b = Builder {
+            agent: self,
+            bt,
+            namer: Namer {
+                variablize: false,
+                by_ident: FxHashMap::default(),
+                by_sym: FxHashMap::default(),
+                counters: FxHashMap::default(),
+            },
+            bound: FxHashSet::default(),
+            ground_ids: FxHashMap::default(),
+            keep_tests: true,
+        };
+        let mut out = Vec::new();
+        for n in &bt.negations {
+            let Some((level, prod)) = self.negation_level(n) else {
+                continue;
+            };
+            if level == u32::MAX || level < bt.level {
+                continue;
+            }
+            let mut locals = FxHashMap::default();
+            if let Some(c) = b.negation(&n.trace, &prod.conditions[n.cond], &mut locals) {
+                out.push(crate::printer::cond_text_with(&c, false));
+            }
+        }
         out
     }
 

@@ -150,6 +150,8 @@ impl AgentCore {
         }
         if bt.grounds.is_empty() {
             // No superstate knowledge tested: nothing to learn (9.6 skips it too).
+            self.learn.stats.firings_backtraced += bt.firings as u64;
+            self.learn.stats.no_grounds += 1;
             return;
         }
         bt.join_same_identifiers(&self.symbols);
@@ -173,8 +175,20 @@ impl AgentCore {
                     .goals
                     .iter()
                     .any(|g| g.level == level && g.learned_below));
+        // `chunk allow-local-negations off`: reasoning that tested the absence of substate
+        // knowledge gives a justification, not a chunk (Soar manual, ch. 4, "Using
+        // negated conditions about the substate"; checked on soar-sml 9.6.5: agent
+        // learn-local-negation-off).
+        let local_negation = self.tests_local_negation(&bt);
+        let refused = want_chunk && local_negation && !self.settings.chunk.allow_local_negations;
+        if refused && self.settings.trace.chunk_warnings {
+            let conditions = self.local_negation_texts(&bt);
+            self.emit(&TraceEvent::LocalNegationRefused {
+                conditions: &conditions,
+            });
+        }
+        let want_chunk = want_chunk && !refused;
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
-        self.learn.substates_analyzed += 1;
         // The rule whose firing made the result: max-dupes counts per rule, per phase.
         let dupes_of = source.name.clone();
         let dupes = self
@@ -183,23 +197,39 @@ impl AgentCore {
             .get(&dupes_of)
             .copied()
             .unwrap_or(0);
+        if want_chunk && bt.tested_quiescence {
+            self.learn.stats.tested_quiescence += 1;
+        }
+        if want_chunk
+            && !bt.tested_quiescence
+            && self.learn.chunks_this_phase >= self.settings.max_chunks
+        {
+            self.learn.stats.max_chunks += 1;
+            // 9.6 learns nothing then, not even a justification: the results stay with the
+            // substate's firing.
+            if self.settings.trace.chunk_warnings {
+                self.emit(&TraceEvent::MaxChunksReached);
+            }
+            return;
+        }
+        // 9.6 checks max-chunks before it analyzes the substate: a substate skipped for it
+        // is neither counted nor backtraced in `chunk stats`.
+        self.learn.substates_analyzed += 1;
+        self.learn.stats.firings_backtraced += bt.firings as u64;
         if want_chunk && !bt.tested_quiescence {
-            if self.learn.chunks_this_phase >= self.settings.max_chunks {
-                // 9.6 learns nothing then, not even a justification: the results stay
-                // with the substate's firing.
-                if self.settings.trace.chunk_warnings {
-                    self.emit(&TraceEvent::MaxChunksReached);
-                }
-                return;
-            } else if dupes >= self.settings.max_dupes {
+            if dupes >= self.settings.max_dupes {
+                self.learn.stats.max_dupes += 1;
                 // This rule's results keep giving rules already known: give up on it for
                 // the rest of the phase (its result gets a justification).
             } else {
                 let name = self.chunk_name(source, level);
                 let prod = self.build_learned_rule(&bt, &results, name.clone(), true);
+                let constraints = super::stats::operational_constraints(&prod);
+                self.learn.stats.note_identities(&bt);
                 match self.add_production(prod) {
                     Added::Duplicate { .. } => {
                         self.learn.duplicates += 1;
+                        self.learn.stats.duplicates += 1;
                         *self.learn.dupes_this_phase.entry(dupes_of).or_default() += 1;
                     }
                     _ => {
@@ -207,6 +237,11 @@ impl AgentCore {
                         self.learn.chunks_since_init += 1;
                         self.learn.learned_this_run += 1;
                         self.learn.chunks_this_phase += 1;
+                        self.learn.stats.operational_constraints += constraints;
+                        self.learn.stats.conditions_merged += bt.merged as u64;
+                        if local_negation {
+                            self.learn.stats.local_negation_chunks += 1;
+                        }
                         if let (Some(l), Some(p)) = (self.loaded(&name), self.production_arc(&name))
                         {
                             chunk = Some((l.id, p));
@@ -239,6 +274,7 @@ impl AgentCore {
                     serial: 0,
                 };
                 let id = self.decider.alloc_inst(inst);
+                self.learn.stats.learned_instantiations += 1;
                 self.decider.inst_by_token.insert((*pid, tok), id);
                 (id, o, prod.name.clone())
             }
@@ -286,6 +322,7 @@ impl AgentCore {
                             }
                         }),
                         cond: None,
+                        via_item: false,
                         ..g.cond.clone()
                     })
                     .collect(),
@@ -546,6 +583,7 @@ impl AgentCore {
             serial,
         };
         let id = self.decider.alloc_inst(inst);
+        self.learn.stats.learned_instantiations += 1;
         if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {
             // What its retraction lists (`trace --timetags`): the WMEs it was built on,
             // newest first, as 9.6 lists a justification's.
@@ -584,6 +622,9 @@ impl AgentCore {
                 .insert(serial, name.to_string());
             self.learn.justifications_learned += 1;
             self.learn.justifications_since_init += 1;
+            if self.tests_local_negation(bt) {
+                self.learn.stats.local_negation_justifications += 1;
+            }
             let prod = self.build_learned_rule(bt, results, name.to_string(), false);
             match self.settings.learning_trace {
                 0 => {}

@@ -9,6 +9,7 @@ mod episode;
 mod negations;
 mod record;
 pub mod settings;
+pub mod stats;
 
 use crate::decide::ids::InstId;
 use crate::production::Production;
@@ -37,6 +38,8 @@ pub struct TraceCond {
     pub cond: Option<usize>,
     /// For a local WME: the preference that made it, so backtracing can go on through it.
     pub support: Option<Arc<PrefOrigin>>,
+    /// The acceptable preference an impasse's `^item` stands for (see `record.rs`).
+    pub via_item: bool,
 }
 
 /// What a firing in a substate looked like, kept as long as its preferences need it (the
@@ -148,6 +151,8 @@ pub struct LearnState {
     pub chunks_since_init: u64,
     pub justifications_since_init: u64,
     pub substates_analyzed: u64,
+    /// The other counts of `chunk stats`, cleared by `init-soar` with those above.
+    pub stats: stats::ChunkStats,
     /// `init-soar` calls so far (chunk names after one carry the count).
     pub init_count: u64,
     /// States marked by `force-learn` / `dont-learn` (for `chunk only` / `except`).
@@ -190,6 +195,7 @@ impl LearnState {
         self.chunks_since_init = 0;
         self.justifications_since_init = 0;
         self.substates_analyzed = 0;
+        self.stats = stats::ChunkStats::default();
     }
 
     /// Fresh identities for `n` variables: the first of them.

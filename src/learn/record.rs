@@ -90,6 +90,7 @@ impl AgentCore {
                         ids: [0, 0, ids[2]],
                         cond: None,
                         support: None,
+                        via_item: true,
                     });
                 }
             }
@@ -100,6 +101,7 @@ impl AgentCore {
                 ids,
                 cond: Some(ci),
                 support,
+                via_item: false,
             });
         }
         let level = self
