@@ -404,6 +404,7 @@ impl AgentCore {
             bound: FxHashSet::default(),
             ground_ids: FxHashMap::default(),
             keep_tests: true,
+            id_names: FxHashMap::default(),
         };
         let mut out = Vec::new();
         for n in &bt.negations {

@@ -82,6 +82,14 @@ impl TraceVars {
     pub fn contains_key(&self, var: &str) -> bool {
         self.get(var).is_some()
     }
+
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
 }
 
 /// A rule's name and the names of the chunks learned from its firings, shared by every

@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 const USAGE: &[(&str, &str)] = &[
     ("alias", "alias\nalias name\nalias name words...\nalias -r|--remove name"),
     ("cd", "cd [directory]"),
-    ("chunk", "chunk\nchunk ?|help\nchunk always|never|only|except\nchunk max-chunks|max-dupes [n]\nchunk naming-style [numbered|rule]\nchunk bottom-only|interrupt|explain-interrupt|warning-interrupt [on|off]\nchunk automatically-create-singletons|add-ltm-links|add-osk [on|off]\nchunk allow-local-negations|allow-opaque [on|off]\nchunk singleton [-r|--remove] [type attribute type]"),
+    ("chunk", "chunk\nchunk ?|help\nchunk stats\nchunk always|never|only|except\nchunk max-chunks|max-dupes [n]\nchunk naming-style [numbered|rule]\nchunk bottom-only|interrupt|explain-interrupt|warning-interrupt [on|off]\nchunk automatically-create-singletons|add-ltm-links|add-osk [on|off]\nchunk allow-local-negations|allow-opaque [on|off]\nchunk singleton [-r|--remove] [type attribute type]"),
     ("debug", "debug allocate|internal-symbols|port|time ..."),
     ("decide", "decide\ndecide ?|help\ndecide indifferent-selection [-b|-g|-f|-l|-x|-s]\ndecide indifferent-selection -e|-t [value]\ndecide indifferent-selection -p epsilon|temperature [exponential|linear]\ndecide indifferent-selection -r epsilon|temperature exponential|linear [rate]\ndecide indifferent-selection -a [on|off]\ndecide numeric-indifferent-mode [-a|--avg|-s|--sum]\ndecide select [operator-id]\ndecide predict\ndecide srand|set-random-seed [seed]"),
     ("dirs", "dirs"),
@@ -58,6 +58,7 @@ fn usage(command: &str) -> Option<&'static str> {
 const ITEMS: &[(&str, &str, &str)] = &[
     ("chunk.rs", "cmd_chunk", "chunk"),
     ("chunk.rs", "chunk_singleton", "chunk"),
+    ("chunk.rs", "without_effect", "chunk"),
     ("decide.rs", "from_name", "decide"),
     ("decide.rs", "cmd_decide", "decide"),
     ("decide.rs", "indifferent_selection", "decide"),
