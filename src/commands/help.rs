@@ -44,7 +44,7 @@ const USAGE: &[(&str, &str)] = &[
     ("popd", "popd\n\nReturns to the directory saved by the last pushd."),
     (
         "preferences",
-        "preferences [id [attribute]] [-n|--names]\n\nLists the preferences for a slot (default: the lowest state's ^operator), with the selection probabilities of an operator slot; -n names the rule behind each.",
+        "preferences [--none|-n|-N|--names|-t|--timetags|-w|--wmes] [id [attribute]]\npreferences -o|--object [id]\n\nLists the preferences for a slot (default: the lowest state's ^operator), with the selection probabilities of an operator slot. -n (or -N) names the rule behind each preference, -t adds the timetags of the WMEs its match held, -w those WMEs (of a top-state match only their timetags); --none lists the preferences alone; the last of them counts. An identifier that is not a state, given alone, lists the support of each WME whose value it is; -o lists every slot of an object, then its architecture and input WMEs.",
     ),
     (
         "print",

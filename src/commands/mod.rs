@@ -14,6 +14,7 @@ mod memory;
 pub mod options;
 mod output;
 mod prefs;
+mod prefs_support;
 mod print_cmd;
 mod printing;
 mod production_find;
