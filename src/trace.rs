@@ -304,7 +304,7 @@ fn pref_level(agent: &AgentCore, p: &crate::decide::state::Preference) -> u32 {
 /// keeps naming its justification after the justification retracted (9.6 keeps the
 /// justification while its preferences live; soar-sml 9.6.5, agent long/fifteen-puzzle,
 /// trace 5: `(E7 ^symbolic-value failure +  :O ) [level 2] (justify1)`).
-fn pref_rule<'a>(
+pub(crate) fn pref_rule<'a>(
     agent: &'a AgentCore,
     p: &'a crate::decide::state::Preference,
 ) -> Option<&'a str> {

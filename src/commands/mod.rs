@@ -15,6 +15,7 @@ mod memory;
 pub mod options;
 mod output;
 mod prefs;
+mod prefs_support;
 mod print_cmd;
 mod printing;
 mod production_find;

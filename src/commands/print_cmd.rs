@@ -321,7 +321,7 @@ impl Interpreter {
 /// `<s>`, `<o>`, `<ss>`, `<so>`, `<ts>`: the bottom state, its operator, the state above it
 /// and that state's operator, the top state. `Ok(None)` when there is none; `Err` for any
 /// other variable.
-fn context_variable(agent: &AgentCore, var: &str) -> Result<Option<Sym>, ()> {
+pub(super) fn context_variable(agent: &AgentCore, var: &str) -> Result<Option<Sym>, ()> {
     let goals = &agent.decider.goals;
     let bottom = goals.last();
     let above = goals.len().checked_sub(2).and_then(|i| goals.get(i));

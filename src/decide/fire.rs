@@ -68,6 +68,16 @@ impl AgentCore {
         if rule.flags.i_support {
             inst.o_support = false;
         }
+        // An o-supported preference outlives its firing's match: keep what the match held
+        // (a substate firing's record keeps it already).
+        let matched: Option<std::sync::Arc<[crate::wm::Wme]>> = (inst.o_support && level < 2)
+            .then(|| {
+                self.rete
+                    .match_wmes(p, t)
+                    .into_iter()
+                    .filter_map(|w| self.wm.get(w).copied())
+                    .collect()
+            });
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());
         if !traced_wmes.is_empty() {
@@ -141,6 +151,7 @@ impl AgentCore {
                         alive: true,
                         freed: false,
                         origin: None,
+                        matched: matched.clone(),
                     };
                     let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);

@@ -44,6 +44,9 @@ pub struct Preference {
     /// For a preference made in a substate: the firing and identities that made it, for
     /// backtracing (chunking and justifications).
     pub origin: Option<std::sync::Arc<crate::learn::PrefOrigin>>,
+    /// For an o-supported preference made on the top level: the WMEs its firing matched,
+    /// which `preferences --timetags`/`--wmes` lists after the firing has retracted.
+    pub matched: Option<std::sync::Arc<[crate::wm::Wme]>>,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -288,6 +291,7 @@ impl DecideState {
         pref.freed = true;
         pref.alive = false;
         pref.origin = None;
+        pref.matched = None;
         if !self.held_by_justification.is_empty() {
             if let Some(serial) = self.held_by_justification.remove(&pid) {
                 self.released_justification_prefs.push(serial);
