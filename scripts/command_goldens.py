@@ -11,7 +11,8 @@ commands to rusoar and compares, command by command. Goldens are never edited by
             what it printed: the print callback's text followed by the command's result,
             with a newline added when the text does not end with one. A failing command
             gives one line `!!! MESSAGE`, the first line of its result (rusoar: the
-            diagnostic's message).
+            diagnostic's message). The repository's absolute path, which differs from
+            machine to machine (`source -a` prints it), is written `<repo>`.
 
 usage: python3 scripts/command_goldens.py           write the goldens
        python3 scripts/command_goldens.py --check   exit 1 if any golden would change
@@ -51,7 +52,7 @@ def golden_text(kernel, name, commands):
         else:
             out.append(f"!!! {result.splitlines()[0] if result else ''}\n")
     kernel.DestroyAgent(agent)
-    return "".join(out)
+    return "".join(out).replace(ROOT + "/", "<repo>/")
 
 
 def main():
