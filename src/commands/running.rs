@@ -159,6 +159,13 @@ impl Interpreter {
                 "\nStopped due to substate (goal) retraction.\nInterrupt received.".to_string(),
             ));
         }
+        if self.agent.decider.break_interrupted && !self.agent.decider.halted {
+            // `production break`: 9.6's reason for stopping, then its scheduler's notice.
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\n:interrupt\nInterrupt received.".to_string(),
+            ));
+        }
         if interrupted {
             self.events
                 .push(super::Event::Text("\nInterrupted.".to_string()));
@@ -177,6 +184,7 @@ impl Interpreter {
             interrupted: interrupted
                 || self.agent.decider.rhs_interrupted
                 || self.agent.decider.goal_retracted
+                || self.agent.decider.break_interrupted
                 || (self.agent.decider.stop_requested && !self.agent.decider.halted),
             depth_exceeded: self.agent.decider.depth_exceeded,
         }
@@ -202,6 +210,7 @@ impl Interpreter {
     pub(super) fn cmd_init(&mut self) -> CmdResult {
         self.agent.init_soar();
         self.agent.print_initial_state();
+        self.agent.report_break_hits();
         self.agent.reinstate_inputs();
         if self.agent.events.any() {
             self.agent

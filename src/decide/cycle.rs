@@ -70,6 +70,7 @@ impl AgentCore {
         self.decider.depth_exceeded = false;
         self.decider.rhs_interrupted = false;
         self.decider.goal_retracted = false;
+        self.decider.break_interrupted = false;
         self.learn.learned_this_run = 0;
         if self.decider.goals.is_empty() {
             self.decider.goals.push(Goal {
@@ -112,6 +113,7 @@ impl AgentCore {
             && !self.decider.depth_exceeded
             && !self.decider.rhs_interrupted
             && !self.decider.goal_retracted
+            && !self.decider.break_interrupted
             && match unit {
                 RunUnit::Forever => true,
                 RunUnit::Decisions => {
@@ -179,6 +181,7 @@ impl AgentCore {
         }
         let start = std::time::Instant::now();
         self.do_phase_timed(phase, one_cycle);
+        self.report_break_hits_in(phase);
         self.release_justifications();
         let i = match phase {
             Phase::Input => 0,

@@ -155,6 +155,9 @@ pub struct DecideState {
     pub goal_break_level: Option<u32>,
     /// A goal at or above `goal_break_level` was removed in this run.
     pub goal_retracted: bool,
+    /// A rule with a break (`production break`) matched in this run: it stops after the
+    /// phase.
+    pub break_interrupted: bool,
     /// `decide select`: the operator the next decision takes when it is proposed, as
     /// typed with its first letter upper-cased (9.6 compares the text).
     pub(crate) forced_operator: Option<String>,
