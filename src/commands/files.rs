@@ -58,7 +58,13 @@ impl Interpreter {
         let sub = args.first().map(String::as_str);
         match sub {
             Some("file") => self.cmd_source(ctx, &args[1..]),
-            Some(other @ ("library" | "percepts" | "rete-network")) => Err(Diagnostic::error(
+            // 9.6 loads a C++ SML extension here; rusoar has no SML to extend.
+            Some("library") => Err(Diagnostic::error(
+                "load library: rusoar cannot load C++ shared libraries (SML extensions); a program registers its functions through rusoar's Rust API instead",
+            )
+            .at(ctx.cmd.span)
+            .with_label("not applicable to rusoar")),
+            Some(other @ ("percepts" | "rete-network")) => Err(Diagnostic::error(
                 format!("load {other}: not yet supported by rusoar"),
             )
             .at(ctx.cmd.span)

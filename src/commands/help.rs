@@ -34,7 +34,7 @@ const USAGE: &[(&str, &str)] = &[
     ),
     (
         "load",
-        "load file [-d] path        (alias: source)\nload library|percepts|rete-network ...\n\nRuns the commands of a file, from the file's directory; stops at the first failing command. -d leaves out the summary of rules sourced.",
+        "load file [-a] [-d] [-v] path        (alias: source)\nload library|percepts|rete-network ...\n\nRuns the commands of a file, from the file's directory; stops at the first failing command. -d leaves out the summary of rules sourced, -a adds a summary at the end of each file, -v names each file as it starts and lists the excised rules. load library cannot apply to rusoar (it loads C++ SML extensions); load percepts and load rete-network are not supported yet.",
     ),
     ("ls", "ls\n\nLists the files of the working directory."),
     (
@@ -52,14 +52,14 @@ const USAGE: &[(&str, &str)] = &[
     ),
     (
         "production",
-        "production excise [-a|--all] [name...]\nproduction firing-counts [n|name...]\nproduction matches [name]\nproduction find|break|watch|memory-usage|optimize-attribute ...\n\nOperations on rules: remove them, count their firings, list their matches.",
+        "production excise [-a|--all] [name...]\nproduction firing-counts [n|name...]\nproduction matches [name]\nproduction find|break|watch|memory-usage|optimize-attribute ...\nproduction break [-s|-c] [name]\n\nOperations on rules: remove them, count their firings, list their matches. A rule with a break (production break -s NAME, or a name alone) stops the run after the phase in which it gets a new match.",
     ),
     ("pushd", "pushd directory\n\nSaves the working directory on the stack and changes to `directory`."),
     ("pwd", "pwd\n\nPrints the working directory."),
     ("rl", "rl ...\n\nReinforcement learning (not implemented in rusoar)."),
     (
         "run",
-        "run [count] [-d|-e|-p|-o] [-s] [-u|-n]\n\nRuns the decision cycle: `count` decisions (-d, the default when a count is given), elaborations (-e), phases (-p) or output cycles (-o). With no count and no unit it runs until the agent halts, or until Ctrl-C in the REPL. Decisions are counted at the stop phase (`soar stop-phase`, apply by default): `run 1` stops before the next apply phase, `run 0` goes on to it.",
+        "run [count] [-d|-e|-p|-o] [-g] [-s] [-u|-n]\n\nRuns the decision cycle: `count` decisions (-d, the default when a count is given), elaborations (-e), phases (-p) or output cycles (-o). With no count and no unit it runs until the agent halts, or until Ctrl-C in the REPL. Decisions are counted at the stop phase (`soar stop-phase`, apply by default): `run 1` stops before the next apply phase, `run 0` goes on to it. -g stops the run after the phase in which a goal at the level of the lowest goal at the run's start, or above it, is removed.",
     ),
     ("save", "save ...\n\nSaves agent state (not implemented in rusoar)."),
     ("smem", "smem ...\n\nSemantic memory (not implemented in rusoar)."),
