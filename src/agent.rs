@@ -382,6 +382,10 @@ pub enum Added {
 pub struct MatchSet {
     pub assertions: Vec<(ProdId, TokId)>,
     pub retractions: Vec<(ProdId, TokId)>,
+    /// The rules with a break (`production break --set`): a new match of one is noted in
+    /// `break_hits`, which the decision cycle reports and which stops the run.
+    pub breaks: std::collections::HashSet<ProdId>,
+    pub break_hits: Vec<ProdId>,
     /// Each pending assertion's support, decided once at match time (Soar manual, chapter 2, on
     /// o-support).
     pub support: crate::decide::by_token::ByToken<bool>,
@@ -440,6 +444,9 @@ impl MatchSet {
 
 impl MatchSink for MatchSet {
     fn matched(&mut self, p: ProdId, t: TokId) {
+        if !self.breaks.is_empty() && self.breaks.contains(&p) {
+            self.break_hits.push(p);
+        }
         self.pending.insert((p, t), self.assertions.len() as u32);
         self.assertions.push((p, t));
     }
@@ -572,6 +579,9 @@ pub struct AgentCore {
     pub(crate) multi_attributes: crate::rete::reorder::MultiAttributes,
     /// Rules whose firings are traced whatever the trace settings (`production watch`).
     pub(crate) watched_rules: std::collections::HashSet<String>,
+    /// `production break`: the rules with a break, in the order they were set, each with
+    /// its count of match-time interrupts (1 when set; 9.6 prints it with each interrupt).
+    pub(crate) break_rules: IndexMap<String, u64>,
 }
 
 impl AgentCore {
@@ -611,6 +621,7 @@ impl AgentCore {
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),
+            break_rules: Default::default(),
         }
     }
 
@@ -661,6 +672,8 @@ impl AgentCore {
         match self.productions.shift_remove(name) {
             Some(l) => {
                 self.watched_rules.remove(name);
+                self.break_rules.shift_remove(name);
+                self.matches.breaks.remove(&l.id);
                 self.by_id[l.id.0 as usize] = None;
                 self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true

@@ -345,6 +345,8 @@ impl AgentCore {
     /// Sends a trace event to the 9.6 text listener, which appends its text to `output`.
     /// Callers build events only when the trace setting that shows them is on.
     pub(crate) fn emit(&mut self, event: &TraceEvent<'_>) {
+        // A break's interrupt comes before what follows its match (9.6 prints it at once).
+        self.report_break_hits();
         self.trace_text
             .write(&mut self.output, self.output_line_start, &self.symbols, event);
     }

@@ -82,9 +82,11 @@ fn without_warnings(text: &str) -> String {
     out
 }
 
-/// What rusoar prints for one command, in the golden's form.
+/// What rusoar prints for one command, in the golden's form: the repository's absolute
+/// path, which differs from machine to machine, is written `<repo>` as in the goldens.
 fn rusoar_text(agent: &mut Agent, command: &str) -> String {
-    match agent.execute(command) {
+    let root = format!("{}/", env!("CARGO_MANIFEST_DIR"));
+    let text = match agent.execute(command) {
         Ok(text) => {
             let mut text = without_warnings(&text);
             if !text.is_empty() && !text.ends_with('\n') {
@@ -93,7 +95,8 @@ fn rusoar_text(agent: &mut Agent, command: &str) -> String {
             text
         }
         Err(e) => format!("!!! {}\n", e.message().lines().next().unwrap_or_default()),
-    }
+    };
+    text.replace(&root, "<repo>/")
 }
 
 #[test]

@@ -155,18 +155,18 @@ fn filename_gds_and_unsupported_production_commands() {
             "memories",
             "production memory-usage: not supported by rusoar",
         ),
-        (
-            "production break -s gds*propose*work",
-            "production break --set: not yet supported by rusoar",
-        ),
-        (
-            "pbreak gds*propose*work",
-            "pbreak: not yet supported by rusoar",
-        ),
     ] {
         let err = i.source_text("t", cmd).unwrap_err();
         assert_eq!(err.message(), msg, "{cmd}");
     }
+    // Excising a rule with a break forgets the break.
+    assert_eq!(
+        output(
+            &mut i,
+            "pbreak -s gds*propose*note\npbreak\nexcise gds*propose*note\npbreak"
+        ),
+        "gds*propose*note\n1 production excised.\n"
+    );
     // Excising a watched rule forgets it is watched.
     assert_eq!(
         output(

@@ -6,6 +6,41 @@ use super::{CmdResult, Ctx, Interpreter};
 use crate::source::Diagnostic;
 use std::path::{Path, PathBuf};
 
+/// The listings a `source` asked for, which its nested files follow too.
+#[derive(Debug, Default, Clone, Copy)]
+pub(super) struct SourceListing {
+    /// `-a`: a summary line at the end of each file.
+    pub per_file: bool,
+    /// `-v`: `Sourcing FILE.` as each file starts, and the excised rules listed.
+    pub verbose: bool,
+}
+
+/// `N productions sourced.`, with the excised and ignored counts when not 0, as 9.6 words
+/// them.
+fn counts_text(added: usize, excised: usize, ignored: usize) -> String {
+    let plural = |n: usize| if n == 1 { "" } else { "s" };
+    let mut text = format!("{added} production{} sourced.", plural(added));
+    if excised > 0 {
+        text.push_str(&format!(" {excised} production{} excised.", plural(excised)));
+    }
+    if ignored > 0 {
+        text.push_str(&format!(" {ignored} production{} ignored.", plural(ignored)));
+    }
+    text
+}
+
+/// `Excised productions:` and a tab-indented line per name (nothing for none).
+fn excised_listing(names: &[String]) -> String {
+    if names.is_empty() {
+        return String::new();
+    }
+    let mut text = "Excised productions:\n".to_string();
+    for n in names {
+        text.push_str(&format!("\t{n}\n"));
+    }
+    text
+}
+
 /// 9.6 refuses to nest `source` deeper than this.
 const MAX_SOURCE_DEPTH: usize = 100;
 
@@ -23,7 +58,13 @@ impl Interpreter {
         let sub = args.first().map(String::as_str);
         match sub {
             Some("file") => self.cmd_source(ctx, &args[1..]),
-            Some(other @ ("library" | "percepts" | "rete-network")) => Err(Diagnostic::error(
+            // 9.6 loads a C++ SML extension here; rusoar has no SML to extend.
+            Some("library") => Err(Diagnostic::error(
+                "load library: rusoar cannot load C++ shared libraries (SML extensions); a program registers its functions through rusoar's Rust API instead",
+            )
+            .at(ctx.cmd.span)
+            .with_label("not applicable to rusoar")),
+            Some(other @ ("percepts" | "rete-network")) => Err(Diagnostic::error(
                 format!("load {other}: not yet supported by rusoar"),
             )
             .at(ctx.cmd.span)
@@ -36,25 +77,24 @@ impl Interpreter {
         }
     }
 
-    /// `source FILE`: runs the file's commands in the file's directory when the path names
-    /// one, stops at the first failing command, and reports the productions sourced.
+    /// `source [-a] [-d] [-v] FILE`: runs the file's commands in the file's directory when
+    /// the path names one, stops at the first failing command, and reports the productions
+    /// sourced (Soar manual, ch. 9, `load`): `-d` drops the summary, `-a` adds one per file
+    /// sourced, `-v` names each file as it starts and lists the excised rules.
     fn cmd_source(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let specs = [opt('a', "all"), opt('d', "disable"), opt('v', "verbose")];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
         let Some(name) = parsed.args.first() else {
             return Err(ctx.error("Syntax: load file [--all | --disable | --verbose] <filename>"));
         };
-        // `-a` (a summary per file) and `-v` (each file named, the excised rules listed)
-        // are 9.6 listings not built yet; `-d` drops the summary.
-        if parsed.has("all") {
-            return Err(super::not_yet(ctx, "source --all"));
-        }
-        if parsed.has("verbose") {
-            return Err(super::not_yet(ctx, "source --verbose"));
-        }
         let top_level = self.source_stack.is_empty();
         if top_level {
             self.report = super::LoadReport::default();
+            // Nested files list as the outermost `source` asked.
+            self.source_listing = SourceListing {
+                per_file: parsed.has("all"),
+                verbose: parsed.has("verbose"),
+            };
         }
         // A nested file's `*` marks get a line of their own: 9.6 ends the line of marks
         // before it with " \n" and its own marks with a newline.
@@ -63,6 +103,10 @@ impl Interpreter {
             self.after_star = false;
         }
         let result = self.source_file(ctx, name);
+        // A file that could not be read gets no summary (checked on 9.6).
+        if self.source_listing.per_file && result.is_ok() {
+            self.per_file_summary(name);
+        }
         if !top_level {
             if self.after_star {
                 self.events.push(super::Event::Text("\n".into()));
@@ -70,31 +114,55 @@ impl Interpreter {
             }
             return result.map(|_| String::new());
         }
-        let r = &self.report;
-        let mut summary = format!(
-            "Total: {} production{} sourced.",
-            r.added,
-            if r.added == 1 { "" } else { "s" }
-        );
-        if r.excised > 0 {
-            summary.push_str(&format!(
-                " {} production{} excised.",
-                r.excised,
-                if r.excised == 1 { "" } else { "s" }
-            ));
-        }
-        if r.ignored > 0 {
-            summary.push_str(&format!(
-                " {} production{} ignored.",
-                r.ignored,
-                if r.ignored == 1 { "" } else { "s" }
-            ));
-        }
+        let summary = self.total_summary();
         match result {
             Ok(()) if parsed.has("disable") => Ok(String::new()),
             Ok(()) => Ok(summary),
             Err(d) => Err(d.with_note(summary)),
         }
+    }
+
+    /// `source -a`: at the end of each file, the rules added and excised since the last
+    /// such line (9.6 counts from there, not from the file's start), the excised rules'
+    /// names with `-v`, then the line of `*` marks ends.
+    fn per_file_summary(&mut self, name: &str) {
+        let r = &mut self.report;
+        let added = std::mem::take(&mut r.added_since_summary);
+        let excised = std::mem::take(&mut r.excised_since_summary);
+        let path = self.cwd_path_of_source(name);
+        let mut text = format!("{}: {}\n", path, counts_text(added, excised.len(), 0));
+        if self.source_listing.verbose {
+            text.push_str(&excised_listing(&excised));
+        }
+        if self.after_star {
+            text.push('\n');
+            self.after_star = false;
+        }
+        self.events.push(super::Event::Text(text));
+    }
+
+    /// The path `source -a` names a file by: absolute, as 9.6 prints it.
+    fn cwd_path_of_source(&self, name: &str) -> String {
+        if crate::stdlib::lookup(name).is_some() {
+            return name.to_string();
+        }
+        self.last_sourced
+            .as_ref()
+            .map_or_else(|| name.to_string(), |p| p.display().to_string())
+    }
+
+    /// The outermost `source`'s result: `Total: ...`, with `-v` the excised rules.
+    fn total_summary(&self) -> String {
+        let r = &self.report;
+        let mut summary = format!(
+            "Total: {}",
+            counts_text(r.added, r.excised, r.ignored)
+        );
+        if self.source_listing.verbose && !r.excised_names.is_empty() {
+            summary.push('\n');
+            summary.push_str(excised_listing(&r.excised_names).trim_end_matches('\n'));
+        }
+        summary
     }
 
     fn source_file(&mut self, ctx: &Ctx, name: &str) -> Result<(), Diagnostic> {
@@ -134,6 +202,14 @@ impl Interpreter {
                 .unwrap_or_else(|| self.cwd.clone());
             self.dir_stack.push(std::mem::replace(&mut self.cwd, dir));
         }
+        if self.source_listing.verbose {
+            let base = path.file_name().map_or_else(
+                || name.to_string(),
+                |b| b.to_string_lossy().into_owned(),
+            );
+            self.events
+                .push(super::Event::Text(format!("Sourcing {base}.\n")));
+        }
         self.source_stack.push(path.clone());
         self.report.per_file.entry(path.clone()).or_insert(0);
         // An error in a nested file names each enclosing file and the line of its `source`
@@ -147,6 +223,7 @@ impl Interpreter {
             }
         });
         self.source_stack.pop();
+        self.last_sourced = Some(path);
         if changes_dir {
             if let Some(prev) = self.dir_stack.pop() {
                 self.cwd = prev;

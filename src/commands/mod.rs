@@ -90,6 +90,11 @@ pub struct LoadReport {
     pub(crate) added: usize,
     pub(crate) excised: usize,
     pub(crate) ignored: usize,
+    /// The names of the excised rules, in order (`source -v` lists them).
+    pub(crate) excised_names: Vec<String>,
+    /// Rules added and excised since the last per-file summary of `source -a`.
+    pub(crate) added_since_summary: usize,
+    pub(crate) excised_since_summary: Vec<String>,
 }
 
 impl LoadReport {
@@ -112,6 +117,13 @@ impl LoadReport {
     pub fn ignored(&self) -> usize {
         self.ignored
     }
+
+    /// Counts an excised rule, for the summaries of `source`.
+    pub(crate) fn note_excised(&mut self, name: &str) {
+        self.excised += 1;
+        self.excised_names.push(name.to_string());
+        self.excised_since_summary.push(name.to_string());
+    }
 }
 
 pub struct Interpreter {
@@ -123,6 +135,10 @@ pub struct Interpreter {
     dir_stack: Vec<PathBuf>,
     /// Files being sourced, innermost last.
     source_stack: Vec<PathBuf>,
+    /// The listings the outermost `source` asked for (`-a`, `-v`).
+    source_listing: files::SourceListing,
+    /// The path of the file `source` read last (`source -a` names it at its end).
+    last_sourced: Option<PathBuf>,
     events: Vec<Event>,
     pub report: LoadReport,
     /// Set by `exit`.
@@ -172,6 +188,8 @@ impl Interpreter {
             cwd,
             dir_stack: Vec::new(),
             source_stack: Vec::new(),
+            source_listing: files::SourceListing::default(),
+            last_sourced: None,
             events: Vec::new(),
             report: LoadReport::default(),
             exit_requested: false,

@@ -66,8 +66,9 @@ impl Interpreter {
         Ok(out)
     }
 
-    /// `production break [-c|-s] [NAME]`: rusoar does not stop a run at a rule's match yet,
-    /// so no rule has a break: the list is empty and `--set` is refused.
+    /// `production break [-c|-s] [NAME]`: with no argument the rules with a break; `-s`
+    /// sets one (a run stops after the phase in which the rule gets a new match, see
+    /// `decide/breaks.rs`), `-c` clears it.
     pub(super) fn cmd_production_break(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let specs = [opt('c', "clear"), opt('s', "set")];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
@@ -78,19 +79,23 @@ impl Interpreter {
             return Err(ctx.error("pbreak --set/--clear takes exactly one argument."));
         }
         let Some(name) = parsed.args.first() else {
-            return Ok(String::new());
+            // The rules with a break, one a line, newest rule first (as 9.6 lists them).
+            return Ok(self
+                .agent
+                .productions()
+                .rev()
+                .filter(|p| self.agent.break_rules.contains_key(&p.name))
+                .map(|p| format!("{}\n", p.name))
+                .collect());
         };
         if parsed.args.len() > 1 {
             return Err(ctx.error("pbreak --set/--clear takes exactly one argument."));
         }
-        if self.agent.production(name).is_none() {
+        // A name without an option sets its break, as in 9.6.
+        if !self.agent.set_break(name, !parsed.has("clear")) {
             return Err(ctx.error(format!("Production not found: {name}")));
         }
-        if parsed.has("clear") {
-            return Ok(String::new());
-        }
-        Err(super::not_yet(ctx, "production break --set")
-            .with_note("a run does not stop when a rule matches yet"))
+        Ok(String::new())
     }
 
     /// `production watch [-e|-d] [NAME]`: a watched rule's firings are traced (`Firing

@@ -60,7 +60,7 @@ impl Interpreter {
                 Ok("*".into())
             }
             Added::Replaced => {
-                self.report.excised += 1;
+                self.report.note_excised(&name);
                 self.count_loaded();
                 Ok("#*".into())
             }
@@ -85,7 +85,7 @@ impl Interpreter {
             return d.with_note("Production addition failed.");
         };
         if self.agent.excise(name) {
-            self.report.excised += 1;
+            self.report.note_excised(name);
             self.print_result("#".into());
         }
         d.with_note(format!("(Ignoring production {name})"))
@@ -95,6 +95,7 @@ impl Interpreter {
     /// Counts a rule for the file being sourced.
     fn count_loaded(&mut self) {
         self.report.added += 1;
+        self.report.added_since_summary += 1;
         if let Some(f) = self.source_stack.last() {
             match self.report.per_file.get_mut(f) {
                 Some(n) => *n += 1,
@@ -172,8 +173,11 @@ impl Interpreter {
         ];
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
         if parsed.has("all") {
+            let names: Vec<String> = self.agent.productions().map(|p| p.name.clone()).collect();
             let n = self.agent.excise_all();
-            self.report.excised += n;
+            for name in &names {
+                self.report.note_excised(name);
+            }
             return Ok(excised_text(n));
         }
         if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
@@ -214,8 +218,8 @@ impl Interpreter {
                 .collect();
             for name in &names {
                 self.agent.excise(name);
+                self.report.note_excised(name);
             }
-            self.report.excised += names.len();
             return Ok(excised_text(names.len()));
         }
         if parsed.args.is_empty() {
@@ -229,9 +233,9 @@ impl Interpreter {
                     .with_label(format!("no production named {name}")));
             }
             n += 1;
+            // `source` counts these in its "N productions excised." summary.
+            self.report.note_excised(name);
         }
-        // `source` counts these in its "N productions excised." summary.
-        self.report.excised += n;
         Ok(excised_text(n))
     }
 }

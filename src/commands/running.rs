@@ -37,7 +37,7 @@ pub(crate) struct RunReport {
 }
 
 impl Interpreter {
-    /// `run [n] [-d|-e|-p] [-f]`: no count and no unit runs until halted; a count alone is
+    /// `run [n] [-d|-e|-p|-o] [-f] [-g]`: no count and no unit runs until halted; a count alone is
     /// decisions; a unit alone is one of it (Soar manual, ch. 9, `run`).
     pub(super) fn cmd_run(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
         let specs = [
@@ -52,9 +52,6 @@ impl Interpreter {
             opt('g', "goal"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
-        if parsed.has("goal") {
-            return Err(super::not_yet(ctx, "run --goal"));
-        }
         if parsed.args.len() > 1 {
             return Err(ctx.error(
                 "Syntax: run  [-f|count]\nrun -[d|e|o|p][s][un][g] [f|count]\nrun -[d|e|o|p][un] count [-i e|p|d|o]",
@@ -87,6 +84,9 @@ impl Interpreter {
             return Err(ctx.error("Count must be positive."));
         }
         let n = count.unwrap_or(1);
+        // `-g`: stop when a goal at the level of the lowest goal, or above, goes; a run
+        // without it clears the watch (as 9.6 does).
+        self.agent.stop_on_goal_retraction(parsed.has("goal"));
         let RunReport {
             decisions, fired, ..
         } = self.run_agent(n, unit);
@@ -151,6 +151,21 @@ impl Interpreter {
             self.events
                 .push(super::Event::Text("Interrupt received.".to_string()));
         }
+        if self.agent.decider.goal_retracted && !self.agent.decider.halted {
+            // The kernel's line ends with a newline; the scheduler's does not move the
+            // print column, as after a halt.
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\nStopped due to substate (goal) retraction.\nInterrupt received.".to_string(),
+            ));
+        }
+        if self.agent.decider.break_interrupted && !self.agent.decider.halted {
+            // `production break`: 9.6's reason for stopping, then its scheduler's notice.
+            self.print_col.set(0);
+            self.events.push(super::Event::Text(
+                "\n:interrupt\nInterrupt received.".to_string(),
+            ));
+        }
         if interrupted {
             self.events
                 .push(super::Event::Text("\nInterrupted.".to_string()));
@@ -168,6 +183,8 @@ impl Interpreter {
             halted: self.agent.decider.halted,
             interrupted: interrupted
                 || self.agent.decider.rhs_interrupted
+                || self.agent.decider.goal_retracted
+                || self.agent.decider.break_interrupted
                 || (self.agent.decider.stop_requested && !self.agent.decider.halted),
             depth_exceeded: self.agent.decider.depth_exceeded,
         }
@@ -193,6 +210,7 @@ impl Interpreter {
     pub(super) fn cmd_init(&mut self) -> CmdResult {
         self.agent.init_soar();
         self.agent.print_initial_state();
+        self.agent.report_break_hits();
         self.agent.reinstate_inputs();
         if self.agent.events.any() {
             self.agent

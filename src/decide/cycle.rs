@@ -40,6 +40,16 @@ impl AgentCore {
         self.top.operator
     }
 
+    /// `run -g` (Soar manual, ch. 9, `run`: "run agent until a goal retracts"): the next
+    /// run stops after the phase in which a goal at the level of the lowest goal now, or
+    /// above it, is removed; `None` ends the watch. 9.6 keeps the level of the goal at the
+    /// start of the run (checked: the removal of a substate made during the run does not
+    /// stop it).
+    pub fn stop_on_goal_retraction(&mut self, on: bool) {
+        self.decider.goal_break_level =
+            on.then(|| self.decider.goals.last().map_or(1, |g| g.level));
+    }
+
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
     pub fn print_initial_state(&mut self) {
         if self.settings.trace.decisions {
@@ -59,6 +69,8 @@ impl AgentCore {
         self.decider.stop_requested = false;
         self.decider.depth_exceeded = false;
         self.decider.rhs_interrupted = false;
+        self.decider.goal_retracted = false;
+        self.decider.break_interrupted = false;
         self.learn.learned_this_run = 0;
         if self.decider.goals.is_empty() {
             self.decider.goals.push(Goal {
@@ -87,10 +99,21 @@ impl AgentCore {
         } else {
             (0, 0)
         };
+        // A run of decisions that starts past the stop phase of its cycle (in the output
+        // phase, with the stop phase apply) counts the end of that cycle as one decision
+        // (as 9.6 does: `run 2` from the output phase stops at the next stop phase).
+        let cycle_order = |p: Phase| p as u8;
+        let mut owes_cycle_end = unit == RunUnit::Decisions
+            && self
+                .decider
+                .phase
+                .is_some_and(|p| cycle_order(p) > cycle_order(stop_phase));
         while !self.decider.halted
             && !self.decider.stop_requested
             && !self.decider.depth_exceeded
             && !self.decider.rhs_interrupted
+            && !self.decider.goal_retracted
+            && !self.decider.break_interrupted
             && match unit {
                 RunUnit::Forever => true,
                 RunUnit::Decisions => {
@@ -106,6 +129,11 @@ impl AgentCore {
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
                     if phase != stop_phase && self.decider.phase == Some(stop_phase) {
+                        done += 1;
+                    }
+                    if owes_cycle_end && phase == Phase::Output && self.decider.phase != Some(phase)
+                    {
+                        owes_cycle_end = false;
                         done += 1;
                     }
                 }
@@ -153,6 +181,7 @@ impl AgentCore {
         }
         let start = std::time::Instant::now();
         self.do_phase_timed(phase, one_cycle);
+        self.report_break_hits_in(phase);
         self.release_justifications();
         let i = match phase {
             Phase::Input => 0,

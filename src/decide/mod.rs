@@ -4,6 +4,7 @@
 //! the decider's memory (`state.rs`, `slot.rs`, `ids.rs`, `scratch.rs`) which the agent
 //! holds.
 
+mod breaks;
 pub mod by_token;
 pub(crate) mod compiled;
 mod consistency;

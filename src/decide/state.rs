@@ -153,6 +153,14 @@ pub struct DecideState {
     pub depth_exceeded: bool,
     /// A rule called `(interrupt)` in this run: the run stops after the phase.
     pub rhs_interrupted: bool,
+    /// `run -g`: the level of the lowest goal when the run began. The removal of a goal
+    /// at this level or above stops the run after the phase (and clears this).
+    pub goal_break_level: Option<u32>,
+    /// A goal at or above `goal_break_level` was removed in this run.
+    pub goal_retracted: bool,
+    /// A rule with a break (`production break`) matched in this run: it stops after the
+    /// phase.
+    pub break_interrupted: bool,
     /// `decide select`: the operator the next decision takes when it is proposed, as
     /// typed with its first letter upper-cased (9.6 compares the text).
     pub(crate) forced_operator: Option<String>,

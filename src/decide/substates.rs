@@ -367,6 +367,10 @@ impl AgentCore {
             let Some(g) = self.decider.goals.pop() else {
                 break;
             };
+            if self.decider.goal_break_level.is_some_and(|l| g.level <= l) {
+                self.decider.goal_break_level = None;
+                self.decider.goal_retracted = true;
+            }
             if self.settings.trace.preferences {
                 self.trace_removed_prefs(g.state, &g.made);
             }

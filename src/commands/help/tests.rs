@@ -35,7 +35,7 @@ const USAGE: &[(&str, &str)] = &[
     ("pushd", "pushd directory"),
     ("pwd", "pwd"),
     ("rl", "rl ..."),
-    ("run", "run [count] [-d|-e|-p|-o|-f] [-s] [-u|-n]"),
+    ("run", "run [count] [-d|-e|-p|-o|-f|-g] [-s] [-u|-n]"),
     ("save", "save ..."),
     ("smem", "smem ..."),
     ("soar", "soar\nsoar ?\nsoar init|stop|version\nsoar max-elaborations|max-goal-depth|max-nil-output-cycles [n]\nsoar max-dc-time|max-gp|max-memory-usage [n]\nsoar stop-phase [input|propose|apply|output]\nsoar wait-snc|timers|keep-all-top-oprefs|tcl [on|off]"),
