@@ -27,6 +27,7 @@ kernel_modules!(
     learn,
     lexer,
     parser,
+    pools,
     printer,
     production,
     rete,

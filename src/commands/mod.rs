@@ -20,6 +20,7 @@ mod production_find;
 mod rules;
 mod running;
 mod settings;
+mod stats;
 pub mod tokenizer;
 mod tracing;
 
