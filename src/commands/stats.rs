@@ -29,8 +29,8 @@ impl Interpreter {
     /// `stats [options]`. With several options, 9.6 answers in a fixed order whatever the
     /// order typed (checked option pair by option pair on soar-sml 9.6.5): `--agent`,
     /// then `--decision`, then `--learning` each answer alone; otherwise `--track` starts
-    /// tracking and `--cycle-csv` answers alone; otherwise the memory report, the reset of
-    /// the maxima, the maxima, the rete's counts, the tracked cycles (`--cycle`, or
+    /// tracking and `--cycle-csv` answers alone; otherwise the memory report, the maxima,
+    /// their reset, the rete's counts, the tracked cycles (`--cycle`, or
     /// `--sort` alone), the end of tracking and the run report come in that order. The
     /// run report comes when `--system` is given or no option is.
     pub(super) fn cmd_stats_options(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
@@ -68,12 +68,12 @@ impl Interpreter {
             text.push_str(&memory_report(&self.memory_report()));
         }
         let stats = &mut self.agent.decider.cycle_stats;
-        if has("reset") {
-            stats.reset_max();
-        }
         if has("max") {
             text.push_str(&max_report(stats));
             decimals = 6;
+        }
+        if has("reset") {
+            stats.reset_max();
         }
         if has("rete") {
             text.push_str(&rete_report(&self.agent.rete.node_counts(), &self.agent.rete));
