@@ -41,6 +41,7 @@ kernel_modules!(
     trace_text,
     value,
     wm,
+    wme_filters,
 );
 
 mod api;

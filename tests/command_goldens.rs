@@ -105,11 +105,9 @@ fn masked_stats(text: &str) -> String {
         if in_csv && line.split(',').count() != 4 {
             in_csv = false;
         }
-        let masked = if t.starts_with("Soar ") && line.contains(" on ") && line.contains(" at ")
-        {
+        let masked = if t.starts_with("Soar ") && line.contains(" on ") && line.contains(" at ") {
             "Soar # on # at #".to_string()
-        } else if line.contains('|') || line.contains("CPU Time:") || t.starts_with("Time (sec)")
-        {
+        } else if line.contains('|') || line.contains("CPU Time:") || t.starts_with("Time (sec)") {
             numbers_masked(line)
         } else if line.contains(" msec/") || t.starts_with("Activations:") {
             numbers_masked(line)

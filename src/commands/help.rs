@@ -70,7 +70,7 @@ const USAGE: &[(&str, &str)] = &[
     ("sp", "sp {name [\"doc\"] [:flags] conditions --> actions}\n\nLoads a rule; a rule with the same name is replaced."),
     (
         "stats",
-        "stats [-s|-d|-a]\n\nPrints counts of rules, decisions, elaboration cycles, firings and working memory (-s, the default), the decisions made (-d), or the agent's counters (-a).",
+        "stats [-s|-d|-a|-m|-r|-l|-M|-R|-t|-T|-c|-C] [-S N]\n\nPrints counts of rules, decisions, elaboration cycles, firings and working memory (-s, the default), the decisions made (-d), the agent's counters (-a), the kernel's stores (-m), the rete's nodes by type (-r), the chunking statistics (-l, as `chunk stats`), or the largest time, WM changes and firings of one decision cycle (-M; -R zeroes them). -t keeps each cycle's figures, -c prints them (-S N sorts by column N: 1 cycle, 2 time, 3 WM changes, 4 firings; negative for descending), -C prints them as comma-separated values, -T stops and clears them.",
     ),
     ("svs", "svs ...\n\nSpatial visual system (not implemented in rusoar)."),
     (

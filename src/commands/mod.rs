@@ -23,6 +23,7 @@ mod settings;
 mod stats;
 pub mod tokenizer;
 mod tracing;
+mod wm_watch;
 
 use crate::agent::{AgentCore, PhaseCallback};
 use crate::commands::tokenizer::{Command, Tokenizer, WordKind};
