@@ -107,9 +107,12 @@ fn masked_stats(text: &str) -> String {
         }
         let masked = if t.starts_with("Soar ") && line.contains(" on ") && line.contains(" at ") {
             "Soar # on # at #".to_string()
-        } else if line.contains('|') || line.contains("CPU Time:") || t.starts_with("Time (sec)") {
-            numbers_masked(line)
-        } else if line.contains(" msec/") || t.starts_with("Activations:") {
+        } else if line.contains('|')
+            || line.contains("CPU Time:")
+            || t.starts_with("Time (sec)")
+            || line.contains(" msec/")
+            || t.starts_with("Activations:")
+        {
             numbers_masked(line)
         } else if t.starts_with("Pool Name") {
             in_pools = true;
