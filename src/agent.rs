@@ -374,6 +374,10 @@ pub enum Added {
     Duplicate {
         of: String,
     },
+    /// The network cannot test the rule as its conditions were ordered: not added.
+    Rejected {
+        reason: String,
+    },
 }
 
 /// Pending changes to the match set, as the decision cycle will consume them:
@@ -552,6 +556,8 @@ pub struct AgentCore {
     /// While set, `<=WM:` trace lines are collected here and printed in 9.6's order at the
     /// end of the working-memory phase.
     pub(crate) removed_wmes: Option<Vec<crate::wm::Wme>>,
+    /// `wm watch`: which `=>WM:` and `<=WM:` lines the trace shows.
+    pub(crate) wme_filters: crate::wme_filters::WmeFilters,
     /// The `<=WM:` lines of substates an operator removal takes away in this phase, each
     /// with its place in 9.6's listing (see `trace_removed_wmes`).
     pub(crate) substate_removals: Vec<(crate::decide::state::SubstateLine, crate::wm::Wme)>,
@@ -609,6 +615,7 @@ impl AgentCore {
             interrupt: None,
             trace_text: crate::trace_text::TraceText96,
             removed_wmes: None,
+            wme_filters: Default::default(),
             substate_removals: Vec::new(),
             substates_by_gds: false,
             gds_trigger: None,
@@ -651,6 +658,11 @@ impl AgentCore {
             }
             Err(crate::rete::BuildError::NoConditions(_)) => {
                 return Added::Duplicate { of: String::new() };
+            }
+            Err(e @ crate::rete::BuildError::UnboundInNegation(_)) => {
+                return Added::Rejected {
+                    reason: e.to_string(),
+                };
             }
         };
         let production = std::sync::Arc::new(p);

@@ -27,6 +27,7 @@ kernel_modules!(
     learn,
     lexer,
     parser,
+    pools,
     printer,
     production,
     rete,
@@ -40,6 +41,7 @@ kernel_modules!(
     trace_text,
     value,
     wm,
+    wme_filters,
 );
 
 mod api;

@@ -138,6 +138,23 @@ pub struct Known {
 }
 
 impl Symbols {
+    /// The symbol table's store, for `stats --memory`, the bytes of its strings' text and
+    /// of its hash tables.
+    pub(crate) fn memory_pools(&self, pools: &mut Vec<crate::pools::Pool>) -> (usize, usize) {
+        use crate::pools::hash_table_bytes;
+        pools.push(self.table.pool("symbol"));
+        let mut text = 0;
+        for i in 0..self.table.len() {
+            if let SymData::Str(s) = &self.table[i] {
+                text += s.len();
+            }
+        }
+        let hashes = hash_table_bytes::<u32, Sym>(self.strs.capacity())
+            + hash_table_bytes::<i64, Sym>(self.ints.capacity())
+            + hash_table_bytes::<u64, Sym>(self.floats.capacity());
+        (text, hashes)
+    }
+
     /// A symbol table holding the constants the official kernel creates when an agent is made,
     /// in its order (`src/initial_symbols.txt`, read off Soar 9.6.5 by
     /// `scripts/initial_symbols.py`): the condition reorderer breaks ties by creation order.

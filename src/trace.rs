@@ -394,7 +394,8 @@ impl AgentCore {
         self.trace_text.write(out, line_start, &self.symbols, &event);
     }
 
-    /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`).
+    /// `=>WM: (tt: id ^attr value)` when `added`, else `<=WM: ...` (`trace -w`), when the
+    /// `wm watch` filters let it through.
     pub(crate) fn trace_wme(&mut self, added: bool, w: &Wme) {
         if !added {
             if let Some(buffer) = self.removed_wmes.as_mut() {
@@ -402,7 +403,7 @@ impl AgentCore {
                 return;
             }
         }
-        if self.settings.trace.wmes {
+        if self.settings.trace.wmes && self.wme_filters.passes(w, added) {
             self.emit(&TraceEvent::Wme { added, wme: w });
         }
     }

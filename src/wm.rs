@@ -271,6 +271,16 @@ impl WorkingMemory {
         self.count
     }
 
+    /// Working memory's stores, for `stats --memory`, and the bytes of its hash tables.
+    pub(crate) fn memory_pools(&self, pools: &mut Vec<crate::pools::Pool>) -> usize {
+        use crate::pools::{hash_table_bytes, Pool};
+        pools.push(Pool::of_vec::<Option<Wme>>("wme", self.wmes.capacity()));
+        pools.push(Pool::of_vec::<u32>("wme id place", self.id_pos.capacity()));
+        pools.push(Pool::of_vec::<[u32; 2]>("wme link place", self.link_pos.capacity()));
+        hash_table_bytes::<Sym, IdList>(self.by_id.capacity())
+            + hash_table_bytes::<Sym, Vec<(WmeId, bool)>>(self.parents.capacity())
+    }
+
     /// `init-soar`: timetags start again at 1, as in the official kernel.
     pub fn reset_timetags(&mut self) {
         self.next_timetag = 1;

@@ -134,3 +134,33 @@ fn multi_attributes_change_the_order_as_in_the_official_kernel() {
     let e = agent.execute("multi-attributes foo 0").unwrap_err();
     assert_eq!(e.message(), "Expected non-negative integer.");
 }
+
+/// When a rule's conditions are not all connected, the reorderer can place a negation before
+/// the condition that binds a variable the negation compares with. 9.6 then reports "Rete
+/// build found test of unbound var" (and can no longer run); rusoar refuses the rule with
+/// that message and keeps the agent usable. The same negation after its binding loads.
+#[test]
+fn a_negation_comparing_with_a_later_binding_is_refused() {
+    let mut agent = Agent::default();
+    let err = agent
+        .source_text(
+            "rule",
+            "sp {t (state <s> ^<at> x) (<a> ^a0 <a>) (<b> ^a0 <b>) \
+             -(<s> ^a0 {<> <b> <a>}) --> (write hi)}",
+        )
+        .unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("Rete build found test of unbound var: <b>"),
+        "{err}"
+    );
+    agent.take_output();
+    let _ = agent.source_text("print", "print --all");
+    assert!(!agent.take_output().contains("sp {t"));
+    agent
+        .source_text(
+            "rule",
+            "sp {u (state <s> ^b <b> ^a0 <a>) -(<s> ^a0 {<> <b> <a>}) --> (write hi)}",
+        )
+        .unwrap();
+}

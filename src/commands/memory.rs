@@ -12,9 +12,14 @@ impl Interpreter {
         match args.first().map(String::as_str) {
             Some("add") => self.cmd_wm_add(ctx, &args[1..]),
             Some("remove") => self.cmd_wm_remove(ctx, &args[1..]),
+            Some("watch") => self.cmd_wm_watch(ctx, &args[1..]),
+            // Working-memory activation is not built.
+            Some("activation") => Err(super::not_yet(ctx, "wm activation")),
             // 9.6's text, its spelling included.
             None => Err(ctx.error("The 'wm' commands contains commands and settings related to working memomory: add, remove, activation and watch.")),
-            _ => Err(super::not_yet(ctx, "wm")),
+            _ => Err(ctx.error(
+                "Invalid wm command.  Use 'wm ?' to see a list of valid settings.",
+            )),
         }
     }
 
@@ -115,7 +120,7 @@ impl Interpreter {
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
 /// (values only), else a number or a string constant (`|...|` quoting removed).
-fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
+pub(super) fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
     if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
         return Some(agent.symbols.str(inner));
     }

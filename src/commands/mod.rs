@@ -22,8 +22,10 @@ mod production_find;
 mod rules;
 mod running;
 mod settings;
+mod stats;
 pub mod tokenizer;
 mod tracing;
+mod wm_watch;
 
 use crate::agent::{AgentCore, PhaseCallback};
 use crate::commands::tokenizer::{Command, Tokenizer, WordKind};

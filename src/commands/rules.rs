@@ -75,6 +75,12 @@ impl Interpreter {
                 );
                 Ok(String::new())
             }
+            Added::Rejected { reason } => {
+                let d = Diagnostic::error(reason)
+                    .at(ast.name_span)
+                    .with_label("its conditions are not all connected");
+                Err(self.sp_failed(d, Some(&name)))
+            }
         }
     }
 

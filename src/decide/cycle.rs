@@ -191,6 +191,9 @@ impl AgentCore {
             Phase::Output => 4,
         };
         self.decider.phase_time[i] += start.elapsed();
+        if phase == Phase::Output && self.decider.phase == Some(Phase::Input) {
+            self.end_cycle_stats();
+        }
         // 9.6 samples the WM size once per phase, at its end (a phase left mid-way by
         // `run -e` is sampled when it ends).
         if self.decider.phase != Some(phase) {
@@ -212,6 +215,29 @@ impl AgentCore {
             self.decider.stop_requested = true;
         }
         set
+    }
+
+    /// The WM additions and removals since this decider started, as `stats` counts them:
+    /// an input WME counts when the input phase adds it, as in 9.6 (soar-sml 9.6.5 counts
+    /// a client's update only once it is applied).
+    pub(crate) fn stats_wm_changes(&self) -> (u64, u64) {
+        let d = &self.decider;
+        (
+            self.wm.additions() - d.wm_base.0 - self.pending_input_additions(),
+            self.wm.removals() - d.wm_base.1,
+        )
+    }
+
+    /// Records the decision cycle whose output phase has just ended (9.6 records its
+    /// per-cycle statistics there, so a cycle that halts before its output phase has none).
+    fn end_cycle_stats(&mut self) {
+        let (additions, removals) = self.stats_wm_changes();
+        let d = &mut self.decider;
+        let time = d.phase_time.iter().sum();
+        // The output phase has already counted this cycle.
+        let cycle = d.d_cycle_count - 1;
+        d.cycle_stats
+            .end_cycle(cycle, time, additions + removals, d.firings);
     }
 
     /// A sample of the WM size for `stats`, taken at the end of each phase.
@@ -392,7 +418,10 @@ impl AgentCore {
             self.remove_wme(w);
         }
         self.matches.clear();
+        // Tracking stays on (its rows go), as in 9.6.
+        let tracking = self.decider.cycle_stats.tracking;
         self.decider = crate::decide::state::DecideState::new();
+        self.decider.cycle_stats.tracking = tracking;
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
         self.symbols.reset_id_counters();

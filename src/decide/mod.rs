@@ -9,6 +9,7 @@ pub mod by_token;
 pub(crate) mod compiled;
 mod consistency;
 pub mod cycle;
+pub mod cycle_stats;
 mod decision;
 mod elaborate;
 mod fire;

@@ -185,6 +185,8 @@ pub struct DecideState {
     pub phase_time: [std::time::Duration; 5],
     pub input_fn_time: std::time::Duration,
     pub output_fn_time: std::time::Duration,
+    /// Each decision cycle's time, WM changes and firings (`stats --max`, `--track`).
+    pub cycle_stats: super::cycle_stats::CycleStats,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
     /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the

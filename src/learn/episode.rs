@@ -227,6 +227,8 @@ impl AgentCore {
                 let constraints = super::stats::operational_constraints(&prod);
                 self.learn.stats.note_identities(&bt);
                 match self.add_production(prod) {
+                    // A learned rule's conditions are connected to its state.
+                    Added::Rejected { .. } => {}
                     Added::Duplicate { .. } => {
                         self.learn.duplicates += 1;
                         self.learn.stats.duplicates += 1;

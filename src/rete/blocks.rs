@@ -46,6 +46,16 @@ impl<T> Blocks<T> {
         self.len
     }
 
+    /// The store as `stats --memory` lists it: its blocks of [`BLOCK`] items.
+    pub fn pool(&self, name: &'static str) -> crate::pools::Pool {
+        crate::pools::Pool {
+            name,
+            item_size: std::mem::size_of::<T>(),
+            per_block: BLOCK,
+            blocks: self.blocks.len(),
+        }
+    }
+
     pub fn get(&self, i: usize) -> Option<&T> {
         (i < self.len).then(|| &self[i])
     }

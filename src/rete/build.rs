@@ -12,7 +12,7 @@ use super::{
 use crate::ast::Head;
 use crate::production::{Cond, Condition, Production, Term, Test};
 use crate::symbols::{Sym, Symbols};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum BuildError {
@@ -21,6 +21,68 @@ pub enum BuildError {
     /// Identical to a production already in the network.
     #[error("duplicate of production {0:?}")]
     Duplicate(ProdId),
+    /// A negation compares with a variable that only a later condition binds: the
+    /// reorderer placed it first because the rule's conditions are not all connected.
+    /// 9.6 reports the same and then cannot go on; the rule is refused here.
+    #[error("Rete build found test of unbound var: {0}")]
+    UnboundInNegation(String),
+}
+
+/// The first variable that a negation (or a condition of a conjunctive negation) compares
+/// with before any condition binds it.
+fn unbound_relational(conds: &[Condition], bound: &mut FxHashSet<String>) -> Option<String> {
+    fn each_simple<'t>(t: &'t Test, f: &mut dyn FnMut(&'t Test)) {
+        match t {
+            Test::Conjunction(ts) => ts.iter().for_each(|t| each_simple(t, f)),
+            other => f(other),
+        }
+    }
+    fn fields(c: &Cond) -> [&Test; 3] {
+        [&c.id, &c.attr, &c.value]
+    }
+    for c in conds {
+        match c {
+            Condition::Positive(p) => {
+                for t in fields(p) {
+                    each_simple(t, &mut |t| {
+                        if let Test::Equal(Term::Var(v)) = t {
+                            bound.insert(v.to_string());
+                        }
+                    });
+                }
+            }
+            Condition::Negative(n) => {
+                let mut local = bound.clone();
+                let mut missing = None;
+                for t in fields(n) {
+                    for equality in [true, false] {
+                        each_simple(t, &mut |t| match t {
+                            Test::Equal(Term::Var(v)) if equality => {
+                                local.insert(v.to_string());
+                            }
+                            Test::Relational(_, r) if !equality => {
+                                if let Term::Var(v) = &**r {
+                                    if !local.contains(&**v) && missing.is_none() {
+                                        missing = Some(v.to_string());
+                                    }
+                                }
+                            }
+                            _ => {}
+                        });
+                    }
+                }
+                if missing.is_some() {
+                    return missing;
+                }
+            }
+            Condition::Ncc(inner) => {
+                if let Some(v) = unbound_relational(inner, &mut bound.clone()) {
+                    return Some(v);
+                }
+            }
+        }
+    }
+    None
 }
 
 /// The actions and flags of a rule with each variable replaced by where the conditions bind
@@ -111,6 +173,9 @@ impl Rete {
     ) -> Result<ProdId, BuildError> {
         if p.conditions.is_empty() {
             return Err(BuildError::NoConditions(p.name.clone()));
+        }
+        if let Some(v) = unbound_relational(&p.conditions, &mut FxHashSet::default()) {
+            return Err(BuildError::UnboundInNegation(v));
         }
         let pid = ProdId(self.prods.len() as u32);
         let mut bindings = Bindings::default();
@@ -765,8 +830,10 @@ fn add_test<'a>(
         },
         Test::Relational(r, referent) => match &**referent {
             Term::Var(v) => {
-                // A relational test on a variable bound nowhere is dropped, as Soar's
-                // reorderer does.
+                // A rule whose variable is bound nowhere does not load, the reorderer
+                // moves a positive condition's relational tests to where their referents
+                // are bound, and `add_production` refuses a negation placed before its
+                // referent is bound (`unbound_relational`): the referent is always bound.
                 if let Some(&(d, f)) = bindings.get(&**v) {
                     tests.push(JoinTest::Compare {
                         field,

@@ -20,6 +20,7 @@ mod hash;
 mod names;
 pub mod reorder;
 mod small_list;
+pub(crate) mod stats;
 mod test_lists;
 pub mod tests;
 mod tokens;

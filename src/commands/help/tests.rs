@@ -40,11 +40,11 @@ const USAGE: &[(&str, &str)] = &[
     ("smem", "smem ..."),
     ("soar", "soar\nsoar ?\nsoar init|stop|version\nsoar max-elaborations|max-goal-depth|max-nil-output-cycles [n]\nsoar max-dc-time|max-gp|max-memory-usage [n]\nsoar stop-phase [input|propose|apply|output]\nsoar wait-snc|timers|keep-all-top-oprefs|tcl [on|off]"),
     ("sp", "sp {name [\"doc\"] [:flags] conditions --> actions}"),
-    ("stats", "stats [-s|-d|-a]"),
+    ("stats", "stats [-s|-d|-a|-m|-l|-r|-M|-R|-t|-T|-c|-C] [-S column]"),
     ("svs", "svs ..."),
     ("trace", "trace [0-5]\ntrace -l|--level 0-5\ntrace flags [remove|0]\ntrace -L|--learning 0-2\ntrace -n|-t|-f\ntrace -N|--none"),
     ("visualize", "visualize ..."),
-    ("wm", "wm add id [^]attribute value [+]\nwm remove timetag\nwm activation|watch ..."),
+    ("wm", "wm add id [^]attribute value [+]\nwm remove timetag\nwm watch -a|-r [-t adds|removes|both] id attribute value\nwm watch [-l|-R] [-t adds|removes|both]\nwm activation ..."),
 ];
 
 fn usage(command: &str) -> Option<&'static str> {
@@ -84,8 +84,9 @@ const ITEMS: &[(&str, &str, &str)] = &[
     ("rules.rs", "cmd_production", "production"),
     ("rules.rs", "cmd_excise", "production"),
     ("running.rs", "cmd_run", "run"),
-    ("running.rs", "cmd_stats_options", "stats"),
-    ("running.rs", "host_name", ""),
+    ("stats.rs", "SPECS", "stats"),
+    ("wm_watch.rs", "cmd_wm_watch", "wm"),
+    ("stats.rs", "host_name", ""),
     ("settings.rs", "LEARN_SOAR8", "learn"),
     ("settings.rs", "cmd_learn", "learn"),
     ("settings.rs", "cmd_soar", "soar"),
