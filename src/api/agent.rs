@@ -134,6 +134,7 @@ impl Agent {
     /// stays on the print stream. Diagnostics name the text `<command>`.
     pub fn execute(&mut self, commands: &str) -> Result<String, Error> {
         self.deliver();
+        self.interp.start_result();
         let start = self.interp.event_count();
         match self.interp.run_text("<command>", commands) {
             Ok(()) => {

@@ -32,6 +32,27 @@ pub fn summary(agent: &AgentCore) -> String {
         l.justifications_since_init.to_string(),
     );
     out += &row("Substates analyzed", l.substates_analyzed.to_string());
+    let marked = match s.learn {
+        LearnMode::Only => Some(("Only Learning In States", &l.force_learn, "No current learning states.")),
+        LearnMode::Except => Some((
+            "Learning in All States Except",
+            &l.dont_learn,
+            "Currently learning in all states.",
+        )),
+        _ => None,
+    };
+    if let Some((title, states, none)) = marked {
+        out += title;
+        out += "\n";
+        if states.is_empty() {
+            out += none;
+            out += "\n";
+        }
+        for &st in states.iter().rev() {
+            out += &agent.symbols.text(st);
+            out += "\n";
+        }
+    }
     out += "-------------------------------------------------------\n\nTry 'chunk ?' to learn more about chunking's sub-commands and settings.\nFor a detailed article about the chunk command, use 'help chunk'.\n";
     out
 }

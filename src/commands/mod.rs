@@ -20,6 +20,7 @@ mod print_cmd;
 mod printing;
 mod production_find;
 mod rules;
+mod save;
 mod running;
 mod settings;
 mod stats;
@@ -202,6 +203,12 @@ impl Interpreter {
             // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
             print_col: Rc::new(Cell::new("     0: ==>S: S1 ".len())),
         }
+    }
+
+    /// Starts a new command line's result: the `*` marks of an earlier one are not
+    /// continued (each of SML's `ExecuteCommandLine` calls returns its own text).
+    pub(crate) fn start_result(&mut self) {
+        self.after_star = false;
     }
 
     /// The print stream's column (see [`Self::print_col`]).
@@ -540,6 +547,7 @@ impl Interpreter {
             "wm" => self.cmd_wm(&ctx, args),
             "run" => self.cmd_run(&ctx, args),
             "stats" => self.cmd_stats_options(&ctx, args),
+            "save" => self.cmd_save(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -250,11 +250,13 @@ impl Interpreter {
         out
     }
 
-    /// The rules of the kinds `wanted` selects, newest first, then the justifications.
+    /// The rules of the kinds `wanted` selects, kind by kind in 9.6's order (default
+    /// rules, user rules, templates, chunks), each kind newest first; then the
+    /// justifications.
     fn rule_listing(&self, wanted: &dyn Fn(&str) -> bool, style: RuleStyle) -> String {
         let mut s = String::new();
-        for p in self.agent.productions().rev() {
-            let kind = if p.flags.chunk {
+        let kind_of = |p: &Production| {
+            if p.flags.chunk {
                 "chunks"
             } else if p.flags.default {
                 "defaults"
@@ -262,9 +264,13 @@ impl Interpreter {
                 "template"
             } else {
                 "user"
-            };
-            // A template rule is also listed with the user rules.
-            if wanted(kind) || (kind == "template" && wanted("user")) {
+            }
+        };
+        for kind in ["defaults", "user", "template", "chunks"] {
+            if !wanted(kind) {
+                continue;
+            }
+            for p in self.agent.productions().rev().filter(|p| kind_of(p) == kind) {
                 s.push_str(&self.rule_text(p, style, false));
             }
         }

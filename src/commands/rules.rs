@@ -180,11 +180,13 @@ impl Interpreter {
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
         if parsed.has("all") {
             let names: Vec<String> = self.agent.productions().map(|p| p.name.clone()).collect();
+            // 9.6 excises the templates too but leaves them out of its count.
+            let templates = self.agent.productions().filter(|p| p.flags.template).count();
             let n = self.agent.excise_all();
             for name in &names {
                 self.report.note_excised(name);
             }
-            return Ok(excised_text(n));
+            return Ok(excised_text(n - templates));
         }
         if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
             // rusoar has no reinforcement-learning rules (Soar manual, ch. 5,

@@ -163,9 +163,10 @@ pub struct LearnState {
     pub stats: stats::ChunkStats,
     /// `init-soar` calls so far (chunk names after one carry the count).
     pub init_count: u64,
-    /// States marked by `force-learn` / `dont-learn` (for `chunk only` / `except`).
-    pub force_learn: rustc_hash::FxHashSet<Sym>,
-    pub dont_learn: rustc_hash::FxHashSet<Sym>,
+    /// States marked by `force-learn` / `dont-learn` (for `chunk only` / `except`), in the
+    /// order they were marked (`chunk` lists them newest first).
+    pub force_learn: indexmap::IndexSet<Sym>,
+    pub dont_learn: indexmap::IndexSet<Sym>,
     /// Live justifications, by serial.
     pub justifications: Vec<Justification>,
     /// The justifications that test each WME (by handle and timetag): a removal retracts them.
