@@ -64,11 +64,10 @@ impl Interpreter {
             )
             .at(ctx.cmd.span)
             .with_label("not applicable to rusoar")),
-            Some(other @ ("percepts" | "rete-network")) => Err(Diagnostic::error(
-                format!("load {other}: not yet supported by rusoar"),
-            )
-            .at(ctx.cmd.span)
-            .with_label("only `load file` (source) is supported")),
+            Some("rete-network") => self.load_rete_network(ctx, &args[1..]),
+            Some("percepts") => Err(Diagnostic::error("load percepts: not yet supported by rusoar")
+                .at(ctx.cmd.span)
+                .with_label("replaying recorded input is not built")),
             Some(_) | None => Err(Diagnostic::error(
                 "Invalid load command.  Use 'load ?' to see a list of valid settings.",
             )

@@ -19,6 +19,7 @@ mod prefs_support;
 mod print_cmd;
 mod printing;
 mod production_find;
+mod rete_net;
 mod rules;
 mod save;
 mod running;

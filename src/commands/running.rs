@@ -208,6 +208,13 @@ impl Interpreter {
     }
 
     pub(super) fn cmd_init(&mut self) -> CmdResult {
+        self.reinitialize();
+        Ok("\nAgent reinitialized.\n".into())
+    }
+
+    /// `init-soar`'s work: the agent starts again (the initial state is traced, input
+    /// WMEs are put back) and the program's listeners hear of it.
+    pub(super) fn reinitialize(&mut self) {
         self.agent.init_soar();
         self.agent.print_initial_state();
         self.agent.report_break_hits();
@@ -218,7 +225,6 @@ impl Interpreter {
                 .send(&crate::events::AgentEvent::InitSoar);
         }
         self.flush_agent_output();
-        Ok("\nAgent reinitialized.\n".into())
     }
 
     /// `production firing-counts [N] [rule...]`: `%6d:  name`, most fired first; a number

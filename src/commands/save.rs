@@ -1,7 +1,7 @@
 //! `save` (Soar manual, ch. 9, `save`): the agent's settings and rules as a file of
 //! commands that `source` reads back (`save agent`), the learned rules alone (`save
-//! chunks`), and the listing of its forms (`save ?`). Capturing input (`save percepts`)
-//! and the matcher's binary image (`save rete-network`) answer that they are not built.
+//! chunks`), production memory for `load rete-network` (`rete_net.rs`), and the listing of
+//! its forms (`save ?`). Capturing input (`save percepts`) answers that it is not built.
 
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
@@ -26,7 +26,7 @@ save rete-network                    --save <filename>
 For a detailed explanation of sub-commands:  help save";
 
 /// 9.6's pointer to the listing, after an error.
-const MORE: &str = "Use 'save ?' or 'help save' to learn more about the save command.";
+pub(super) const MORE: &str = "Use 'save ?' or 'help save' to learn more about the save command.";
 
 impl Interpreter {
     /// `save agent FILE`, `save chunks FILE`, `save ?`.
@@ -48,10 +48,8 @@ impl Interpreter {
                 Ok(format!("Chunks written to file {file}."))
             }
             ["chunks", ..] => Err(ctx.error("Syntax: save chunks <filename>")),
-            ["percepts" | "rete-network", ..] => Err(super::not_yet(
-                ctx,
-                &format!("save {}", words[0]),
-            )),
+            ["rete-network", ..] => self.save_rete_network(ctx, &args[1..]),
+            ["percepts", ..] => Err(super::not_yet(ctx, "save percepts")),
             [_, ..] => Err(ctx.error(
                 "Invalid save command.  Use 'save ?' to see a list of valid settings.",
             )),
@@ -82,7 +80,7 @@ impl Interpreter {
 
     /// Writes `text` to `file` (relative to the working directory). 9.6 says nothing when
     /// the file cannot be written; rusoar says why.
-    fn write_file(&self, ctx: &Ctx, file: &str, text: &str) -> Result<(), Diagnostic> {
+    pub(super) fn write_file(&self, ctx: &Ctx, file: &str, text: &str) -> Result<(), Diagnostic> {
         let path = self.resolve(file);
         std::fs::write(&path, text).map_err(|e| {
             ctx.error(format!("Could not write {}: {e}", path.display()))
