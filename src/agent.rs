@@ -575,6 +575,10 @@ pub struct AgentCore {
     /// The program's input WMEs and the input-link changes waiting for the next input
     /// phase (`io.rs`).
     pub(crate) inputs: crate::inputs::InputTable,
+    /// `save percepts`: the input being recorded.
+    pub(crate) capture: Option<crate::percepts::Capture>,
+    /// `load percepts`: the recorded input being replayed.
+    pub(crate) replay: Option<crate::percepts::Replay>,
     /// Called at the output phase of every decision.
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters.
@@ -623,6 +627,8 @@ impl AgentCore {
             rhs_registry: crate::rhs::Registry::new(),
             input_callback: None,
             inputs: crate::inputs::InputTable::default(),
+            capture: None,
+            replay: None,
             output_callback: None,
             learn: crate::learn::LearnState::default(),
             events: crate::events::EventListeners::default(),

@@ -27,6 +27,7 @@ kernel_modules!(
     learn,
     lexer,
     parser,
+    percepts,
     pools,
     printer,
     production,

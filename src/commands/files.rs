@@ -65,9 +65,7 @@ impl Interpreter {
             .at(ctx.cmd.span)
             .with_label("not applicable to rusoar")),
             Some("rete-network") => self.load_rete_network(ctx, &args[1..]),
-            Some("percepts") => Err(Diagnostic::error("load percepts: not yet supported by rusoar")
-                .at(ctx.cmd.span)
-                .with_label("replaying recorded input is not built")),
+            Some("percepts") => self.load_percepts(ctx, &args[1..]),
             Some(_) | None => Err(Diagnostic::error(
                 "Invalid load command.  Use 'load ?' to see a list of valid settings.",
             )

@@ -14,6 +14,7 @@ pub mod help;
 mod memory;
 pub mod options;
 mod output;
+mod percepts;
 mod prefs;
 mod prefs_support;
 mod print_cmd;

@@ -1,7 +1,7 @@
 //! `save` (Soar manual, ch. 9, `save`): the agent's settings and rules as a file of
 //! commands that `source` reads back (`save agent`), the learned rules alone (`save
-//! chunks`), production memory for `load rete-network` (`rete_net.rs`), and the listing of
-//! its forms (`save ?`). Capturing input (`save percepts`) answers that it is not built.
+//! chunks`), production memory for `load rete-network` (`rete_net.rs`), the recording of
+//! input (`percepts.rs`), and the listing of its forms (`save ?`).
 
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
@@ -49,7 +49,7 @@ impl Interpreter {
             }
             ["chunks", ..] => Err(ctx.error("Syntax: save chunks <filename>")),
             ["rete-network", ..] => self.save_rete_network(ctx, &args[1..]),
-            ["percepts", ..] => Err(super::not_yet(ctx, "save percepts")),
+            ["percepts", ..] => self.save_percepts(ctx, &args[1..]),
             [_, ..] => Err(ctx.error(
                 "Invalid save command.  Use 'save ?' to see a list of valid settings.",
             )),

@@ -256,6 +256,8 @@ impl AgentCore {
             Phase::Input => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Input));
                 self.run_input_callbacks();
+                self.replay_input_changes();
+                self.capture_input_changes();
                 self.apply_input_changes();
                 self.classify_new_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Input));
