@@ -28,6 +28,7 @@ kernel_modules!(
     lexer,
     parser,
     percepts,
+    percepts_phase,
     pools,
     printer,
     production,

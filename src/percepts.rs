@@ -11,12 +11,10 @@
 //!
 //! with `TYPE` one of `string`, `int`, `float`, `id`; `TAG` names the change so that its
 //! removal can refer to it (9.6 writes its client's negative timetags there, rusoar the
-//! negated timetag of the WME).
+//! negated timetag of the WME). The input phase records and replays (`percepts_phase.rs`).
 
-use crate::agent::AgentCore;
-use crate::inputs::{InputChange, InputWme};
-use crate::symbols::{Sym, SymData};
-use crate::value::Value;
+use crate::inputs::InputWme;
+use crate::symbols::Sym;
 use rustc_hash::FxHashMap;
 use std::path::PathBuf;
 
@@ -30,7 +28,7 @@ pub(crate) struct Capture {
 
 /// One recorded change.
 #[derive(Debug, Clone, PartialEq)]
-enum Action {
+pub(crate) enum Action {
     Add {
         id: String,
         attr: String,
@@ -44,12 +42,12 @@ enum Action {
 #[derive(Debug, Default)]
 pub(crate) struct Replay {
     /// (decision, tag, change), in the file's order.
-    actions: Vec<(u64, i64, Action)>,
-    next: usize,
+    pub(crate) actions: Vec<(u64, i64, Action)>,
+    pub(crate) next: usize,
     /// The input WMEs made so far, by tag.
-    made: FxHashMap<i64, InputWme>,
+    pub(crate) made: FxHashMap<i64, InputWme>,
     /// The identifiers made so far, by the name the file gives them.
-    ids: FxHashMap<String, Sym>,
+    pub(crate) ids: FxHashMap<String, Sym>,
 }
 
 /// A line of a percepts file that cannot be read.
@@ -101,115 +99,5 @@ impl Replay {
     /// How many changes the file holds.
     pub(crate) fn len(&self) -> usize {
         self.actions.len()
-    }
-}
-
-impl AgentCore {
-    /// Starts recording input to `path`: a seed drawn from the agent's generator seeds it
-    /// and heads the file. Returns the seed.
-    pub(crate) fn start_capture(&mut self, path: PathBuf) -> u32 {
-        let seed = self.rng.next_u32();
-        self.seed_rng(seed);
-        self.capture = Some(Capture {
-            path,
-            pending: format!("{seed}\n"),
-        });
-        seed
-    }
-
-    /// Records the input changes about to be applied at this input phase.
-    pub(crate) fn capture_input_changes(&mut self) {
-        let Some(capture) = self.capture.as_mut() else {
-            return;
-        };
-        let dc = self.decider.d_cycle_count;
-        for change in &self.inputs.queue {
-            let line = match *change {
-                InputChange::Add(w) => {
-                    let Some(wme) = self.wm.get(w) else { continue };
-                    let (value, kind) = match self.symbols.get(wme.value) {
-                        SymData::Int(i) => (i.to_string(), "int"),
-                        SymData::Float(_) => (self.symbols.text(wme.value), "float"),
-                        SymData::Str(s) => (s.to_string(), "string"),
-                        SymData::Id(_) => (self.symbols.text(wme.value), "id"),
-                    };
-                    format!(
-                        "{dc} -{} add-wme {} {} {value} {kind}\n",
-                        wme.timetag,
-                        self.symbols.text(wme.id),
-                        self.symbols.text(wme.attr),
-                    )
-                }
-                InputChange::Remove(w) => match self.wm.get(w) {
-                    Some(wme) => format!("{dc} -{} remove-wme\n", wme.timetag),
-                    None => continue,
-                },
-            };
-            capture.pending.push_str(&line);
-        }
-    }
-
-    /// Applies the replayed changes of this decision, as the program that made them did.
-    /// A change that cannot be made (an identifier the file never made, a removal of
-    /// nothing) is skipped with a warning on the print stream.
-    pub(crate) fn replay_input_changes(&mut self) {
-        let Some(mut replay) = self.replay.take() else {
-            return;
-        };
-        let dc = self.decider.d_cycle_count;
-        while let Some((at, tag, action)) = replay.actions.get(replay.next).cloned() {
-            if at > dc {
-                break;
-            }
-            replay.next += 1;
-            if let Err(why) = self.replay_one(&mut replay, tag, &action) {
-                self.output
-                    .push_str(&format!("Warning: load percepts: {why}\n"));
-            }
-        }
-        self.replay = Some(replay);
-    }
-
-    fn replay_one(&mut self, replay: &mut Replay, tag: i64, action: &Action) -> Result<(), String> {
-        match action {
-            Action::Remove => {
-                let h = replay
-                    .made
-                    .remove(&tag)
-                    .ok_or_else(|| format!("no WME {tag} to remove"))?;
-                self.remove_input(h).map_err(|e| e.to_string())
-            }
-            Action::Add {
-                id,
-                attr,
-                value,
-                kind,
-            } => {
-                let parent = replay
-                    .ids
-                    .get(id)
-                    .copied()
-                    .or_else(|| self.symbols.find_id(id))
-                    .ok_or_else(|| format!("no identifier {id}"))?;
-                let h = if kind == "id" {
-                    let (h, child) = self
-                        .add_input_object(parent, attr)
-                        .map_err(|e| e.to_string())?;
-                    replay.ids.insert(value.clone(), child);
-                    h
-                } else {
-                    let v = match kind.as_str() {
-                        "int" => Value::Int(value.parse().map_err(|_| format!("bad int {value}"))?),
-                        "float" => {
-                            Value::Float(value.parse().map_err(|_| format!("bad float {value}"))?)
-                        }
-                        _ => Value::Str(value.clone()),
-                    };
-                    self.add_input(parent, attr, v).map_err(|e| e.to_string())?
-                };
-                replay.made.insert(tag, h);
-                Ok(())
-            }
-        }
     }
 }
