@@ -45,11 +45,6 @@ impl TokKey {
     }
 }
 
-/// The right-index key of (alpha memory, identifier), packed into one word.
-pub(crate) fn amem_id_key(a: AmemId, id: Sym) -> u64 {
-    (u64::from(a.raw()) << 32) | u64::from(id.0)
-}
-
 /// One token's membership in one left-index bucket.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct HEntry {
@@ -66,7 +61,7 @@ impl Rete {
 
     /// Puts alpha-memory entry `e` at the head of its identifier's list.
     pub(crate) fn id_index_insert(&mut self, a: AmemId, id: Sym, e: u32) {
-        let head = self.amem_by_id.insert(amem_id_key(a, id), e).unwrap_or(NIL);
+        let head = self.amem_by_id.insert(a, id, e).unwrap_or(NIL);
         self.rm[e as usize].id_next = head;
         self.rm[e as usize].id_prev = NIL;
         if head != NIL {
@@ -95,9 +90,9 @@ impl Rete {
         if prev != NIL {
             self.rm[prev as usize].id_next = next;
         } else if next != NIL {
-            self.amem_by_id.insert(amem_id_key(a, id), next);
+            self.amem_by_id.insert(a, id, next);
         } else {
-            self.amem_by_id.remove(&amem_id_key(a, id));
+            self.amem_by_id.remove(a, id);
         }
         if next != NIL {
             self.rm[next as usize].id_prev = prev;
@@ -136,11 +131,7 @@ impl Rete {
             }
             return;
         }
-        let mut e = self
-            .amem_by_id
-            .get(&amem_id_key(a, id))
-            .copied()
-            .unwrap_or(NIL);
+        let mut e = self.amem_by_id.get(a, id).unwrap_or(NIL);
         while e != NIL {
             let entry = &self.rm[e as usize];
             self.scratch.push(entry.wme.0);
@@ -159,6 +150,14 @@ impl Rete {
             return;
         };
         let id = self.wme(w).id;
+        // A large memory is indexed when a WME first asks for its tokens by value, not
+        // as it fills: memories that fill and empty each decision without a WME ever
+        // asking (a join over every item of a large store) never pay for an index.
+        if self.nodes[holder].left_mode == LeftMode::Scan
+            && self.nodes[holder].token_count > SMALL_BETA
+        {
+            self.choose_left_mode(holder);
+        }
         let h = &self.nodes[holder];
         match h.left_mode {
             LeftMode::Indexed => {
@@ -254,7 +253,6 @@ impl Rete {
                     self.index_holder(holder);
                 }
             }
-            LeftMode::Scan if h.token_count > SMALL_BETA => self.choose_left_mode(holder),
             LeftMode::Scan => {}
         }
     }
@@ -354,10 +352,8 @@ impl Rete {
             self.recache_keys(holder);
         }
         let h = &self.nodes[holder];
-        match h.left_mode {
-            LeftMode::Indexed => self.index_tokens_on(holder, d, f),
-            _ if h.token_count > SMALL_BETA => self.choose_left_mode(holder),
-            _ => {}
+        if h.left_mode == LeftMode::Indexed {
+            self.index_tokens_on(holder, d, f);
         }
     }
 

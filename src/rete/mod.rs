@@ -17,6 +17,7 @@ pub(crate) mod blocks;
 mod build;
 mod doomed;
 mod hash;
+mod id_index;
 mod names;
 pub mod reorder;
 mod small_list;
@@ -267,8 +268,9 @@ pub(crate) struct Node {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum LeftMode {
     /// Its tokens are scanned, each read off its cached key: most memories hold a few
-    /// tokens, and indexing each costs more than the scan. A memory is scanned until it
-    /// grows past [`hash::SMALL_BETA`] tokens, and again once empty.
+    /// tokens, and indexing each costs more than the scan. A memory is scanned until a
+    /// WME asks for its tokens while it holds more than [`hash::SMALL_BETA`], and again
+    /// once empty.
     Scan,
     /// One key, and every token has the head token's value there: chains of joins on one
     /// identifier (the robot's `^X`, `^Y`, `^Th` below every wall) make hundreds of tokens
@@ -465,7 +467,7 @@ pub struct Rete {
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
-    pub(crate) amem_by_id: FxHashMap<u64, u32>,
+    pub(crate) amem_by_id: id_index::IdIndex,
     /// Holders' tokens by their value at one `(depth, field)` key: the head of each list
     /// of index entries (Soar's left hash table).
     pub(crate) tok_by_key: FxHashMap<hash::TokKey, u32>,
@@ -525,7 +527,7 @@ impl Rete {
             ncc_buffers: FxHashMap::default(),
             test_buf: Vec::new(),
             var_names: VarNames::default(),
-            amem_by_id: FxHashMap::default(),
+            amem_by_id: id_index::IdIndex::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),
             free_hentries: Vec::new(),
@@ -648,7 +650,7 @@ impl Rete {
                 rm_slots_remove(&mut rw.rm, e);
                 let id = rw.id;
                 if self.amems[a].indexed {
-                    self.amem_by_id.remove(&hash::amem_id_key(a, id));
+                    self.amem_by_id.remove(a, id);
                 }
             }
             self.free_rm.push(e);

@@ -139,7 +139,7 @@ impl Rete {
         pools.push(Pool::of_vec::<Option<super::RWme>>("rete wme", self.wmes.capacity()));
         pools.push(Pool::of_vec::<super::NegResult>("neg result", self.neg.capacity()));
         pools.push(Pool::of_vec::<super::hash::HEntry>("hash entry", self.hentries.capacity()));
-        hash_table_bytes::<u64, u32>(self.amem_by_id.capacity())
+        self.amem_by_id.bytes()
             + hash_table_bytes::<super::hash::TokKey, u32>(self.tok_by_key.capacity())
             + hash_table_bytes::<super::AlphaKey, super::AmemId>(self.amem_index.capacity())
             + hash_table_bytes::<(NodeId, u8, super::AmemId, u32), super::Shared>(
