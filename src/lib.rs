@@ -32,6 +32,7 @@ kernel_modules!(
     production,
     rete,
     rhs,
+    rl,
     rng,
     source,
     stdlib,

@@ -19,6 +19,7 @@ mod prefs_support;
 mod print_cmd;
 mod printing;
 mod production_find;
+mod rl;
 mod rules;
 mod running;
 mod settings;
@@ -540,6 +541,7 @@ impl Interpreter {
             "wm" => self.cmd_wm(&ctx, args),
             "run" => self.cmd_run(&ctx, args),
             "stats" => self.cmd_stats_options(&ctx, args),
+            "rl" => self.cmd_rl(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -253,6 +253,9 @@ impl Interpreter {
     /// The rules of the kinds `wanted` selects, newest first, then the justifications.
     fn rule_listing(&self, wanted: &dyn Fn(&str) -> bool, style: RuleStyle) -> String {
         let mut s = String::new();
+        if wanted("rl") && !wanted("user") {
+            return self.rl_listing(style);
+        }
         for p in self.agent.productions().rev() {
             let kind = if p.flags.chunk {
                 "chunks"
@@ -272,6 +275,39 @@ impl Interpreter {
             for j in self.agent.learn.justifications.iter().rev() {
                 s.push_str(&self.rule_text(&j.production, style, false));
             }
+        }
+        s
+    }
+
+    /// `print --rl`: the RL rules, newest first, each with its number of updates and its
+    /// value (9.6's `name  updates value` lines), or in full with `--full`.
+    fn rl_listing(&self, style: RuleStyle) -> String {
+        let mut s = String::new();
+        for p in self.agent.productions().rev() {
+            let Some(id) = self.agent.loaded(&p.name).map(|l| l.id) else {
+                continue;
+            };
+            let Some(v) = self.agent.rl.rules.get(&id) else {
+                continue;
+            };
+            if style.full == Some(true) {
+                s.push_str(&self.rule_text(p, style, false));
+                continue;
+            }
+            let value = match p.actions.first() {
+                Some(crate::production::Action::Make(m)) => match &m.referent {
+                    Some(crate::production::RhsTerm::Const(c)) => {
+                        crate::printer::constants::constant_text(c)
+                    }
+                    _ => String::new(),
+                },
+                _ => String::new(),
+            };
+            s.push_str(&format!(
+                "{}  {} {value}\n",
+                crate::printer::rereadable(&p.name),
+                crate::rhs::c_fixed(v.updates, 6)
+            ));
         }
         s
     }

@@ -164,6 +164,10 @@ impl AgentCore {
                 break;
             }
         }
+        if self.decider.halted {
+            // The end of an episode: the top state's RL rules take the last reward.
+            self.rl_halted();
+        }
         if (self.decider.halted || self.decider.depth_exceeded) && self.decider.phase.is_some() {
             self.emit(&TraceEvent::SystemHalted);
         }
@@ -291,6 +295,9 @@ impl AgentCore {
             }
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
+                if self.rl_enabled() {
+                    self.rl_tabulate_rewards();
+                }
                 self.decide_context_slots();
                 self.reduce_exploration_parameters();
                 self.classify_new_matches();
@@ -424,6 +431,7 @@ impl AgentCore {
         self.decider.cycle_stats.tracking = tracking;
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
+        self.rl.reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;
