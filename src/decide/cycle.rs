@@ -295,9 +295,6 @@ impl AgentCore {
             }
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
-                if self.rl_enabled() {
-                    self.rl_tabulate_rewards();
-                }
                 self.decide_context_slots();
                 self.reduce_exploration_parameters();
                 self.classify_new_matches();

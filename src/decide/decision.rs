@@ -67,6 +67,7 @@ impl AgentCore {
                         let cands = procedure::candidates(&prefs).unwrap_or_else(|_| vec![o]);
                         let chosen = cands.iter().position(|c| *c == o).unwrap_or(0);
                         let values = self.rl_candidates(goal.state, &prefs, &cands);
+                        self.rl_tabulate_rewards();
                         self.rl_decided(goal.state, &values, chosen);
                     }
                     self.remove_goals_below(gi);

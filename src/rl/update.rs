@@ -70,8 +70,9 @@ impl AgentCore {
         total
     }
 
-    /// At each decision phase, before the decision: every state with an RL operator
-    /// pending collects its reward, top down.
+    /// When a decision selects an operator by the preferences: every state with an RL
+    /// operator pending collects its reward, top down (observed on 9.6: a decision that
+    /// makes an impasse collects none).
     pub(crate) fn rl_tabulate_rewards(&mut self) {
         let n = self.decider.goals.len();
         for i in 0..n {
