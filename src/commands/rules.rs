@@ -192,9 +192,24 @@ impl Interpreter {
             return Ok(excised_text(n));
         }
         if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
-            // rusoar has no reinforcement-learning rules (Soar manual, ch. 5,
-            // "Reinforcement Learning"), so there are none to excise.
-            return Ok(excised_text(0));
+            // The RL rules (Soar manual, ch. 5, "Reinforcement Learning"), newest first;
+            // 9.6 marks each with `#`.
+            let names: Vec<String> = self
+                .agent
+                .productions()
+                .rev()
+                .filter(|p| {
+                    self.agent
+                        .loaded(&p.name)
+                        .is_some_and(|l| self.agent.rl.is_rl_rule(l.id))
+                })
+                .map(|p| p.name.clone())
+                .collect();
+            for name in &names {
+                self.agent.excise(name);
+                self.report.note_excised(name);
+            }
+            return Ok(format!("{}{}", "#".repeat(names.len()), excised_text(names.len())));
         }
         if parsed.has("rl") {
             return Err(super::not_yet(ctx, "excise --rl with other options"));

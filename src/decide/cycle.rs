@@ -415,6 +415,16 @@ impl AgentCore {
     /// `init-soar` (`soar init`): working memory, preferences, the goal stack, identifier
     /// counters and timetags start again; rules (and chunks) stay.
     pub fn init_soar(&mut self) {
+        // The substates go first, lowest first: each ends its RL episode, untraced (observed
+        // on 9.6); the top state's pending RL rules are dropped.
+        if self.rl_enabled() {
+            let traced = std::mem::replace(&mut self.settings.trace.rl, false);
+            let substates: Vec<Sym> = self.decider.goals.iter().skip(1).map(|g| g.state).collect();
+            for g in substates.into_iter().rev() {
+                self.rl_goal_ends(g, false);
+            }
+            self.settings.trace.rl = traced;
+        }
         // Input changes not applied yet go with the rest of working memory.
         self.inputs.queue.clear();
         let all = self.wm.all();

@@ -49,7 +49,7 @@ impl AgentCore {
                 .map(|w| (w.timetag, w.value))
                 .collect();
             // 9.6 walks a slot's WMEs newest first.
-            found.sort_by(|a, b| b.0.cmp(&a.0));
+            found.sort_by_key(|f| std::cmp::Reverse(f.0));
             found.into_iter().map(|(_, v)| v).collect()
         };
         let mut total = 0.0;
