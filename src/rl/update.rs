@@ -160,6 +160,15 @@ impl AgentCore {
             _ => cands.get(chosen).copied().unwrap_or(first),
         };
         self.rl_perform_update(goal, target.value, target.rl, true);
+        // Watkins's Q(lambda): an exploratory choice (below the best value) cuts the
+        // eligibility traces (observed on 9.6).
+        let policy = self.rl.params.learning_policy;
+        let explored = cands.get(chosen).is_some_and(|c| c.value < target.value);
+        if policy == Policy::QLearning && explored {
+            if let Some(data) = self.rl.goals.get_mut(&goal) {
+                data.traces.clear();
+            }
+        }
     }
 
     /// A state goes, or the agent halts: the state's pending RL rules take the reward
