@@ -157,7 +157,7 @@ impl TraceText96 {
                 before,
                 after,
             } => {
-                let g = |x: f64| crate::rhs::c_general(x, 6);
+                let g = |x: f64| crate::printer::constants::c_general(x, 6);
                 let _ = writeln!(
                     out,
                     "RL update {rule} {} {} {} -> {} {} {}",

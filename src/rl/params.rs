@@ -2,7 +2,7 @@
 //! manual, ch. 9, `rl`): their names, 9.6's defaults, the values each accepts, and how 9.6
 //! prints them. Data only; the learning itself reads [`RlParams`].
 
-use crate::rhs::c_general;
+use crate::printer::constants::c_general;
 
 /// How the update's target is computed (`learning-policy`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
