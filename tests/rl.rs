@@ -91,3 +91,19 @@ fn a_learned_value_is_saved_with_the_rule() {
         "left-right*rl*left  0.000000 -0.570000\n"
     );
 }
+
+#[test]
+fn rl_rules_that_differ_only_in_their_value_are_duplicates() {
+    // As in 9.6: `Ignoring f because it is a duplicate of e`.
+    let mut agent = Agent::default();
+    output(
+        &mut agent,
+        "sp {e (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+    );
+    let _ = agent.source_text(
+        "t",
+        "sp {f (state <s> ^operator <o> +) --> (<s> ^operator <o> = -3)}",
+    );
+    agent.take_output();
+    assert_eq!(output(&mut agent, "print --rl"), "e  0.000000 1.500000\n");
+}

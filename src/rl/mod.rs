@@ -11,7 +11,7 @@
 pub mod params;
 mod update;
 
-use crate::production::{Action, PrefKind, Production, RhsTerm};
+use crate::production::Production;
 use crate::rete::ProdId;
 use crate::symbols::Sym;
 use rustc_hash::FxHashMap;
@@ -66,25 +66,9 @@ pub struct RlState {
     pub stats: RlStats,
 }
 
-/// The value of a rule that is an RL rule: a single action, a numeric-indifferent
-/// preference whose value is a number (Soar manual, 5.1 "RL Rules"). Template rules are
-/// not RL rules; they make them.
+/// The value of a rule that is an RL rule (see [`Production::rl_value`]).
 pub fn rl_rule_value(p: &Production) -> Option<f64> {
-    use crate::ast::Constant;
-    if p.flags.template || p.flags.justification {
-        return None;
-    }
-    let [Action::Make(m)] = p.actions.as_slice() else {
-        return None;
-    };
-    if m.pref != PrefKind::NumericIndifferent {
-        return None;
-    }
-    match m.referent.as_ref()? {
-        RhsTerm::Const(Constant::Int(i)) => Some(*i as f64),
-        RhsTerm::Const(Constant::Float(f)) => Some(*f),
-        _ => None,
-    }
+    p.rl_value()
 }
 
 impl RlState {
