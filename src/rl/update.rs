@@ -175,6 +175,9 @@ impl AgentCore {
     /// collected so far, with no next operator.
     pub(crate) fn rl_goal_ends(&mut self, goal: Sym, above_bottom: bool) {
         if !self.rl_enabled() {
+            if !self.rl.goals.is_empty() {
+                self.rl.goals.remove(&goal);
+            }
             return;
         }
         self.rl_tabulate_goal(goal, above_bottom);
