@@ -1,8 +1,8 @@
 //! Reinforcement learning (Soar manual, ch. 5, "Reinforcement Learning"): the state it
 //! keeps. RL rules are the rules whose right-hand side is a single numeric-indifferent
-//! preference with a constant value (section "RL Rules"); each keeps its value split in an
-//! expected current reward and an expected future reward, and a count of its updates. Each
-//! state keeps the RL rules of its last selected RL operator, the reward collected since,
+//! preference with a constant value (section "RL Rules", [`Production::rl_value`]); each
+//! keeps its value split in an expected current reward and an expected future reward, and
+//! a count of its updates. Each state keeps the RL rules of its last selected RL operator, the reward collected since,
 //! the decisions without an RL operator (a gap), and its eligibility traces.
 //!
 //! `update.rs` collects rewards and updates the rules on the agent; `params.rs` holds the
@@ -66,15 +66,10 @@ pub struct RlState {
     pub stats: RlStats,
 }
 
-/// The value of a rule that is an RL rule (see [`Production::rl_value`]).
-pub fn rl_rule_value(p: &Production) -> Option<f64> {
-    p.rl_value()
-}
-
 impl RlState {
     /// Notes a rule just loaded: an RL rule starts with its value as expected future reward.
     pub fn rule_added(&mut self, id: ProdId, p: &Production) {
-        if let Some(v) = rl_rule_value(p) {
+        if let Some(v) = p.rl_value() {
             self.rules.insert(
                 id,
                 RuleValue {

@@ -101,7 +101,7 @@ impl AgentCore {
         if temporal_discount {
             age += data.gap_age;
         }
-        data.reward += reward * gamma.powi(age as i32);
+        data.reward += reward * gamma.powf(f64::from(age));
         if above_bottom && hrl {
             data.hrl_age += 1;
         }
@@ -215,7 +215,7 @@ impl AgentCore {
             if p.temporal_discount {
                 age += data.gap_age;
             }
-            let discount = p.discount_rate.powi(age as i32 + 1);
+            let discount = p.discount_rate.powf(f64::from(age) + 1.0);
             if data.gap_age > 0 && using_gaps && self.settings.trace.rl {
                 self.emit(&TraceEvent::RlGap {
                     started: false,
