@@ -2,8 +2,9 @@
 //! keeps. RL rules are the rules whose right-hand side is a single numeric-indifferent
 //! preference with a constant value (section "RL Rules", [`Production::rl_value`]); each
 //! keeps its value split in an expected current reward and an expected future reward, and
-//! a count of its updates. Each state keeps the RL rules of its last selected RL operator, the reward collected since,
-//! the decisions without an RL operator (a gap), and its eligibility traces.
+//! a count of its updates. Each state keeps the RL rules of its last selected RL operator,
+//! the reward collected since, the decisions without an RL operator (a gap), and its
+//! eligibility traces.
 //!
 //! `update.rs` collects rewards and updates the rules on the agent; `params.rs` holds the
 //! parameters of the `rl` command.
