@@ -43,6 +43,10 @@ Conventions (tests/conformance.rs follows the same ones):
             `run 1000` + `stats` in the same agent (chunks are kept). Their learned rules go
             to tests/golden/NAME.rules.txt: `print --chunks` after the first run, then
             `print NAME` of each chunk listed.
+  RL        agents named rl-*.soar (which turn reinforcement learning on themselves) add
+            `--- print --rl ---` and the result text of `print --rl` after the first run,
+            then for episodes 2 to RL_EPISODES: `--- episode N ---`, the same text for an
+            `init-soar` + `run 1000` + `stats` in the same agent, and `print --rl` again.
   rusoar    tests/conformance.rs gives rusoar::commands::Interpreter (cwd: the repository)
             "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
             (trace and run summary together), then runs `stats`, and builds the same text.
@@ -152,6 +156,9 @@ LONG_RUNS = {
 WM_SIZE = re.compile(r"^WM size: (\d+) current, ([\d.]+) mean, (\d+) maximum", re.M)
 JUSTIFICATIONS = re.compile(r"^\s*\+ (\d+) justifications?\b", re.M)
 
+# Episodes of each rl-* agent (one `run 1000` each, `init-soar` between them).
+RL_EPISODES = 5
+
 DECISION = re.compile(r"^\s+\d+: ")
 RUN_RESULT = re.compile(
     r"--> (\d+) decision cycles? executed\. (?:No rules fired|(\d+) rules? fired)\."
@@ -221,6 +228,17 @@ def run_agent(kernel, path, raw=False):
         if raw:
             return trace + "\n" + run_result + "\n" + stats
         text = golden_text(trace, run_result, stats)
+        if os.path.basename(path).startswith("rl-"):
+            text += "--- print --rl ---\n" + ends_with_newline(cmd("print --rl"))
+            for episode in range(2, RL_EPISODES + 1):
+                cmd("init-soar")
+                run_n = cmd(RUN)
+                trace_n = "".join(printed)
+                stats_n = cmd("stats")
+                text += "--- episode %d ---\n" % episode
+                text += golden_text(trace_n, run_n, stats_n)
+                text += "--- print --rl ---\n" + ends_with_newline(cmd("print --rl"))
+            return text, None
         if not os.path.basename(path).startswith("learn-"):
             return text, None
         text += "chunks learned: %s\n" % learned_count(run_result)

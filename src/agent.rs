@@ -583,6 +583,8 @@ pub struct AgentCore {
     pub output_callback: Option<PhaseCallback>,
     /// Chunking's state and counters.
     pub learn: crate::learn::LearnState,
+    /// Reinforcement learning's parameters, RL rules and per-state data.
+    pub rl: crate::rl::RlState,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
@@ -631,6 +633,7 @@ impl AgentCore {
             replay: None,
             output_callback: None,
             learn: crate::learn::LearnState::default(),
+            rl: crate::rl::RlState::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),
@@ -677,6 +680,7 @@ impl AgentCore {
             self.by_id.resize(slot + 1, None);
         }
         self.by_id[slot] = Some(production.clone());
+        self.rl.rule_added(id, &production);
         self.productions
             .insert(ByName(production.clone()), Loaded { production, id });
         if replaced {
@@ -693,6 +697,7 @@ impl AgentCore {
                 self.break_rules.shift_remove(name);
                 self.matches.breaks.remove(&l.id);
                 self.by_id[l.id.0 as usize] = None;
+                self.rl.rule_excised(l.id);
                 self.rete.excise(l.id, &self.symbols, &mut self.matches);
                 true
             }
@@ -706,6 +711,24 @@ impl AgentCore {
             self.excise(n);
         }
         names.len()
+    }
+
+    /// Puts a changed copy of a loaded rule in its place (an RL rule with a learned value):
+    /// the same name, network node and place in the listings; its next firing compiles the
+    /// new actions.
+    pub(crate) fn replace_production(&mut self, id: ProdId, p: Production) {
+        use indexmap::map::MutableKeys;
+        let production = std::sync::Arc::new(p);
+        if let Some((_, key, loaded)) = self.productions.get_full_mut2(production.name.as_str()) {
+            *key = ByName(production.clone());
+            loaded.production = production.clone();
+        }
+        if let Some(slot) = self.by_id.get_mut(id.0 as usize) {
+            *slot = Some(production);
+        }
+        if let Some(c) = self.decider.compiled.get_mut(id.0 as usize) {
+            *c = None;
+        }
     }
 
     pub fn production(&self, name: &str) -> Option<&Production> {

@@ -34,6 +34,7 @@ kernel_modules!(
     production,
     rete,
     rhs,
+    rl,
     rng,
     source,
     stdlib,

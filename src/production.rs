@@ -33,6 +33,28 @@ pub struct Production {
     pub span: Span,
 }
 
+impl Production {
+    /// The value of a rule that is an RL rule: a single action, a numeric-indifferent
+    /// preference whose value is a number (Soar manual, ch. 5, "RL Rules"). Template rules
+    /// and justifications are not RL rules.
+    pub fn rl_value(&self) -> Option<f64> {
+        if self.flags.template || self.flags.justification {
+            return None;
+        }
+        let [Action::Make(m)] = self.actions.as_slice() else {
+            return None;
+        };
+        if m.pref != PrefKind::NumericIndifferent {
+            return None;
+        }
+        match m.referent.as_ref()? {
+            RhsTerm::Const(Constant::Int(i)) => Some(*i as f64),
+            RhsTerm::Const(Constant::Float(f)) => Some(*f),
+            _ => None,
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub enum Condition {
     Positive(Cond),

@@ -72,6 +72,15 @@ pub(crate) enum TraceEvent<'a> {
     },
     /// The run stops because the agent halted or reached max-goal-depth.
     SystemHalted,
+    /// An RL rule's value changes (`trace --rl`): its expected current reward, expected
+    /// future reward and their sum, before and after.
+    RlUpdate {
+        rule: &'a str,
+        before: [f64; 3],
+        after: [f64; 3],
+    },
+    /// A gap in RL rule coverage starts or ends on a state (`trace --rl`).
+    RlGap { started: bool, goal: Sym },
     /// The substate below a goal goes with the operator that left its slot (`trace
     /// --consistency`).
     OperatorRemovalSubstate { state: Sym },

@@ -152,6 +152,27 @@ impl TraceText96 {
                 }
             }
             TraceEvent::SystemHalted => out.push_str("\nSystem halted."),
+            TraceEvent::RlUpdate {
+                rule,
+                before,
+                after,
+            } => {
+                let g = |x: f64| crate::printer::constants::c_general(x, 6);
+                let _ = writeln!(
+                    out,
+                    "RL update {rule} {} {} {} -> {} {} {}",
+                    g(before[0]),
+                    g(before[1]),
+                    g(before[2]),
+                    g(after[0]),
+                    g(after[1]),
+                    g(after[2])
+                );
+            }
+            TraceEvent::RlGap { started, goal } => {
+                let word = if started { "started" } else { "ended" };
+                let _ = write!(out, "gap {word} ({})", symbols.text(goal));
+            }
             TraceEvent::OperatorRemovalSubstate { state } => {
                 let s = symbols.text(state);
                 let _ = writeln!(out, "Removing state {s} because of an operator removal.");

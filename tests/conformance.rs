@@ -134,6 +134,9 @@ fn learned_count(run: &str) -> String {
         .unwrap_or_else(|| "0".into())
 }
 
+/// Episodes of each RL agent (`rl-*`), as `RL_EPISODES` in scripts/goldens.py.
+const RL_EPISODES: u32 = 5;
+
 fn command(interp: &mut Agent, cmd: &str) -> String {
     match interp.source_text("<conformance>", cmd) {
         Ok(()) => interp.take_output(),
@@ -154,6 +157,24 @@ fn run_agent(path: &Path) -> (String, Option<String>) {
     }
     let stats = command(&mut interp, "stats");
     let mut text = golden_text(&output, &stats);
+    let name = path
+        .file_name()
+        .and_then(|f| f.to_str())
+        .unwrap_or_default();
+    if name.starts_with("rl-") {
+        text.push_str("--- print --rl ---\n");
+        text.push_str(&ends_with_newline(command(&mut interp, "print --rl")));
+        for episode in 2..=RL_EPISODES {
+            command(&mut interp, "init-soar");
+            let run = command(&mut interp, "run 1000");
+            let stats = command(&mut interp, "stats");
+            text.push_str(&format!("--- episode {episode} ---\n"));
+            text.push_str(&golden_text(&run, &stats));
+            text.push_str("--- print --rl ---\n");
+            text.push_str(&ends_with_newline(command(&mut interp, "print --rl")));
+        }
+        return (text, None);
+    }
     let learning = path
         .file_name()
         .and_then(|f| f.to_str())

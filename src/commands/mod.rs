@@ -21,6 +21,7 @@ mod print_cmd;
 mod printing;
 mod production_find;
 mod rete_net;
+mod rl;
 mod rules;
 mod save;
 mod running;
@@ -550,6 +551,7 @@ impl Interpreter {
             "run" => self.cmd_run(&ctx, args),
             "stats" => self.cmd_stats_options(&ctx, args),
             "save" => self.cmd_save(&ctx, args),
+            "rl" => self.cmd_rl(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -130,6 +130,10 @@ impl Interpreter {
             // With no kind named, every rule (9.6: `print` alone is `print --all`).
             let wanted = |k: &str| !listing || parsed.has("all") || parsed.has(k);
             out.push_str(&self.rule_listing(&wanted, rule_style));
+            // `--rl` lists the RL rules again after the other kinds (as 9.6 does).
+            if parsed.has("rl") {
+                out.push_str(&self.rl_listing(rule_style));
+            }
             return Ok(out);
         }
         let style = WmStyle {
@@ -282,6 +286,48 @@ impl Interpreter {
         s
     }
 
+    /// `print --rl`: the RL rules, newest first, as [`Self::rule_text`] lists them.
+    fn rl_listing(&self, style: RuleStyle) -> String {
+        let mut s = String::new();
+        for p in self.agent.productions().rev() {
+            if self.rl_values(p).is_some() {
+                s.push_str(&self.rule_text(p, style, false));
+            }
+        }
+        s
+    }
+
+    /// An RL rule's number of updates and value as 9.6 lists them after its name (six
+    /// decimals, then the value as the rule holds it; under the delta-bar-delta decay
+    /// mode, its rate's log and trace before them); `None` for other rules.
+    fn rl_values(&self, p: &Production) -> Option<String> {
+        let id = self.agent.loaded(&p.name)?.id;
+        let v = self.agent.rl.rules.get(&id)?;
+        let value = match p.actions.first() {
+            Some(crate::production::Action::Make(m)) => match &m.referent {
+                Some(crate::production::RhsTerm::Const(c)) => {
+                    crate::printer::constants::constant_text(c)
+                }
+                _ => String::new(),
+            },
+            _ => String::new(),
+        };
+        let fixed = |x: f64| crate::rhs::c_fixed(x, 6);
+        Some(
+            if self.agent.rl.params.decay_mode == crate::rl::params::DecayMode::DeltaBarDelta {
+                // With delta-bar-delta, the rule's own rate (its log) and trace come first.
+                format!(
+                    "{} {} {} {value}",
+                    fixed(v.dbd_beta),
+                    fixed(v.dbd_h),
+                    fixed(v.updates)
+                )
+            } else {
+                format!("{} {value}", fixed(v.updates))
+            },
+        )
+    }
+
     /// One rule: its text (`--full`, the default for a rule named alone), or its name;
     /// `--filename` adds the file it was loaded from.
     fn rule_text(&self, p: &Production, style: RuleStyle, named: bool) -> String {
@@ -301,10 +347,16 @@ impl Interpreter {
             } else {
                 p.name.clone()
             };
+            // An RL rule shows what it learned (Soar manual, ch. 5, "Reinforcement
+            // Learning").
+            let tail = match self.rl_values(p) {
+                Some(values) => format!(" {values}"),
+                None => String::new(),
+            };
             if style.filename {
-                format!("{}: {name} \n", file())
+                format!("{}: {name} {tail}\n", file())
             } else {
-                format!("{name} \n")
+                format!("{name} {tail}\n")
             }
         }
     }

@@ -51,6 +51,11 @@ impl Interpreter {
             Err(d) => return Err(self.sp_failed(d, Some(&ast.name))),
         };
         let name = p.name.clone();
+        if p.flags.template && self.agent.rl.params.learning {
+            return Err(ctx.error(format!(
+                "sp {name}: RL templates (:template rules) are not yet supported by rusoar"
+            )));
+        }
         if p.flags.explain {
             self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
         }
@@ -189,9 +194,24 @@ impl Interpreter {
             return Ok(excised_text(n - templates));
         }
         if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
-            // rusoar has no reinforcement-learning rules (Soar manual, ch. 5,
-            // "Reinforcement Learning"), so there are none to excise.
-            return Ok(excised_text(0));
+            // The RL rules (Soar manual, ch. 5, "Reinforcement Learning"), newest first;
+            // 9.6 marks each with `#`.
+            let names: Vec<String> = self
+                .agent
+                .productions()
+                .rev()
+                .filter(|p| {
+                    self.agent
+                        .loaded(&p.name)
+                        .is_some_and(|l| self.agent.rl.is_rl_rule(l.id))
+                })
+                .map(|p| p.name.clone())
+                .collect();
+            for name in &names {
+                self.agent.excise(name);
+                self.report.note_excised(name);
+            }
+            return Ok(format!("{}{}", "#".repeat(names.len()), excised_text(names.len())));
         }
         if parsed.has("rl") {
             return Err(super::not_yet(ctx, "excise --rl with other options"));

@@ -164,6 +164,10 @@ impl AgentCore {
                 break;
             }
         }
+        if self.decider.halted {
+            // The end of an episode: the top state's RL rules take the last reward.
+            self.rl_halted();
+        }
         if (self.decider.halted || self.decider.depth_exceeded) && self.decider.phase.is_some() {
             self.emit(&TraceEvent::SystemHalted);
         }
@@ -413,6 +417,16 @@ impl AgentCore {
     /// `init-soar` (`soar init`): working memory, preferences, the goal stack, identifier
     /// counters and timetags start again; rules (and chunks) stay.
     pub fn init_soar(&mut self) {
+        // The substates go first, lowest first: each ends its RL episode, untraced (observed
+        // on 9.6); the top state's pending RL rules are dropped.
+        if self.rl_enabled() {
+            let traced = std::mem::replace(&mut self.settings.trace.rl, false);
+            let substates: Vec<Sym> = self.decider.goals.iter().skip(1).map(|g| g.state).collect();
+            for g in substates.into_iter().rev() {
+                self.rl_goal_ends(g, false);
+            }
+            self.settings.trace.rl = traced;
+        }
         // Input changes not applied yet go with the rest of working memory.
         self.inputs.queue.clear();
         let all = self.wm.all();
@@ -426,6 +440,7 @@ impl AgentCore {
         self.decider.cycle_stats.tracking = tracking;
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
+        self.rl.reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

@@ -60,7 +60,20 @@ impl AgentCore {
             };
             let (kind, on_operator, items) = match outcome {
                 Outcome::Winner(o) => {
+                    let learning = self.rl_enabled();
+                    if learning {
+                        // Soar manual, 5.3 "Updating RL Rule Values": the selection
+                        // updates the RL rules of the state's previous RL operator.
+                        let cands = procedure::candidates(&prefs).unwrap_or_else(|_| vec![o]);
+                        let chosen = cands.iter().position(|c| *c == o).unwrap_or(0);
+                        let values = self.rl_candidates(goal.state, &prefs, &cands);
+                        self.rl_tabulate_rewards();
+                        self.rl_decided(goal.state, &values, chosen);
+                    }
                     self.remove_goals_below(gi);
+                    if learning {
+                        self.rl_store(goal.state, o);
+                    }
                     let w = self.add_wme(goal.state, op, o, false);
                     if let Some(wme) = self.wm.get(w).copied() {
                         self.trace_wme(true, &wme);

@@ -367,6 +367,9 @@ impl AgentCore {
             let Some(g) = self.decider.goals.pop() else {
                 break;
             };
+            // A state that goes ends its RL episode: its pending RL rules take the reward
+            // collected so far (Soar manual, ch. 5, "Reinforcement Learning").
+            self.rl_goal_ends(g.state, false);
             if self.decider.goal_break_level.is_some_and(|l| g.level <= l) {
                 self.decider.goal_break_level = None;
                 self.decider.goal_retracted = true;

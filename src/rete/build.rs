@@ -142,7 +142,9 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
                     out.push(' ');
                 }
                 out.push_str(m.pref.symbol());
-                if let Some(r) = &m.referent {
+                // An RL rule's value is what it learns, not what it does: two RL rules that
+                // differ only in it are duplicates (observed on 9.6).
+                if let Some(r) = m.referent.as_ref().filter(|_| p.rl_value().is_none()) {
                     term(r, bindings, &mut fresh, &mut out);
                 }
             }

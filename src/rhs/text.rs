@@ -4,45 +4,7 @@
 use super::{fresh, RhsContext};
 use crate::symbols::{Sym, SymData, Symbols};
 
-/// C's `std::fixed` with `prec` decimals, including glibc's `nan`, `-nan`, `inf`, `-inf`.
-pub fn c_fixed(f: f64, prec: usize) -> String {
-    if f.is_nan() {
-        return if f.is_sign_negative() { "-nan" } else { "nan" }.to_string();
-    }
-    if f.is_infinite() {
-        return if f < 0.0 { "-inf" } else { "inf" }.to_string();
-    }
-    format!("{f:.prec$}")
-}
-
-/// C's `%.{prec}g`: `prec` significant digits, trailing zeros dropped, an exponent when
-/// it is below -4 or at least `prec` (as a C++ stream prints a double with that precision).
-pub fn c_general(f: f64, prec: usize) -> String {
-    if !f.is_finite() {
-        return c_fixed(f, 0);
-    }
-    if f == 0.0 {
-        return if f.is_sign_negative() { "-0" } else { "0" }.to_string();
-    }
-    let prec = prec.max(1);
-    let sci = format!("{f:.*e}", prec - 1);
-    let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let trim = |s: &str| -> String {
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s.to_string()
-        }
-    };
-    if exp < -4 || exp >= prec as i32 {
-        let sign = if exp < 0 { '-' } else { '+' };
-        format!("{}e{sign}{:02}", trim(mantissa), exp.abs())
-    } else {
-        let decimals = (prec as i32 - 1 - exp).max(0) as usize;
-        trim(&format!("{f:.decimals$}"))
-    }
-}
+pub use crate::printer::constants::{c_fixed, c_general};
 
 /// 9.6's `Symbol::to_string()`, as `write`, `concat`, `exec`, `strlen` see a symbol:
 /// strings without bars, floats with 6 decimals, identifiers as `S1`.

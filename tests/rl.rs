@@ -1,0 +1,109 @@
+//! Reinforcement learning where the command goldens (`tests/commands/rl*.cmds`, compared
+//! with the official kernel) cannot check it: the parts of Soar-RL rusoar does not build
+//! answer with one error line that names them, and leave the parameters as they were; and
+//! what an RL rule learned survives a save and a reload as its printed text.
+
+use rusoar::Agent;
+
+/// What a command printed, without the line break that ends a line of `sp`'s marks.
+fn output(agent: &mut Agent, command: &str) -> String {
+    agent
+        .source_text("t", command)
+        .unwrap_or_else(|e| panic!("`{command}`: {}", e.message()));
+    agent.take_output().trim_start_matches('\n').to_string()
+}
+
+fn refused(agent: &mut Agent, command: &str) -> String {
+    let err = agent
+        .source_text("t", command)
+        .expect_err("the command should be refused");
+    let message = err.message().to_string();
+    assert!(
+        message.ends_with("not yet supported by rusoar") && !message.contains('\n'),
+        "`{command}`: {message}"
+    );
+    message
+}
+
+#[test]
+fn what_is_not_built_is_refused_by_name() {
+    let mut agent = Agent::default();
+    for (command, names) in [
+        ("rl --set learning-policy on-policy-gq-lambda", "GQ"),
+        ("rl --set learning-policy off-policy-gq-lambda", "GQ"),
+        ("rl --set meta on", "meta"),
+        ("rl --set apoptosis chunks", "apoptosis"),
+        ("rl --set apoptosis rl-chunks", "apoptosis"),
+        ("rl --set update-log-path /tmp/rl.log", "update-log-path"),
+        ("rl --set trace on", "trace"),
+        ("rl --set chunk-stop off", "chunk-stop"),
+        ("rl --trace", "graph"),
+        ("rl -t", "graph"),
+    ] {
+        let message = refused(&mut agent, command);
+        assert!(message.contains(names), "`{command}`: {message}");
+    }
+    // Nothing was set.
+    assert_eq!(output(&mut agent, "rl -g learning-policy"), "sarsa\n");
+    assert_eq!(output(&mut agent, "rl -g meta"), "off\n");
+    assert_eq!(output(&mut agent, "rl -g apoptosis"), "none\n");
+    assert_eq!(output(&mut agent, "rl -g update-log-path"), "");
+}
+
+#[test]
+fn templates_and_learning_exclude_each_other() {
+    let template =
+        "sp {t :template (state <s> ^operator <o> +) (<o> ^v <v>) --> (<s> ^operator <o> = 0)}";
+    let mut agent = Agent::default();
+    output(&mut agent, template);
+    let message = refused(&mut agent, "rl --set learning on");
+    assert!(message.contains(":template"), "{message}");
+    assert_eq!(output(&mut agent, "rl -g learning"), "off\n");
+
+    let mut agent = Agent::default();
+    output(&mut agent, "rl --set learning on");
+    let message = refused(&mut agent, template);
+    assert!(message.contains(":template"), "{message}");
+}
+
+#[test]
+fn a_learned_value_is_saved_with_the_rule() {
+    let mut agent = Agent::default();
+    output(&mut agent, "srand 1");
+    output(
+        &mut agent,
+        "source tests/commands/agents/rl-left-right.soar",
+    );
+    output(&mut agent, "rl --set learning on");
+    output(&mut agent, "run");
+    // As the official kernel learns it (tests/golden/commands/rl-left-right.txt).
+    assert_eq!(
+        output(&mut agent, "print --rl"),
+        "left-right*rl*right  0.000000 0\nleft-right*rl*left  1.000000 -0.570000\n"
+    );
+    let text = output(&mut agent, "print left-right*rl*left");
+    assert!(text.contains("(<s> ^operator <o> = -0.570000)"), "{text}");
+
+    let mut fresh = Agent::default();
+    output(&mut fresh, &text);
+    assert_eq!(
+        output(&mut fresh, "print --rl"),
+        "left-right*rl*left  0.000000 -0.570000\n"
+    );
+}
+
+#[test]
+fn rl_rules_that_differ_only_in_their_value_are_duplicates() {
+    // As in 9.6: `Ignoring f because it is a duplicate of e`.
+    let mut agent = Agent::default();
+    output(
+        &mut agent,
+        "sp {e (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+    );
+    let _ = agent.source_text(
+        "t",
+        "sp {f (state <s> ^operator <o> +) --> (<s> ^operator <o> = -3)}",
+    );
+    agent.take_output();
+    assert_eq!(output(&mut agent, "print --rl"), "e  0.000000 1.500000\n");
+}
