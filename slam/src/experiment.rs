@@ -165,7 +165,7 @@ fn command() -> Command {
             Arg::new("overlap")
                 .long("overlap")
                 .value_name("PCT")
-                .value_parser(|s: &str| parse_constant(s, "--overlap", -1000.0, 100.0))
+                .value_parser(|s: &str| parse_constant(s, "--overlap", 0.0, 100.0))
                 .help("Override ^overlap-factor (percent of the shorter wall; 50 in Elaborate.soar)"),
         )
         .arg(
