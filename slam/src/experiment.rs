@@ -37,7 +37,7 @@ use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
 use super::sonar::NoisePreset;
-use super::stats::{band, fmt_band, fmt_mm, quantile, wilcoxon};
+use super::stats::{band, fmt_band, fmt_mm, fmt_p, p_is, quantile, wilcoxon};
 use super::variant::{parse_constant, Ablation, Constants, Drift, Variant};
 use super::world::{World, BUILTIN_WORLDS};
 
@@ -562,7 +562,7 @@ impl Experiment {
                 "SLAM on has the lower final error in {better} of {} seeds{}",
                 pairs.len(),
                 match wilcoxon(&pairs.iter().map(|(_, o, n)| n - o).collect::<Vec<_>>()) {
-                    Some((_, _, p)) => format!(" (Wilcoxon p = {p:.3})"),
+                    Some((_, _, p)) => format!(" (Wilcoxon {})", p_is(p)),
                     None => String::new(),
                 }
             );
@@ -748,7 +748,7 @@ impl Experiment {
             for (name, pairs) in &measures {
                 let diffs: Vec<f64> = pairs.iter().map(|(_, off, on)| on - off).collect();
                 let better = diffs.iter().filter(|d| **d < 0.0).count();
-                let p = wilcoxon(&diffs).map_or("–".to_string(), |(_, _, p)| format!("{p:.4}"));
+                let p = wilcoxon(&diffs).map_or("–".to_string(), |(_, _, p)| fmt_p(p));
                 let _ = writeln!(
                     s,
                     "| {name} | {better} of {} | {} mm | {p} |",

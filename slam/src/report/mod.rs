@@ -29,7 +29,7 @@ use super::odometry::DriftParams;
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{Correction, MemoryWall};
 use super::sonar::SonarModel;
-use super::stats::{fmt_band, fmt_mm, quantile, wilcoxon};
+use super::stats::{fmt_band, fmt_mm, p_is, quantile, wilcoxon};
 use super::variant::Drift;
 use figures::{
     save, Band, BandSeries, HoughFigure, MapFigure, MapPanel, PairedScatter, TimeBands, OFF, ON,
@@ -188,7 +188,7 @@ fn fmt_m(mm: f64) -> String {
 }
 
 fn fmt_p(p: Option<f64>) -> String {
-    p.map_or("–".into(), |p| format!("{p:.3}"))
+    p.map_or("–".into(), super::stats::fmt_p)
 }
 
 /// The run of the example seed in a condition.
@@ -619,13 +619,14 @@ fn verdict(s: &PairStats) -> String {
         )
     };
     let sig = match s.p {
-        Some(p) if p < 0.05 => format!("significant at 5 % (Wilcoxon p = {p:.3})"),
+        Some(p) if p < 0.05 => format!("significant at 5 % (Wilcoxon {})", p_is(p)),
         Some(p) if min_p(s.n) >= 0.05 => format!(
-            "Wilcoxon p = {p:.3}; with {} seeds no result can reach p < 0.05 (the smallest possible p is {:.3})",
+            "Wilcoxon {}; with {} seeds no result can reach p < 0.05 (the smallest possible p is {:.3})",
+            p_is(p),
             s.n,
             min_p(s.n)
         ),
-        Some(p) => format!("not significant at 5 % (Wilcoxon p = {p:.3})"),
+        Some(p) => format!("not significant at 5 % (Wilcoxon {})", p_is(p)),
         None => "no non-zero difference to test".into(),
     };
     format!("{dir}; {sig}")
