@@ -116,15 +116,20 @@ def quantile(v, q):
     return v[lo] + (v[hi] - v[lo]) * (pos - lo)
 
 
-def run(args, name, drift, extra, slam="on"):
+def run(args, name, drift, extra, slam="on", seeds=None):
+    seeds = seeds or args.seeds
     out = os.path.join(args.out, f"{drift}-{name}")
-    cmd = [args.rusoar, "slam", "--seeds", str(args.seeds), "--first-seed",
+    cmd = [args.rusoar, "slam", "--seeds", str(seeds), "--first-seed",
            str(args.first_seed), "--duration", str(args.duration), "--slam", slam,
            "--drift", drift, "--out", out] + extra
     if args.jobs:
         cmd += ["--jobs", str(args.jobs)]
     shown = "rusoar " + " ".join(shlex.quote(c) for c in cmd[1:])
-    if not (args.reuse and os.path.isfile(os.path.join(out, "runs.csv"))):
+    done = os.path.isfile(os.path.join(out, "runs.csv"))
+    if args.report_only and not done:
+        print(f"not run, left out: {shown}", file=sys.stderr)
+        return None
+    if not ((args.reuse or args.report_only) and done):
         print(f"running: {shown}", file=sys.stderr)
         r = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
         if r.returncode != 0:
@@ -285,9 +290,11 @@ def report(args, res, sweep):
     if sweep:
         th = res[("thesis", "stage")]
         w("## The constants the thesis does not give\n")
+        n = args.sweep_seeds or args.seeds
         w("One constant at a time, the others at their `Elaborate.soar` values (r-tolerance "
-          "500 mm, th-tolerance 15°, overlap 50 %), Stage drift; against the thesis values, "
-          "paired by seed.\n")
+          "500 mm, th-tolerance 15°, overlap 50 %), Stage drift, "
+          f"seeds {args.first_seed}–{args.first_seed + n - 1}; against the thesis values on "
+          "the same seeds, paired by seed.\n")
         w("| constant | value | RMSE, m | Δ RMSE, m | seeds better | p | Δ at the end, m | p |")
         w("|---|---|---|---|---|---|---|---|")
         for (const, value), cfg in sweep:
@@ -314,9 +321,13 @@ def main():
     ap.add_argument("--duration", type=float, default=600)
     ap.add_argument("--drift", choices=["stage", "none", "both"], default="both")
     ap.add_argument("--jobs", type=int, default=0)
+    ap.add_argument("--sweep-seeds", type=int, default=0,
+                    help="seeds per sweep configuration (default: --seeds), the first of them")
     ap.add_argument("--out", default="slam-ablations")
     ap.add_argument("--report", help="write the Markdown report here (default: stdout)")
     ap.add_argument("--reuse", action="store_true", help="keep configurations already run")
+    ap.add_argument("--report-only", action="store_true",
+                    help="run nothing: report on the configurations already in --out")
     args = ap.parse_args()
     if args.seeds < 1 or args.duration <= 0:
         sys.exit("--seeds must be at least 1 and --duration positive")
@@ -326,11 +337,17 @@ def main():
     drifts = ["stage", "none"] if args.drift == "both" else [args.drift]
     res = {}
     for drift in drifts:
-        res[("off", drift)] = run(args, "off", drift, [], slam="off")
-        res[("thesis", drift)] = run(args, "thesis", drift, [])
+        off = run(args, "off", drift, [], slam="off")
+        thesis = run(args, "thesis", drift, [])
+        if off is None or thesis is None:
+            continue
+        res[("off", drift)] = off
+        res[("thesis", drift)] = thesis
         if args.what in ("ablations", "all"):
             for name, extra in ABLATIONS[1:]:
-                res[(name, drift)] = run(args, name, drift, extra)
+                cfg = run(args, name, drift, extra)
+                if cfg is not None:
+                    res[(name, drift)] = cfg
     sweep = []
     if args.what in ("sweep", "all"):
         if ("thesis", "stage") not in res:
@@ -338,8 +355,11 @@ def main():
             res[("thesis", "stage")] = run(args, "thesis", "stage", [])
         for const, values in SWEEP:
             for v in values:
-                cfg = run(args, f"{const}-{v}", "stage", [f"--{const}", str(v)])
-                sweep.append(((const, v), cfg))
+                n = args.sweep_seeds or args.seeds
+                tag = f"{const}-{v}" if n == args.seeds else f"{const}-{v}-{n}seeds"
+                cfg = run(args, tag, "stage", [f"--{const}", str(v)], seeds=n)
+                if cfg is not None:
+                    sweep.append(((const, v), cfg))
     text = report(args, res, sweep)
     if args.report:
         with open(args.report, "w") as f:
