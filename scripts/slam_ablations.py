@@ -52,6 +52,8 @@ CAUSES = {
     "all-fixes": "the four reconstruction faults together (nearest-wall, cone, wrap, tenths)",
 }
 
+SKIPPED = []
+
 SWEEP = [
     ("r-tolerance", [125, 250, 1000]),
     ("th-tolerance", [5, 10, 30]),
@@ -99,6 +101,11 @@ def fmt_p(p):
     return f"{p:.3f}"
 
 
+def p_is(p):
+    t = fmt_p(p)
+    return f"p {t}" if t.startswith("<") else f"p = {t}"
+
+
 def median(v):
     v = sorted(v)
     if not v:
@@ -128,6 +135,7 @@ def run(args, name, drift, extra, slam="on", seeds=None):
     done = os.path.isfile(os.path.join(out, "runs.csv"))
     if args.report_only and not done:
         print(f"not run, left out: {shown}", file=sys.stderr)
+        SKIPPED.append(shown)
         return None
     if not ((args.reuse or args.report_only) and done):
         print(f"running: {shown}", file=sys.stderr)
@@ -256,8 +264,8 @@ def report(args, res, sweep):
         md, low, n, p = paired(dr, th, "rmse")
         mf, lowf, _, pf = paired(dr, th, "final")
         w(f"**Harm of the thesis rules** (thesis − dead reckoning, paired): RMSE {m(md)} m "
-          f"(lower with the rules in {low} of {n} seeds, p {fmt_p(p)}); error at the end "
-          f"{m(mf)} m ({lowf} of {n} lower, p {fmt_p(pf)}).\n")
+          f"(lower with the rules in {low} of {n} seeds, {p_is(p)}); error at the end "
+          f"{m(mf)} m ({lowf} of {n} lower, {p_is(pf)}).\n")
         w("**Causes**: each row is one variant against the thesis rules, same seeds. A "
           "negative difference is harm the cause accounts for.\n")
         w("| cause | variant | RMSE, m | Δ RMSE, m | seeds better | p | Δ at the end, m | p | "
@@ -303,7 +311,15 @@ def report(args, res, sweep):
             w(f"| {const} | {value} | {band_m(cfg, 'rmse')} | {m(md)} | {low} of {n} | "
               f"{fmt_p(p)} | {m(mf)} | {fmt_p(pf)} |")
         w("")
+    if SKIPPED:
+        w("Not run for this report (left out above):\n")
+        w("```sh")
+        for c in SKIPPED:
+            w(c.replace(args.out, "OUT"))
+        w("```\n")
     w("## Commands\n")
+    w(f"This report: `python3 scripts/slam_ablations.py {' '.join(sys.argv[1:])}`"
+      .replace(args.out, "OUT") + ", after the runs below.\n")
     w("Each figure above comes from these runs (`rusoar` is `target/release/rusoar`):\n")
     w("```sh")
     for cfg in list(res.values()) + [c for _, c in sweep]:
