@@ -219,9 +219,10 @@ fn all_of_rules_loads_with_zero_errors() {
     assert_eq!(interp.load_report().files().count(), 8);
     assert_eq!(interp.production_count(), 36);
 
-    // And every file on its own.
+    // And every file on its own (the ablation variants, below, need the thesis rules first).
     let mut files = Vec::new();
     soar_files(&root().join("rules"), &mut files);
+    files.retain(|f| !f.starts_with(root().join("rules/variants")));
     files.sort();
     assert_eq!(files.len(), 8);
     for f in files {
@@ -234,5 +235,30 @@ fn all_of_rules_loads_with_zero_errors() {
         interp.set_working_directory(root());
         let errors = source_errors(&mut interp, &rel);
         assert!(errors.is_empty(), "{rel}: {errors:#?}");
+    }
+}
+
+#[test]
+fn each_rule_variant_loads_after_the_thesis_rules_with_zero_errors() {
+    let mut files = Vec::new();
+    soar_files(&root().join("rules/variants"), &mut files);
+    files.sort();
+    assert_eq!(files.len(), 4);
+    for f in files {
+        let rel = f
+            .strip_prefix(root())
+            .unwrap()
+            .to_string_lossy()
+            .into_owned();
+        let mut interp = Agent::default();
+        interp.set_working_directory(root());
+        assert!(source_errors(&mut interp, "rules/robotagent.soar").is_empty());
+        let errors = source_errors(&mut interp, &rel);
+        assert!(errors.is_empty(), "{rel}: {errors:#?}");
+        // Each `excise` removes a thesis rule, each `sp` adds one under a new name.
+        let text = std::fs::read_to_string(&f).unwrap();
+        let excised = text.lines().filter(|l| l.starts_with("excise ")).count();
+        let added = text.lines().filter(|l| l.starts_with("sp {")).count();
+        assert_eq!(interp.production_count(), 36 - excised + added, "{rel}");
     }
 }

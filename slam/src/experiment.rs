@@ -37,7 +37,8 @@ use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
 use super::sonar::NoisePreset;
-use super::stats::{band, fmt_band, fmt_mm, quantile, wilcoxon};
+use super::stats::{band, fmt_band, fmt_mm, fmt_p, p_is, quantile, wilcoxon};
+use super::variant::{parse_constant, Ablation, Constants, Drift, Variant};
 use super::world::{World, BUILTIN_WORLDS};
 
 fn command() -> Command {
@@ -124,6 +125,50 @@ fn command() -> Command {
                 ),
         )
         .arg(
+            Arg::new("drift")
+                .long("drift")
+                .value_name("stage|none")
+                .value_parser(Drift::NAMES)
+                .default_value("stage")
+                .help(
+                    "Odometry drift: Stage 2's model, or none (the control: with perfect \
+                     odometry every error comes from the rules)",
+                ),
+        )
+        .arg(
+            Arg::new("variant")
+                .long("variant")
+                .value_name("NAME")
+                .action(ArgAction::Append)
+                .value_delimiter(',')
+                .value_parser(|s: &str| s.parse::<Variant>())
+                .help(
+                    "An ablation of the SLAM rules, never the default (repeatable): h2-only, \
+                     crp2-only, nearest-wall, cone, wrap, tenths (rules/README.md, section 6)",
+                ),
+        )
+        .arg(
+            Arg::new("r-tolerance")
+                .long("r-tolerance")
+                .value_name("MM")
+                .value_parser(|s: &str| parse_constant(s, "--r-tolerance", 0.0, 100_000.0))
+                .help("Override ^r-tolerance (mm; 500 in Elaborate.soar)"),
+        )
+        .arg(
+            Arg::new("th-tolerance")
+                .long("th-tolerance")
+                .value_name("DEG")
+                .value_parser(|s: &str| parse_constant(s, "--th-tolerance", 0.0, 360.0))
+                .help("Override ^th-tolerance (degrees; 15 in Elaborate.soar)"),
+        )
+        .arg(
+            Arg::new("overlap")
+                .long("overlap")
+                .value_name("PCT")
+                .value_parser(|s: &str| parse_constant(s, "--overlap", 0.0, 100.0))
+                .help("Override ^overlap-factor (percent of the shorter wall; 50 in Elaborate.soar)"),
+        )
+        .arg(
             Arg::new("rules")
                 .long("rules")
                 .value_name("DIR")
@@ -200,6 +245,27 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
                 .map(|n| n.get())
                 .unwrap_or(1)
         });
+    let drift = m
+        .get_one::<String>("drift")
+        .map_or(Ok(Drift::Stage), |d| d.parse::<Drift>())?;
+    let variants: Vec<Variant> = m
+        .get_many::<Variant>("variant")
+        .map(|v| v.copied().collect())
+        .unwrap_or_default();
+    let constants = Constants {
+        r_tolerance: m.get_one::<f64>("r-tolerance").copied(),
+        th_tolerance: m.get_one::<f64>("th-tolerance").copied(),
+        overlap: m.get_one::<f64>("overlap").copied(),
+    };
+    let ablation = Ablation::new(drift, &variants, constants)?;
+    let io_log = m.get_flag("io-log");
+    if io_log && (!ablation.variants.is_empty() || constants.any()) {
+        return Err(format!(
+            "--io-log replays the thesis rules in the official kernel, so it cannot be combined \
+             with --variant or a constant override (here: {})",
+            ablation.label()
+        ));
+    }
     Ok(Options {
         seeds,
         first_seed: *m.get_one::<u64>("first-seed").unwrap_or(&1),
@@ -216,7 +282,8 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             .get_one::<PathBuf>("rules")
             .cloned()
             .unwrap_or_else(soar_loop::default_rules_dir),
-        io_log: m.get_flag("io-log"),
+        io_log,
+        ablation,
     })
 }
 
@@ -272,12 +339,14 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     let threads = opts.jobs.min(total).max(1);
     if progress {
         eprintln!(
-            "rusoar slam: {} seed(s) × {} condition(s), {} s each, world {} ({} sonar), {} thread(s)",
+            "rusoar slam: {} seed(s) × {} condition(s), {} s each, world {} ({} sonar), drift {}, rules {}, {} thread(s)",
             opts.seeds,
             opts.slam.conditions().len(),
             opts.duration_s,
             opts.world_label,
             opts.world.run.noise,
+            opts.ablation.drift,
+            opts.ablation.label(),
             threads
         );
     }
@@ -289,6 +358,7 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                     let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
                     cfg.rules_dir = opts.rules_dir.clone();
                     cfg.io_log = opts.io_log;
+                    cfg.ablation = opts.ablation.clone();
                     if seed == opts.first_seed {
                         let n = cfg.steps();
                         cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
@@ -492,7 +562,7 @@ impl Experiment {
                 "SLAM on has the lower final error in {better} of {} seeds{}",
                 pairs.len(),
                 match wilcoxon(&pairs.iter().map(|(_, o, n)| n - o).collect::<Vec<_>>()) {
-                    Some((_, _, p)) => format!(" (Wilcoxon p = {p:.3})"),
+                    Some((_, _, p)) => format!(" (Wilcoxon {})", p_is(p)),
                     None => String::new(),
                 }
             );
@@ -566,6 +636,12 @@ impl Experiment {
             self.duration_s,
             opts.world.run.dt,
             self.true_paths_note().unwrap_or_default()
+        );
+        let _ = writeln!(
+            s,
+            "Odometry drift `{}`; SLAM rules `{}`.\n",
+            opts.ablation.drift,
+            opts.ablation.label()
         );
         let _ = writeln!(
             s,
@@ -672,7 +748,7 @@ impl Experiment {
             for (name, pairs) in &measures {
                 let diffs: Vec<f64> = pairs.iter().map(|(_, off, on)| on - off).collect();
                 let better = diffs.iter().filter(|d| **d < 0.0).count();
-                let p = wilcoxon(&diffs).map_or("–".to_string(), |(_, _, p)| format!("{p:.4}"));
+                let p = wilcoxon(&diffs).map_or("–".to_string(), |(_, _, p)| fmt_p(p));
                 let _ = writeln!(
                     s,
                     "| {name} | {better} of {} | {} mm | {p} |",

@@ -32,9 +32,24 @@ pub const FUNCTION_NAMES: [&str; 3] = ["getlength", "checkwallrelation", "getwal
 /// Registers [`getlength`], [`checkwallrelation`] and [`getwalldistance`] (with the Pioneer
 /// 2-DX sonar table, the one the simulator reads with) on `agent`.
 pub fn register(agent: &mut Agent) {
+    register_with(agent, &[0.0]);
+}
+
+/// [`register`], with `getwalldistance` casting one ray per entry of `rays_deg` (offsets from
+/// the transducer's axis, degrees) and returning the nearest hit: `[0.0]` is the thesis's
+/// central ray, [`cone_rays`] the simulated sonar's cone (the `cone` variant).
+pub fn register_with(agent: &mut Agent, rays_deg: &[f64]) {
+    let rays: Vec<f64> = if rays_deg.is_empty() {
+        vec![0.0]
+    } else {
+        rays_deg.to_vec()
+    };
+    let text_rays = rays.clone();
     agent.register_sml_rhs_function("getlength", |_, args| getlength(args));
     agent.register_sml_rhs_function("checkwallrelation", |_, args| checkwallrelation(args));
-    agent.register_sml_rhs_function("getwalldistance", |_, args| getwalldistance(args));
+    agent.register_sml_rhs_function("getwalldistance", move |_, args| {
+        getwalldistance_rays(parse_n::<8>(args), &P2DX_SONARS, &text_rays)
+    });
     // The same functions on the numbers themselves, which `exec` passes when the rules
     // separate their numeric arguments with commas, as the thesis's rules do (no printing
     // and reading back of 360,000 argument strings in a 600-s run).
@@ -42,9 +57,18 @@ pub fn register(agent: &mut Agent) {
     agent.register_sml_rhs_numeric_form("checkwallrelation", |n| {
         Some(checkwallrelation_of(n.try_into().ok()))
     });
-    agent.register_sml_rhs_numeric_form("getwalldistance", |n| {
-        Some(getwalldistance_of(n.try_into().ok(), &P2DX_SONARS))
+    agent.register_sml_rhs_numeric_form("getwalldistance", move |n| {
+        Some(getwalldistance_rays(n.try_into().ok(), &P2DX_SONARS, &rays))
     });
+}
+
+/// The ray offsets, degrees from the axis, of a sonar whose `cone_deg` cone is cut into `rays`
+/// equal sectors with one ray along the middle of each (the simulator's sonar model).
+pub fn cone_rays(rays: usize, cone_deg: f64) -> Vec<f64> {
+    let n = rays.max(1);
+    (0..n)
+        .map(|i| -cone_deg / 2.0 + cone_deg * (i as f64 + 0.5) / n as f64)
+        .collect()
 }
 
 /// Splits an `exec` argument string on `,` and parses each trimmed field as a finite float.
@@ -197,6 +221,11 @@ pub fn getwalldistance_with(args: &str, sonars: &[Transducer]) -> String {
 
 /// [`getwalldistance_with`] on its numbers (`None`: not eight of them).
 fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
+    getwalldistance_rays(n, sonars, &[0.0])
+}
+
+/// [`getwalldistance_of`] over several rays (offsets from the axis, degrees): the nearest hit.
+fn getwalldistance_rays(n: Option<[f64; 8]>, sonars: &[Transducer], rays_deg: &[f64]) -> String {
     let Some([rx, ry, rth, i, sx, sy, ex, ey]) = n else {
         return "-1".to_string();
     };
@@ -206,7 +235,17 @@ fn getwalldistance_of(n: Option<[f64; 8]>, sonars: &[Transducer]) -> String {
     let Some(t) = sonars.get(i as usize) else {
         return "-1".to_string();
     };
-    match sonar_distance(rx, ry, rth, t, (sx, sy), (ex, ey)) {
+    let nearest = rays_deg
+        .iter()
+        .filter_map(|off| {
+            let ray = Transducer {
+                heading_deg: t.heading_deg + off,
+                ..*t
+            };
+            sonar_distance(rx, ry, rth, &ray, (sx, sy), (ex, ey))
+        })
+        .min_by(f64::total_cmp);
+    match nearest {
         Some(d) => fixed(d, 3),
         None => "-1".to_string(),
     }

@@ -11,6 +11,8 @@
 //! - [`experiment`]: `rusoar slam`, the thesis's experiment over many seeds, and [`report`]:
 //!   its figures (SVG and PNG) and `report.md`, both reading [`results`] (the experiment's
 //!   options and runs as data) and [`stats`] (the statistics over seeds);
+//! - [`variant`]: the controls and ablations (`--drift`, `--variant`, the constants), and
+//!   [`attribution`]: which rule made each correction, on what evidence;
 //! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share;
 //! - [`fixed`]: fast fixed-decimal printing for the step records and `exec` results.
 //!
@@ -18,6 +20,7 @@
 //! M.S. thesis, Pace University, 2007), ARIA's `params/p2dx.p` (Pioneer geometry) and Stage
 //! 2.0.x's `model_ranger.c` and `model_position.c` (sonar and odometry models).
 
+pub mod attribution;
 pub mod experiment;
 pub mod fixed;
 pub mod functions;
@@ -33,6 +36,7 @@ pub mod sim;
 pub mod soar_loop;
 pub mod sonar;
 pub mod stats;
+pub mod variant;
 pub mod world;
 
 pub use geom::{Point, Pose, Segment};

@@ -59,6 +59,8 @@ pub struct Options {
     pub rules_dir: PathBuf,
     /// Write each run's input-link and output-link traffic (`io-<on|off>-<seed>.log`).
     pub io_log: bool,
+    /// Drift model, rule variants and constants (`--drift`, `--variant`, the constants).
+    pub ablation: super::variant::Ablation,
 }
 
 /// The numbers of one run, kept after its steps are written out.

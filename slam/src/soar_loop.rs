@@ -48,12 +48,14 @@ use std::time::{Duration, Instant};
 
 use rusoar::{Agent, InputUpdate, InputWme, Io, RunUnit, Symbol as Sym};
 
+use super::attribution::{self, Attribution};
 use super::fixed::{push_fixed, push_u64};
 use super::geom::{deg_0_360, Pose};
 use super::io_log::IoLog;
 use super::pipeline::{self, Extraction, Scan, Settings as PipelineSettings, Wall};
 use super::sim::Simulator;
-use super::sonar::{NUM_SONARS, P2DX_SONARS};
+use super::sonar::{SonarModel, NUM_SONARS, P2DX_SONARS};
+use super::variant::{Ablation, Variant};
 use super::world::World;
 
 /// The line of `robotagent.soar` that loads the SLAM rules; leaving it out turns SLAM off.
@@ -85,6 +87,9 @@ pub struct LoopConfig {
     /// Keep the run's input-link and output-link traffic in [`RunResult::io_log`] (see
     /// [`IoLog`]), for replaying the run in another kernel. Off by default.
     pub io_log: bool,
+    /// Controls and ablations (drift model, rule variants, constants); the thesis's setup by
+    /// default.
+    pub ablation: Ablation,
 }
 
 impl LoopConfig {
@@ -100,6 +105,7 @@ impl LoopConfig {
             snapshot_steps: Vec::new(),
             sample_extraction_at: None,
             io_log: false,
+            ablation: Ablation::default(),
         }
     }
 
@@ -245,9 +251,9 @@ pub struct MemoryWall {
     pub time: f64,
 }
 
-/// One `setOdometry` the rules carried out: how far it moved the believed pose and whether
-/// that brought the belief closer to the truth.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// One `setOdometry` the rules carried out: how far it moved the believed pose, whether
+/// that brought the belief closer to the truth, and which rule made it on what evidence.
+#[derive(Debug, Clone, PartialEq)]
 pub struct Correction {
     /// Loop step in which it was carried out.
     pub step: u64,
@@ -265,6 +271,8 @@ pub struct Correction {
     pub head_before_deg: f64,
     /// Heading error just after, degrees in [0, 180].
     pub head_after_deg: f64,
+    /// The rule, the walls it paired, the sonar and the incidence angle.
+    pub by: Attribution,
 }
 
 impl Correction {
@@ -281,13 +289,14 @@ impl Correction {
 
 /// The CSV header matching [`Correction::csv_row`].
 pub const CORRECTIONS_HEADER: &str = "step,time_s,jump_mm,turn_deg,err_before_mm,err_after_mm,\
-head_before_deg,head_after_deg,helped_position,helped_heading";
+head_before_deg,head_after_deg,helped_position,helped_heading,rule,map_wall,map_wall_time,\
+new_wall,new_wall_time,sonar,sonar_mm,virtual_mm,incidence_deg,nearest,r_diff_mm,th_diff_deg";
 
 impl Correction {
     /// One CSV line (no newline).
     pub fn csv_row(&self) -> String {
         format!(
-            "{},{:.1},{:.1},{:.2},{:.1},{:.1},{:.2},{:.2},{},{}",
+            "{},{:.1},{:.1},{:.2},{:.1},{:.1},{:.2},{:.2},{},{},{}",
             self.step,
             self.time_s,
             self.jump_mm,
@@ -297,7 +306,8 @@ impl Correction {
             self.head_before_deg,
             self.head_after_deg,
             self.helped(),
-            self.helped_heading()
+            self.helped_heading(),
+            self.by.csv_fields()
         )
     }
 }
@@ -410,10 +420,21 @@ struct Env {
     sample: Option<(f64, Box<Extraction>)>,
     /// What went wrong in an input or output phase (the run then stops).
     io_error: Option<String>,
+    /// What the correcting operator selected in the last decision was based on, for the
+    /// `setOdometry` it puts on the output-link.
+    pending: Option<Attribution>,
+    /// Write the believed heading in tenths of a degree (the `tenths` variant).
+    tenths: bool,
 }
 
 fn heading_0_359(p: &Pose) -> i64 {
     (deg_0_360(p.th.to_degrees()).round() as i64).rem_euclid(360)
+}
+
+/// The heading in tenths of a degree, in [0, 360).
+fn heading_tenths(p: &Pose) -> f64 {
+    let t = (deg_0_360(p.th.to_degrees()) * 10.0).round() as i64;
+    t.rem_euclid(3600) as f64 / 10.0
 }
 
 fn range_int(r: f64) -> i64 {
@@ -444,7 +465,11 @@ impl Env {
                 let (_, data) = agent.add_object(il, "currentrobotdata")?;
                 let xw = agent.add(data, "X", x)?;
                 let yw = agent.add(data, "Y", y)?;
-                let thw = agent.add(data, "Th", th)?;
+                let thw = if self.tenths {
+                    agent.add(data, "Th", heading_tenths(&believed))?
+                } else {
+                    agent.add(data, "Th", th)?
+                };
                 let mut ranges = [xw; NUM_SONARS];
                 for (i, slot) in ranges.iter_mut().enumerate() {
                     let (_, so) = agent.add_object(data, "sonar")?;
@@ -473,7 +498,11 @@ impl Env {
                     changes.push((*w, range_int(s.ranges_mm[i])));
                 }
                 for (i, (w, v)) in changes.into_iter().enumerate() {
-                    let changed = agent.update(w, v)?;
+                    let changed = if i == 2 && self.tenths {
+                        agent.update(w, heading_tenths(&believed))?
+                    } else {
+                        agent.update(w, v)?
+                    };
                     if let (true, Some(log)) = (changed, &mut self.log) {
                         match i {
                             0 => log.update("X", v),
@@ -654,6 +683,7 @@ impl Env {
             err_after_mm: truth.distance(&new) * 1000.0,
             head_before_deg: truth.heading_error(&old).to_degrees(),
             head_after_deg: truth.heading_error(&new).to_degrees(),
+            by: self.pending.take().unwrap_or_default(),
         });
         for scan in &mut self.window {
             scan.pose = reframe(&old, &new, &scan.pose);
@@ -762,7 +792,16 @@ impl SoarRobot {
     /// simulator to the agent's input and output phases.
     pub fn new(cfg: &LoopConfig) -> Result<Self, String> {
         let mut agent = Agent::new("soar");
-        let productions = load_rules(&mut agent, &cfg.rules_dir, cfg.slam)?;
+        let mut productions = load_rules(&mut agent, &cfg.rules_dir, cfg.slam)?;
+        if cfg.slam {
+            let text = cfg.ablation.rules_text(&cfg.rules_dir)?;
+            if !text.is_empty() {
+                agent
+                    .source_text("variants", &text)
+                    .map_err(|e| format!("loading the rule variants failed:\n{}", e.render()))?;
+                productions = agent.production_count();
+            }
+        }
         agent
             .source_text("srand", &format!("srand {}", cfg.seed % (1 << 32)))
             .map_err(|e| e.render())?;
@@ -771,10 +810,21 @@ impl SoarRobot {
         // The input-link changes only what changed, as the replay in the official kernel
         // (scripts/slam_oracle.py) sends it.
         agent.set_input_update(InputUpdate::SkipIfNoChange);
-        super::functions::register(&mut agent);
+        let sonar = SonarModel::preset(cfg.world.run.noise);
+        if cfg.ablation.has(Variant::Cone) {
+            let rays = super::functions::cone_rays(sonar.rays, sonar.cone_deg);
+            super::functions::register_with(&mut agent, &rays);
+        } else {
+            super::functions::register(&mut agent);
+        }
         let env = Rc::new(RefCell::new(Env {
             log: cfg.io_log.then(IoLog::default),
-            sim: Simulator::new(cfg.world.clone(), cfg.seed),
+            sim: Simulator::with_models(
+                cfg.world.clone(),
+                cfg.seed,
+                sonar,
+                cfg.ablation.drift.params(),
+            ),
             settings: cfg.world.pipeline.clone(),
             expire_after: cfg.expire_after,
             window: VecDeque::new(),
@@ -787,6 +837,8 @@ impl SoarRobot {
             sample_at: cfg.sample_extraction_at,
             sample: None,
             io_error: None,
+            pending: None,
+            tenths: cfg.ablation.has(Variant::Tenths),
         }));
         let e = Rc::clone(&env);
         agent.on_input_phase(move |io| {
@@ -869,6 +921,7 @@ impl SoarRobot {
         }
         {
             let mut env = self.env.borrow_mut();
+            env.pending = attribution::read(agent, &trace.operators);
             let firings = agent.firings();
             if let Some(log) = &mut env.log {
                 log.decided(firings, &trace.operators);

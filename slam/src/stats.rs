@@ -65,6 +65,25 @@ pub fn wilcoxon(diffs: &[f64]) -> Option<(usize, f64, f64)> {
     Some((n, w2 as f64 / 2.0, (2.0 * low.min(high)).min(1.0)))
 }
 
+/// A p-value as a report prints it: three decimals, or `< 0.001` (never `0.000`).
+pub fn fmt_p(p: f64) -> String {
+    if p < 0.001 {
+        "< 0.001".into()
+    } else {
+        format!("{p:.3}")
+    }
+}
+
+/// `p = 0.040` or `p < 0.001`.
+pub fn p_is(p: f64) -> String {
+    let t = fmt_p(p);
+    if t.starts_with('<') {
+        format!("p {t}")
+    } else {
+        format!("p = {t}")
+    }
+}
+
 pub(crate) fn fmt_mm(v: f64) -> String {
     if v.is_finite() {
         format!("{v:.0}")
@@ -84,6 +103,14 @@ pub(crate) fn fmt_band(v: &[f64]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn small_p_values_print_as_a_bound() {
+        assert_eq!(fmt_p(0.0004), "< 0.001");
+        assert_eq!(fmt_p(0.001), "0.001");
+        assert_eq!(p_is(0.0), "p < 0.001");
+        assert_eq!(p_is(0.0404), "p = 0.040");
+    }
 
     #[test]
     fn quantiles_interpolate() {

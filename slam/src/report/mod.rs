@@ -29,7 +29,8 @@ use super::odometry::DriftParams;
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{Correction, MemoryWall};
 use super::sonar::SonarModel;
-use super::stats::{fmt_band, fmt_mm, quantile, wilcoxon};
+use super::stats::{fmt_band, fmt_mm, p_is, quantile, wilcoxon};
+use super::variant::Drift;
 use figures::{
     save, Band, BandSeries, HoughFigure, MapFigure, MapPanel, PairedScatter, TimeBands, OFF, ON,
 };
@@ -187,7 +188,7 @@ fn fmt_m(mm: f64) -> String {
 }
 
 fn fmt_p(p: Option<f64>) -> String {
-    p.map_or("–".into(), |p| format!("{p:.3}"))
+    p.map_or("–".into(), super::stats::fmt_p)
 }
 
 /// The run of the example seed in a condition.
@@ -618,13 +619,14 @@ fn verdict(s: &PairStats) -> String {
         )
     };
     let sig = match s.p {
-        Some(p) if p < 0.05 => format!("significant at 5 % (Wilcoxon p = {p:.3})"),
+        Some(p) if p < 0.05 => format!("significant at 5 % (Wilcoxon {})", p_is(p)),
         Some(p) if min_p(s.n) >= 0.05 => format!(
-            "Wilcoxon p = {p:.3}; with {} seeds no result can reach p < 0.05 (the smallest possible p is {:.3})",
+            "Wilcoxon {}; with {} seeds no result can reach p < 0.05 (the smallest possible p is {:.3})",
+            p_is(p),
             s.n,
             min_p(s.n)
         ),
-        Some(p) => format!("not significant at 5 % (Wilcoxon p = {p:.3})"),
+        Some(p) => format!("not significant at 5 % (Wilcoxon {})", p_is(p)),
         None => "no non-zero difference to test".into(),
     };
     format!("{dir}; {sig}")
@@ -764,18 +766,27 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
         exp.noise, m.rays, m.cone_deg, m.min_range_m, m.max_range_m,
     );
     let d = DriftParams::STAGE2;
-    let _ = writeln!(
-        s,
-        "- **Odometry drift** (Stage 2.0.x model): biases drawn once per run, uniform in \
+    if opts.ablation.drift == Drift::None {
+        let _ = writeln!(
+            s,
+            "- **Odometry drift**: none (`--drift none`, the control): the believed pose follows \
+             the true pose exactly until `setOdometry` overwrites it, so every error comes from \
+             the rules."
+        );
+    } else {
+        let _ = writeln!(
+            s,
+            "- **Odometry drift** (Stage 2.0.x model): biases drawn once per run, uniform in \
          ±{:.1} % on distance, ±{:.1} % distance-to-heading, ±{:.1} % on rotation; noise \
          {:.2} m per √m travelled and {:.2} rad per √revolution. The robot believes the pose it \
          integrates; `setOdometry` overwrites it.",
-        d.bias_max_x * 50.0,
-        d.bias_max_y * 50.0,
-        d.bias_max_a * 50.0,
-        d.std_x,
-        d.std_a
-    );
+            d.bias_max_x * 50.0,
+            d.bias_max_y * 50.0,
+            d.bias_max_a * 50.0,
+            d.std_x,
+            d.std_a
+        );
+    }
     let p = &w.pipeline;
     let _ = writeln!(
         s,
@@ -796,6 +807,27 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
         prods(true),
         prods(false)
     );
+    if !opts.ablation.variants.is_empty() || opts.ablation.constants.any() {
+        let mut parts: Vec<String> = opts
+            .ablation
+            .variants
+            .iter()
+            .map(|v| format!("`{v}` ({})", v.describe()))
+            .collect();
+        if opts.ablation.constants.any() {
+            let (r, th, o) = opts.ablation.constants.values();
+            parts.push(format!(
+                "constants r-tolerance {r} mm, th-tolerance {th}°, overlap {o} %"
+            ));
+        }
+        let _ = writeln!(
+            s,
+            "- **Ablation** `{}`, not the thesis's setup: {} (`rules/README.md`, section 6). The \
+             productions above count the variant rules.",
+            opts.ablation.label(),
+            parts.join("; ")
+        );
+    }
     let _ = writeln!(
         s,
         "- **Seeds** {}–{} ({} per condition), {} simulated seconds each, paired by seed: a seed \
@@ -1477,6 +1509,7 @@ mod tests {
             err_after_mm: after,
             head_before_deg: hb,
             head_after_deg: ha,
+            by: Default::default(),
         };
         let all = [
             c(10.0, 100.0, 50.0, 5.0, 4.0),
