@@ -191,6 +191,33 @@ fn soar_files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
+/// The `.soar` files below `dir` (but not below `skip`), sorted, as paths relative to the
+/// repository.
+fn relative_soar_files(dir: &str, skip: Option<&str>) -> Vec<String> {
+    let mut files = Vec::new();
+    soar_files(&root().join(dir), &mut files);
+    if let Some(skip) = skip {
+        files.retain(|f| !f.starts_with(root().join(skip)));
+    }
+    files.sort();
+    files
+        .iter()
+        .map(|f| {
+            f.strip_prefix(root())
+                .unwrap()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect()
+}
+
+/// A fresh agent working in the repository's folder.
+fn agent_at_root() -> Agent {
+    let mut interp = Agent::default();
+    interp.set_working_directory(root());
+    interp
+}
+
 /// Sources `rel` (relative to the repository) and returns the error diagnostics it printed.
 fn source_errors(interp: &mut Agent, rel: &str) -> Vec<String> {
     let result = interp.source_text("<test>", &format!("source {{{rel}}}"));
@@ -220,19 +247,10 @@ fn all_of_rules_loads_with_zero_errors() {
     assert_eq!(interp.production_count(), 36);
 
     // And every file on its own (the ablation variants, below, need the thesis rules first).
-    let mut files = Vec::new();
-    soar_files(&root().join("rules"), &mut files);
-    files.retain(|f| !f.starts_with(root().join("rules/variants")));
-    files.sort();
+    let files = relative_soar_files("rules", Some("rules/variants"));
     assert_eq!(files.len(), 8);
-    for f in files {
-        let rel = f
-            .strip_prefix(root())
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        let mut interp = Agent::default();
-        interp.set_working_directory(root());
+    for rel in files {
+        let mut interp = agent_at_root();
         let errors = source_errors(&mut interp, &rel);
         assert!(errors.is_empty(), "{rel}: {errors:#?}");
     }
@@ -240,23 +258,15 @@ fn all_of_rules_loads_with_zero_errors() {
 
 #[test]
 fn each_rule_variant_loads_after_the_thesis_rules_with_zero_errors() {
-    let mut files = Vec::new();
-    soar_files(&root().join("rules/variants"), &mut files);
-    files.sort();
+    let files = relative_soar_files("rules/variants", None);
     assert_eq!(files.len(), 4);
-    for f in files {
-        let rel = f
-            .strip_prefix(root())
-            .unwrap()
-            .to_string_lossy()
-            .into_owned();
-        let mut interp = Agent::default();
-        interp.set_working_directory(root());
+    for rel in files {
+        let mut interp = agent_at_root();
         assert!(source_errors(&mut interp, "rules/robotagent.soar").is_empty());
         let errors = source_errors(&mut interp, &rel);
         assert!(errors.is_empty(), "{rel}: {errors:#?}");
         // Each `excise` removes a thesis rule, each `sp` adds one under a new name.
-        let text = std::fs::read_to_string(&f).unwrap();
+        let text = std::fs::read_to_string(root().join(&rel)).unwrap();
         let excised = text.lines().filter(|l| l.starts_with("excise ")).count();
         let added = text.lines().filter(|l| l.starts_with("sp {")).count();
         assert_eq!(interp.production_count(), 36 - excised + added, "{rel}");
