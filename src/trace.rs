@@ -127,8 +127,9 @@ fn print_rec(
     if !printed.insert(id) {
         return;
     }
+    // An identifier with no WMEs prints nothing, at the top too (9.6 prints an empty text).
     let wmes = sorted_wmes(agent, id);
-    if wmes.is_empty() && level > 0 {
+    if wmes.is_empty() {
         return;
     }
     let indent = "  ".repeat(level);
