@@ -51,22 +51,6 @@ fn what_is_not_built_is_refused_by_name() {
 }
 
 #[test]
-fn templates_and_learning_exclude_each_other() {
-    let template =
-        "sp {t :template (state <s> ^operator <o> +) (<o> ^v <v>) --> (<s> ^operator <o> = 0)}";
-    let mut agent = Agent::default();
-    output(&mut agent, template);
-    let message = refused(&mut agent, "rl --set learning on");
-    assert!(message.contains(":template"), "{message}");
-    assert_eq!(output(&mut agent, "rl -g learning"), "off\n");
-
-    let mut agent = Agent::default();
-    output(&mut agent, "rl --set learning on");
-    let message = refused(&mut agent, template);
-    assert!(message.contains(":template"), "{message}");
-}
-
-#[test]
 fn a_learned_value_is_saved_with_the_rule() {
     let mut agent = Agent::default();
     output(&mut agent, "srand 1");
