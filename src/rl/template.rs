@@ -8,7 +8,9 @@
 //! action, whatever the value learned) adds nothing and takes no number.
 //!
 //! 9.6 makes templates' rules whether learning is on or off, and the numbers go on across
-//! `init-soar`.
+//! `init-soar`. From the third or fourth episode on, 9.6 sometimes makes, for a match whose
+//! rule is loaded, a malformed rule whose state and operator share one variable (observed;
+//! it never matches); rusoar adds nothing then.
 
 use crate::agent::{Added, AgentCore};
 use crate::ast::Constant;
