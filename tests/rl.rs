@@ -36,7 +36,6 @@ fn what_is_not_built_is_refused_by_name() {
         ("rl --set apoptosis rl-chunks", "apoptosis"),
         ("rl --set update-log-path /tmp/rl.log", "update-log-path"),
         ("rl --set trace on", "trace"),
-        ("rl --set chunk-stop off", "chunk-stop"),
         ("rl --trace", "graph"),
         ("rl -t", "graph"),
     ] {
@@ -73,6 +72,36 @@ fn a_learned_value_is_saved_with_the_rule() {
     assert_eq!(
         output(&mut fresh, "print --rl"),
         "left-right*rl*left  0.000000 -0.570000\n"
+    );
+}
+
+#[test]
+fn with_chunk_stop_off_only_rules_of_the_same_value_are_duplicates() {
+    // As in 9.6: `f` loads; `Ignoring g because it is a duplicate of e`; with chunk-stop on
+    // again, `Ignoring h because it is a duplicate of f`.
+    let mut agent = Agent::default();
+    output(&mut agent, "rl --set chunk-stop off");
+    for rule in [
+        "sp {e (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+        "sp {f (state <s> ^operator <o> +) --> (<s> ^operator <o> = -3)}",
+        "sp {g (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+    ] {
+        let _ = agent.source_text("t", rule);
+    }
+    agent.take_output();
+    assert_eq!(
+        output(&mut agent, "print --rl"),
+        "f  0.000000 -3\ne  0.000000 1.500000\n"
+    );
+    output(&mut agent, "rl --set chunk-stop on");
+    let _ = agent.source_text(
+        "t",
+        "sp {h (state <s> ^operator <o> +) --> (<s> ^operator <o> = 7)}",
+    );
+    agent.take_output();
+    assert_eq!(
+        output(&mut agent, "print --rl"),
+        "f  0.000000 -3\ne  0.000000 1.500000\n"
     );
 }
 

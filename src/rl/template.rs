@@ -210,7 +210,9 @@ impl AgentCore {
             // Made, not sourced: `print --filename` names no file (`_unknown_`).
             span: crate::source::Span::default(),
         };
-        if !matches!(self.add_production(rule), Added::New) {
+        // A template's rule is a duplicate whatever its twin learned, even with `chunk-stop off`
+        // (observed on 9.6).
+        if !matches!(self.add_production_by_value(rule, false), Added::New) {
             return;
         }
         self.rl.template_count = n;
