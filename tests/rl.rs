@@ -120,3 +120,31 @@ fn rl_rules_that_differ_only_in_their_value_are_duplicates() {
     agent.take_output();
     assert_eq!(output(&mut agent, "print --rl"), "e  0.000000 1.500000\n");
 }
+
+#[test]
+fn a_template_with_a_negation_makes_rules_that_test_the_bound_values() {
+    // 9.6 crashes on this template; rusoar makes each arm's rule, its negation testing the
+    // arm's value.
+    let mut agent = Agent::default();
+    output(
+        &mut agent,
+        "sp {propose (state <s> ^superstate nil -^pulled) --> (<s> ^operator <o1> +, <o2> +) (<o1> ^arm 1) (<o2> ^arm 2)}
+         sp {tpl :template (state <s> ^operator <o> + -^blocked <a>) (<o> ^arm <a>) --> (<s> ^operator <o> = 0)}
+         sp {apply (state <s> ^operator.arm <a>) --> (<s> ^pulled <a>) (halt)}
+         rl --set learning on
+         run",
+    );
+    let one = output(&mut agent, "print rl*tpl*1");
+    let two = output(&mut agent, "print rl*tpl*2");
+    let (first, second) = if one.contains("^arm 1") {
+        (one, two)
+    } else {
+        (two, one)
+    };
+    assert!(first.contains("-^blocked 1"), "{first}");
+    assert!(
+        second.contains("^arm 2") && second.contains("-^blocked 2"),
+        "{second}"
+    );
+    assert_eq!(output(&mut agent, "print --rl").lines().count(), 2);
+}

@@ -8,9 +8,10 @@
 //! action, whatever the value learned) adds nothing and takes no number.
 //!
 //! 9.6 makes templates' rules whether learning is on or off, and the numbers go on across
-//! `init-soar`. From the third or fourth episode on, 9.6 sometimes makes, for a match whose
-//! rule is loaded, a malformed rule whose state and operator share one variable (observed;
-//! it never matches); rusoar adds nothing then.
+//! `init-soar`. In episodes after the first, 9.6 sometimes makes, for a match whose rule is
+//! loaded, a malformed rule whose state and operator share one variable (observed; it never
+//! matches); rusoar adds nothing then. A template with a negated condition that tests a
+//! bound variable crashes 9.6; rusoar makes the rule with the negation testing the values.
 
 use crate::agent::{Added, AgentCore};
 use crate::ast::Constant;
