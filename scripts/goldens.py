@@ -43,6 +43,8 @@ Conventions (tests/conformance.rs follows the same ones):
             `run 1000` + `stats` in the same agent (chunks are kept). Their learned rules go
             to tests/golden/NAME.rules.txt: `print --chunks` after the first run, then
             `print NAME` of each chunk listed.
+  RL MDP    tests/golden/rl-mdp.txt: what 9.6 learns on the random MDP agents of
+            tests/data/rl-mdp/agents.txt, written by scripts/rl_mdp_goldens.py.
   RL        agents named rl-*.soar (which turn reinforcement learning on themselves) add
             `--- print --rl ---` and the result text of `print --rl` after the first run,
             then for episodes 2 to RL_EPISODES: `--- episode N ---`, the same text for an
@@ -100,6 +102,8 @@ import sys
 import tempfile
 
 import soar_sml as sml
+
+import rl_mdp_goldens  # the random MDP agents of tests/rl_mdp.rs (beside this script)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 AGENTS = os.path.join(ROOT, "tests", "agents")
@@ -356,10 +360,11 @@ def generate(out_dir):
         base = f[: -len(".txt")]
         if base.endswith(".rules"):
             base = base[: -len(".rules")]
-        if f.endswith(".txt") and base not in names:
+        if f.endswith(".txt") and base not in names and f != rl_mdp_goldens.NAME:
             os.remove(os.path.join(out_dir, f))
     kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
     try:
+        rl_mdp_goldens.write(kernel, out_dir)
         for name in names:
             text, rules = run_agent(kernel, os.path.join(AGENTS, name + ".soar"))
             with open(os.path.join(out_dir, name + ".txt"), "w", newline="\n") as f:

@@ -643,7 +643,15 @@ impl AgentCore {
 
     /// Adds a rule: a same-named rule is excised first; an identical body is ignored. The
     /// rule's matches against working memory are queued at once.
-    pub fn add_production(&mut self, mut p: Production) -> Added {
+    pub fn add_production(&mut self, p: Production) -> Added {
+        let by_value = !self.rl.params.chunk_stop;
+        self.add_production_by_value(p, by_value)
+    }
+
+    /// [`AgentCore::add_production`]; with `by_value`, an RL rule whose value differs from
+    /// its twin's is not a duplicate (`rl --set chunk-stop off`, observed on 9.6: the twin's
+    /// value is the one it has learned so far).
+    pub fn add_production_by_value(&mut self, mut p: Production, by_value: bool) -> Added {
         // 9.6 creates a rule's constants as it parses it, then reorders its conditions
         // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
@@ -655,10 +663,23 @@ impl AgentCore {
         }
         self.rete.share_var_names(&mut p.conditions);
         let replaced = self.excise(&p.name);
-        let id = match self
-            .rete
-            .add_production(&p, &mut self.symbols, &mut self.matches)
-        {
+        let value = p.rl_value().filter(|_| by_value);
+        let by_id = &self.by_id;
+        let apart = |twin: ProdId| {
+            value.is_some_and(|v| {
+                by_id
+                    .get(twin.0 as usize)
+                    .and_then(|t| t.as_ref())
+                    .and_then(|t| t.rl_value())
+                    .is_some_and(|w| w != v)
+            })
+        };
+        let id = match self.rete.add_production(
+            &p,
+            &mut self.symbols,
+            &mut self.matches,
+            &apart,
+        ) {
             Ok(id) => id,
             Err(crate::rete::BuildError::Duplicate(of)) => {
                 return Added::Duplicate {

@@ -36,7 +36,6 @@ fn what_is_not_built_is_refused_by_name() {
         ("rl --set apoptosis rl-chunks", "apoptosis"),
         ("rl --set update-log-path /tmp/rl.log", "update-log-path"),
         ("rl --set trace on", "trace"),
-        ("rl --set chunk-stop off", "chunk-stop"),
         ("rl --trace", "graph"),
         ("rl -t", "graph"),
     ] {
@@ -48,22 +47,6 @@ fn what_is_not_built_is_refused_by_name() {
     assert_eq!(output(&mut agent, "rl -g meta"), "off\n");
     assert_eq!(output(&mut agent, "rl -g apoptosis"), "none\n");
     assert_eq!(output(&mut agent, "rl -g update-log-path"), "");
-}
-
-#[test]
-fn templates_and_learning_exclude_each_other() {
-    let template =
-        "sp {t :template (state <s> ^operator <o> +) (<o> ^v <v>) --> (<s> ^operator <o> = 0)}";
-    let mut agent = Agent::default();
-    output(&mut agent, template);
-    let message = refused(&mut agent, "rl --set learning on");
-    assert!(message.contains(":template"), "{message}");
-    assert_eq!(output(&mut agent, "rl -g learning"), "off\n");
-
-    let mut agent = Agent::default();
-    output(&mut agent, "rl --set learning on");
-    let message = refused(&mut agent, template);
-    assert!(message.contains(":template"), "{message}");
 }
 
 #[test]
@@ -93,6 +76,36 @@ fn a_learned_value_is_saved_with_the_rule() {
 }
 
 #[test]
+fn with_chunk_stop_off_only_rules_of_the_same_value_are_duplicates() {
+    // As in 9.6: `f` loads; `Ignoring g because it is a duplicate of e`; with chunk-stop on
+    // again, `Ignoring h because it is a duplicate of f`.
+    let mut agent = Agent::default();
+    output(&mut agent, "rl --set chunk-stop off");
+    for rule in [
+        "sp {e (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+        "sp {f (state <s> ^operator <o> +) --> (<s> ^operator <o> = -3)}",
+        "sp {g (state <s> ^operator <o> +) --> (<s> ^operator <o> = 1.5)}",
+    ] {
+        let _ = agent.source_text("t", rule);
+    }
+    agent.take_output();
+    assert_eq!(
+        output(&mut agent, "print --rl"),
+        "f  0.000000 -3\ne  0.000000 1.500000\n"
+    );
+    output(&mut agent, "rl --set chunk-stop on");
+    let _ = agent.source_text(
+        "t",
+        "sp {h (state <s> ^operator <o> +) --> (<s> ^operator <o> = 7)}",
+    );
+    agent.take_output();
+    assert_eq!(
+        output(&mut agent, "print --rl"),
+        "f  0.000000 -3\ne  0.000000 1.500000\n"
+    );
+}
+
+#[test]
 fn rl_rules_that_differ_only_in_their_value_are_duplicates() {
     // As in 9.6: `Ignoring f because it is a duplicate of e`.
     let mut agent = Agent::default();
@@ -106,4 +119,32 @@ fn rl_rules_that_differ_only_in_their_value_are_duplicates() {
     );
     agent.take_output();
     assert_eq!(output(&mut agent, "print --rl"), "e  0.000000 1.500000\n");
+}
+
+#[test]
+fn a_template_with_a_negation_makes_rules_that_test_the_bound_values() {
+    // 9.6 crashes on this template; rusoar makes each arm's rule, its negation testing the
+    // arm's value.
+    let mut agent = Agent::default();
+    output(
+        &mut agent,
+        "sp {propose (state <s> ^superstate nil -^pulled) --> (<s> ^operator <o1> +, <o2> +) (<o1> ^arm 1) (<o2> ^arm 2)}
+         sp {tpl :template (state <s> ^operator <o> + -^blocked <a>) (<o> ^arm <a>) --> (<s> ^operator <o> = 0)}
+         sp {apply (state <s> ^operator.arm <a>) --> (<s> ^pulled <a>) (halt)}
+         rl --set learning on
+         run",
+    );
+    let one = output(&mut agent, "print rl*tpl*1");
+    let two = output(&mut agent, "print rl*tpl*2");
+    let (first, second) = if one.contains("^arm 1") {
+        (one, two)
+    } else {
+        (two, one)
+    };
+    assert!(first.contains("-^blocked 1"), "{first}");
+    assert!(
+        second.contains("^arm 2") && second.contains("-^blocked 2"),
+        "{second}"
+    );
+    assert_eq!(output(&mut agent, "print --rl").lines().count(), 2);
 }

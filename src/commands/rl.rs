@@ -101,12 +101,6 @@ impl Interpreter {
                 Some("the update log (update-log-path) is")
             }
             "trace" if trial.trace => Some("the graph of RL updates (trace) is"),
-            "chunk-stop" if !trial.chunk_stop => Some("chunk-stop off is"),
-            "learning" if trial.learning => self
-                .agent
-                .productions()
-                .any(|p| p.flags.template)
-                .then_some("RL templates (:template rules) are"),
             _ => None,
         };
         if let Some(what) = missing {

@@ -51,11 +51,6 @@ impl Interpreter {
             Err(d) => return Err(self.sp_failed(d, Some(&ast.name))),
         };
         let name = p.name.clone();
-        if p.flags.template && self.agent.rl.params.learning {
-            return Err(ctx.error(format!(
-                "sp {name}: RL templates (:template rules) are not yet supported by rusoar"
-            )));
-        }
         if p.flags.explain {
             self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
         }

@@ -96,12 +96,14 @@ impl Interpreter {
     /// `std::time::Instant`); the first line names rusoar, the host and the time. WM size
     /// is sampled at the end of every phase, as 9.6 samples it.
     fn system_report(&self, decimals: usize) -> String {
-        let (mut defaults, mut chunks) = (0, 0);
+        // 9.6 counts no template rule here.
+        let (mut defaults, mut chunks, mut templates) = (0, 0, 0);
         for p in self.agent.productions() {
             defaults += usize::from(p.flags.default);
             chunks += usize::from(p.flags.chunk);
+            templates += usize::from(p.flags.template);
         }
-        let total = self.agent.production_count();
+        let total = self.agent.production_count() - templates;
         let mut text = format!(
             "Soar 9.6 (rusoar) on {} at {}\n\n{} productions ({defaults} default, {} user, {chunks} chunks)\n   + {} justifications\n",
             host_name(),

@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 use std::rc::Rc;
 
 impl AgentCore {
-    pub(super) fn fire(
+    pub(crate) fn fire(
         &mut self,
         p: ProdId,
         t: TokId,
@@ -42,6 +42,12 @@ impl AgentCore {
             self.write_event(&mut out, &event);
             self.output = out;
             traced_wmes = self.trace_match_wmes(p, t);
+        }
+        // A template's match makes an RL rule instead of preferences (Soar manual, ch. 5,
+        // "Rule Templates").
+        if rule.flags.template {
+            self.rl_template_fired(p, t, o_support, new_prefs);
+            return;
         }
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         let mut args = std::mem::take(&mut self.decider.rhs_args);

@@ -167,11 +167,14 @@ type Bindings<'a> = FxHashMap<&'a str, (u32, Field)>;
 
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
+    /// A rule that would be a duplicate of `twin` is not one when `apart(twin)` says so (an
+    /// RL rule whose value differs, with `rl --set chunk-stop off`).
     pub fn add_production(
         &mut self,
         p: &Production,
         syms: &mut Symbols,
         sink: &mut dyn MatchSink,
+        apart: &dyn Fn(ProdId) -> bool,
     ) -> Result<ProdId, BuildError> {
         if p.conditions.is_empty() {
             return Err(BuildError::NoConditions(p.name.clone()));
@@ -199,7 +202,7 @@ impl Rete {
             .find_map(|c| match self.nodes[c].kind {
                 Kind::Production { prod } => self
                     .production(prod)
-                    .filter(|i| *i.action_key == *action_key)
+                    .filter(|i| *i.action_key == *action_key && !apart(prod))
                     .map(|_| prod),
                 _ => None,
             });

@@ -6,10 +6,12 @@
 //! the reward collected since, the decisions without an RL operator (a gap), and its
 //! eligibility traces.
 //!
-//! `update.rs` collects rewards and updates the rules on the agent; `params.rs` holds the
-//! parameters of the `rl` command.
+//! `update.rs` collects rewards and updates the rules on the agent; `template.rs` makes the
+//! RL rules of `:template` rules' matches; `params.rs` holds the parameters of the `rl`
+//! command.
 
 pub mod params;
+mod template;
 mod update;
 
 use crate::production::Production;
@@ -65,6 +67,9 @@ pub struct RlState {
     /// Per state, by its identifier.
     pub goals: FxHashMap<Sym, GoalData>,
     pub stats: RlStats,
+    /// The number of the last rule a template made (`rl*<template>*<n>`); `init-soar`
+    /// keeps it.
+    pub template_count: u64,
 }
 
 impl RlState {

@@ -587,7 +587,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
                 let mut joined = p.clone();
                 reorder::intern_in_text_order(&p, &mut syms);
                 joined.conditions = reorder::reorder(&p.conditions, &syms);
-                match rete.add_production(&joined, &mut syms, &mut sink) {
+                match rete.add_production(&joined, &mut syms, &mut sink, &|_| false) {
                     Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added, as in Soar.
                     Err(crate::rete::BuildError::Duplicate(_)) => {}
