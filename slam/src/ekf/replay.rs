@@ -18,6 +18,10 @@ use super::line::Line;
 /// true pose, so only the first step's drift is unknown.
 pub const START_SD: [f64; 3] = [0.01, 0.01, 0.01];
 
+/// Walls shorter than this (m) are not given to the filter: a short Hough wall is as often a
+/// corner's or a single sonar's echo as a stretch of wall.
+pub const MIN_WALL_LENGTH_M: f64 = 1.0;
+
 /// One step of the filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EkfStep {
@@ -62,7 +66,12 @@ pub fn replay(run: &RunResult, noise: Noise) -> Result<EkfRun, String> {
         return Err(format!("seed {}: the run has no steps", run.seed));
     };
     let mut walls: BTreeMap<i64, Vec<Line>> = BTreeMap::new();
-    for w in &run.stats.extracted {
+    for w in run
+        .stats
+        .extracted
+        .iter()
+        .filter(|w| w.length / 1000.0 >= MIN_WALL_LENGTH_M)
+    {
         walls
             .entry(w.time)
             .or_default()
