@@ -922,8 +922,16 @@ mod tests {
         let o = parse_options(&args(&[])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (20, 600.0, SlamMode::Both));
         assert_eq!(o.out, PathBuf::from("slam-out"));
+        assert!(!o.ekf);
         let o = parse_options(&args(&["--quick"])).unwrap();
         assert_eq!((o.seeds, o.duration_s), (2, 60.0));
+        let o = parse_options(&args(&["--method", "ekf"])).unwrap();
+        assert!(o.ekf && o.slam == SlamMode::Off);
+        assert_eq!(o.command_line, "rusoar slam --method ekf");
+        let o = parse_options(&args(&["--method", "dr"])).unwrap();
+        assert!(!o.ekf && o.slam == SlamMode::Off);
+        let o = parse_options(&args(&["--method", "thesis,ekf", "--slam", "on"])).unwrap();
+        assert!(o.ekf && o.slam == SlamMode::Both);
         let o = parse_options(&args(&["--quick", "--seeds", "5", "--slam", "on"])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (5, 60.0, SlamMode::On));
         let o =
@@ -931,6 +939,8 @@ mod tests {
         assert_eq!(o.world.run.noise, NoisePreset::Realistic);
         assert_eq!(o.world.name, "box-partition");
         assert!(parse_options(&args(&["--slam", "maybe"])).is_err());
+        assert!(parse_options(&args(&["--method", "kalman"])).is_err());
+        assert!(parse_options(&args(&["--method", "ekf", "--slam", "on"])).is_err());
         assert!(parse_options(&args(&["--duration", "-3"])).is_err());
         assert!(parse_options(&args(&["--world", "nowhere"])).is_err());
         let e = parse_options(&args(&["--world", "/nonexistent/w.toml"])).unwrap_err();
