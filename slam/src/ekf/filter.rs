@@ -33,7 +33,7 @@ impl Noise {
     /// The noise model for Stage 2's odometry drift (`odometry::DriftParams::STAGE2`) and the
     /// Hough pipeline's 50 mm and 1° resolution. The run-long biases are taken as white noise
     /// of twice their half-width per step, to cover their correlation over steps (the factor
-    /// was chosen on seeds 101–120: `docs/slam/ekf.md`).
+    /// was chosen on seeds 101–120: `docs/slam/ekf-baseline.md`).
     pub const STAGE2_HOUGH: Noise = Noise {
         bias_x: 0.015 * 2.0,
         std_x: 0.03,
