@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use super::super::stats::{fmt_p, quantile, wilcoxon};
+use super::super::stats::{p_is, quantile, wilcoxon};
 use super::replay::{nees_bounds, EkfRun};
 
 /// The targets the EKF is held to: the median position error over all steps
@@ -140,7 +140,7 @@ pub fn markdown(
             s,
             "Per-seed median error lower with the EKF than with dead reckoning in {lower} of {n} \
              seeds (Wilcoxon {}).\n",
-            fmt_p(p)
+            p_is(p)
         );
     }
     s.push_str(
