@@ -205,3 +205,34 @@ impl EkfRun {
             / n
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::soar_loop::{run, LoopConfig, Outcome};
+    use super::super::super::world::World;
+    use super::*;
+
+    #[test]
+    fn a_run_with_the_slam_rules_is_refused_with_an_error() {
+        let cfg = LoopConfig::new(World::empty_room(), 3, true, 5.0);
+        let err = replay(&run(&cfg), Noise::STAGE2_HOUGH).unwrap_err();
+        assert!(err.contains("without the SLAM rules"), "{err}");
+    }
+
+    #[test]
+    fn the_filter_beats_dead_reckoning_and_repeats_itself() {
+        let cfg = LoopConfig::new(World::empty_room(), 5, false, 120.0);
+        let dr = run(&cfg);
+        assert_eq!(dr.outcome, Outcome::Completed);
+        let a = replay(&dr, Noise::STAGE2_HOUGH).unwrap();
+        assert_eq!(a.steps.len(), dr.steps.len());
+        assert!(a.started >= 1 && a.matched > a.started, "{a:?}");
+        let last = |v: &[f64]| v.iter().rev().take(100).sum::<f64>() / 100.0;
+        let ekf: Vec<f64> = a.steps.iter().map(|s| s.pos_err_mm).collect();
+        let odo: Vec<f64> = dr.steps.iter().map(|s| s.pos_err_mm).collect();
+        assert!(last(&ekf) < last(&odo), "{} vs {}", last(&ekf), last(&odo));
+        let b = replay(&dr, Noise::STAGE2_HOUGH).unwrap();
+        assert_eq!(a.csv(), b.csv());
+        assert_eq!(a.map_csv(), b.map_csv());
+    }
+}
