@@ -272,3 +272,67 @@ fn each_rule_variant_loads_after_the_thesis_rules_with_zero_errors() {
         assert_eq!(interp.production_count(), 36 - excised + added, "{rel}");
     }
 }
+
+#[test]
+fn slam_rejects_an_unknown_method_with_a_clear_error() {
+    let dir = std::env::temp_dir().join(format!("rusoar-ekf-bad-{}", std::process::id()));
+    let out = rusoar(&["slam", "--method", "kalman", "--out", dir.to_str().unwrap()]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("invalid value 'kalman'"), "{stderr}");
+    assert!(
+        stderr.contains("thesis") && stderr.contains("ekf"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!dir.exists());
+    let out = rusoar(&["slam", "--method", "ekf", "--slam", "on"]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("--method thesis"), "{stderr}");
+}
+
+#[test]
+fn slam_ekf_outputs_are_byte_identical_for_the_same_seed() {
+    let base = std::env::temp_dir().join(format!("rusoar-ekf-same-{}", std::process::id()));
+    let run = |name: &str| {
+        let dir = base.join(name);
+        let args = [
+            "slam",
+            "--method",
+            "ekf",
+            "--seeds",
+            "1",
+            "--first-seed",
+            "3",
+            "--duration",
+            "60",
+            "--jobs",
+            "1",
+            "--out",
+        ];
+        let mut args: Vec<&str> = args.to_vec();
+        args.push(dir.to_str().unwrap());
+        let out = rusoar(&args);
+        assert!(out.status.success(), "{}", text(&out.stderr));
+        dir
+    };
+    let (a, b) = (run("a"), run("b"));
+    for f in [
+        "steps-ekf-3.csv",
+        "believed-ekf-3.tum",
+        "true-ekf-3.tum",
+        "map-ekf-3.csv",
+        "ekf-runs.csv",
+    ] {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        assert!(!x.is_empty(), "{f} is empty");
+        assert!(x == y, "{f} differs between two runs of the same seed");
+    }
+    let md = std::fs::read_to_string(a.join("ekf.md")).unwrap();
+    assert!(md.contains("| EKF |"), "{md}");
+    let _ = std::fs::remove_dir_all(&base);
+}

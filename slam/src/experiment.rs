@@ -34,6 +34,7 @@ use std::time::Instant;
 use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
+use super::ekf;
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
 use super::sonar::NoisePreset;
@@ -78,6 +79,19 @@ fn command() -> Command {
                 .value_parser(["on", "off", "both"])
                 .default_value("both")
                 .help("Run with the SLAM rules, without them, or both (paired by seed)"),
+        )
+        .arg(
+            Arg::new("method")
+                .long("method")
+                .value_name("thesis|dr|ekf")
+                .action(ArgAction::Append)
+                .value_delimiter(',')
+                .value_parser(["thesis", "dr", "ekf"])
+                .help(
+                    "Localisation methods, repeatable: thesis (the conditions --slam picks), dr \
+                     (dead reckoning: the run without the SLAM rules), ekf (an EKF SLAM over the \
+                     same odometry and Hough walls, written to ekf.md); default thesis",
+                ),
         )
         .arg(
             Arg::new("noise")
@@ -196,7 +210,13 @@ pub fn parse_options(args: &[String]) -> Result<Options, clap::Error> {
     let m = command().try_get_matches_from(
         std::iter::once("rusoar slam".to_string()).chain(args.iter().cloned()),
     )?;
-    options_from(&m).map_err(|e| command().error(clap::error::ErrorKind::InvalidValue, e))
+    let mut opts =
+        options_from(&m).map_err(|e| command().error(clap::error::ErrorKind::InvalidValue, e))?;
+    opts.command_line = std::iter::once("rusoar slam")
+        .chain(args.iter().map(String::as_str))
+        .collect::<Vec<_>>()
+        .join(" ");
+    Ok(opts)
 }
 
 fn options_from(m: &ArgMatches) -> Result<Options, String> {
@@ -212,11 +232,21 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             duration_s = 60.0;
         }
     }
-    let slam = match m.get_one::<String>("slam").map(String::as_str) {
-        Some("on") => SlamMode::On,
-        Some("off") => SlamMode::Off,
+    let methods: Vec<&str> = m
+        .get_many::<String>("method")
+        .map(|v| v.map(String::as_str).collect())
+        .unwrap_or_else(|| vec!["thesis"]);
+    let thesis = methods.contains(&"thesis");
+    let ekf = methods.contains(&"ekf");
+    let needs_off = ekf || methods.contains(&"dr");
+    let slam = match (thesis, m.get_one::<String>("slam").map(String::as_str)) {
+        (false, _) | (true, Some("off")) => SlamMode::Off,
+        (true, Some("on")) if !needs_off => SlamMode::On,
         _ => SlamMode::Both,
     };
+    if !thesis && given("slam") {
+        return Err("--slam chooses the thesis rules' conditions; add --method thesis".into());
+    }
     let world_label = m
         .get_one::<String>("world")
         .cloned()
@@ -284,6 +314,8 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             .unwrap_or_else(soar_loop::default_rules_dir),
         io_log,
         ablation,
+        ekf,
+        command_line: String::new(),
     })
 }
 
@@ -334,6 +366,8 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<RunSummary>>> = Mutex::new(vec![None; total]);
+    let ekf_runs: Mutex<Vec<ekf::EkfRun>> = Mutex::new(Vec::new());
+    let errors: Mutex<[ekf::table::ErrorsBySeed; 2]> = Mutex::new(Default::default());
     let write_error: Mutex<Option<String>> = Mutex::new(None);
     let started = Instant::now();
     let threads = opts.jobs.min(total).max(1);
@@ -366,7 +400,24 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                     }
                     let result = soar_loop::run(&cfg);
                     let summary = RunSummary::of(&result, opts.world.run.dt);
-                    if let Err(e) = write_run(&opts.out, &result) {
+                    let mut written = write_run(&opts.out, &result);
+                    if opts.ekf {
+                        let e = result.steps.iter().map(|s| s.pos_err_mm).collect();
+                        let mut all = errors.lock().unwrap_or_else(|p| p.into_inner());
+                        all[usize::from(slam)].insert(seed, e);
+                    }
+                    if opts.ekf && !slam && written.is_ok() {
+                        written = ekf::replay(&result, ekf::Noise::STAGE2_HOUGH)
+                            .and_then(|run| {
+                                write_ekf_run(&opts.out, &run)?;
+                                Ok(run)
+                            })
+                            .map(|run| {
+                                let mut e = ekf_runs.lock().unwrap_or_else(|p| p.into_inner());
+                                e.push(run);
+                            });
+                    }
+                    if let Err(e) = written {
                         let mut w = write_error.lock().unwrap_or_else(|p| p.into_inner());
                         w.get_or_insert(e);
                     }
@@ -423,6 +474,18 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     write("runs.csv", exp.runs_csv())?;
     write("summary.md", exp.summary_md(opts))?;
     super::report::write_report(&exp, opts)?;
+    if opts.ekf {
+        let mut runs = ekf_runs.into_inner().unwrap_or_else(|p| p.into_inner());
+        runs.sort_by_key(|r| r.seed);
+        let [dr, thesis] = errors.into_inner().unwrap_or_else(|p| p.into_inner());
+        let command = if opts.command_line.is_empty() {
+            "rusoar slam --method ekf"
+        } else {
+            &opts.command_line
+        };
+        write("ekf.md", ekf::table::markdown(&runs, &dr, &thesis, command))?;
+        write("ekf-runs.csv", ekf::table::runs_csv(&runs, &dr))?;
+    }
     Ok(exp)
 }
 
@@ -453,6 +516,24 @@ fn progress_line(k: usize, total: usize, s: &RunSummary) -> String {
         s.final_walls,
         s.corrections
     )
+}
+
+/// Writes an EKF run's step CSV, its TUM trajectories and its final features.
+fn write_ekf_run(out: &Path, r: &ekf::EkfRun) -> Result<(), String> {
+    let write = |name: String, text: String| -> Result<(), String> {
+        let p = out.join(name);
+        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
+    };
+    write(format!("steps-ekf-{}.csv", r.seed), r.csv())?;
+    write(
+        format!("true-ekf-{}.tum", r.seed),
+        tum(r.steps.iter().map(|s| (s.time_s, s.true_pose))),
+    )?;
+    write(
+        format!("believed-ekf-{}.tum", r.seed),
+        tum(r.steps.iter().map(|s| (s.time_s, s.estimate))),
+    )?;
+    write(format!("map-ekf-{}.csv", r.seed), r.map_csv())
 }
 
 /// Writes a run's step CSV, its TUM trajectories and its final map.
@@ -841,8 +922,16 @@ mod tests {
         let o = parse_options(&args(&[])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (20, 600.0, SlamMode::Both));
         assert_eq!(o.out, PathBuf::from("slam-out"));
+        assert!(!o.ekf);
         let o = parse_options(&args(&["--quick"])).unwrap();
         assert_eq!((o.seeds, o.duration_s), (2, 60.0));
+        let o = parse_options(&args(&["--method", "ekf"])).unwrap();
+        assert!(o.ekf && o.slam == SlamMode::Off);
+        assert_eq!(o.command_line, "rusoar slam --method ekf");
+        let o = parse_options(&args(&["--method", "dr"])).unwrap();
+        assert!(!o.ekf && o.slam == SlamMode::Off);
+        let o = parse_options(&args(&["--method", "thesis,ekf", "--slam", "on"])).unwrap();
+        assert!(o.ekf && o.slam == SlamMode::Both);
         let o = parse_options(&args(&["--quick", "--seeds", "5", "--slam", "on"])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (5, 60.0, SlamMode::On));
         let o =
@@ -850,6 +939,8 @@ mod tests {
         assert_eq!(o.world.run.noise, NoisePreset::Realistic);
         assert_eq!(o.world.name, "box-partition");
         assert!(parse_options(&args(&["--slam", "maybe"])).is_err());
+        assert!(parse_options(&args(&["--method", "kalman"])).is_err());
+        assert!(parse_options(&args(&["--method", "ekf", "--slam", "on"])).is_err());
         assert!(parse_options(&args(&["--duration", "-3"])).is_err());
         assert!(parse_options(&args(&["--world", "nowhere"])).is_err());
         let e = parse_options(&args(&["--world", "/nonexistent/w.toml"])).unwrap_err();

@@ -61,6 +61,10 @@ pub struct Options {
     pub io_log: bool,
     /// Drift model, rule variants and constants (`--drift`, `--variant`, the constants).
     pub ablation: super::variant::Ablation,
+    /// Also run the EKF SLAM over each run without the SLAM rules (`--method ekf`).
+    pub ekf: bool,
+    /// The command line, as the EKF's table quotes it.
+    pub command_line: String,
 }
 
 /// The numbers of one run, kept after its steps are written out.
