@@ -176,24 +176,12 @@ impl AgentCore {
             }
         }
         self.decider.inst_by_token.insert((p, t), inst_id);
-        // An o-supported preference for a substate's own WME grows its GDS at once, while
-        // the firing's match still stands (the Soar manual, chapter 2, "Removal of
-        // Substates: The Goal Dependency Set"); a result is supported above instead.
-        let grows_gds = level >= 2
-            && inst.o_support
-            && inst.prefs.iter().any(|&pid| {
-                let p = &self.decider.prefs[pid];
-                p.kind == PrefType::Acceptable && self.sym_level(p.id) >= level
-            });
         let own_prefs = if traced || level >= 2 {
             inst.prefs.clone()
         } else {
             Vec::new()
         };
         self.decider.insts[inst_id] = inst;
-        if grows_gds {
-            self.elaborate_gds(inst_id);
-        }
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }

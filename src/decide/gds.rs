@@ -9,7 +9,6 @@ use super::procedure::PrefType;
 use super::state::InstId;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
-use crate::trace_events::TraceEvent;
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
 
@@ -41,13 +40,27 @@ impl AgentCore {
         found
     }
 
-    /// Grows the GDS of the goal `inst` matched in: each WME its match tested that belongs
-    /// to a higher goal joins it; a local WME that an i-supported instantiation made leads
-    /// on to that instantiation's match; local o-supported WMEs stop the search. The
-    /// instantiations are visited in the order they are reached (each match's WMEs in
-    /// condition order), which is the order `trace --gds-wmes` lists the WMEs in, as 9.6
-    /// does; it also lists the goal's own architecture WMEs the reasoning tested.
-    pub(crate) fn elaborate_gds(&mut self, inst: InstId) {
+    /// A WME just added: if an o-supported preference of an instantiation that matched in a
+    /// substate made it, that substate's GDS grows.
+    pub(crate) fn gds_for_new_wme(&mut self, w: WmeId) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+            return;
+        };
+        let inst = slot.prefs_for(wme.value).find_map(|pid| {
+            let p = &self.decider.prefs[pid];
+            (p.alive && p.o_support && p.kind == PrefType::Acceptable && p.value == wme.value)
+                .then_some(p.inst)
+                .flatten()
+        });
+        if let Some(i) = inst {
+            self.elaborate_gds(i);
+        }
+    }
+
+    fn elaborate_gds(&mut self, inst: InstId) {
         let Some(goal) = self.decider.insts[inst].goal else {
             return;
         };
@@ -55,10 +68,10 @@ impl AgentCore {
         if level <= 1 {
             return;
         }
-        let traced = self.settings.trace.gds_wmes;
         let mut seen: FxHashSet<InstId> = FxHashSet::default();
-        let mut queue = std::collections::VecDeque::from([inst]);
-        while let Some(i) = queue.pop_front() {
+        let mut stack = vec![inst];
+        let mut found: Vec<WmeId> = Vec::new();
+        while let Some(i) = stack.pop() {
             if !seen.insert(i) || !self.decider.insts[i].alive {
                 continue;
             }
@@ -67,87 +80,27 @@ impl AgentCore {
                 (x.prod, x.token)
             };
             for w in self.rete.match_wmes(prod, token) {
-                let Some(wme) = self.wm.get(w).copied() else {
-                    continue;
-                };
-                if self.sym_level(wme.id) < level {
-                    self.add_to_gds(w, &wme, goal, level, traced);
-                    continue;
-                }
-                match self.local_support(w, &wme) {
-                    LocalSupport::Instantiation(j) => queue.push_back(j),
-                    LocalSupport::Candidate(a) => {
-                        if let Some(acc) = self.wm.get(a).copied() {
-                            self.add_to_gds(a, &acc, goal, level, traced);
-                        }
-                    }
-                    LocalSupport::OSupported => {}
-                    LocalSupport::Architecture => {
-                        if traced && self.decider.gds_traced_local.insert(wme.timetag) {
-                            self.emit(&TraceEvent::GdsAdd { goal, wme: &wme });
-                        }
-                    }
+                let Some(wme) = self.wm.get(w) else { continue };
+                let l = self.sym_level(wme.id);
+                if l < level {
+                    found.push(w);
+                } else if let Some(j) = self.i_support_of(w) {
+                    stack.push(j);
                 }
             }
         }
-    }
-
-    /// A WME of a higher goal joins `goal`'s GDS: it is charged to the highest goal that
-    /// depends on it, since removing that goal removes the lower ones too.
-    fn add_to_gds(&mut self, w: WmeId, wme: &crate::wm::Wme, goal: Sym, level: u32, traced: bool) {
-        // (A higher goal's own architecture WME is in that goal's GDS for the listing.)
-        let keep = self
-            .decider
-            .gds
-            .get(&w)
-            .is_some_and(|&g| self.sym_level(g) <= level)
-            || (traced && self.decider.gds_traced_local.contains(&wme.timetag));
-        if !keep {
-            self.decider.gds.insert(w, goal);
-            if traced {
-                self.emit(&TraceEvent::GdsAdd { goal, wme });
+        for w in found {
+            // A WME is charged to the highest goal that depends on it: removing that goal
+            // removes the lower ones too.
+            let keep = self
+                .decider
+                .gds
+                .get(&w)
+                .is_some_and(|&g| self.sym_level(g) <= level);
+            if !keep {
+                self.decider.gds.insert(w, goal);
             }
         }
-    }
-
-    /// What holds a WME of the goal's own level in working memory, for the GDS search.
-    fn local_support(&self, w: WmeId, wme: &crate::wm::Wme) -> LocalSupport {
-        if let Some(j) = self.i_support_of(w) {
-            return LocalSupport::Instantiation(j);
-        }
-        let goals = &self.decider.goals;
-        let own = goals.iter().position(|g| g.state == wme.id);
-        if let Some(k) = own.filter(|&k| goals[k].wmes.contains(&w)) {
-            // An impasse's `^item` stands for a candidate's acceptable preference in the
-            // state above: that preference's WME joins the GDS in its place.
-            if k > 0 && goals[k].items.contains(&wme.value) {
-                let above = goals[k - 1].state;
-                if let Some(a) = self
-                    .decider
-                    .slots
-                    .get(&(above, self.top.operator))
-                    .and_then(|s| s.wmes.get(&(wme.value, true)))
-                {
-                    return LocalSupport::Candidate(a);
-                }
-            }
-            return LocalSupport::Architecture;
-        }
-        let from_prefs = self
-            .decider
-            .slots
-            .get(&(wme.id, wme.attr))
-            .and_then(|s| s.wmes.get(&(wme.value, wme.acceptable)))
-            == Some(w);
-        let selected = self
-            .decider
-            .goals
-            .iter()
-            .any(|g| g.operator.is_some_and(|(_, ow)| ow == w));
-        if from_prefs || selected {
-            return LocalSupport::OSupported;
-        }
-        LocalSupport::Architecture
     }
 
     /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with
@@ -201,18 +154,4 @@ impl AgentCore {
             self.remove_goal_and_below(top_index);
         }
     }
-}
-
-/// What holds a WME of a goal's own level, for the GDS search.
-enum LocalSupport {
-    /// An i-supported preference: the search goes on through its instantiation.
-    Instantiation(InstId),
-    /// An impasse's `^item`: the candidate's acceptable-preference WME in the state above.
-    Candidate(WmeId),
-    /// An o-supported preference (or the decision that selected an operator): the search
-    /// stops.
-    OSupported,
-    /// No preference: the architecture's WME of the state (or an input WME). 9.6 lists it
-    /// as joining the GDS; it leaves only with the state.
-    Architecture,
 }

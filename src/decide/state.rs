@@ -208,10 +208,6 @@ pub struct DecideState {
     pub rhs_new_ids: Vec<Option<Sym>>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
-    /// With `trace --gds-wmes`: the timetags of a substate's own architecture WMEs
-    /// (`^superstate`, `^impasse`...) already listed as joining its GDS, as 9.6 lists them
-    /// (they leave only with the substate, so they are not in `gds`).
-    pub gds_traced_local: rustc_hash::FxHashSet<u64>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
     /// Operator slots changed since the last quiescent working-memory phase: their

@@ -209,6 +209,9 @@ impl AgentCore {
                 self.match_new_wme(w, &wme);
             }
         }
+        for &w in &added {
+            self.gds_for_new_wme(w);
+        }
         // A substate removed just above may still get this wave's WMEs (9.6 adds them too,
         // removing the goal only at its next consistency check): with the goal gone they
         // are unlinked, and go with the garbage below instead of staying for good.
