@@ -52,6 +52,8 @@ pub(crate) enum TraceEvent<'a> {
     OperatorRemoval { wme: Option<&'a Wme> },
     /// A substate goes because a WME of its goal dependency set changed (`trace --gds`).
     GdsRemoval { goal: Sym, wme: &'a Wme },
+    /// A WME joins a substate's goal dependency set (`trace --gds-wmes`).
+    GdsAdd { goal: Sym, wme: &'a Wme },
     /// An operator is selected for the goal at `level` in decision `cycle` (`trace
     /// --decisions`), with its `^name` values.
     Operator {

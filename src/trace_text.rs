@@ -106,6 +106,11 @@ impl TraceText96 {
                 }
                 out.push('\n');
             }
+            TraceEvent::GdsAdd { goal, wme } => {
+                let _ = write!(out, "Adding to GDS for {}: ", symbols.text(goal));
+                wme_text(out, symbols, wme);
+                out.push('\n');
+            }
             TraceEvent::GdsRemoval { goal, wme } => {
                 let g = symbols.text(goal);
                 let _ = write!(out, "Removing state {g} because element in GDS changed. WME: ");

@@ -19,7 +19,7 @@ impl AgentCore {
 
     /// The live instantiation behind a WME, if an i-supported preference makes it: `None`
     /// for o-supported and architecture WMEs (the search stops there).
-    fn i_support_of(&self, w: WmeId) -> Option<InstId> {
+    pub(crate) fn i_support_of(&self, w: WmeId) -> Option<InstId> {
         let wme = self.wm.get(w)?;
         // A selected operator stands on its acceptable preference (its proposal), like any
         // other WME on its slot's acceptable preferences.

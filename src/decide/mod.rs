@@ -16,6 +16,7 @@ mod fire;
 pub mod functions;
 mod gc;
 mod gds;
+mod gds_trace;
 pub(crate) mod ids;
 pub mod procedure;
 mod scratch;

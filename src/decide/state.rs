@@ -208,6 +208,9 @@ pub struct DecideState {
     pub rhs_new_ids: Vec<Option<Sym>>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
+    /// `trace --gds-wmes`: the WMEs (by timetag) listed as joining a goal's GDS, with that
+    /// goal (`gds_trace.rs`).
+    pub gds_listed: FxHashMap<u64, Sym>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
     /// Operator slots changed since the last quiescent working-memory phase: their
