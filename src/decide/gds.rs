@@ -40,6 +40,16 @@ impl AgentCore {
         found
     }
 
+    /// The WMEs an instantiation's match holds, in condition order; none once it is gone.
+    pub(crate) fn live_match_wmes(&self, i: InstId) -> Vec<WmeId> {
+        let x = &self.decider.insts[i];
+        if x.alive {
+            self.rete.match_wmes(x.prod, x.token)
+        } else {
+            Vec::new()
+        }
+    }
+
     /// A WME just added: if an o-supported preference of an instantiation that matched in a
     /// substate made it, that substate's GDS grows.
     pub(crate) fn gds_for_new_wme(&mut self, w: WmeId) {
@@ -72,14 +82,10 @@ impl AgentCore {
         let mut stack = vec![inst];
         let mut found: Vec<WmeId> = Vec::new();
         while let Some(i) = stack.pop() {
-            if !seen.insert(i) || !self.decider.insts[i].alive {
+            if !seen.insert(i) {
                 continue;
             }
-            let (prod, token) = {
-                let x = &self.decider.insts[i];
-                (x.prod, x.token)
-            };
-            for w in self.rete.match_wmes(prod, token) {
+            for w in self.live_match_wmes(i) {
                 let Some(wme) = self.wm.get(w) else { continue };
                 let l = self.sym_level(wme.id);
                 if l < level {

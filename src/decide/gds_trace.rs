@@ -55,14 +55,10 @@ impl AgentCore {
         let mut seen: FxHashSet<InstId> = FxHashSet::default();
         let mut queue = VecDeque::from([inst]);
         while let Some(i) = queue.pop_front() {
-            if !seen.insert(i) || !self.decider.insts[i].alive {
+            if !seen.insert(i) {
                 continue;
             }
-            let (prod, token) = {
-                let x = &self.decider.insts[i];
-                (x.prod, x.token)
-            };
-            for w in self.rete.match_wmes(prod, token) {
+            for w in self.live_match_wmes(i) {
                 let Some(wme) = self.wm.get(w).copied() else {
                     continue;
                 };
