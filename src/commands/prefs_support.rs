@@ -106,18 +106,7 @@ impl Interpreter {
 
     fn origin_of(&self, w: WmeId, wme: &Wme) -> Origin {
         let agent = &self.agent;
-        let in_slot = agent
-            .decider
-            .slots
-            .get(&(wme.id, wme.attr))
-            .and_then(|s| s.wmes.get(&(wme.value, wme.acceptable)))
-            == Some(w);
-        let selected = agent
-            .decider
-            .goals
-            .iter()
-            .any(|g| g.operator.is_some_and(|(_, ow)| ow == w));
-        if in_slot || selected {
+        if agent.held_by_preferences(w, wme) {
             return Origin::Preference;
         }
         if agent.symbols.is_goal(wme.id) {

@@ -40,6 +40,23 @@ impl AgentCore {
         found
     }
 
+    /// Whether a WME stands on its slot's preferences, or is the operator a state
+    /// selected (rather than the architecture's or input).
+    pub(crate) fn held_by_preferences(&self, w: WmeId, wme: &crate::wm::Wme) -> bool {
+        let in_slot = self
+            .decider
+            .slots
+            .get(&(wme.id, wme.attr))
+            .and_then(|s| s.wmes.get(&(wme.value, wme.acceptable)))
+            == Some(w);
+        in_slot
+            || self
+                .decider
+                .goals
+                .iter()
+                .any(|g| g.operator.is_some_and(|(_, ow)| ow == w))
+    }
+
     /// The WMEs an instantiation's match holds, in condition order; none once it is gone.
     pub(crate) fn live_match_wmes(&self, i: InstId) -> Vec<WmeId> {
         let x = &self.decider.insts[i];

@@ -123,16 +123,7 @@ impl AgentCore {
             }
             return LocalSupport::Architecture;
         }
-        let from_prefs = self
-            .decider
-            .slots
-            .get(&(wme.id, wme.attr))
-            .and_then(|s| s.wmes.get(&(wme.value, wme.acceptable)))
-            == Some(w);
-        let selected = goals
-            .iter()
-            .any(|g| g.operator.is_some_and(|(_, ow)| ow == w));
-        if from_prefs || selected {
+        if self.held_by_preferences(w, wme) {
             return LocalSupport::OSupported;
         }
         LocalSupport::Architecture

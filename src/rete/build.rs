@@ -179,7 +179,14 @@ impl Rete {
         if p.conditions.is_empty() {
             return Err(BuildError::NoConditions(p.name.clone()));
         }
-        if let Some(v) = unbound_relational(&p.conditions, &mut FxHashSet::default()) {
+        let negated = p
+            .conditions
+            .iter()
+            .any(|c| !matches!(c, Condition::Positive(_)));
+        if let Some(v) = negated
+            .then(|| unbound_relational(&p.conditions, &mut FxHashSet::default()))
+            .flatten()
+        {
             return Err(BuildError::UnboundInNegation(v));
         }
         let pid = ProdId(self.prods.len() as u32);
