@@ -63,11 +63,24 @@ pub struct Backtrace {
 }
 
 impl Backtrace {
-    pub fn new(level: u32) -> Self {
-        Backtrace {
-            level,
-            ..Default::default()
-        }
+    /// Empties the tables for an episode at `level`, keeping their room.
+    pub fn reset(&mut self, level: u32) {
+        self.level = level;
+        self.grounds.clear();
+        self.ground_at.clear();
+        self.negations.clear();
+        self.constraints.clear();
+        self.parent.clear();
+        self.literal.clear();
+        self.visited.clear();
+        self.firings = 0;
+        self.items.clear();
+        self.identities = 0;
+        self.propagations = 0;
+        self.propagations_blocked = 0;
+        self.joins = 0;
+        self.merged = 0;
+        self.tested_quiescence = false;
     }
 
     /// The representative of an identity's joined set.
@@ -164,7 +177,7 @@ impl Backtrace {
     fn local_constraints(&mut self, trace: &Arc<InstTrace>, c: &TraceCond, origin: &PrefOrigin) {
         let Some(crate::production::Condition::Positive(cond)) = c
             .cond
-            .and_then(|ci| trace.prod.as_ref()?.conditions.get(ci).cloned())
+            .and_then(|ci| trace.prod.as_ref()?.conditions.get(ci))
         else {
             return;
         };
@@ -173,6 +186,9 @@ impl Backtrace {
             .zip(&origin.ids)
         {
             if made == 0 {
+                continue;
+            }
+            if matches!(t, crate::production::Test::Equal(_)) {
                 continue;
             }
             let mut tests = Vec::new();

@@ -140,9 +140,24 @@ impl AgentCore {
         source: &InstTrace,
         new_prefs: &mut Vec<PrefId>,
     ) {
+        // One backtrace's tables serve every episode: they keep their room between them.
+        let mut bt = std::mem::take(&mut self.learn.backtrace);
+        bt.reset(level);
+        self.learn_by_backtrace(&mut bt, results, source, new_prefs);
+        bt.reset(0);
+        self.learn.backtrace = bt;
+    }
+
+    fn learn_by_backtrace(
+        &mut self,
+        bt: &mut Backtrace,
+        results: Vec<PrefId>,
+        source: &InstTrace,
+        new_prefs: &mut Vec<PrefId>,
+    ) {
+        let level = bt.level;
         let quiescence = self.symbols.str("quiescence");
         let t = self.symbols.str("t");
-        let mut bt = Backtrace::new(level);
         for &r in &results {
             if let Some(o) = self.decider.prefs[r].origin.clone() {
                 bt.result(&o, quiescence, t);
@@ -179,10 +194,10 @@ impl AgentCore {
         // knowledge gives a justification, not a chunk (Soar manual, ch. 4, "Using
         // negated conditions about the substate"; checked on soar-sml 9.6.5: agent
         // learn-local-negation-off).
-        let local_negation = self.tests_local_negation(&bt);
+        let local_negation = self.tests_local_negation(bt);
         let refused = want_chunk && local_negation && !self.settings.chunk.allow_local_negations;
         if refused && self.settings.trace.chunk_warnings {
-            let conditions = self.local_negation_texts(&bt);
+            let conditions = self.local_negation_texts(bt);
             self.emit(&TraceEvent::LocalNegationRefused {
                 conditions: &conditions,
             });
@@ -223,9 +238,9 @@ impl AgentCore {
                 // the rest of the phase (its result gets a justification).
             } else {
                 let name = self.chunk_name(source, level);
-                let prod = self.build_learned_rule(&bt, &results, name.clone(), true);
+                let prod = self.build_learned_rule(bt, &results, name.clone(), true);
                 let constraints = super::stats::operational_constraints(&prod);
-                self.learn.stats.note_identities(&bt);
+                self.learn.stats.note_identities(bt);
                 match self.add_production(prod) {
                     // A learned rule's conditions are connected to its state.
                     Added::Rejected { .. } => {}
@@ -284,13 +299,13 @@ impl AgentCore {
                 // A justification: named unless a chunk was learned (and only failed to
                 // match at once).
                 let named = chunk.is_none();
-                let o = self.justification_support(&bt, &results);
+                let o = self.justification_support(bt, &results);
                 let name = if named {
                     self.justification_name(source, level)
                 } else {
                     chunk.as_ref().map(|c| c.1.name.clone()).unwrap_or_default()
                 };
-                let id = self.add_justification(&bt, &results, &name, named, o);
+                let id = self.add_justification(bt, &results, &name, named, o);
                 (id, o, name)
             }
         };

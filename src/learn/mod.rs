@@ -153,6 +153,8 @@ pub struct LearnState {
     pub trace_names: FxHashMap<crate::rete::ProdId, TraceNames>,
     /// Scratch for recording a firing: each binding's identity.
     pub binding_idents: Vec<Ident>,
+    /// The backtrace tables, emptied between learning episodes (they keep their room).
+    pub backtrace: backtrace::Backtrace,
     pub duplicates: u64,
     /// `chunk`'s counts since the last `init-soar` (9.6 resets them there): chunks,
     /// justifications, and learning episodes that got as far as building either.

@@ -1178,21 +1178,15 @@ impl Rete {
         let Some(info) = self.production(p) else {
             return Vec::new();
         };
-        let mut chain = Vec::new();
-        let mut t = token;
-        while t != TokId::NONE {
-            let tok = &self.tokens[t];
-            if tok.wme != NIL_WME {
-                chain.push(tok.wme);
-            }
-            t = tok.parent;
+        // The positive conditions are joined in the order listed: the k-th WME of the
+        // token's row (negations leave no WME there) is the k-th's.
+        let n = info.positives as usize;
+        let mut out = Vec::with_capacity(n);
+        if token != TokId::NONE {
+            let row = self.token_row(token).iter().copied();
+            out.extend(row.filter(|&w| w != NIL_WME).take(n));
         }
-        chain.reverse();
-        // The positive conditions are joined in the order listed: the k-th WME is the k-th's.
-        let mut out = vec![NIL_WME; info.positives as usize];
-        for (k, slot) in out.iter_mut().enumerate() {
-            *slot = chain.get(k).copied().unwrap_or(NIL_WME);
-        }
+        out.resize(n, NIL_WME);
         out
     }
 
