@@ -3,7 +3,8 @@
 //! two or three actions each, a next state per action, an integer reward on entering a
 //! state, the last layer ending the episode with a halt) and the agent that walks one:
 //! one RL rule per state and action, with the learning policy, rates, eligibility-trace
-//! decay and exploration policy drawn too. Each agent runs several episodes (`init-soar`
+//! decay, learning-rate decay mode, exploration policy and numeric-indifferent mode drawn
+//! too. Each agent runs several episodes (`init-soar`
 //! between them) and prints `print --rl` after each.
 //!
 //! The agents are drawn from a fixed seed and kept in `tests/data/rl-mdp/agents.txt`; the
@@ -19,7 +20,7 @@ use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use rusoar::Agent;
 use std::fmt::Write;
 
-const CASES: usize = 200;
+const CASES: usize = 1000;
 const EPISODES: usize = 5;
 const AGENTS: &str = "tests/data/rl-mdp/agents.txt";
 const GOLDEN: &str = "tests/golden/rl-mdp.txt";
@@ -36,6 +37,9 @@ struct Mdp {
     q_learning: bool,
     rates: (usize, usize, usize),
     exploration: usize,
+    /// `decay-mode`, and whether numeric preferences average (`numeric-indifferent-mode`).
+    decay: usize,
+    average: bool,
     seed: u32,
 }
 
@@ -47,7 +51,7 @@ fn mdp() -> impl Strategy<Value = Mdp> {
         prop::collection::vec(-2i32..=2, 36),
         any::<bool>(),
         (0usize..3, 0usize..3, 0usize..3),
-        0usize..3,
+        (0usize..3, 0usize..4, any::<bool>()),
         1u32..100_000,
     )
         .prop_map(
@@ -58,7 +62,7 @@ fn mdp() -> impl Strategy<Value = Mdp> {
                 values,
                 q_learning,
                 rates,
-                exploration,
+                (exploration, decay, average),
                 seed,
             )| Mdp {
                 depth,
@@ -70,6 +74,8 @@ fn mdp() -> impl Strategy<Value = Mdp> {
                 q_learning,
                 rates,
                 exploration,
+                decay,
+                average,
                 seed,
             },
         )
@@ -157,7 +163,11 @@ impl Mdp {
         let _ = writeln!(c, "rl --set learning-rate {alpha}");
         let _ = writeln!(c, "rl --set discount-rate {gamma}");
         let _ = writeln!(c, "rl --set eligibility-trace-decay-rate {lambda}");
+        let decay = ["normal", "exp", "log", "delta-bar-delta"][self.decay];
+        let mode = if self.average { "avg" } else { "sum" };
+        let _ = writeln!(c, "rl --set decay-mode {decay}");
         let _ = writeln!(c, "indifferent-selection --{exploration}");
+        let _ = writeln!(c, "numeric-indifferent-mode --{mode}");
         for _ in 0..EPISODES {
             c.push_str("run 50\nprint --rl\ninit-soar\n");
         }
