@@ -82,6 +82,8 @@ pub(crate) enum TraceEvent<'a> {
         after: [f64; 3],
     },
     /// A gap in RL rule coverage starts or ends on a state (`trace --rl`).
+    /// The update log (`rl --set update-log-path`) could not take a line.
+    RlLogError { path: &'a str, message: &'a str },
     RlGap { started: bool, goal: Sym },
     /// The substate below a goal goes with the operator that left its slot (`trace
     /// --consistency`).

@@ -162,17 +162,11 @@ impl TraceText96 {
                 before,
                 after,
             } => {
-                let g = |x: f64| crate::printer::constants::c_general(x, 6);
-                let _ = writeln!(
-                    out,
-                    "RL update {rule} {} {} {} -> {} {} {}",
-                    g(before[0]),
-                    g(before[1]),
-                    g(before[2]),
-                    g(after[0]),
-                    g(after[1]),
-                    g(after[2])
-                );
+                out.push_str(&crate::rl::update_line(rule, before, after));
+                out.push('\n');
+            }
+            TraceEvent::RlLogError { path, message } => {
+                let _ = writeln!(out, "Error: the RL update log {path} cannot be written: {message}");
             }
             TraceEvent::RlGap { started, goal } => {
                 let word = if started { "started" } else { "ended" };

@@ -29,12 +29,8 @@ fn refused(agent: &mut Agent, command: &str) -> String {
 fn what_is_not_built_is_refused_by_name() {
     let mut agent = Agent::default();
     for (command, names) in [
-        ("rl --set learning-policy on-policy-gq-lambda", "GQ"),
-        ("rl --set learning-policy off-policy-gq-lambda", "GQ"),
-        ("rl --set meta on", "meta"),
         ("rl --set apoptosis chunks", "apoptosis"),
         ("rl --set apoptosis rl-chunks", "apoptosis"),
-        ("rl --set update-log-path /tmp/rl.log", "update-log-path"),
         ("rl --set trace on", "trace"),
         ("rl --trace", "graph"),
         ("rl -t", "graph"),
@@ -43,10 +39,8 @@ fn what_is_not_built_is_refused_by_name() {
         assert!(message.contains(names), "`{command}`: {message}");
     }
     // Nothing was set.
-    assert_eq!(output(&mut agent, "rl -g learning-policy"), "sarsa\n");
-    assert_eq!(output(&mut agent, "rl -g meta"), "off\n");
     assert_eq!(output(&mut agent, "rl -g apoptosis"), "none\n");
-    assert_eq!(output(&mut agent, "rl -g update-log-path"), "");
+    assert_eq!(output(&mut agent, "rl -g trace"), "off\n");
 }
 
 #[test]

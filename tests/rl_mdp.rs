@@ -34,7 +34,7 @@ struct Mdp {
     nexts: Vec<usize>,
     rewards: Vec<i32>,
     values: Vec<i32>,
-    q_learning: bool,
+    policy: usize,
     rates: (usize, usize, usize),
     exploration: usize,
     /// `decay-mode`, and whether numeric preferences average (`numeric-indifferent-mode`).
@@ -49,7 +49,7 @@ fn mdp() -> impl Strategy<Value = Mdp> {
         prop::collection::vec(0usize..100, 36),
         prop::collection::vec(-3i32..=5, 12),
         prop::collection::vec(-2i32..=2, 36),
-        any::<bool>(),
+        0usize..4,
         (0usize..3, 0usize..3, 0usize..3),
         (0usize..3, 0usize..4, any::<bool>()),
         1u32..100_000,
@@ -60,7 +60,7 @@ fn mdp() -> impl Strategy<Value = Mdp> {
                 nexts,
                 rewards,
                 values,
-                q_learning,
+                policy,
                 rates,
                 (exploration, decay, average),
                 seed,
@@ -71,7 +71,7 @@ fn mdp() -> impl Strategy<Value = Mdp> {
                 nexts,
                 rewards,
                 values,
-                q_learning,
+                policy,
                 rates,
                 exploration,
                 decay,
@@ -149,11 +149,12 @@ impl Mdp {
                 }
             }
         }
-        let policy = if self.q_learning {
-            "q-learning"
-        } else {
-            "sarsa"
-        };
+        let policy = [
+            "sarsa",
+            "q-learning",
+            "on-policy-gq-lambda",
+            "off-policy-gq-lambda",
+        ][self.policy];
         let alpha = ["0.3", "0.1", "0.5"][self.rates.0];
         let gamma = ["0.9", "1", "0.5"][self.rates.1];
         let lambda = ["0", "0.5", "0.9"][self.rates.2];

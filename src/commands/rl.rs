@@ -90,16 +90,7 @@ impl Interpreter {
         }
         let defaults = crate::rl::params::RlParams::default();
         let missing = match name {
-            "learning-policy" if trial.learning_policy != defaults.learning_policy
-                && trial.learning_policy != crate::rl::params::Policy::QLearning =>
-            {
-                Some("the GQ(lambda) learning policies are")
-            }
-            "meta" if trial.meta => Some("rule metadata (meta) is"),
             "apoptosis" if trial.apoptosis != defaults.apoptosis => Some("apoptosis is"),
-            "update-log-path" if !trial.update_log_path.is_empty() => {
-                Some("the update log (update-log-path) is")
-            }
             "trace" if trial.trace => Some("the graph of RL updates (trace) is"),
             _ => None,
         };

@@ -68,7 +68,7 @@ impl AgentCore {
                         let chosen = cands.iter().position(|c| *c == o).unwrap_or(0);
                         let values = self.rl_candidates(goal.state, &prefs, &cands);
                         self.rl_tabulate_rewards();
-                        self.rl_decided(goal.state, &values, chosen);
+                        self.rl_decided(goal.state, &values, chosen, policy);
                     }
                     self.remove_goals_below(gi);
                     if learning {

@@ -6,13 +6,18 @@
 //! the reward collected since, the decisions without an RL operator (a gap), and its
 //! eligibility traces.
 //!
-//! `update.rs` collects rewards and updates the rules on the agent; `template.rs` makes the
+//! `update.rs` collects rewards and updates the rules on the agent; `gq.rs` weighs the
+//! GQ(λ) policies' traces; `template.rs` makes the
 //! RL rules of `:template` rules' matches; `params.rs` holds the parameters of the `rl`
 //! command.
 
+mod gq;
 pub mod params;
 mod template;
 mod update;
+mod update_log;
+
+pub(crate) use update_log::update_line;
 
 use crate::production::Production;
 use crate::rete::ProdId;
@@ -32,6 +37,8 @@ pub struct RuleValue {
     /// The delta-bar-delta decay's own rate (log) and its trace.
     pub dbd_beta: f64,
     pub dbd_h: f64,
+    /// The GQ(λ) policies' secondary weight (starts at 0).
+    pub gq_weight: f64,
 }
 
 /// One state's learning data (9.6 keeps it on the state).
@@ -48,6 +55,9 @@ pub struct GoalData {
     pub hrl_age: u32,
     /// Eligibility traces by rule, in rule order.
     pub traces: BTreeMap<ProdId, f64>,
+    /// The GQ(λ) importance ratio of the operator last selected with RL rules (set
+    /// whenever `prev_rules` is).
+    pub rho: f64,
 }
 
 /// The statistics `rl --stats` prints.
@@ -67,6 +77,8 @@ pub struct RlState {
     /// Per state, by its identifier.
     pub goals: FxHashMap<Sym, GoalData>,
     pub stats: RlStats,
+    /// The importance ratio of the operator the last decision selected (GQ(λ)).
+    pub selected_rho: f64,
     /// The number of the last rule a template made (`rl*<template>*<n>`); `init-soar`
     /// keeps it.
     pub template_count: u64,
@@ -84,6 +96,7 @@ impl RlState {
                     updates: 0.0,
                     dbd_beta: -3.0,
                     dbd_h: 0.0,
+                    gq_weight: 0.0,
                 },
             );
         }

@@ -17,6 +17,16 @@ pub enum Policy {
 }
 
 impl Policy {
+    /// The GQ(λ) policies, which weigh eligibility traces by an importance ratio.
+    pub fn is_gq(self) -> bool {
+        matches!(self, Policy::OnPolicyGq | Policy::OffPolicyGq)
+    }
+
+    /// Off-policy learners update toward the best candidate's value.
+    pub fn is_off_policy(self) -> bool {
+        matches!(self, Policy::QLearning | Policy::OffPolicyGq)
+    }
+
     const WORDS: [(&'static str, Policy); 4] = [
         ("sarsa", Policy::Sarsa),
         ("q-learning", Policy::QLearning),

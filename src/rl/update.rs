@@ -143,26 +143,38 @@ impl AgentCore {
     /// The decision selected `chosen` among `cands` for `goal`: the state's pending RL
     /// rules are updated toward the reward plus the discounted value of the next operator
     /// (its own under Sarsa, the best candidate's under Q-learning).
-    pub(crate) fn rl_decided(&mut self, goal: Sym, cands: &[Candidate], chosen: usize) {
+    pub(crate) fn rl_decided(
+        &mut self,
+        goal: Sym,
+        cands: &[Candidate],
+        chosen: usize,
+        exploration: crate::decide::procedure::Policy,
+    ) {
         let Some(first) = cands.first().copied() else {
             return;
         };
-        let target = match self.rl.params.learning_policy {
-            Policy::QLearning => {
-                let mut top = first;
-                for c in &cands[1..] {
-                    if c.value > top.value {
-                        top = *c;
-                    }
+        let policy = self.rl.params.learning_policy;
+        let target = if policy.is_off_policy() {
+            let mut top = first;
+            for c in &cands[1..] {
+                if c.value > top.value {
+                    top = *c;
                 }
-                top
             }
-            _ => cands.get(chosen).copied().unwrap_or(first),
+            top
+        } else {
+            cands.get(chosen).copied().unwrap_or(first)
+        };
+        self.rl.selected_rho = match policy {
+            Policy::OffPolicyGq => {
+                let values: Vec<f64> = cands.iter().map(|c| c.value).collect();
+                super::gq::importance_ratio(&values, exploration, chosen)
+            }
+            _ => 1.0,
         };
         self.rl_perform_update(goal, target.value, target.rl, true);
         // Watkins's Q(lambda): an exploratory choice (below the best value) cuts the
         // eligibility traces (observed on 9.6).
-        let policy = self.rl.params.learning_policy;
         let explored = cands.get(chosen).is_some_and(|c| c.value < target.value);
         if policy == Policy::QLearning && explored {
             if let Some(data) = self.rl.goals.get_mut(&goal) {
@@ -230,16 +242,25 @@ impl AgentCore {
                     *t >= p.et_tolerance
                 });
             }
+            if p.learning_policy.is_gq() {
+                data.traces.values_mut().for_each(|t| *t *= data.rho);
+            }
             let increment = 1.0 / data.prev_rules.len() as f64;
-            let (mut sum_ecr, mut sum_efr) = (0.0, 0.0);
+            let (mut sum_ecr, mut sum_efr, mut weight_of_features) = (0.0, 0.0, 0.0);
             for r in &data.prev_rules {
                 if let Some(v) = self.rl.rules.get(r) {
                     sum_ecr += v.ecr;
                     sum_efr += v.efr;
+                    weight_of_features += v.gq_weight;
                     *data.traces.entry(*r).or_insert(0.0) += increment;
                 }
             }
             let delta_t = (data.reward + discount * op_value) - (sum_ecr + sum_efr);
+            let weight_of_traces: f64 = data
+                .traces
+                .iter()
+                .filter_map(|(r, t)| Some(self.rl.rules.get(r)?.gq_weight * t))
+                .sum();
             let traced: Vec<(ProdId, f64)> = data.traces.iter().map(|(r, t)| (*r, *t)).collect();
             for (rule, trace) in traced {
                 let Some(mut v) = self.rl.rules.get(&rule).copied() else {
@@ -266,18 +287,32 @@ impl AgentCore {
                 let before = [v.ecr, v.efr, v.ecr + v.efr];
                 v.ecr += delta_ecr;
                 v.efr += delta_efr;
+                v.gq_weight += p.step_size_parameter * (delta_ecr + delta_efr);
                 v.updates += 1.0;
                 let combined = v.ecr + v.efr;
                 if self.settings.trace.rl {
                     let name = self.production_name(rule).to_string();
+                    let after = [v.ecr, v.efr, combined];
                     self.emit(&TraceEvent::RlUpdate {
                         rule: &name,
                         before,
-                        after: [v.ecr, v.efr, combined],
+                        after,
                     });
+                    if !p.update_log_path.is_empty() {
+                        let line = super::update_log::update_line(&name, before, after);
+                        if let Err(e) = super::update_log::append(&p.update_log_path, &line) {
+                            self.emit(&TraceEvent::RlLogError {
+                                path: &p.update_log_path,
+                                message: &e.to_string(),
+                            });
+                        }
+                    }
                 }
                 self.rl.rules.insert(rule, v);
                 self.set_rl_rule_value(rule, combined);
+            }
+            if p.learning_policy.is_gq() {
+                self.gq_corrections(goal, &data.prev_rules, weight_of_traces, weight_of_features);
             }
             data.reward = 0.0;
             data.gap_age = 0;
@@ -285,6 +320,37 @@ impl AgentCore {
         }
         data.prev_rules.clear();
         self.rl.goals.insert(goal, data);
+    }
+
+    /// GQ(λ)'s two corrections after an update (Maei and Sutton 2010): the expected future
+    /// reward of the rules valuing the state's current candidates moves against the
+    /// secondary weights along the traces, `-α·γ·(1-λ)·(w·e)` once per preference, and the
+    /// secondary weights of the rules just updated move toward the features' error,
+    /// `-α·η·(w·φ)`. The rules' printed values take the first at their next update.
+    fn gq_corrections(&mut self, goal: Sym, prev: &[ProdId], w_e: f64, w_phi: f64) {
+        let p = &self.rl.params;
+        let toward_next =
+            p.learning_rate * p.discount_rate * (1.0 - p.et_decay_rate) * w_e;
+        let toward_features = p.learning_rate * p.step_size_parameter * w_phi;
+        let key = (goal, self.top.operator);
+        let valued: Vec<ProdId> = self.decider.slots.get(&key).map_or_else(Vec::new, |slot| {
+            slot.prefs
+                .iter()
+                .map(|&pid| &self.decider.prefs[pid])
+                .filter(|pref| pref.kind == PrefType::NumericIndifferent)
+                .filter_map(|pref| pref.rule)
+                .collect()
+        });
+        for r in valued {
+            if let Some(v) = self.rl.rules.get_mut(&r) {
+                v.efr -= toward_next;
+            }
+        }
+        for r in prev {
+            if let Some(v) = self.rl.rules.get_mut(r) {
+                v.gq_weight -= toward_features;
+            }
+        }
     }
 
     /// After the decision for `goal` selected `op`: the RL rules whose preferences valued it
@@ -305,15 +371,18 @@ impl AgentCore {
         }
         let using_gaps = self.rl.params.temporal_extension;
         let trace = self.settings.trace.rl;
+        let rho = self.rl.selected_rho;
         let data = self.rl.goals.entry(goal).or_default();
         if !fired.is_empty() {
             data.prev_rules = fired;
             data.gap_age = 0;
+            data.rho = rho;
             return;
         }
         let start_gap = trace && using_gaps && data.gap_age == 0 && !data.prev_rules.is_empty();
         if !using_gaps {
             data.prev_rules.clear();
+            data.rho = 1.0;
         } else if !data.prev_rules.is_empty() {
             data.gap_age += 1;
         }
@@ -334,6 +403,11 @@ impl AgentCore {
         let mut p = (*old).clone();
         if let Some(Action::Make(m)) = p.actions.first_mut() {
             m.referent = Some(RhsTerm::Const(Constant::Float(value)));
+        }
+        if self.rl.params.meta {
+            if let Some(v) = self.rl.rules.get(&rule) {
+                p.doc = Some(super::update_log::meta_text(v.updates, v.dbd_h));
+            }
         }
         self.replace_production(rule, p);
         let sym = self.symbols.float(value);
