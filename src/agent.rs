@@ -655,13 +655,14 @@ impl AgentCore {
         // 9.6 creates a rule's constants as it parses it, then reorders its conditions
         // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&p, &mut self.symbols);
-        let conds = std::mem::take(&mut p.conditions);
-        p.conditions =
+        let conds = std::sync::Arc::unwrap_or_clone(std::mem::take(&mut p.conditions));
+        let mut conds =
             crate::rete::reorder::reorder_owned(conds, &self.symbols, &self.multi_attributes);
         if p.flags.chunk || p.flags.justification {
-            crate::rete::reorder::equality_first(&mut p.conditions);
+            crate::rete::reorder::equality_first(&mut conds);
         }
-        self.rete.share_var_names(&mut p.conditions);
+        self.rete.share_var_names(&mut conds);
+        p.conditions = conds.into();
         let replaced = self.excise(&p.name);
         let value = p.rl_value().filter(|_| by_value);
         let by_id = &self.by_id;

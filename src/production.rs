@@ -28,7 +28,8 @@ pub struct Production {
     pub name: String,
     pub doc: Option<String>,
     pub flags: Flags,
-    pub conditions: Vec<Condition>,
+    /// Shared between a rule and its changed copies (an RL rule with a new value).
+    pub conditions: std::sync::Arc<Vec<Condition>>,
     pub actions: Vec<Action>,
     pub span: Span,
 }
@@ -293,11 +294,11 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
         name: p.name.clone(),
         doc: p.doc.clone(),
         flags,
-        conditions,
+        conditions: conditions.into(),
         actions,
         span: p.span,
     };
-    drop_unbound_relational(&mut prod.conditions, &FxHashSet::default(), &prod.name)?;
+    drop_unbound_relational(std::sync::Arc::<Vec<Condition>>::make_mut(&mut prod.conditions).as_mut_slice(), &FxHashSet::default(), &prod.name)?;
     check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
     Ok(prod)
@@ -1184,7 +1185,7 @@ impl<'a> Names<'a> {
 
 fn bound_names(p: &Production) -> Names<'_> {
     let mut bound = Names::for_at_most(3 * p.conditions.len());
-    for c in &p.conditions {
+    for c in p.conditions.iter() {
         if let Condition::Positive(c) = c {
             for t in [&c.id, &c.attr, &c.value] {
                 if let Some(v) = equality_var(t) {

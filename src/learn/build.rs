@@ -601,7 +601,7 @@ impl AgentCore {
                 justification: !variablize,
                 ..Flags::default()
             },
-            conditions,
+            conditions: conditions.into(),
             actions,
             span: Default::default(),
         }

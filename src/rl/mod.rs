@@ -79,6 +79,9 @@ pub struct RlState {
     pub stats: RlStats,
     /// The importance ratio of the operator the last decision selected (GQ(λ)).
     pub selected_rho: f64,
+    /// The rule each template match shape made; forgotten whenever a rule
+    /// is excised.
+    pub template_rules: FxHashMap<(ProdId, Vec<u64>), ProdId>,
     /// The number of the last rule a template made (`rl*<template>*<n>`); `init-soar`
     /// keeps it.
     pub template_count: u64,
@@ -105,6 +108,7 @@ impl RlState {
     /// Forgets an excised rule (states that remember it pass over it).
     pub fn rule_excised(&mut self, id: ProdId) {
         self.rules.remove(&id);
+        self.template_rules.clear();
     }
 
     pub fn is_rl_rule(&self, id: ProdId) -> bool {

@@ -5,7 +5,8 @@
 //! its letter and counted per letter (`<s1>`, `<o1>`), each constant itself; a negated
 //! condition keeps its tests with the values the match bound. Its action is the template's,
 //! with the same values. A match whose rule is already loaded (the same conditions and
-//! action, whatever the value learned) adds nothing and takes no number.
+//! action, whatever the value learned) adds nothing and takes no number; the shapes of
+//! the matches that made rules are remembered, so that such a match costs no rule build.
 //!
 //! 9.6 makes templates' rules whether learning is on or off, and the numbers go on across
 //! `init-soar`. In episodes after the first, 9.6 sometimes makes, for a match whose rule is
@@ -140,6 +141,12 @@ impl AgentCore {
             .into_iter()
             .map(|w| self.wm.get(w).copied())
             .collect();
+        // A match shaped like one that already made a rule makes the same rule, which is
+        // loaded: a duplicate, known without building it.
+        let shape = (p, self.match_shape(&wmes));
+        if self.rl.template_rules.contains_key(&shape) {
+            return;
+        }
         let mut b = Binder::default();
         let mut conditions = Vec::new();
         let positives = template
@@ -160,7 +167,7 @@ impl AgentCore {
                 }
             }
         }
-        for c in &template.conditions {
+        for c in template.conditions.iter() {
             let made = match c {
                 Condition::Positive(c) => {
                     let Some(Some(w)) = wmes.get(conditions_positive_index(&conditions)) else {
@@ -206,7 +213,7 @@ impl AgentCore {
             name: name.clone(),
             doc: None,
             flags: Flags::default(),
-            conditions,
+            conditions: conditions.into(),
             actions,
             // Made, not sourced: `print --filename` names no file (`_unknown_`).
             span: crate::source::Span::default(),
@@ -220,6 +227,7 @@ impl AgentCore {
         let Some(id) = self.loaded(&name).map(|l| l.id) else {
             return;
         };
+        self.rl.template_rules.insert(shape, id);
         // The new rule's matches leave the queue and fire now.
         self.matches.compact();
         let mine: Vec<TokId> = self
@@ -239,6 +247,36 @@ impl AgentCore {
             self.matches.support.remove(&(id, tok));
             self.fire(id, tok, o_support, new_prefs);
         }
+    }
+}
+
+impl AgentCore {
+    /// What a template's rule is made from: each field of the matched WMEs, a constant as
+    /// itself and an identifier by its letter and the place it first appeared (the rule
+    /// names identifiers' variables by letter, in order).
+    fn match_shape(&self, wmes: &[Option<crate::wm::Wme>]) -> Vec<u64> {
+        let mut firsts: Vec<Sym> = Vec::new();
+        let mut shape = Vec::with_capacity(wmes.len() * 3);
+        for w in wmes {
+            let Some(w) = w else {
+                shape.push(u64::MAX);
+                continue;
+            };
+            for s in [w.id, w.attr, w.value] {
+                let code = match self.symbols.get(s) {
+                    SymData::Id(d) => {
+                        let place = firsts.iter().position(|f| *f == s).unwrap_or_else(|| {
+                            firsts.push(s);
+                            firsts.len() - 1
+                        });
+                        1 << 63 | u64::from(d.letter) << 32 | place as u64
+                    }
+                    _ => u64::from(s.0),
+                };
+                shape.push(code);
+            }
+        }
+        shape
     }
 }
 

@@ -214,7 +214,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
         name: name.into(),
         doc: None,
         flags: Flags::default(),
-        conditions,
+        conditions: conditions.into(),
         actions: Vec::new(),
         span: Span::default(),
     }
@@ -586,7 +586,7 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
                 // them; the naive matcher reads the rule as written.
                 let mut joined = p.clone();
                 reorder::intern_in_text_order(&p, &mut syms);
-                joined.conditions = reorder::reorder(&p.conditions, &syms);
+                joined.conditions = reorder::reorder(&p.conditions, &syms).into();
                 match rete.add_production(&joined, &mut syms, &mut sink, &|_| false) {
                     Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added, as in Soar.

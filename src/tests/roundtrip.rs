@@ -1090,7 +1090,7 @@ fn zero_conds(cs: &mut [Condition]) {
 fn strip(p: &Production) -> Production {
     let mut p = p.clone();
     p.span = Span::default();
-    zero_conds(&mut p.conditions);
+    zero_conds(std::sync::Arc::<Vec<Condition>>::make_mut(&mut p.conditions).as_mut_slice());
     for a in &mut p.actions {
         match a {
             Action::Make(m) => {
@@ -1240,7 +1240,7 @@ fn as_loaded(p: &Production) -> Production {
         reorder::equality_first(&mut conditions);
     }
     Production {
-        conditions,
+        conditions: conditions.into(),
         ..p.clone()
     }
 }
@@ -1261,7 +1261,7 @@ fn round_trip(src: &str) -> Result<(), String> {
     }
     let (g1, s2) = (strip(&p1), strip(&p2));
     let expected = Production {
-        conditions: regroup(&g1.conditions),
+        conditions: regroup(&g1.conditions).into(),
         actions: regroup_actions(&g1.actions),
         ..g1
     };
