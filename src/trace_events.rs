@@ -82,6 +82,10 @@ pub(crate) enum TraceEvent<'a> {
         after: [f64; 3],
     },
     /// A gap in RL rule coverage starts or ends on a state (`trace --rl`).
+    /// A candidate of an indifferent choice by epsilon-greedy or Boltzmann exploration,
+    /// with its numeric value and, under Boltzmann, the chance it is chosen
+    /// (`trace --indifferent-selection`).
+    Candidate { value: Sym, sum: f64, probability: Option<f64> },
     /// The update log (`rl --set update-log-path`) could not take a line.
     RlLogError { path: &'a str, message: &'a str },
     RlGap { started: bool, goal: Sym },

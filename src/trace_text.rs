@@ -165,6 +165,16 @@ impl TraceText96 {
                 out.push_str(&crate::rl::update_line(rule, before, after));
                 out.push('\n');
             }
+            TraceEvent::Candidate {
+                value,
+                sum,
+                probability,
+            } => {
+                let _ = write!(out, "\n Candidate {}:  Value (Sum) = {sum:.6}", symbols.text(value));
+                if let Some(p) = probability {
+                    let _ = write!(out, ", (Prob) = {p:.6}");
+                }
+            }
             TraceEvent::RlLogError { path, message } => {
                 let _ = writeln!(out, "Error: the RL update log {path} cannot be written: {message}");
             }

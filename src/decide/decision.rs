@@ -3,7 +3,7 @@
 //! without a selected operator whose preferences changed is decided; a winner is installed,
 //! otherwise the goal impasses. With nothing to decide, the bottom goal has a no-change.
 
-use super::procedure::{self, Outcome, Policy, Pref};
+use super::procedure::{self, NumericMode, Outcome, Policy, Pref};
 use crate::agent::Exploration;
 use super::state::ImpasseKind;
 use crate::agent::AgentCore;
@@ -56,7 +56,12 @@ impl AgentCore {
             let prefs = self.slot_prefs((goal.state, op));
             let outcome = match self.take_forced_operator(&prefs) {
                 Some(o) => Outcome::Winner(o),
-                None => procedure::decide(&prefs, policy, numeric_mode, &mut self.rng),
+                None => {
+                    if self.settings.trace.indifferent {
+                        self.trace_candidates(&prefs, policy, numeric_mode);
+                    }
+                    procedure::decide(&prefs, policy, numeric_mode, &mut self.rng)
+                }
             };
             let (kind, on_operator, items) = match outcome {
                 Outcome::Winner(o) => {
@@ -195,6 +200,35 @@ impl AgentCore {
     }
 
     /// The exploration policy of `indifferent-selection`, with its parameter.
+    /// `trace --indifferent-selection`: before epsilon-greedy or Boltzmann exploration
+    /// chooses among indifferent candidates, each candidate's value (and, for Boltzmann,
+    /// its chance), as 9.6 lists them; the other policies list nothing.
+    fn trace_candidates(&mut self, prefs: &[Pref], policy: Policy, mode: NumericMode) {
+        let Ok(cands) = procedure::candidates(prefs) else {
+            return;
+        };
+        if cands.len() < 2 {
+            return;
+        }
+        let values: Vec<f64> = cands
+            .iter()
+            .map(|c| procedure::numeric_value(prefs, *c, mode))
+            .collect();
+        let chances = match policy {
+            Policy::EpsilonGreedy { .. } => None,
+            Policy::Boltzmann { temperature } => Some(procedure::boltzmann_chances(&values, temperature)),
+            _ => return,
+        };
+        for (i, (&value, &sum)) in cands.iter().zip(&values).enumerate() {
+            let probability = chances.as_ref().map(|c| c[i]);
+            self.emit(&TraceEvent::Candidate {
+                value,
+                sum,
+                probability,
+            });
+        }
+    }
+
     fn exploration_policy(&self) -> Policy {
         match self.settings.exploration {
             Exploration::First => Policy::First,

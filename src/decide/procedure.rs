@@ -34,6 +34,21 @@ pub struct Pref {
     pub number: Option<f64>,
 }
 
+/// Boltzmann's weight of each value, `e^((Q - Q_max) / t)`: the largest is 1, so no
+/// exponential overflows.
+fn boltzmann_weights(values: &[f64], temperature: f64) -> Vec<f64> {
+    let t = if temperature > 0.0 { temperature } else { 1.0 };
+    let max = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+    values.iter().map(|q| ((q - max) / t).exp()).collect()
+}
+
+/// The chance Boltzmann exploration gives each value.
+pub fn boltzmann_chances(values: &[f64], temperature: f64) -> Vec<f64> {
+    let weights = boltzmann_weights(values, temperature);
+    let total: f64 = weights.iter().sum();
+    weights.iter().map(|w| w / total).collect()
+}
+
 #[cfg(test)]
 impl Pref {
     pub fn unary(kind: PrefType, value: Sym) -> Self {
@@ -280,9 +295,7 @@ pub fn choose(values: &[f64], policy: Policy, rng: &mut Mt19937) -> usize {
             }
         }
         Policy::Boltzmann { temperature } => {
-            let t = if temperature > 0.0 { temperature } else { 1.0 };
-            let max = values.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
-            let weights: Vec<f64> = values.iter().map(|q| ((q - max) / t).exp()).collect();
+            let weights = boltzmann_weights(values, temperature);
             let total: f64 = weights.iter().sum();
             let r = total * rng.rand_float();
             let mut acc = 0.0;
