@@ -1,0 +1,49 @@
+//! What the fuzz targets share: an agent that cannot run for ever, in a folder of its own,
+//! and the filter that keeps fuzzed commands from reaching files outside that folder.
+
+use rusoar::{Agent, AgentEvent};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+
+/// Events (phases, firings, WME changes) an agent may make before its run is stopped: a
+/// fuzzed agent may loop for ever by design (`run` with no count, a rule that elaborates
+/// without end under a raised `max-elaborations`), which is no finding.
+pub const EVENT_BUDGET: u64 = 50_000;
+
+/// Inputs longer than this are passed over: long inputs slow the search and find nothing
+/// short ones do not.
+pub const MAX_INPUT: usize = 4096;
+
+/// A fresh agent whose runs stop once [`EVENT_BUDGET`] events have happened, working in a
+/// folder of its own.
+pub fn bounded_agent() -> Agent {
+    let mut agent = Agent::new("fuzz");
+    agent.set_working_directory(scratch_dir());
+    let flag: Arc<AtomicBool> = agent.interrupt_flag();
+    let mut events = 0u64;
+    agent.on_event(move |_: &AgentEvent| {
+        events += 1;
+        if events > EVENT_BUDGET {
+            flag.store(true, Ordering::Relaxed);
+        }
+    });
+    agent
+}
+
+/// The folder fuzzed commands may write in (`save`, `output log`, `command-to-file`).
+pub fn scratch_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rusoar-fuzz-{}", std::process::id()));
+    let _ = std::fs::create_dir_all(&dir);
+    dir
+}
+
+/// Whether fuzzed text may be given to the command language: it names no path outside
+/// the scratch folder (no `/`, `\`, `..` or `~`), and it is not too long.
+pub fn confined(text: &str) -> bool {
+    text.len() <= MAX_INPUT
+        && !text.contains('/')
+        && !text.contains('\\')
+        && !text.contains("..")
+        && !text.contains('~')
+}
