@@ -49,6 +49,7 @@ kernel_modules!(
 
 mod api;
 mod ids;
+mod invariants;
 /// The README's Rust examples, compiled and run as tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

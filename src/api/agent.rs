@@ -120,6 +120,18 @@ impl Agent {
         }
     }
 
+    /// The kernel's consistency checks (for tests and fuzzing): every WME linked to a goal,
+    /// no matcher token holding a removed WME, slots agreeing with their preferences and
+    /// WMEs. Each broken one is described; they hold between runs whatever the agent did.
+    pub fn check_invariants(&self) -> Result<(), Vec<String>> {
+        let found = self.interp.agent.invariant_violations();
+        if found.is_empty() {
+            Ok(())
+        } else {
+            Err(found)
+        }
+    }
+
     /// The agent's name.
     pub fn name(&self) -> &str {
         &self.interp.agent.name

@@ -292,6 +292,11 @@ pub struct Slots {
 }
 
 impl Slots {
+    /// Every slot with its key, in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = (&(Sym, Sym), &Slot)> + '_ {
+        self.map.iter().map(|(k, &i)| (k, &self.arena[i]))
+    }
+
     pub fn get(&self, key: &(Sym, Sym)) -> Option<&Slot> {
         self.map.get(key).map(|&i| &self.arena[i])
     }

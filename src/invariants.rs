@@ -1,0 +1,126 @@
+//! The kernel's consistency checks, for tests and fuzzing: properties that hold between
+//! phases of the decision cycle whatever the agent does. A violation names the structure
+//! and the element that break it.
+//!
+//! - Every WME's identifier is linked to a goal (through WMEs, acceptable-preference ones
+//!   included): garbage collection leaves nothing unlinked (Soar manual, ch. 2, "Working
+//!   memory", on the removal of unlinked elements).
+//! - No token of the matcher holds a WME that left working memory.
+//! - Each slot's preferences are live and are for that slot's identifier and attribute,
+//!   and each WME a slot shows is in working memory with the slot's identifier and
+//!   attribute.
+
+use crate::agent::AgentCore;
+use crate::rete::NIL_WME;
+use crate::symbols::Sym;
+use rustc_hash::FxHashSet;
+
+impl AgentCore {
+    /// Every broken invariant, described; empty when all hold.
+    pub(crate) fn invariant_violations(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        self.check_links(&mut out);
+        self.check_tokens(&mut out);
+        self.check_slots(&mut out);
+        out
+    }
+
+    fn check_links(&self, out: &mut Vec<String>) {
+        let mut linked: FxHashSet<Sym> = FxHashSet::default();
+        let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
+        stack.push(self.top.state);
+        while let Some(id) = stack.pop() {
+            if !linked.insert(id) {
+                continue;
+            }
+            for w in self.wm.of_id(id) {
+                if let Some(wme) = self.wm.get(w) {
+                    if self.symbols.is_id(wme.value) && !linked.contains(&wme.value) {
+                        stack.push(wme.value);
+                    }
+                }
+            }
+        }
+        for w in self.wm.all() {
+            let Some(wme) = self.wm.get(w) else { continue };
+            if !linked.contains(&wme.id) {
+                out.push(format!(
+                    "working memory: ({}: {} ^{} {}) is not linked to any goal",
+                    wme.timetag,
+                    self.symbols.text(wme.id),
+                    self.symbols.text(wme.attr),
+                    self.symbols.text(wme.value)
+                ));
+            }
+        }
+    }
+
+    fn check_tokens(&self, out: &mut Vec<String>) {
+        for (i, tok) in self.rete.tokens.iter().enumerate() {
+            if !tok.alive {
+                continue;
+            }
+            let t = crate::rete::TokId::new(i as u32);
+            for &w in self.rete.token_row(t) {
+                if w != NIL_WME && self.wm.get(w).is_none() {
+                    out.push(format!(
+                        "matcher: token {i} holds a WME no longer in working memory"
+                    ));
+                }
+            }
+        }
+    }
+
+    fn check_slots(&self, out: &mut Vec<String>) {
+        for ((id, attr), slot) in self.decider.slots.iter() {
+            let name = format!("({} ^{})", self.symbols.text(*id), self.symbols.text(*attr));
+            for &pid in &slot.prefs {
+                let p = &self.decider.prefs[pid];
+                if p.freed || !p.alive {
+                    out.push(format!("slot {name}: holds a preference that was removed"));
+                } else if p.id != *id || p.attr != *attr {
+                    out.push(format!(
+                        "slot {name}: holds a preference for ({} ^{})",
+                        self.symbols.text(p.id),
+                        self.symbols.text(p.attr)
+                    ));
+                }
+            }
+            for (value, acceptable, w) in slot.wmes.iter() {
+                match self.wm.get(w) {
+                    Some(wme)
+                        if wme.id == *id
+                            && wme.attr == *attr
+                            && wme.value == value
+                            && wme.acceptable == acceptable => {}
+                    _ => out.push(format!(
+                        "slot {name}: shows {} by a WME that is not in working memory as such",
+                        self.symbols.text(value)
+                    )),
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::agent::AgentCore;
+
+    #[test]
+    fn a_fresh_agent_holds_every_invariant() {
+        let core = AgentCore::new("t");
+        assert_eq!(core.invariant_violations(), Vec::<String>::new());
+    }
+
+    #[test]
+    fn an_element_on_an_unlinked_identifier_is_named() {
+        let mut core = AgentCore::new("t");
+        let loose = core.symbols.new_id('X', 1);
+        let (attr, value) = (core.symbols.str("color"), core.symbols.str("red"));
+        core.add_wme(loose, attr, value, false);
+        let found = core.invariant_violations();
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].contains("X1 ^color red") && found[0].contains("not linked"));
+    }
+}
