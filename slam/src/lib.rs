@@ -25,6 +25,7 @@ pub mod ekf;
 pub mod experiment;
 pub mod fixed;
 pub mod functions;
+pub mod functions_v2;
 pub mod geom;
 pub mod io_log;
 pub mod odometry;

@@ -817,6 +817,7 @@ impl SoarRobot {
         } else {
             super::functions::register(&mut agent);
         }
+        super::functions_v2::register(&mut agent);
         let env = Rc::new(RefCell::new(Env {
             log: cfg.io_log.then(IoLog::default),
             sim: Simulator::with_models(
