@@ -34,6 +34,7 @@ use std::time::Instant;
 use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
+use super::compare::{self, Method, Series};
 use super::ekf;
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
@@ -83,14 +84,17 @@ fn command() -> Command {
         .arg(
             Arg::new("method")
                 .long("method")
-                .value_name("thesis|dr|ekf")
+                .value_name("dr|thesis|v2|ekf|oracle")
                 .action(ArgAction::Append)
                 .value_delimiter(',')
-                .value_parser(["thesis", "dr", "ekf"])
+                .value_parser(Method::NAMES)
                 .help(
                     "Localisation methods, repeatable: thesis (the conditions --slam picks), dr \
                      (dead reckoning: the run without the SLAM rules), ekf (an EKF SLAM over the \
-                     same odometry and Hough walls, written to ekf.md); default thesis",
+                     same odometry and Hough walls, written to ekf.md), v2 (rules/v2), oracle \
+                     (rules v2 against the true map); with v2 or oracle every method runs over \
+                     the same seeds into its own folder and comparison.md compares them; \
+                     default thesis",
                 ),
         )
         .arg(
@@ -236,6 +240,12 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         .get_many::<String>("method")
         .map(|v| v.map(String::as_str).collect())
         .unwrap_or_else(|| vec!["thesis"]);
+    let mut parsed: Vec<Method> = methods
+        .iter()
+        .map(|m| m.parse::<Method>())
+        .collect::<Result<_, _>>()?;
+    parsed.sort();
+    parsed.dedup();
     let thesis = methods.contains(&"thesis");
     let ekf = methods.contains(&"ekf");
     let needs_off = ekf || methods.contains(&"dr");
@@ -316,6 +326,8 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         ablation,
         ekf,
         command_line: String::new(),
+        oracle: false,
+        methods: parsed,
     })
 }
 
@@ -332,6 +344,23 @@ pub fn main(args: &[String]) -> ExitCode {
             };
         }
     };
+    if opts
+        .methods
+        .iter()
+        .any(|m| matches!(m, Method::V2 | Method::Oracle))
+    {
+        return match run_comparison(&opts, true) {
+            Ok(text) => {
+                print!("{text}");
+                println!("Wrote {}", opts.out.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     match run_experiment(&opts, true) {
         Ok(exp) => {
             print!("{}", exp.table());
@@ -393,6 +422,7 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                     cfg.rules_dir = opts.rules_dir.clone();
                     cfg.io_log = opts.io_log;
                     cfg.ablation = opts.ablation.clone();
+                    cfg.oracle = opts.oracle;
                     if seed == opts.first_seed {
                         let n = cfg.steps();
                         cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
@@ -466,7 +496,9 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         noise: opts.world.run.noise,
         world: opts.world.clone(),
         example_seed: opts.first_seed,
+        ekf_runs: Vec::new(),
     };
+    let mut exp = exp;
     let write = |name: &str, text: String| -> Result<(), String> {
         let p = opts.out.join(name);
         std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
@@ -485,8 +517,103 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         };
         write("ekf.md", ekf::table::markdown(&runs, &dr, &thesis, command))?;
         write("ekf-runs.csv", ekf::table::runs_csv(&runs, &dr))?;
+        exp.ekf_runs = runs;
     }
     Ok(exp)
+}
+
+/// The rules v2 folder beside the thesis rules.
+pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
+    thesis_rules.join("v2")
+}
+
+/// Every method of `opts.methods` over the same seeds, each Soar rule set into its own
+/// folder under `opts.out` (`thesis/`, `v2/`, `oracle/`; dead reckoning and the EKF come from
+/// the runs without the SLAM rules, in `thesis/` or `dr/`), then `comparison.md`,
+/// `comparison.csv` and `fig-compare` in `opts.out`. Returns the table it printed.
+pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> {
+    let has = |m: Method| opts.methods.contains(&m);
+    let mut series: Vec<Series> = Vec::new();
+    let world = &opts.world;
+    if has(Method::Dr) || has(Method::Thesis) || has(Method::Ekf) {
+        let mut o = opts.clone();
+        o.slam = if has(Method::Thesis) {
+            SlamMode::Both
+        } else {
+            SlamMode::Off
+        };
+        o.out = opts
+            .out
+            .join(if has(Method::Thesis) { "thesis" } else { "dr" });
+        o.oracle = false;
+        let exp = run_experiment(&o, progress)?;
+        let runs = |slam: bool| -> Vec<&RunSummary> {
+            exp.runs.iter().filter(|r| r.slam == slam).collect()
+        };
+        series.push(Series::of_runs(Method::Dr, &runs(false), world));
+        if has(Method::Thesis) {
+            series.push(Series::of_runs(Method::Thesis, &runs(true), world));
+        }
+        if has(Method::Ekf) {
+            series.push(Series {
+                method: Method::Ekf,
+                pos: exp
+                    .ekf_runs
+                    .iter()
+                    .map(|r| (r.seed, r.steps.iter().map(|k| k.pos_err_mm).collect()))
+                    .collect(),
+                head: exp
+                    .ekf_runs
+                    .iter()
+                    .map(|r| (r.seed, r.steps.iter().map(|k| k.heading_err_deg).collect()))
+                    .collect(),
+                rules: None,
+            });
+        }
+    }
+    for (method, oracle) in [(Method::V2, false), (Method::Oracle, true)] {
+        if !has(method) {
+            continue;
+        }
+        let mut o = opts.clone();
+        o.slam = SlamMode::On;
+        o.ekf = false;
+        o.io_log = false;
+        o.oracle = oracle;
+        o.rules_dir = v2_rules_dir(&opts.rules_dir);
+        o.ablation = Ablation::new(
+            opts.ablation.drift,
+            &[Variant::Tenths],
+            Constants::default(),
+        )?;
+        o.out = opts.out.join(method.name());
+        let exp = run_experiment(&o, progress)?;
+        let runs: Vec<&RunSummary> = exp.runs.iter().filter(|r| r.slam).collect();
+        series.push(Series::of_runs(method, &runs, world));
+    }
+    series.sort_by_key(|x| x.method);
+    let command = if opts.command_line.is_empty() {
+        "rusoar slam --method dr,thesis,v2,ekf,oracle"
+    } else {
+        &opts.command_line
+    };
+    let setup = format!(
+        "World `{}` ({} sonar), drift `{}`, {} s per run, seeds from {}:",
+        opts.world_label,
+        opts.world.run.noise,
+        opts.ablation.drift,
+        opts.duration_s,
+        opts.first_seed
+    );
+    let text = compare::markdown(&series, command, &setup);
+    let write = |name: &str, body: String| -> Result<(), String> {
+        let p = opts.out.join(name);
+        std::fs::write(&p, body).map_err(|e| format!("cannot write {}: {e}", p.display()))
+    };
+    write("comparison.md", text.clone())?;
+    write("comparison.csv", compare::csv(&series))?;
+    compare::figure(&series, opts.world.run.dt, &opts.out)?;
+    Ok(text)
 }
 
 /// The step from which the example run keeps one pipeline output for the Hough figure: 30 s in,

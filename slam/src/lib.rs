@@ -21,6 +21,7 @@
 //! 2.0.x's `model_ranger.c` and `model_position.c` (sonar and odometry models).
 
 pub mod attribution;
+pub mod compare;
 pub mod ekf;
 pub mod experiment;
 pub mod fixed;

@@ -65,6 +65,10 @@ pub struct Options {
     pub ekf: bool,
     /// The command line, as the EKF's table quotes it.
     pub command_line: String,
+    /// `--method`, in the order of [`super::compare::Method::NAMES`].
+    pub methods: Vec<super::compare::Method>,
+    /// Put the true walls on the input-link and load `oracle.soar` (`--method oracle`).
+    pub oracle: bool,
 }
 
 /// The numbers of one run, kept after its steps are written out.
@@ -208,6 +212,8 @@ pub struct Experiment {
     pub world: World,
     /// The seed whose maps, snapshots and Hough space are plotted (the first seed).
     pub example_seed: u64,
+    /// The EKF runs (`--method ekf`), by seed.
+    pub ekf_runs: Vec<super::ekf::EkfRun>,
 }
 
 impl Experiment {
