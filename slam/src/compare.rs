@@ -12,84 +12,26 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::str::FromStr;
 
 use plotters::style::RGBColor;
 
 use super::ekf::table::ErrorsBySeed;
 use super::geom::Point;
+pub use super::method::Method;
 use super::report::figures::{save, Band, BandSeries, TimeBands};
 use super::report::mapeval::{score, Gate};
 use super::results::RunSummary;
 use super::stats::{p_is, quantile, wilcoxon};
 use super::world::World;
 
-/// A localisation method of `--method`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum Method {
-    /// Dead reckoning: the moving rules alone, the believed pose is the odometry.
-    Dr,
-    /// The thesis's SLAM rules (`rules/`).
-    Thesis,
-    /// Rules v2 (`rules/v2/`).
-    V2,
-    /// The EKF over the dead-reckoning runs' odometry and walls (`slam/src/ekf/`).
-    Ekf,
-    /// Rules v2 against the true map (`rules/v2/oracle.soar`).
-    Oracle,
-}
-
-impl Method {
-    /// The names `--method` takes, in the order the table lists them.
-    pub const NAMES: [&'static str; 5] = ["dr", "thesis", "v2", "ekf", "oracle"];
-
-    /// The name on the command line and in file names.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Dr => "dr",
-            Method::Thesis => "thesis",
-            Method::V2 => "v2",
-            Method::Ekf => "ekf",
-            Method::Oracle => "oracle",
-        }
-    }
-
-    /// The name in tables and legends.
-    pub fn label(self) -> &'static str {
-        match self {
-            Method::Dr => "dead reckoning",
-            Method::Thesis => "thesis rules",
-            Method::V2 => "rules v2",
-            Method::Ekf => "EKF",
-            Method::Oracle => "oracle (true map)",
-        }
-    }
-
-    fn colour(self) -> RGBColor {
-        match self {
-            Method::Dr => RGBColor(205, 65, 40),
-            Method::Thesis => RGBColor(150, 90, 170),
-            Method::V2 => RGBColor(35, 95, 200),
-            Method::Ekf => RGBColor(60, 150, 70),
-            Method::Oracle => RGBColor(120, 120, 120),
-        }
-    }
-}
-
-impl FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "dr" => Ok(Method::Dr),
-            "thesis" => Ok(Method::Thesis),
-            "v2" => Ok(Method::V2),
-            "ekf" => Ok(Method::Ekf),
-            "oracle" => Ok(Method::Oracle),
-            _ => Err(format!(
-                "unknown method `{s}` (expected one of: {})",
-                Method::NAMES.join(", ")
-            )),
-        }
+/// A method's colour in the figure.
+fn colour(m: Method) -> RGBColor {
+    match m {
+        Method::Dr => RGBColor(205, 65, 40),
+        Method::Thesis => RGBColor(150, 90, 170),
+        Method::V2 => RGBColor(35, 95, 200),
+        Method::Ekf => RGBColor(60, 150, 70),
+        Method::Oracle => RGBColor(120, 120, 120),
     }
 }
 
@@ -467,7 +409,7 @@ pub fn figure(series: &[Series], dt: f64, dir: &std::path::Path) -> Result<(), S
             .iter()
             .map(|(m, b)| BandSeries {
                 label: m.label().into(),
-                color: m.colour(),
+                color: colour(*m),
                 band: b,
                 dashed: false,
             })
@@ -479,14 +421,6 @@ pub fn figure(series: &[Series], dt: f64, dir: &std::path::Path) -> Result<(), S
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn method_names_round_trip() {
-        for n in Method::NAMES {
-            assert_eq!(n.parse::<Method>().map(Method::name), Ok(n));
-        }
-        assert!("kalman".parse::<Method>().unwrap_err().contains("oracle"));
-    }
 
     #[test]
     fn the_median_interval_of_twenty_values_is_the_sixth_and_fifteenth() {

@@ -184,7 +184,7 @@ mod tests {
     fn wrap90_reduces_to_the_nearest_right_angle() {
         assert_eq!(wrap90(91.0, 0.0), 1.0);
         assert_eq!(wrap90(359.0, 0.0), -1.0);
-        assert_eq!(wrap90(182.0, 3.0), -11.0);
+        assert_eq!(wrap90(182.0, 3.0), -1.0);
         assert_eq!(wrap90(45.0, 0.0), -45.0);
     }
 

@@ -29,6 +29,7 @@ pub mod functions;
 pub mod functions_v2;
 pub mod geom;
 pub mod io_log;
+pub mod method;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;

@@ -65,8 +65,8 @@ pub struct Options {
     pub ekf: bool,
     /// The command line, as the EKF's table quotes it.
     pub command_line: String,
-    /// `--method`, in the order of [`super::compare::Method::NAMES`].
-    pub methods: Vec<super::compare::Method>,
+    /// `--method`, in the order of [`super::method::Method::NAMES`].
+    pub methods: Vec<super::method::Method>,
     /// Put the true walls on the input-link and load `oracle.soar` (`--method oracle`).
     pub oracle: bool,
 }

@@ -651,7 +651,14 @@ impl Env {
         agent.add(reference, "Th", wall.reference.th)?;
         agent.add(id, "Length", wall.length)?;
         agent.add(id, "R", wall.r)?;
-        agent.add(id, "Th", wall.th)?;
+        if self.tenths {
+            // Rules v2 reads angles in tenths of a degree: its heading correction is only as
+            // good as the wall angles it compares.
+            let t = (wall.line.1 * 10.0).round().rem_euclid(3600.0) / 10.0;
+            agent.add(id, "Th", t)?;
+        } else {
+            agent.add(id, "Th", wall.th)?;
+        }
         agent.add(id, "Time", wall.time)?;
         self.stats.walls_extracted += 1;
         let serial = self.stats.walls_extracted;
