@@ -109,7 +109,7 @@ fn command() -> Command {
                 .long("world")
                 .value_name("FILE")
                 .default_value("empty-room")
-                .help("World file (TOML), or a built-in world: empty-room, box-partition"),
+                .help("World file (TOML), or a built-in world: empty-room, box-partition, l-room, box-room"),
         )
         .arg(
             Arg::new("out")
