@@ -236,10 +236,21 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             duration_s = 60.0;
         }
     }
+    // Without --method the full comparison runs, unless an option of the thesis rules' own
+    // experiment (--slam, an ablation, a constant) asks for that experiment alone.
+    let classic = ["slam", "variant", "r-tolerance", "th-tolerance", "overlap"]
+        .iter()
+        .any(|id| given(id));
     let methods: Vec<&str> = m
         .get_many::<String>("method")
         .map(|v| v.map(String::as_str).collect())
-        .unwrap_or_else(|| vec!["thesis"]);
+        .unwrap_or_else(|| {
+            if classic {
+                vec!["thesis"]
+            } else {
+                Method::NAMES.to_vec()
+            }
+        });
     let mut parsed: Vec<Method> = methods
         .iter()
         .map(|m| m.parse::<Method>())
@@ -328,6 +339,7 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         command_line: String::new(),
         oracle: false,
         methods: parsed,
+        reports: true,
     })
 }
 
@@ -503,9 +515,11 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         let p = opts.out.join(name);
         std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
     };
-    write("runs.csv", exp.runs_csv())?;
-    write("summary.md", exp.summary_md(opts))?;
-    super::report::write_report(&exp, opts)?;
+    if opts.reports {
+        write("runs.csv", exp.runs_csv())?;
+        write("summary.md", exp.summary_md(opts))?;
+        super::report::write_report(&exp, opts)?;
+    }
     if opts.ekf {
         let mut runs = ekf_runs.into_inner().unwrap_or_else(|p| p.into_inner());
         runs.sort_by_key(|r| r.seed);
@@ -522,6 +536,20 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     Ok(exp)
 }
 
+/// `command` without its `--out DIR` (or `--out=DIR`).
+fn without_out(command: &str) -> String {
+    let mut words = command.split(' ');
+    let mut kept: Vec<&str> = Vec::new();
+    while let Some(w) = words.next() {
+        if w == "--out" {
+            words.next();
+        } else if !w.starts_with("--out=") {
+            kept.push(w);
+        }
+    }
+    kept.join(" ")
+}
+
 /// The rules v2 folder beside the thesis rules.
 pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
     thesis_rules.join("v2")
@@ -532,6 +560,11 @@ pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
 /// the runs without the SLAM rules, in `thesis/` or `dr/`), then `comparison.md`,
 /// `comparison.csv` and `fig-compare` in `opts.out`. Returns the table it printed.
 pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> {
+    // The reports quote the command without its output folder, so that they do not depend on
+    // where they were written.
+    let mut cleaned = opts.clone();
+    cleaned.command_line = without_out(&opts.command_line);
+    let opts = &cleaned;
     let has = |m: Method| opts.methods.contains(&m);
     let mut series: Vec<Series> = Vec::new();
     let world = &opts.world;
@@ -546,6 +579,7 @@ pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> 
             .out
             .join(if has(Method::Thesis) { "thesis" } else { "dr" });
         o.oracle = false;
+        o.reports = false;
         let exp = run_experiment(&o, progress)?;
         let runs = |slam: bool| -> Vec<&RunSummary> {
             exp.runs.iter().filter(|r| r.slam == slam).collect()
@@ -587,6 +621,7 @@ pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> 
             Constants::default(),
         )?;
         o.out = opts.out.join(method.name());
+        o.reports = false;
         let exp = run_experiment(&o, progress)?;
         let runs: Vec<&RunSummary> = exp.runs.iter().filter(|r| r.slam).collect();
         series.push(Series::of_runs(method, &runs, world));
@@ -1034,6 +1069,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_quoted_command_leaves_out_the_output_folder() {
+        assert_eq!(
+            without_out("rusoar slam --seeds 2 --out /tmp/x --quick"),
+            "rusoar slam --seeds 2 --quick"
+        );
+        assert_eq!(without_out("rusoar slam --out=/tmp/x"), "rusoar slam");
+    }
+
+    #[test]
     fn tum_lines_have_a_yaw_quaternion() {
         use super::super::geom::Pose;
         let t = tum([(0.1, Pose::new(1.0, -2.0, std::f64::consts::PI))].into_iter());
@@ -1049,7 +1093,10 @@ mod tests {
         let o = parse_options(&args(&[])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (20, 600.0, SlamMode::Both));
         assert_eq!(o.out, PathBuf::from("slam-out"));
-        assert!(!o.ekf);
+        assert!(o.ekf, "the default is the full comparison");
+        assert_eq!(o.methods.len(), Method::NAMES.len());
+        let o = parse_options(&args(&["--slam", "both"])).unwrap();
+        assert!(!o.ekf && o.methods == [Method::Thesis]);
         let o = parse_options(&args(&["--quick"])).unwrap();
         assert_eq!((o.seeds, o.duration_s), (2, 60.0));
         let o = parse_options(&args(&["--method", "ekf"])).unwrap();

@@ -69,6 +69,9 @@ pub struct Options {
     pub methods: Vec<super::method::Method>,
     /// Put the true walls on the input-link and load `oracle.soar` (`--method oracle`).
     pub oracle: bool,
+    /// Write `runs.csv`, `summary.md` and `report.md` (they quote wall-clock times, so a
+    /// comparison, which must repeat byte for byte, leaves them out of its method folders).
+    pub reports: bool,
 }
 
 /// The numbers of one run, kept after its steps are written out.

@@ -72,3 +72,49 @@ fn method_accepts_the_new_methods_and_rejects_unknown_ones() {
     assert_eq!(o.methods, [Method::Dr, Method::V2, Method::Oracle]);
     assert!(parse_options(&args(&["--method", "v3"])).is_err());
 }
+
+#[test]
+fn the_default_comparison_repeats_byte_for_byte() {
+    let base = std::env::temp_dir().join(format!("rusoar-compare-{}", std::process::id()));
+    let run = |name: &str| {
+        let dir = base.join(name);
+        let args: Vec<String> = ["--seeds", "2", "--duration", "30", "--jobs", "2", "--out"]
+            .iter()
+            .map(|s| s.to_string())
+            .chain([dir.display().to_string()])
+            .collect();
+        let opts = parse_options(&args).unwrap();
+        soar_slam::experiment::run_comparison(&opts, false).unwrap();
+        dir
+    };
+    let (a, b) = (run("a"), run("b"));
+    for f in [
+        "comparison.md",
+        "comparison.csv",
+        "fig-compare.svg",
+        "thesis/steps-on-1.csv",
+        "thesis/ekf.md",
+        "v2/steps-on-2.csv",
+        "v2/map-on-1.csv",
+        "oracle/believed-on-1.tum",
+    ] {
+        let (x, y) = (std::fs::read(a.join(f)), std::fs::read(b.join(f)));
+        assert!(x.is_ok(), "{f} missing");
+        assert!(x.ok() == y.ok(), "{f} differs between two runs");
+    }
+    assert!(
+        !a.join("thesis/summary.md").exists(),
+        "no wall-clock times in a comparison"
+    );
+    let md = std::fs::read_to_string(a.join("comparison.md")).unwrap();
+    for label in [
+        "dead reckoning",
+        "thesis rules",
+        "rules v2",
+        "EKF",
+        "oracle",
+    ] {
+        assert!(md.contains(label), "{label} missing from comparison.md");
+    }
+    let _ = std::fs::remove_dir_all(&base);
+}
