@@ -17,7 +17,7 @@
 //! | `v2-line-r` | `th r rx ry e` | its distance from the origin, ≥ 0 |
 //! | `v2-lo`, `v2-hi` | `rx ry e mth sx sy ex ey` | where the wall's ends, turned by −e about the robot, lie along the map line's direction (−sin, cos): the lower and the higher |
 //! | `v2-px`, `v2-py` | `mth mr s` | the point of the map line at `s` along it |
-//! | `v2-x`, `v2-y`, `v2-th` | `cx cy cth rx ry e d mth gr gth` | the corrected pose: turned by −gth·e about the robot's `^Ref` position, then moved by −gr·d along the map's normal |
+//! | `v2-x`, `v2-y`, `v2-th` | `cx cy cth rx ry e d mth gr gth` | the corrected pose: turned by −gth·e about (rx, ry), then moved by −gr·d along the map's normal |
 //!
 //! Wrong arguments (count or type) give an error message and no value, never a panic.
 
@@ -86,8 +86,8 @@ pub fn along(rx: f64, ry: f64, e: f64, mth: f64, px: f64, py: f64) -> f64 {
 }
 
 /// The corrected pose `(x, y, θ)`: the current believed pose `(cx, cy, cth)` turned by −gth·e
-/// about the robot's position when the wall was seen `(rx, ry)`, then moved by −gr·d along the
-/// map line's normal `mth`.
+/// about `(rx, ry)` (the rules give the robot's own position, so that a heading correction
+/// does not move it), then moved by −gr·d along the map line's normal `mth`.
 #[allow(clippy::too_many_arguments)]
 pub fn corrected(
     cx: f64,
