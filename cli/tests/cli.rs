@@ -308,6 +308,31 @@ fn slam_rejects_an_unknown_method_with_a_clear_error() {
 }
 
 #[test]
+fn the_slam_comparison_refuses_to_compare_failed_runs() {
+    let dir = std::env::temp_dir().join(format!("rusoar-compare-fail-{}", std::process::id()));
+    let out = rusoar(&[
+        "slam",
+        "--rules",
+        "/nonexistent",
+        "--seeds",
+        "1",
+        "--duration",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("did not complete") && stderr.contains("robotagent.soar"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!dir.join("comparison.md").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn slam_ekf_outputs_are_byte_identical_for_the_same_seed() {
     let base = std::env::temp_dir().join(format!("rusoar-ekf-same-{}", std::process::id()));
     let run = |name: &str| {

@@ -448,7 +448,8 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                         let mut all = errors.lock().unwrap_or_else(|p| p.into_inner());
                         all[usize::from(slam)].insert(seed, e);
                     }
-                    if opts.ekf && !slam && written.is_ok() {
+                    // A run that failed before its first step gives the filter nothing.
+                    if opts.ekf && !slam && written.is_ok() && !result.steps.is_empty() {
                         written = ekf::replay(&result, ekf::Noise::STAGE2_HOUGH)
                             .and_then(|run| {
                                 write_ekf_run(&opts.out, &run)?;
@@ -536,6 +537,20 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
     Ok(exp)
 }
 
+/// An error naming the first run of `exp` that did not complete: a comparison of methods
+/// is only made over complete runs.
+fn all_completed(exp: &Experiment, what: &str) -> Result<(), String> {
+    match exp.runs.iter().find(|r| !r.outcome.completed()) {
+        Some(r) => Err(format!(
+            "{what}: seed {} ({}) did not complete: {}",
+            r.seed,
+            condition_name(r.slam),
+            r.outcome
+        )),
+        None => Ok(()),
+    }
+}
+
 /// `command` without its `--out DIR` (or `--out=DIR`).
 fn without_out(command: &str) -> String {
     let mut words = command.split(' ');
@@ -581,6 +596,7 @@ pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> 
         o.oracle = false;
         o.reports = false;
         let exp = run_experiment(&o, progress)?;
+        all_completed(&exp, "the thesis rules' runs")?;
         let runs = |slam: bool| -> Vec<&RunSummary> {
             exp.runs.iter().filter(|r| r.slam == slam).collect()
         };
@@ -623,6 +639,7 @@ pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> 
         o.out = opts.out.join(method.name());
         o.reports = false;
         let exp = run_experiment(&o, progress)?;
+        all_completed(&exp, method.label())?;
         let runs: Vec<&RunSummary> = exp.runs.iter().filter(|r| r.slam).collect();
         series.push(Series::of_runs(method, &runs, world));
     }
