@@ -191,7 +191,10 @@ fn command() -> Command {
                 .long("rules")
                 .value_name("DIR")
                 .value_parser(value_parser!(PathBuf))
-                .help("Folder with robotagent.soar (default: this source tree's rules/)"),
+                .help(
+                    "Folder with robotagent.soar (default: this source tree's rules/); without \
+                     --method, its rules run with and without SLAM (--rules rules/v2: rules v2)",
+                ),
         )
 }
 
@@ -237,10 +240,18 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         }
     }
     // Without --method the full comparison runs, unless an option of the thesis rules' own
-    // experiment (--slam, an ablation, a constant) asks for that experiment alone.
-    let classic = ["slam", "variant", "r-tolerance", "th-tolerance", "overlap"]
-        .iter()
-        .any(|id| given(id));
+    // experiment (--slam, an ablation, a constant, a rules folder) asks for that experiment
+    // alone.
+    let classic = [
+        "slam",
+        "variant",
+        "r-tolerance",
+        "th-tolerance",
+        "overlap",
+        "rules",
+    ]
+    .iter()
+    .any(|id| given(id));
     let methods: Vec<&str> = m
         .get_many::<String>("method")
         .map(|v| v.map(String::as_str).collect())
@@ -308,6 +319,16 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         th_tolerance: m.get_one::<f64>("th-tolerance").copied(),
         overlap: m.get_one::<f64>("overlap").copied(),
     };
+    let rules_dir = m
+        .get_one::<PathBuf>("rules")
+        .cloned()
+        .unwrap_or_else(soar_loop::default_rules_dir);
+    // Rules v2 (a folder with `oracle.soar` beside `robotagent.soar`) read the heading and
+    // the walls' angles in tenths of a degree (rules/v2/README.md).
+    let mut variants = variants;
+    if rules_dir.join("oracle.soar").is_file() && !variants.contains(&Variant::Tenths) {
+        variants.push(Variant::Tenths);
+    }
     let ablation = Ablation::new(drift, &variants, constants)?;
     let io_log = m.get_flag("io-log");
     if io_log && (!ablation.variants.is_empty() || constants.any()) {
@@ -329,10 +350,7 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             .cloned()
             .unwrap_or_else(|| PathBuf::from("slam-out")),
         jobs: jobs.max(1),
-        rules_dir: m
-            .get_one::<PathBuf>("rules")
-            .cloned()
-            .unwrap_or_else(soar_loop::default_rules_dir),
+        rules_dir,
         io_log,
         ablation,
         ekf,

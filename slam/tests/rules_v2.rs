@@ -71,6 +71,11 @@ fn method_accepts_the_new_methods_and_rejects_unknown_ones() {
     let o = parse_options(&args(&["--method", "dr,v2", "--method", "oracle"])).unwrap();
     assert_eq!(o.methods, [Method::Dr, Method::V2, Method::Oracle]);
     assert!(parse_options(&args(&["--method", "v3"])).is_err());
+    // `--rules rules/v2` runs rules v2 with and without SLAM, angles in tenths.
+    let dir = v2_rules_dir(&default_rules_dir()).display().to_string();
+    let o = parse_options(&args(&["--rules", &dir])).unwrap();
+    assert_eq!(o.methods, [Method::Thesis]);
+    assert!(o.ablation.has(Variant::Tenths));
 }
 
 #[test]
