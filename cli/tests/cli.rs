@@ -246,14 +246,29 @@ fn all_of_rules_loads_with_zero_errors() {
     assert_eq!(interp.load_report().files().count(), 8);
     assert_eq!(interp.production_count(), 36);
 
-    // And every file on its own (the ablation variants, below, need the thesis rules first).
-    let files = relative_soar_files("rules", Some("rules/variants"));
+    // And every file on its own (the ablation variants, below, need the thesis rules first;
+    // rules v2 are tested on their own).
+    let mut files = relative_soar_files("rules", Some("rules/variants"));
+    files.retain(|f| !f.starts_with("rules/v2"));
     assert_eq!(files.len(), 8);
     for rel in files {
         let mut interp = agent_at_root();
         let errors = source_errors(&mut interp, &rel);
         assert!(errors.is_empty(), "{rel}: {errors:#?}");
     }
+}
+
+#[test]
+fn rules_v2_and_their_oracle_load_with_zero_errors() {
+    let mut interp = agent_at_root();
+    let errors = source_errors(&mut interp, "rules/v2/robotagent.soar");
+    assert!(errors.is_empty(), "{errors:#?}");
+    // The 9 moving rules of the thesis and the 45 of rules v2.
+    assert_eq!(interp.production_count(), 9 + 45);
+    let errors = source_errors(&mut interp, "rules/v2/oracle.soar");
+    assert!(errors.is_empty(), "{errors:#?}");
+    // The oracle excises the anchor and the proposal of new walls, and adds four rules.
+    assert_eq!(interp.production_count(), 9 + 45 - 2 + 4);
 }
 
 #[test]
@@ -290,6 +305,31 @@ fn slam_rejects_an_unknown_method_with_a_clear_error() {
     let stderr = text(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert!(stderr.contains("--method thesis"), "{stderr}");
+}
+
+#[test]
+fn the_slam_comparison_refuses_to_compare_failed_runs() {
+    let dir = std::env::temp_dir().join(format!("rusoar-compare-fail-{}", std::process::id()));
+    let out = rusoar(&[
+        "slam",
+        "--rules",
+        "/nonexistent",
+        "--seeds",
+        "1",
+        "--duration",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("did not complete") && stderr.contains("robotagent.soar"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!dir.join("comparison.md").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]

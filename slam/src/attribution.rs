@@ -24,6 +24,10 @@ pub enum Rule {
     Hypothesis2,
     /// `slam*apply*change*robot*position2`.
     ChangeRobotPosition2,
+    /// Rules v2, `v2*apply*correct`: heading and offset along one map wall's normal.
+    V2Wall,
+    /// Rules v2, `v2*apply*heading`: heading only, from a wall matched to no map wall.
+    V2Heading,
     /// No correcting operator was found for it.
     #[default]
     Unknown,
@@ -35,6 +39,8 @@ impl Rule {
         match self {
             Rule::Hypothesis2 => "hypothesis2",
             Rule::ChangeRobotPosition2 => "crp2",
+            Rule::V2Wall => "v2-correct",
+            Rule::V2Heading => "v2-heading",
             Rule::Unknown => "unknown",
         }
     }
@@ -169,6 +175,14 @@ pub fn read(agent: &Agent, operators: &[String]) -> Option<Attribution> {
     {
         return Some(crp2(&r, top, op));
     }
+    for (name, rule) in [
+        ("v2-correct", Rule::V2Wall),
+        ("v2-heading", Rule::V2Heading),
+    ] {
+        if operators.iter().any(|o| o == name) && r.is(op, "name", name) {
+            return Some(v2(&r, op, rule));
+        }
+    }
     if operators.iter().any(|o| o == "ChangeRobotPosition") && r.is(op, "name", "CheckWallRelation")
     {
         let (w1, w2) = (r.get(op, "Wall1")?, r.get(op, "Wall2")?);
@@ -196,6 +210,22 @@ pub fn read(agent: &Agent, operators: &[String]) -> Option<Attribution> {
         });
     }
     None
+}
+
+/// A rules-v2 correction's evidence: the observation's wall (`new_wall`), the map wall it
+/// matched (`map_wall`), the offset along the normal (`r_diff`) and the heading error
+/// (`th_diff`).
+fn v2(r: &Reader, op: Sym, rule: Rule) -> Attribution {
+    let obs = r.get(op, "obs");
+    let pair = r.get(op, "pair");
+    Attribution {
+        rule,
+        new_wall: obs.and_then(|o| r.get(o, "wall")).map(|w| r.wall(w)),
+        map_wall: pair.and_then(|p| r.get(p, "map")).map(|w| r.wall(w)),
+        r_diff: pair.and_then(|p| r.num(p, "d")),
+        th_diff: obs.and_then(|o| r.num(o, "e")),
+        ..Attribution::default()
+    }
 }
 
 /// ChangeRobotPosition2's evidence.

@@ -34,6 +34,7 @@ use std::time::Instant;
 use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
+use super::compare::{self, Method, Series};
 use super::ekf;
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
@@ -83,14 +84,17 @@ fn command() -> Command {
         .arg(
             Arg::new("method")
                 .long("method")
-                .value_name("thesis|dr|ekf")
+                .value_name("dr|thesis|v2|ekf|oracle")
                 .action(ArgAction::Append)
                 .value_delimiter(',')
-                .value_parser(["thesis", "dr", "ekf"])
+                .value_parser(Method::NAMES)
                 .help(
                     "Localisation methods, repeatable: thesis (the conditions --slam picks), dr \
                      (dead reckoning: the run without the SLAM rules), ekf (an EKF SLAM over the \
-                     same odometry and Hough walls, written to ekf.md); default thesis",
+                     same odometry and Hough walls, written to ekf.md), v2 (rules/v2), oracle \
+                     (rules v2 against the true map); with v2 or oracle every method runs over \
+                     the same seeds into its own folder and comparison.md compares them; \
+                     default thesis",
                 ),
         )
         .arg(
@@ -105,7 +109,7 @@ fn command() -> Command {
                 .long("world")
                 .value_name("FILE")
                 .default_value("empty-room")
-                .help("World file (TOML), or a built-in world: empty-room, box-partition"),
+                .help("World file (TOML), or a built-in world: empty-room, box-partition, l-room, box-room"),
         )
         .arg(
             Arg::new("out")
@@ -187,7 +191,10 @@ fn command() -> Command {
                 .long("rules")
                 .value_name("DIR")
                 .value_parser(value_parser!(PathBuf))
-                .help("Folder with robotagent.soar (default: this source tree's rules/)"),
+                .help(
+                    "Folder with robotagent.soar (default: this source tree's rules/); without \
+                     --method, its rules run with and without SLAM (--rules rules/v2: rules v2)",
+                ),
         )
 }
 
@@ -232,10 +239,35 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             duration_s = 60.0;
         }
     }
+    // Without --method the full comparison runs, unless an option of the thesis rules' own
+    // experiment (--slam, an ablation, a constant, a rules folder) asks for that experiment
+    // alone.
+    let classic = [
+        "slam",
+        "variant",
+        "r-tolerance",
+        "th-tolerance",
+        "overlap",
+        "rules",
+    ]
+    .iter()
+    .any(|id| given(id));
     let methods: Vec<&str> = m
         .get_many::<String>("method")
         .map(|v| v.map(String::as_str).collect())
-        .unwrap_or_else(|| vec!["thesis"]);
+        .unwrap_or_else(|| {
+            if classic {
+                vec!["thesis"]
+            } else {
+                Method::NAMES.to_vec()
+            }
+        });
+    let mut parsed: Vec<Method> = methods
+        .iter()
+        .map(|m| m.parse::<Method>())
+        .collect::<Result<_, _>>()?;
+    parsed.sort();
+    parsed.dedup();
     let thesis = methods.contains(&"thesis");
     let ekf = methods.contains(&"ekf");
     let needs_off = ekf || methods.contains(&"dr");
@@ -287,6 +319,16 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
         th_tolerance: m.get_one::<f64>("th-tolerance").copied(),
         overlap: m.get_one::<f64>("overlap").copied(),
     };
+    let rules_dir = m
+        .get_one::<PathBuf>("rules")
+        .cloned()
+        .unwrap_or_else(soar_loop::default_rules_dir);
+    // Rules v2 (a folder with `oracle.soar` beside `robotagent.soar`) read the heading and
+    // the walls' angles in tenths of a degree (rules/v2/README.md).
+    let mut variants = variants;
+    if rules_dir.join("oracle.soar").is_file() && !variants.contains(&Variant::Tenths) {
+        variants.push(Variant::Tenths);
+    }
     let ablation = Ablation::new(drift, &variants, constants)?;
     let io_log = m.get_flag("io-log");
     if io_log && (!ablation.variants.is_empty() || constants.any()) {
@@ -308,14 +350,14 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
             .cloned()
             .unwrap_or_else(|| PathBuf::from("slam-out")),
         jobs: jobs.max(1),
-        rules_dir: m
-            .get_one::<PathBuf>("rules")
-            .cloned()
-            .unwrap_or_else(soar_loop::default_rules_dir),
+        rules_dir,
         io_log,
         ablation,
         ekf,
         command_line: String::new(),
+        oracle: false,
+        methods: parsed,
+        reports: true,
     })
 }
 
@@ -332,6 +374,23 @@ pub fn main(args: &[String]) -> ExitCode {
             };
         }
     };
+    if opts
+        .methods
+        .iter()
+        .any(|m| matches!(m, Method::V2 | Method::Oracle))
+    {
+        return match run_comparison(&opts, true) {
+            Ok(text) => {
+                print!("{text}");
+                println!("Wrote {}", opts.out.display());
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     match run_experiment(&opts, true) {
         Ok(exp) => {
             print!("{}", exp.table());
@@ -393,6 +452,7 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                     cfg.rules_dir = opts.rules_dir.clone();
                     cfg.io_log = opts.io_log;
                     cfg.ablation = opts.ablation.clone();
+                    cfg.oracle = opts.oracle;
                     if seed == opts.first_seed {
                         let n = cfg.steps();
                         cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
@@ -406,7 +466,8 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
                         let mut all = errors.lock().unwrap_or_else(|p| p.into_inner());
                         all[usize::from(slam)].insert(seed, e);
                     }
-                    if opts.ekf && !slam && written.is_ok() {
+                    // A run that failed before its first step gives the filter nothing.
+                    if opts.ekf && !slam && written.is_ok() && !result.steps.is_empty() {
                         written = ekf::replay(&result, ekf::Noise::STAGE2_HOUGH)
                             .and_then(|run| {
                                 write_ekf_run(&opts.out, &run)?;
@@ -466,14 +527,18 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         noise: opts.world.run.noise,
         world: opts.world.clone(),
         example_seed: opts.first_seed,
+        ekf_runs: Vec::new(),
     };
+    let mut exp = exp;
     let write = |name: &str, text: String| -> Result<(), String> {
         let p = opts.out.join(name);
         std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
     };
-    write("runs.csv", exp.runs_csv())?;
-    write("summary.md", exp.summary_md(opts))?;
-    super::report::write_report(&exp, opts)?;
+    if opts.reports {
+        write("runs.csv", exp.runs_csv())?;
+        write("summary.md", exp.summary_md(opts))?;
+        super::report::write_report(&exp, opts)?;
+    }
     if opts.ekf {
         let mut runs = ekf_runs.into_inner().unwrap_or_else(|p| p.into_inner());
         runs.sort_by_key(|r| r.seed);
@@ -485,8 +550,140 @@ pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, Stri
         };
         write("ekf.md", ekf::table::markdown(&runs, &dr, &thesis, command))?;
         write("ekf-runs.csv", ekf::table::runs_csv(&runs, &dr))?;
+        exp.ekf_runs = runs;
     }
     Ok(exp)
+}
+
+/// An error naming the first run of `exp` that did not complete: a comparison of methods
+/// is only made over complete runs.
+fn all_completed(exp: &Experiment, what: &str) -> Result<(), String> {
+    match exp.runs.iter().find(|r| !r.outcome.completed()) {
+        Some(r) => Err(format!(
+            "{what}: seed {} ({}) did not complete: {}",
+            r.seed,
+            condition_name(r.slam),
+            r.outcome
+        )),
+        None => Ok(()),
+    }
+}
+
+/// `command` without its `--out DIR` (or `--out=DIR`).
+fn without_out(command: &str) -> String {
+    let mut words = command.split(' ');
+    let mut kept: Vec<&str> = Vec::new();
+    while let Some(w) = words.next() {
+        if w == "--out" {
+            words.next();
+        } else if !w.starts_with("--out=") {
+            kept.push(w);
+        }
+    }
+    kept.join(" ")
+}
+
+/// The rules v2 folder beside the thesis rules.
+pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
+    thesis_rules.join("v2")
+}
+
+/// Every method of `opts.methods` over the same seeds, each Soar rule set into its own
+/// folder under `opts.out` (`thesis/`, `v2/`, `oracle/`; dead reckoning and the EKF come from
+/// the runs without the SLAM rules, in `thesis/` or `dr/`), then `comparison.md`,
+/// `comparison.csv` and `fig-compare` in `opts.out`. Returns the table it printed.
+pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> {
+    // The reports quote the command without its output folder, so that they do not depend on
+    // where they were written.
+    let mut cleaned = opts.clone();
+    cleaned.command_line = without_out(&opts.command_line);
+    let opts = &cleaned;
+    let has = |m: Method| opts.methods.contains(&m);
+    let mut series: Vec<Series> = Vec::new();
+    let world = &opts.world;
+    if has(Method::Dr) || has(Method::Thesis) || has(Method::Ekf) {
+        let mut o = opts.clone();
+        o.slam = if has(Method::Thesis) {
+            SlamMode::Both
+        } else {
+            SlamMode::Off
+        };
+        o.out = opts
+            .out
+            .join(if has(Method::Thesis) { "thesis" } else { "dr" });
+        o.oracle = false;
+        o.reports = false;
+        let exp = run_experiment(&o, progress)?;
+        all_completed(&exp, "the thesis rules' runs")?;
+        let runs = |slam: bool| -> Vec<&RunSummary> {
+            exp.runs.iter().filter(|r| r.slam == slam).collect()
+        };
+        series.push(Series::of_runs(Method::Dr, &runs(false), world));
+        if has(Method::Thesis) {
+            series.push(Series::of_runs(Method::Thesis, &runs(true), world));
+        }
+        if has(Method::Ekf) {
+            series.push(Series {
+                method: Method::Ekf,
+                pos: exp
+                    .ekf_runs
+                    .iter()
+                    .map(|r| (r.seed, r.steps.iter().map(|k| k.pos_err_mm).collect()))
+                    .collect(),
+                head: exp
+                    .ekf_runs
+                    .iter()
+                    .map(|r| (r.seed, r.steps.iter().map(|k| k.heading_err_deg).collect()))
+                    .collect(),
+                rules: None,
+            });
+        }
+    }
+    for (method, oracle) in [(Method::V2, false), (Method::Oracle, true)] {
+        if !has(method) {
+            continue;
+        }
+        let mut o = opts.clone();
+        o.slam = SlamMode::On;
+        o.ekf = false;
+        o.io_log = false;
+        o.oracle = oracle;
+        o.rules_dir = v2_rules_dir(&opts.rules_dir);
+        o.ablation = Ablation::new(
+            opts.ablation.drift,
+            &[Variant::Tenths],
+            Constants::default(),
+        )?;
+        o.out = opts.out.join(method.name());
+        o.reports = false;
+        let exp = run_experiment(&o, progress)?;
+        all_completed(&exp, method.label())?;
+        let runs: Vec<&RunSummary> = exp.runs.iter().filter(|r| r.slam).collect();
+        series.push(Series::of_runs(method, &runs, world));
+    }
+    series.sort_by_key(|x| x.method);
+    let command = if opts.command_line.is_empty() {
+        "rusoar slam --method dr,thesis,v2,ekf,oracle"
+    } else {
+        &opts.command_line
+    };
+    let setup = format!(
+        "World `{}` ({} sonar), drift `{}`, {} s per run, seeds from {}:",
+        opts.world_label,
+        opts.world.run.noise,
+        opts.ablation.drift,
+        opts.duration_s,
+        opts.first_seed
+    );
+    let text = compare::markdown(&series, command, &setup);
+    let write = |name: &str, body: String| -> Result<(), String> {
+        let p = opts.out.join(name);
+        std::fs::write(&p, body).map_err(|e| format!("cannot write {}: {e}", p.display()))
+    };
+    write("comparison.md", text.clone())?;
+    write("comparison.csv", compare::csv(&series))?;
+    compare::figure(&series, opts.world.run.dt, &opts.out)?;
+    Ok(text)
 }
 
 /// The step from which the example run keeps one pipeline output for the Hough figure: 30 s in,
@@ -907,6 +1104,15 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_quoted_command_leaves_out_the_output_folder() {
+        assert_eq!(
+            without_out("rusoar slam --seeds 2 --out /tmp/x --quick"),
+            "rusoar slam --seeds 2 --quick"
+        );
+        assert_eq!(without_out("rusoar slam --out=/tmp/x"), "rusoar slam");
+    }
+
+    #[test]
     fn tum_lines_have_a_yaw_quaternion() {
         use super::super::geom::Pose;
         let t = tum([(0.1, Pose::new(1.0, -2.0, std::f64::consts::PI))].into_iter());
@@ -922,7 +1128,10 @@ mod tests {
         let o = parse_options(&args(&[])).unwrap();
         assert_eq!((o.seeds, o.duration_s, o.slam), (20, 600.0, SlamMode::Both));
         assert_eq!(o.out, PathBuf::from("slam-out"));
-        assert!(!o.ekf);
+        assert!(o.ekf, "the default is the full comparison");
+        assert_eq!(o.methods.len(), Method::NAMES.len());
+        let o = parse_options(&args(&["--slam", "both"])).unwrap();
+        assert!(!o.ekf && o.methods == [Method::Thesis]);
         let o = parse_options(&args(&["--quick"])).unwrap();
         assert_eq!((o.seeds, o.duration_s), (2, 60.0));
         let o = parse_options(&args(&["--method", "ekf"])).unwrap();

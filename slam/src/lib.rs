@@ -21,12 +21,15 @@
 //! 2.0.x's `model_ranger.c` and `model_position.c` (sonar and odometry models).
 
 pub mod attribution;
+pub mod compare;
 pub mod ekf;
 pub mod experiment;
 pub mod fixed;
 pub mod functions;
+pub mod functions_v2;
 pub mod geom;
 pub mod io_log;
+pub mod method;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;

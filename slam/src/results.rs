@@ -65,6 +65,13 @@ pub struct Options {
     pub ekf: bool,
     /// The command line, as the EKF's table quotes it.
     pub command_line: String,
+    /// `--method`, in the order of [`super::method::Method::NAMES`].
+    pub methods: Vec<super::method::Method>,
+    /// Put the true walls on the input-link and load `oracle.soar` (`--method oracle`).
+    pub oracle: bool,
+    /// Write `runs.csv`, `summary.md` and `report.md` (they quote wall-clock times, so a
+    /// comparison, which must repeat byte for byte, leaves them out of its method folders).
+    pub reports: bool,
 }
 
 /// The numbers of one run, kept after its steps are written out.
@@ -208,6 +215,8 @@ pub struct Experiment {
     pub world: World,
     /// The seed whose maps, snapshots and Hough space are plotted (the first seed).
     pub example_seed: u64,
+    /// The EKF runs (`--method ekf`), by seed.
+    pub ekf_runs: Vec<super::ekf::EkfRun>,
 }
 
 impl Experiment {

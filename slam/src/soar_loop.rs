@@ -90,6 +90,10 @@ pub struct LoopConfig {
     /// Controls and ablations (drift model, rule variants, constants); the thesis's setup by
     /// default.
     pub ablation: Ablation,
+    /// Localisation against the true map: the world's walls go on the input-link
+    /// (`^truemap`, see [`true_map`]) and `oracle.soar` of the rules folder is loaded after
+    /// `robotagent.soar`. Off by default.
+    pub oracle: bool,
 }
 
 impl LoopConfig {
@@ -106,6 +110,7 @@ impl LoopConfig {
             sample_extraction_at: None,
             io_log: false,
             ablation: Ablation::default(),
+            oracle: false,
         }
     }
 
@@ -425,6 +430,50 @@ struct Env {
     pending: Option<Attribution>,
     /// Write the believed heading in tenths of a degree (the `tenths` variant).
     tenths: bool,
+    /// Put the true walls on the input-link (`--method oracle`).
+    oracle: bool,
+}
+
+/// A true wall as the oracle rules read it: the normal form of its line (`r` mm ≥ 0, `th`
+/// degrees in [0, 360)) and where its ends lie along the direction (−sin th, cos th), mm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrueWall {
+    pub r: f64,
+    pub th: f64,
+    pub lo: f64,
+    pub hi: f64,
+}
+
+/// The world's walls in normal form, for `^io.input-link.truemap`.
+pub fn true_map(world: &World) -> Vec<TrueWall> {
+    world
+        .walls
+        .iter()
+        .filter(|w| w.length() > 0.0)
+        .map(|w| {
+            let (a, b) = (
+                (w.a.x * 1000.0, w.a.y * 1000.0),
+                (w.b.x * 1000.0, w.b.y * 1000.0),
+            );
+            // The normal is perpendicular to a → b; r is the line's offset from the origin.
+            let th = (-(b.0 - a.0)).atan2(b.1 - a.1);
+            let (s, c) = th.sin_cos();
+            let r = a.0 * c + a.1 * s;
+            let (r, th) = if r < 0.0 {
+                (-r, th + std::f64::consts::PI)
+            } else {
+                (r, th)
+            };
+            let (s, c) = th.sin_cos();
+            let (ua, ub) = (-s * a.0 + c * a.1, -s * b.0 + c * b.1);
+            TrueWall {
+                r,
+                th: deg_0_360(th.to_degrees()),
+                lo: ua.min(ub),
+                hi: ua.max(ub),
+            }
+        })
+        .collect()
 }
 
 fn heading_0_359(p: &Pose) -> i64 {
@@ -478,6 +527,16 @@ impl Env {
                 }
                 let (_, wd) = agent.add_object(il, "wallData")?;
                 self.wall_data = Some(wd);
+                if self.oracle {
+                    let (_, tm) = agent.add_object(il, "truemap")?;
+                    for w in true_map(self.sim.world()) {
+                        let (_, id) = agent.add_object(tm, "Wall")?;
+                        agent.add(id, "R", w.r)?;
+                        agent.add(id, "Th", w.th)?;
+                        agent.add(id, "smin", w.lo)?;
+                        agent.add(id, "smax", w.hi)?;
+                    }
+                }
                 if let Some(log) = &mut self.log {
                     let ranges = s.ranges_mm.map(range_int);
                     log.init(x, y, th, &ranges);
@@ -592,7 +651,14 @@ impl Env {
         agent.add(reference, "Th", wall.reference.th)?;
         agent.add(id, "Length", wall.length)?;
         agent.add(id, "R", wall.r)?;
-        agent.add(id, "Th", wall.th)?;
+        if self.tenths {
+            // Rules v2 reads angles in tenths of a degree: its heading correction is only as
+            // good as the wall angles it compares.
+            let t = (wall.line.1 * 10.0).round().rem_euclid(3600.0) / 10.0;
+            agent.add(id, "Th", t)?;
+        } else {
+            agent.add(id, "Th", wall.th)?;
+        }
         agent.add(id, "Time", wall.time)?;
         self.stats.walls_extracted += 1;
         let serial = self.stats.walls_extracted;
@@ -802,6 +868,15 @@ impl SoarRobot {
                 productions = agent.production_count();
             }
         }
+        if cfg.oracle && cfg.slam {
+            let path = cfg.rules_dir.join("oracle.soar");
+            let text = std::fs::read_to_string(&path)
+                .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+            agent
+                .source_text(&path.display().to_string(), &text)
+                .map_err(|e| format!("loading the oracle rules failed:\n{}", e.render()))?;
+            productions = agent.production_count();
+        }
         agent
             .source_text("srand", &format!("srand {}", cfg.seed % (1 << 32)))
             .map_err(|e| e.render())?;
@@ -817,6 +892,7 @@ impl SoarRobot {
         } else {
             super::functions::register(&mut agent);
         }
+        super::functions_v2::register(&mut agent);
         let env = Rc::new(RefCell::new(Env {
             log: cfg.io_log.then(IoLog::default),
             sim: Simulator::with_models(
@@ -839,6 +915,7 @@ impl SoarRobot {
             io_error: None,
             pending: None,
             tenths: cfg.ablation.has(Variant::Tenths),
+            oracle: cfg.oracle,
         }));
         let e = Rc::clone(&env);
         agent.on_input_phase(move |io| {

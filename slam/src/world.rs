@@ -77,7 +77,7 @@ pub struct World {
 }
 
 /// Names accepted by [`World::builtin`].
-pub const BUILTIN_WORLDS: [&str; 2] = ["empty-room", "box-partition"];
+pub const BUILTIN_WORLDS: [&str; 4] = ["empty-room", "box-partition", "l-room", "box-room"];
 
 fn rectangle(x0: f64, y0: f64, x1: f64, y1: f64) -> Vec<Segment> {
     vec![
@@ -115,11 +115,56 @@ impl World {
         }
     }
 
+    /// An L-shaped room: the 8 m × 6 m room without its 3 m × 2 m corner at x > 1, y > 1, so
+    /// that six walls meet at right angles, one corner pointing into the room. The robot starts
+    /// at the origin facing +x, as in the empty room.
+    pub fn l_room() -> Self {
+        let corners = [
+            (-4.0, -3.0),
+            (4.0, -3.0),
+            (4.0, 1.0),
+            (1.0, 1.0),
+            (1.0, 3.0),
+            (-4.0, 3.0),
+        ];
+        let walls = (0..corners.len())
+            .map(|i| {
+                let (a, b) = (corners[i], corners[(i + 1) % corners.len()]);
+                Segment::new(a.0, a.1, b.0, b.1)
+            })
+            .collect();
+        World {
+            name: "l-room".into(),
+            walls,
+            start: Pose::default(),
+            run: RunSettings::default(),
+            pipeline: Settings::default(),
+        }
+    }
+
+    /// The 8 m × 6 m room with a 1 m × 1 m box standing in it at x 2–3 m, y −0.5–0.5 m, across
+    /// the robot's first run along +x (the wander follows the room's walls once it reaches
+    /// one, so a box in the middle would never be met): four short walls parallel to the
+    /// room's, which a map must tell from the room's walls.
+    pub fn box_room() -> Self {
+        let mut walls = rectangle(-4.0, -3.0, 4.0, 3.0);
+        walls.extend(rectangle(2.0, -0.5, 3.0, 0.5));
+        World {
+            name: "box-room".into(),
+            walls,
+            start: Pose::default(),
+            run: RunSettings::default(),
+            pipeline: Settings::default(),
+        }
+    }
+
     /// A built-in world by name (see [`BUILTIN_WORLDS`]).
     pub fn builtin(name: &str) -> Option<Self> {
         match name {
             "empty-room" => Some(World::empty_room()),
             "box-partition" => Some(World::box_partition()),
+            "l-room" => Some(World::l_room()),
+            "box-room" => Some(World::box_room()),
             _ => None,
         }
     }

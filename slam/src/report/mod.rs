@@ -1541,6 +1541,8 @@ mod tests {
             "1",
             "--rules",
             "/nonexistent",
+            "--slam",
+            "both",
             "--out",
         ]
         .iter()
