@@ -1,6 +1,6 @@
 //! Any text typed at the command line: every command, alias and option of the command
 //! language, with whatever arguments, in any order. The agent must answer each with a
-//! result or an error, never a panic, and stay usable.
+//! result or an error, never a panic, keep the kernel's invariants and stay usable.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
@@ -15,6 +15,7 @@ fuzz_target!(|data: &[u8]| {
     let mut agent = rusoar_fuzz::bounded_agent();
     agent.source_text_keep_going("fuzz", text);
     let _ = agent.take_output();
+    rusoar_fuzz::assert_invariants(&agent);
     // Whatever happened, the agent still answers.
     let _ = agent.execute("print --depth 2 s1");
     let _ = agent.execute("stats");

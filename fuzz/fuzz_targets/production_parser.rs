@@ -16,6 +16,7 @@ fuzz_target!(|data: &[u8]| {
     if loaded {
         let _ = agent.execute("print --all");
         let _ = agent.execute("run 3");
+        rusoar_fuzz::assert_invariants(&agent);
         let _ = agent.execute("matches");
         let _ = agent.execute("excise --all");
     }

@@ -45,4 +45,5 @@ fuzz_target!(|data: &[u8]| {
     let _ = agent.source_file(dir.join("main.soar"));
     let _ = agent.execute("run 50");
     let _ = agent.take_output();
+    rusoar_fuzz::assert_invariants(&agent);
 });

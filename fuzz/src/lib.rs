@@ -31,6 +31,13 @@ pub fn bounded_agent() -> Agent {
     agent
 }
 
+/// Panics (a finding) when one of the kernel's consistency checks fails.
+pub fn assert_invariants(agent: &Agent) {
+    if let Err(broken) = agent.check_invariants() {
+        panic!("the kernel's invariants do not hold:\n{}", broken.join("\n"));
+    }
+}
+
 /// The folder fuzzed commands may write in (`save`, `output log`, `command-to-file`).
 pub fn scratch_dir() -> PathBuf {
     let dir = std::env::temp_dir().join(format!("rusoar-fuzz-{}", std::process::id()));
