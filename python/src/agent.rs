@@ -80,7 +80,7 @@ impl Agent {
             .kernel
             .last_ok
             .store(r.0.is_ok(), Ordering::Relaxed);
-        Ok(r.0)
+        Ok(r.0.map(without_run_newline))
     }
 
     /// A run through a command line, with the system events around it.
@@ -95,12 +95,7 @@ impl Agent {
             return Err(e);
         }
         crate::kernel::fire_system(py, kernel, ev::SYSTEM_STOP)?;
-        // SML's run result has no closing newline.
-        let mut text = text_of(r);
-        if text.ends_with('\n') {
-            text.pop();
-        }
-        Ok(text)
+        Ok(text_of(r))
     }
 
     fn register(
@@ -123,6 +118,24 @@ impl Agent {
         });
         Ok(id)
     }
+}
+
+/// A result that ends with a run's report, without the newline the kernel's print stream
+/// closes it with: SML returns the report as the `run` command made it.
+fn without_run_newline(mut text: String) -> String {
+    let last_line = text
+        .trim_end_matches('\n')
+        .rsplit('\n')
+        .next()
+        .unwrap_or("");
+    let is_report = text.contains("\n\n--> ")
+        && (last_line.starts_with("--> ")
+            || last_line == "An agent halted during the run."
+            || last_line == "Run stopped (interrupted).");
+    if is_report && text.ends_with('\n') {
+        text.pop();
+    }
+    text
 }
 
 /// A command's result, or its error's text, as `ExecuteCommandLine` returns them.
@@ -449,9 +462,9 @@ impl Agent {
     /// Forgets which output WMEs were just added.
     #[pyo3(name = "ClearOutputLinkChanges")]
     fn clear_output_link_changes(&self) -> PyResult<()> {
-        self.shared.check()?;
-        self.shared.mirror().clear_output_changes();
-        Ok(())
+        // SML's client keeps its commands and their flags until the next output that
+        // changes the output-link (checked on soar_sml 9.6.5); so does this copy.
+        self.shared.check()
     }
 
     // ---- Events ----

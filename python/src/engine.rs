@@ -13,6 +13,12 @@ use std::rc::Rc;
 use std::sync::atomic::Ordering;
 use std::sync::{mpsc, Arc};
 
+/// The notice 9.6 prints when an agent halts during a run.
+const HALT_NOTICE: &str = "\nInterrupt received.This Agent halted.";
+
+/// What `init-soar` returns.
+const REINIT_NOTICE: &str = "\nAgent reinitialized.\n";
+
 /// A piece of work for the kernel thread.
 pub type Job = Box<dyn FnOnce(&mut Engine) + Send>;
 
@@ -115,9 +121,22 @@ impl EngineAgent {
         let result = self.agent.execute(text);
         self.printing.holding.set(false);
         let mut held: String = self.printing.pieces.borrow_mut().drain(..).collect();
-        if let Ok(r) = &result {
+        let mut result = result;
+        if let Ok(r) = &mut result {
             if held.ends_with(r.as_str()) {
                 held.truncate(held.len() - r.len());
+            }
+            // 9.6 prints the trace of `init-soar`; it returns only its notice.
+            if let Some(at) = r.find(REINIT_NOTICE) {
+                if at > 0 && r.ends_with(REINIT_NOTICE) {
+                    held.push_str(&r[..at]);
+                    *r = REINIT_NOTICE.to_string();
+                }
+            }
+            // 9.6 prints its notice of a halt; the kernel puts it in the run's result.
+            if let Some(rest) = r.strip_prefix(HALT_NOTICE) {
+                held.push_str(HALT_NOTICE);
+                *r = rest.to_string();
             }
         }
         deliver(&self.shared, held);

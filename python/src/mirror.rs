@@ -80,6 +80,8 @@ pub struct Mirror {
     out_by_tag: HashMap<u64, usize>,
     /// Identifiers of the output side by kernel symbol.
     out_objs: HashMap<Symbol, usize>,
+    /// Kernel timetags of the program's own WMEs seen on the output side.
+    own_tags: std::collections::HashSet<u64>,
     /// Changes made since the last commit (for `IsCommitRequired`).
     pub uncommitted: bool,
     /// How many queued changes were committed (they count when auto-commit is off).
@@ -97,6 +99,7 @@ impl Mirror {
             output_link: None,
             out_by_tag: HashMap::new(),
             out_objs: HashMap::new(),
+            own_tags: std::collections::HashSet::new(),
             uncommitted: false,
             committed: 0,
         };
@@ -210,14 +213,8 @@ impl Mirror {
         }
     }
 
-    /// Forgets that output-link WMEs were just added (SML's `ClearOutputLinkChanges`).
-    pub fn clear_output_changes(&mut self) {
-        for &w in self.out_by_tag.values() {
-            self.wmes[w].just_added = false;
-        }
-    }
-
-    /// The output-link's identifier-valued WMEs: the commands.
+    /// The output-link's identifier-valued WMEs that came with the last output that changed
+    /// the output-link: the commands, as SML's client counts them.
     pub fn commands(&self) -> Vec<usize> {
         let Some(ol) = self.output_link.and_then(|w| self.value_obj(w)) else {
             return Vec::new();
@@ -226,7 +223,7 @@ impl Mirror {
             .children
             .iter()
             .copied()
-            .filter(|&c| self.value_obj(c).is_some())
+            .filter(|&c| self.value_obj(c).is_some() && self.wmes[c].just_added)
             .collect()
     }
 
@@ -249,6 +246,17 @@ impl Mirror {
         };
         let mut live: HashMap<u64, ()> = HashMap::new();
         let mut new_cmds = Vec::new();
+        // SML's client starts a new list of changes with each output that changes the
+        // output-link: what came before is no longer just added.
+        let changed = seen.iter().any(|(_, w)| {
+            !self.out_by_tag.contains_key(&w.timetag) && !self.own_tags.contains(&w.timetag)
+        }) || self.out_by_tag.len() + self.own_tags.len() != seen.len();
+        if changed {
+            for &k in self.out_by_tag.values() {
+                self.wmes[k].just_added = false;
+            }
+        }
+        self.own_tags.clear();
         for (id, w) in seen {
             live.insert(w.timetag, ());
             if self.out_by_tag.contains_key(&w.timetag) {
@@ -259,6 +267,7 @@ impl Mirror {
             };
             // A WME the program itself made (a command's `^status`) is already in the copy.
             if self.is_own(parent, &w.attr, &w.value) {
+                self.own_tags.insert(w.timetag);
                 continue;
             }
             let value = match &w.value {
