@@ -1,8 +1,9 @@
 //! SML's `Agent`: commands, runs, the input and output links, and the agent's events.
 
-use crate::engine::EngineAgent;
+use crate::dispatch::callable;
 use crate::errors::{soar_error, SoarError};
 use crate::mirror::CValue;
+use crate::shared::EngineAgent;
 use crate::shared::{AgentShared, Callback};
 use crate::sml_events as ev;
 use crate::wme::{self, Identifier, NewValue, WMElement};
@@ -30,18 +31,6 @@ fn run_command(count: i64, step: i32) -> PyResult<String> {
         }
     };
     Ok(format!("run {flag}{count}"))
-}
-
-/// Checks that `f` can be called, so that a bad registration fails where it is made.
-pub(crate) fn callable(f: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
-    if f.is_callable() {
-        Ok(f.clone().unbind())
-    } else {
-        Err(PyTypeError::new_err(format!(
-            "a handler must be callable, not {}",
-            f.get_type().name()?
-        )))
-    }
 }
 
 impl Agent {
@@ -87,14 +76,14 @@ impl Agent {
     fn run_text(&self, py: Python<'_>, what: &str, text: String) -> PyResult<String> {
         let kernel = &self.shared.kernel;
         kernel.run_flags.store(ev::RUN_SELF, Ordering::Relaxed);
-        crate::kernel::fire_system(py, kernel, ev::SYSTEM_START)?;
+        crate::dispatch::fire_system(py, kernel, ev::SYSTEM_START)?;
         self.shared.interrupted.store(false, Ordering::Relaxed);
         let r = self.exec_text(py, what, text)?;
-        crate::kernel::fire_update(py, kernel, ev::AFTER_ALL_GENERATED_OUTPUT);
+        crate::dispatch::fire_update(py, kernel, ev::AFTER_ALL_GENERATED_OUTPUT);
         if let Some(e) = crate::shared::lock(&kernel.error).take() {
             return Err(e);
         }
-        crate::kernel::fire_system(py, kernel, ev::SYSTEM_STOP)?;
+        crate::dispatch::fire_system(py, kernel, ev::SYSTEM_STOP)?;
         Ok(text_of(r))
     }
 
@@ -211,15 +200,15 @@ impl Agent {
     #[pyo3(name = "RunSelfTilOutput")]
     fn run_self_til_output(&self, py: Python<'_>) -> PyResult<String> {
         let kernel = &self.shared.kernel;
-        crate::kernel::fire_system(py, kernel, ev::SYSTEM_START)?;
+        crate::dispatch::fire_system(py, kernel, ev::SYSTEM_START)?;
         let r = self.with(py, "RunSelfTilOutput", |a| {
             let r = a.run(0, rusoar::RunUnit::Output);
             (r, a.agent.is_halted())
         })?;
         self.shared.halted.store(r.1, Ordering::Relaxed);
         let r = r.0.map_err(|e| soar_error(py, &e))?;
-        crate::kernel::fire_system(py, kernel, ev::SYSTEM_STOP)?;
-        Ok(crate::kernel::run_report(r))
+        crate::dispatch::fire_system(py, kernel, ev::SYSTEM_STOP)?;
+        Ok(crate::dispatch::run_report(r))
     }
 
     /// Asks a run to stop at the end of the current elaboration cycle; works from callbacks.
@@ -237,9 +226,9 @@ impl Agent {
         let py = slf.py();
         let this = slf.borrow();
         let kernel = Arc::clone(&this.shared.kernel);
-        crate::kernel::fire_agent(py, &kernel, ev::BEFORE_AGENT_REINITIALIZED, slf.as_any())?;
+        crate::dispatch::fire_agent(py, &kernel, ev::BEFORE_AGENT_REINITIALIZED, slf.as_any())?;
         let r = this.exec_text(py, "InitSoar", "init-soar".to_string())?;
-        crate::kernel::fire_agent(py, &kernel, ev::AFTER_AGENT_REINITIALIZED, slf.as_any())?;
+        crate::dispatch::fire_agent(py, &kernel, ev::AFTER_AGENT_REINITIALIZED, slf.as_any())?;
         Ok(text_of(r))
     }
 

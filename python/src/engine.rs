@@ -3,11 +3,10 @@
 //! released. Python callbacks are called from here, taking the GIL for the call.
 
 use crate::mirror::{plain, CValue, Op, OutValue, OutWme};
-use crate::shared::{lock, AgentShared, KernelShared};
+use crate::shared::{lock, AgentShared, Engine, EngineAgent, Job, KernelShared, PrintBuffer};
 use crate::sml_events as ev;
 use pyo3::prelude::*;
 use rusoar::{AgentEvent, Io, Phase, Printed, Symbol, Value};
-use std::cell::{Cell, RefCell};
 use std::collections::HashSet;
 use std::rc::Rc;
 use std::sync::atomic::Ordering;
@@ -18,9 +17,6 @@ const HALT_NOTICE: &str = "\nInterrupt received.This Agent halted.";
 
 /// What `init-soar` returns.
 const REINIT_NOTICE: &str = "\nAgent reinitialized.\n";
-
-/// A piece of work for the kernel thread.
-pub type Job = Box<dyn FnOnce(&mut Engine) + Send>;
 
 /// Starts the kernel thread of `kernel`.
 pub fn start(kernel: &Arc<KernelShared>) -> PyResult<()> {
@@ -44,31 +40,6 @@ pub fn start(kernel: &Arc<KernelShared>) -> PyResult<()> {
     let _ = kernel.thread.set(handle.thread().id());
     *lock(&kernel.jobs) = Some(tx);
     Ok(())
-}
-
-/// What the kernel thread owns.
-pub struct Engine {
-    /// The kernel both threads know.
-    pub kernel: Arc<KernelShared>,
-    /// The agents, in the order made.
-    pub agents: Vec<EngineAgent>,
-}
-
-/// Text printed while a command line runs: held back so that the command's result, which
-/// SML returns and does not print, can be told apart from the trace.
-#[derive(Default)]
-struct PrintBuffer {
-    holding: Cell<bool>,
-    pieces: RefCell<Vec<String>>,
-}
-
-/// An agent on the kernel thread.
-pub struct EngineAgent {
-    /// What both threads know of it.
-    pub shared: Arc<AgentShared>,
-    /// The kernel's agent.
-    pub agent: rusoar::Agent,
-    printing: Rc<PrintBuffer>,
 }
 
 impl Engine {
@@ -342,7 +313,7 @@ fn agent_event(shared: &AgentShared, printing: &PrintBuffer, e: &AgentEvent) {
             }
         }
         if update {
-            crate::kernel::fire_update(py, &shared.kernel, ev::AFTER_ALL_OUTPUT_PHASES);
+            crate::dispatch::fire_update(py, &shared.kernel, ev::AFTER_ALL_OUTPUT_PHASES);
         }
     });
 }

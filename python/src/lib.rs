@@ -7,6 +7,7 @@
 //! the input-link cost no trip to that thread.
 
 mod agent;
+mod dispatch;
 mod engine;
 mod errors;
 mod kernel;

@@ -2,10 +2,11 @@
 //! client's copy of each agent's links, the Python callbacks registered, the flags that stop
 //! a run, and the first error a callback raised.
 
-use crate::engine::Job;
 use crate::mirror::Mirror;
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
 use std::sync::atomic::{AtomicBool, AtomicI64, AtomicU64, Ordering};
 use std::sync::mpsc::{self, Sender};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
@@ -261,7 +262,7 @@ impl KernelShared {
         &self,
         py: Python<'_>,
         what: &str,
-        f: impl FnOnce(&mut crate::engine::Engine) -> R + Send + 'static,
+        f: impl FnOnce(&mut Engine) -> R + Send + 'static,
     ) -> PyResult<R> {
         if self.on_kernel_thread() {
             return Err(PyRuntimeError::new_err(format!(
@@ -304,4 +305,32 @@ impl Default for KernelShared {
     fn default() -> Self {
         Self::new()
     }
+}
+
+/// A piece of work for the kernel thread.
+pub type Job = Box<dyn FnOnce(&mut Engine) + Send>;
+
+/// What the kernel thread owns.
+pub struct Engine {
+    /// The kernel both threads know.
+    pub kernel: Arc<KernelShared>,
+    /// The agents, in the order made.
+    pub agents: Vec<EngineAgent>,
+}
+
+/// Text printed while a command line runs: held back so that the command's result, which
+/// SML returns and does not print, can be told apart from the trace.
+#[derive(Default)]
+pub struct PrintBuffer {
+    pub(crate) holding: Cell<bool>,
+    pub(crate) pieces: RefCell<Vec<String>>,
+}
+
+/// An agent on the kernel thread.
+pub struct EngineAgent {
+    /// What both threads know of it.
+    pub shared: Arc<AgentShared>,
+    /// The kernel's agent.
+    pub agent: rusoar::Agent,
+    pub(crate) printing: Rc<PrintBuffer>,
 }
