@@ -117,7 +117,7 @@ class Agent:
 
     def commands(self):
         """The commands on the output-link (Identifiers: name, parameters, status)."""
-        return self.sml.Commands()
+        return [self.sml.GetCommand(i) for i in range(self.sml.GetNumberCommands())]
 
     # -- events --
     def on_print(self, handler):

@@ -79,7 +79,6 @@ impl Agent {
         crate::dispatch::fire_system(py, kernel, ev::SYSTEM_START)?;
         self.shared.interrupted.store(false, Ordering::Relaxed);
         let r = self.exec_text(py, what, text)?;
-        crate::dispatch::fire_update(py, kernel, ev::AFTER_ALL_GENERATED_OUTPUT);
         if let Some(e) = crate::shared::lock(&kernel.error).take() {
             return Err(e);
         }
@@ -438,14 +437,11 @@ impl Agent {
         w.map(|w| wme::make(py, &self.shared, w)).transpose()
     }
 
-    /// The commands on the output-link.
+    /// Whether there are commands on the output-link (SML's `Commands` answers a bool).
     #[pyo3(name = "Commands")]
-    fn commands(&self, py: Python<'_>) -> PyResult<Vec<Py<PyAny>>> {
+    fn commands(&self) -> PyResult<bool> {
         self.shared.check()?;
-        let cmds = self.shared.mirror().commands();
-        cmds.into_iter()
-            .map(|w| wme::make(py, &self.shared, w))
-            .collect()
+        Ok(!self.shared.mirror().commands().is_empty())
     }
 
     /// Forgets which output WMEs were just added.

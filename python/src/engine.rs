@@ -85,9 +85,9 @@ impl Engine {
 impl EngineAgent {
     /// Runs a command line as SML's `ExecuteCommandLine` does: the result is returned and
     /// not printed; what the commands printed on the way (a run's trace) goes to the print
-    /// events.
+    /// events. The client's changes wait for the next input phase, as in SML, so a `print`
+    /// shows them only once a run has passed one.
     pub fn execute(&mut self, text: &str) -> Result<String, rusoar::Error> {
-        self.flush();
         self.printing.holding.set(true);
         let result = self.agent.execute(text);
         self.printing.holding.set(false);
@@ -121,17 +121,9 @@ impl EngineAgent {
         count: u64,
         unit: rusoar::RunUnit,
     ) -> Result<rusoar::RunResult, rusoar::Error> {
-        self.flush();
         let r = self.agent.run(count, unit);
         self.sync_output();
         r
-    }
-
-    /// Hands the program's waiting changes to the kernel (they reach working memory at the
-    /// next input phase).
-    pub fn flush(&mut self) {
-        let mut io = self.agent.io();
-        apply_changes(&self.shared, &mut io);
     }
 
     /// Brings the client's copy of the output-link up to date.
@@ -298,7 +290,16 @@ fn agent_event(shared: &AgentShared, printing: &PrintBuffer, e: &AgentEvent) {
         }
         _ => return,
     };
-    let update = *e == AgentEvent::AfterPhase(Phase::Output) && shared.kernel.update_events.any();
+    // The update events come once all agents of the run have had their output phase: after
+    // this agent's, or the last agent's in a run of all of them.
+    let update = *e == AgentEvent::AfterPhase(Phase::Output)
+        && shared.kernel.update_events.any()
+        && (shared.kernel.run_flags.load(Ordering::Relaxed) == ev::RUN_SELF
+            || lock(&shared.kernel.agents)
+                .last()
+                .is_some_and(|a| std::ptr::eq(a.as_ref(), shared)));
+    // `AFTER_ALL_GENERATED_OUTPUT` follows an output phase that changed the output-link.
+    let generated = update && shared.mirror().output_changed;
     if !shared.run_events.any() && !update {
         return;
     }
@@ -314,6 +315,9 @@ fn agent_event(shared: &AgentShared, printing: &PrintBuffer, e: &AgentEvent) {
         }
         if update {
             crate::dispatch::fire_update(py, &shared.kernel, ev::AFTER_ALL_OUTPUT_PHASES);
+        }
+        if generated {
+            crate::dispatch::fire_update(py, &shared.kernel, ev::AFTER_ALL_GENERATED_OUTPUT);
         }
     });
 }

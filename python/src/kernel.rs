@@ -3,7 +3,7 @@
 //! events).
 
 use crate::agent::Agent;
-use crate::dispatch::{callable, fire_agent, fire_system, fire_update, run_report};
+use crate::dispatch::{callable, fire_agent, fire_system, run_report};
 use crate::errors::SoarError;
 use crate::shared::{lock, AgentShared, Callback, Callbacks, KernelShared};
 use crate::sml_events as ev;
@@ -101,7 +101,6 @@ impl Kernel {
             }
             total
         })?;
-        fire_update(py, k, ev::AFTER_ALL_GENERATED_OUTPUT);
         if let Some(e) = lock(&k.error).take() {
             return Err(e);
         }

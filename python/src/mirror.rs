@@ -86,6 +86,8 @@ pub struct Mirror {
     pub uncommitted: bool,
     /// How many queued changes were committed (they count when auto-commit is off).
     pub committed: usize,
+    /// Whether the last sync found the output-link changed.
+    pub output_changed: bool,
 }
 
 impl Mirror {
@@ -102,6 +104,7 @@ impl Mirror {
             own_tags: std::collections::HashSet::new(),
             uncommitted: false,
             committed: 0,
+            output_changed: false,
         };
         let io = m.new_obj("I1".to_string(), None);
         let il = m.new_obj("I2".to_string(), None);
@@ -251,6 +254,7 @@ impl Mirror {
         let changed = seen.iter().any(|(_, w)| {
             !self.out_by_tag.contains_key(&w.timetag) && !self.own_tags.contains(&w.timetag)
         }) || self.out_by_tag.len() + self.own_tags.len() != seen.len();
+        self.output_changed = changed;
         if changed {
             for &k in self.out_by_tag.values() {
                 self.wmes[k].just_added = false;

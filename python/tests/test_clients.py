@@ -491,3 +491,66 @@ CONSTANTS = ["smlEVENT_BEFORE_INPUT_PHASE", "smlEVENT_AFTER_OUTPUT_PHASE", "smlE
 def test_constants(sml, name):
     import soar_sml
     assert getattr(sml, name) == getattr(soar_sml, name)
+
+
+# ---- more environment styles ----
+
+def test_update_event_environment(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules=COUNTER)
+        x = agent.GetInputLink().CreateIntWME("x", 0)
+
+        def on_update(ev, data, k, flags):
+            log.append(("update", ev, data, flags, agent.GetNumberCommands()))
+            for i in range(agent.GetNumberCommands()):
+                cmd = agent.GetCommand(i)
+                if cmd.GetParameterValue("status") is None:
+                    cmd.AddStatusComplete()
+                    agent.Update(x, int(cmd.GetParameterValue("value")))
+
+        kernel.RegisterForUpdateEvent(sml.smlEVENT_AFTER_ALL_OUTPUT_PHASES, on_update, "u")
+        kernel.RegisterForUpdateEvent(sml.smlEVENT_AFTER_ALL_GENERATED_OUTPUT, on_update, "g")
+        log.append(agent.RunSelf(6))
+        log.append(x.GetValue())
+    same(both, script)
+
+
+def test_run_loop_with_init_soar(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules=COUNTER)
+        x = agent.GetInputLink().CreateIntWME("x", 0)
+        for episode in range(2):
+            for _ in range(4):
+                agent.RunSelf(1)
+                log.append(agent.Commands())
+                for cmd in [agent.GetCommand(i) for i in range(agent.GetNumberCommands())]:
+                    if cmd.GetParameterValue("status") is None:
+                        cmd.AddStatusComplete()
+                        agent.Update(x, int(cmd.GetParameterValue("value")))
+            log.append((episode, x.GetValue(), agent.ExecuteCommandLine("print --depth 3 i3")))
+            agent.InitSoar()
+            agent.Update(x, 0)
+    same(both, script)
+
+
+def test_current_thread_kernel(both):
+    def script(sml, kernel, log):
+        other = sml.Kernel.CreateKernelInCurrentThread()
+        try:
+            agent = other.CreateAgent("here")
+            agent.ExecuteCommandLine(BLOCKS)
+            log.append(agent.RunSelf(3))
+            log.append(agent.ExecuteCommandLine("print s1"))
+        finally:
+            other.Shutdown()
+    same(both, script)
+
+
+def test_print_during_command_line_run(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules=BLOCKS)
+        printed = []
+        agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, lambda *a: printed.append(a[3]), None)
+        log.append(agent.ExecuteCommandLine("run 3"))
+        log.append("".join(printed))
+    same(both, script)
