@@ -88,6 +88,7 @@ impl EngineAgent {
     /// events. The client's changes wait for the next input phase, as in SML, so a `print`
     /// shows them only once a run has passed one.
     pub fn execute(&mut self, text: &str) -> Result<String, rusoar::Error> {
+        self.shared.mirror().new_run = true;
         self.printing.holding.set(true);
         let result = self.agent.execute(text);
         self.printing.holding.set(false);
@@ -121,6 +122,7 @@ impl EngineAgent {
         count: u64,
         unit: rusoar::RunUnit,
     ) -> Result<rusoar::RunResult, rusoar::Error> {
+        self.shared.mirror().new_run = true;
         let r = self.agent.run(count, unit);
         self.sync_output();
         r
@@ -129,7 +131,7 @@ impl EngineAgent {
     /// Brings the client's copy of the output-link up to date.
     pub fn sync_output(&mut self) {
         let io = self.agent.io();
-        sync_output(&self.shared, &io);
+        sync_output(&self.shared, &io, false);
     }
 
     /// Makes the kernel call the Python RHS function `name`.
@@ -215,7 +217,7 @@ fn kernel_value(v: &CValue) -> Value {
 }
 
 /// Reads the kernel's output-link into the client's copy; returns the new commands.
-fn sync_output(shared: &Arc<AgentShared>, io: &Io) -> Vec<usize> {
+fn sync_output(shared: &Arc<AgentShared>, io: &Io, at_output: bool) -> Vec<usize> {
     let ol = io.output_link();
     let mut seen: Vec<(Symbol, OutWme)> = Vec::new();
     let mut visited = HashSet::new();
@@ -246,13 +248,13 @@ fn sync_output(shared: &Arc<AgentShared>, io: &Io) -> Vec<usize> {
         }
     }
     let name = io.text(ol);
-    shared.mirror().sync_output(ol, &name, &seen)
+    shared.mirror().sync_output(ol, &name, &seen, at_output)
 }
 
 /// The output phase: the copy of the output-link is brought up to date and the output
 /// handlers are called for the new commands.
 fn output_phase(shared: &Arc<AgentShared>, io: &mut Io) {
-    let new = sync_output(shared, io);
+    let new = sync_output(shared, io, true);
     if new.is_empty() || !shared.output_handlers.any() {
         return;
     }

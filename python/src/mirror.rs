@@ -80,14 +80,16 @@ pub struct Mirror {
     out_by_tag: HashMap<u64, usize>,
     /// Identifiers of the output side by kernel symbol.
     out_objs: HashMap<Symbol, usize>,
-    /// Kernel timetags of the program's own WMEs seen on the output side.
+    /// Kernel timetags of the program's own WMEs seen at the last output phase.
     own_tags: std::collections::HashSet<u64>,
     /// Changes made since the last commit (for `IsCommitRequired`).
     pub uncommitted: bool,
     /// How many queued changes were committed (they count when auto-commit is off).
     pub committed: usize,
-    /// Whether the last sync found the output-link changed.
+    /// Whether the last output phase changed the output-link.
     pub output_changed: bool,
+    /// A run started and has not changed the output-link yet.
+    pub new_run: bool,
 }
 
 impl Mirror {
@@ -105,6 +107,7 @@ impl Mirror {
             uncommitted: false,
             committed: 0,
             output_changed: false,
+            new_run: false,
         };
         let io = m.new_obj("I1".to_string(), None);
         let il = m.new_obj("I2".to_string(), None);
@@ -231,13 +234,15 @@ impl Mirror {
     }
 
     /// Brings the output side up to date with `seen`, what the kernel's output-link holds
-    /// now, each identifier's WMEs in the kernel's order. Returns the commands (WMEs on the
-    /// output-link itself with identifier values) that were not there before.
+    /// now, each identifier's WMEs in the kernel's order, at the output phase
+    /// (`at_output`) or after a command. Returns the commands (WMEs on the output-link
+    /// itself with identifier values) that were not there before.
     pub fn sync_output(
         &mut self,
         ol: Symbol,
         ol_name: &str,
         seen: &[(Symbol, OutWme)],
+        at_output: bool,
     ) -> Vec<usize> {
         let ol_obj = match self.out_objs.get(&ol) {
             Some(&o) => o,
@@ -251,16 +256,40 @@ impl Mirror {
         let mut new_cmds = Vec::new();
         // SML's client starts a new list of changes with each output that changes the
         // output-link: what came before is no longer just added.
-        let changed = seen.iter().any(|(_, w)| {
-            !self.out_by_tag.contains_key(&w.timetag) && !self.own_tags.contains(&w.timetag)
-        }) || self.out_by_tag.len() + self.own_tags.len() != seen.len();
-        self.output_changed = changed;
+        // SML's client keeps one list of the output-link's changes per run: the first change
+        // a run brings starts it again. The program's own WMEs (a command's `^status`) count
+        // once the kernel has them (checked on soar_sml 9.6.5).
+        let own = |m: &Self, id: &Symbol, w: &OutWme| {
+            m.out_objs
+                .get(id)
+                .is_some_and(|&p| m.is_own(p, &w.attr, &w.value))
+        };
+        let mut own_now = std::collections::HashSet::new();
+        let mut added = false;
+        for (id, w) in seen {
+            if self.out_by_tag.contains_key(&w.timetag) {
+                continue;
+            }
+            if own(self, id, w) {
+                own_now.insert(w.timetag);
+                added |= !self.own_tags.contains(&w.timetag);
+            } else {
+                added = true;
+            }
+        }
+        let kept = seen
+            .iter()
+            .filter(|(_, w)| self.out_by_tag.contains_key(&w.timetag))
+            .count();
+        let changed = added || kept != self.out_by_tag.len();
+        self.own_tags = own_now;
+        self.output_changed = changed && at_output;
+        let changed = changed && std::mem::take(&mut self.new_run);
         if changed {
             for &k in self.out_by_tag.values() {
                 self.wmes[k].just_added = false;
             }
         }
-        self.own_tags.clear();
         for (id, w) in seen {
             live.insert(w.timetag, ());
             if self.out_by_tag.contains_key(&w.timetag) {
@@ -271,7 +300,6 @@ impl Mirror {
             };
             // A WME the program itself made (a command's `^status`) is already in the copy.
             if self.is_own(parent, &w.attr, &w.value) {
-                self.own_tags.insert(w.timetag);
                 continue;
             }
             let value = match &w.value {
