@@ -554,3 +554,83 @@ def test_print_during_command_line_run(both):
         log.append(agent.ExecuteCommandLine("run 3"))
         log.append("".join(printed))
     same(both, script)
+
+
+def test_run_til_output(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules=COUNTER)
+        agent.ExecuteCommandLine("watch 0")
+        agent.GetInputLink().CreateIntWME("x", 2)
+        agent.RunSelfTilOutput()
+        log.append([agent.GetCommand(i).GetParameterValue("value")
+                    for i in range(agent.GetNumberCommands())])
+    same(both, script)
+
+
+def test_blink_if_no_change_off(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules="sp {see (state <s> ^superstate nil "
+                          "^io.input-link.x <x>) --> (write |see | <x> (crlf))}")
+        printed = []
+        agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, lambda *a: printed.append(a[3]), None)
+        agent.ExecuteCommandLine("watch 0")
+        agent.SetBlinkIfNoChange(False)
+        x = agent.GetInputLink().CreateIntWME("x", 1)
+        for v in (1, 1, 2, 2):
+            agent.Update(x, v)
+            agent.RunSelf(1)
+        log.append("".join(printed))
+    same(both, script)
+
+
+def test_blink_if_no_change_default(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules="sp {see (state <s> ^superstate nil "
+                          "^io.input-link.x <x>) --> (write |see | <x> (crlf))}")
+        printed = []
+        agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, lambda *a: printed.append(a[3]), None)
+        agent.ExecuteCommandLine("watch 0")
+        x = agent.GetInputLink().CreateIntWME("x", 1)
+        for v in (1, 1, 2):
+            agent.Update(x, v)
+            agent.RunSelf(1)
+        log.append("".join(printed))
+    same(both, script)
+
+
+def test_two_agents_output_handlers(both):
+    def script(sml, kernel, log):
+        agents = [new_agent(sml, kernel, n, COUNTER) for n in ("left", "right")]
+        for i, agent in enumerate(agents):
+            x = agent.GetInputLink().CreateIntWME("x", 10 * i)
+
+            def handler(data, ag, name, wme, x=x):
+                cmd = wme.ConvertToIdentifier()
+                log.append((data, ag.GetAgentName(), cmd.GetParameterValue("value")))
+                cmd.AddStatusComplete()
+                ag.Update(x, int(cmd.GetParameterValue("value")))
+
+            agent.AddOutputHandler("move", handler, i)
+        for _ in range(4):
+            for agent in agents:
+                agent.RunSelf(1)
+    same(both, script)
+
+
+def test_input_link_object_removed_and_rebuilt(both):
+    def script(sml, kernel, log):
+        agent = new_agent(sml, kernel, rules="sp {see (state <s> ^superstate nil "
+                          "^io.input-link.obj.name <n>) --> (write |obj | <n> (crlf))}")
+        printed = []
+        agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, lambda *a: printed.append(a[3]), None)
+        agent.ExecuteCommandLine("watch 0")
+        il = agent.GetInputLink()
+        for name in ("box", "ball", "cone"):
+            obj = il.CreateIdWME("obj")
+            obj.CreateStringWME("name", name)
+            agent.RunSelf(1)
+            agent.DestroyWME(obj)
+            agent.RunSelf(1)
+        log.append("".join(printed))
+        log.append(agent.ExecuteCommandLine("print i2"))
+    same(both, script)
