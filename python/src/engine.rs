@@ -88,7 +88,7 @@ impl EngineAgent {
     /// events. The client's changes wait for the next input phase, as in SML, so a `print`
     /// shows them only once a run has passed one.
     pub fn execute(&mut self, text: &str) -> Result<String, rusoar::Error> {
-        self.shared.mirror().new_run = true;
+        self.start_run();
         self.printing.holding.set(true);
         let result = self.agent.execute(text);
         self.printing.holding.set(false);
@@ -122,10 +122,20 @@ impl EngineAgent {
         count: u64,
         unit: rusoar::RunUnit,
     ) -> Result<rusoar::RunResult, rusoar::Error> {
-        self.shared.mirror().new_run = true;
+        self.start_run();
         let r = self.agent.run(count, unit);
         self.sync_output();
         r
+    }
+
+    /// Readies the agent for a command that may run it: a stop asked for between runs (or
+    /// left by a callback's failure after the last check) does not stop this one, as SML's
+    /// `StopSelf` acts only on a run in progress.
+    fn start_run(&mut self) {
+        if let Some(flag) = self.shared.interrupt.get() {
+            flag.store(false, Ordering::Relaxed);
+        }
+        self.shared.mirror().new_run = true;
     }
 
     /// Brings the client's copy of the output-link up to date.

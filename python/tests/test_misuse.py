@@ -183,3 +183,17 @@ def test_pythonic_add_rejects_bad_values():
             agent.add(agent.input_link, "flag", True)
         with pytest.raises(TypeError):
             agent.add(agent.input_link, "list", [1])
+
+
+def test_failing_print_handler_does_not_stop_the_next_run(agent):
+    calls = []
+
+    def bad(*args):
+        calls.append(1)
+        raise RuntimeError("print handler failed")
+
+    hid = agent.RegisterForPrintEvent(sml.smlEVENT_PRINT, bad, None)
+    with pytest.raises(RuntimeError, match="print handler failed"):
+        agent.RunSelf(2)
+    agent.UnregisterForPrintEvent(hid)
+    assert "2 decision cycles" in agent.RunSelf(2)
