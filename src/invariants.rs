@@ -2,9 +2,9 @@
 //! phases of the decision cycle whatever the agent does. A violation names the structure
 //! and the element that break it.
 //!
-//! - Every WME's identifier is linked to a goal (through WMEs, acceptable-preference ones
-//!   included): garbage collection leaves nothing unlinked (Soar manual, ch. 2, "Working
-//!   memory", on the removal of unlinked elements).
+//! - Every WME's identifier is linked to a goal, through WMEs (acceptable-preference ones
+//!   included) and the identifiers preferences name: garbage collection leaves nothing
+//!   unlinked (Soar manual, ch. 2, "Working memory", on the removal of unlinked elements).
 //! - No token of the matcher holds a WME that left working memory.
 //! - Each slot's preferences are live and are for that slot's identifier and attribute,
 //!   and each WME a slot shows is in working memory with the slot's identifier and
@@ -13,7 +13,7 @@
 use crate::agent::AgentCore;
 use crate::rete::NIL_WME;
 use crate::symbols::Sym;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 impl AgentCore {
     /// Every broken invariant, described; empty when all hold.
@@ -26,6 +26,17 @@ impl AgentCore {
     }
 
     fn check_links(&self, out: &mut Vec<String>) {
+        // A preference links the identifiers it names too (9.6 keeps an object that only a
+        // binary preference's referent names, such as `(S1 ^operator O1 > O2)`).
+        let mut by_prefs: FxHashMap<Sym, Vec<Sym>> = FxHashMap::default();
+        for (_, slot) in self.decider.slots.iter() {
+            for &pid in &slot.prefs {
+                let p = &self.decider.prefs[pid];
+                let named = by_prefs.entry(p.id).or_default();
+                named.push(p.value);
+                named.extend(p.referent);
+            }
+        }
         let mut linked: FxHashSet<Sym> = FxHashSet::default();
         let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
         stack.push(self.top.state);
@@ -33,11 +44,15 @@ impl AgentCore {
             if !linked.insert(id) {
                 continue;
             }
-            for w in self.wm.of_id(id) {
-                if let Some(wme) = self.wm.get(w) {
-                    if self.symbols.is_id(wme.value) && !linked.contains(&wme.value) {
-                        stack.push(wme.value);
-                    }
+            let by_wmes = self
+                .wm
+                .of_id(id)
+                .filter_map(|w| self.wm.get(w))
+                .map(|w| w.value);
+            let named = by_prefs.get(&id).into_iter().flatten().copied();
+            for value in by_wmes.chain(named) {
+                if self.symbols.is_id(value) && !linked.contains(&value) {
+                    stack.push(value);
                 }
             }
         }

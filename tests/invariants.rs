@@ -40,3 +40,19 @@ fn invariants_hold_after_every_decision() {
         }
     }
 }
+
+/// Found by the `source_files` fuzz target: an object that only a binary preference's
+/// referent names stays in working memory, as in 9.6 (`(B1 ^name b)` is still printed
+/// there after the run), and counts as linked.
+#[test]
+fn an_object_named_only_by_a_preference_is_linked() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {p (state <s> ^superstate nil) --> (<s> ^operator <a> +) \
+             (<s> ^operator <a> > <b>) (<a> ^name a) (<b> ^name b)}\nwatch 0\nrun 3",
+        )
+        .expect("the agent runs");
+    assert_eq!(agent.execute("print b1").expect("print"), "(B1 ^name b)\n");
+    assert_eq!(agent.check_invariants(), Ok(()));
+}
