@@ -26,6 +26,7 @@ mod rules;
 mod save;
 mod running;
 mod settings;
+mod smem;
 mod stats;
 pub mod tokenizer;
 mod tracing;
@@ -552,6 +553,7 @@ impl Interpreter {
             "stats" => self.cmd_stats_options(&ctx, args),
             "save" => self.cmd_save(&ctx, args),
             "rl" => self.cmd_rl(&ctx, args),
+            "smem" => self.cmd_smem(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
