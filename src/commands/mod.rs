@@ -439,12 +439,14 @@ impl Interpreter {
         d
     }
 
-    /// Prints a command's result; `*` progress marks of `sp` run together on one line.
+    /// Prints a command's result; `*` progress marks of `sp` (and `@` marks of `smem --add`)
+    /// run together on one line.
     fn print_result(&mut self, result: String) {
         if result.is_empty() {
             return;
         }
-        let this_is_star = result.chars().all(|c| c == '*' || c == '#');
+        // `smem --add`'s `@` marks run on with them, as in 9.6.
+        let this_is_star = result.chars().all(|c| c == '*' || c == '#' || c == '@');
         if self.after_star && !this_is_star {
             self.events.push(Event::Text("\n".into()));
         }

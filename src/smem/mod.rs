@@ -54,15 +54,6 @@ impl Smem {
         }
     }
 
-    /// Writes what a lazy-commit store holds back and closes it (`init-soar` with append
-    /// off, `smem --init`, the agent's end).
-    pub fn close(&mut self) -> DbResult<()> {
-        if let Some(mut s) = self.store.take() {
-            s.commit(false)?;
-        }
-        Ok(())
-    }
-
     /// `smem --add`: stores the clauses, merging with the LTIs named `@N`. Variables get
     /// new LTIs in the order their clauses come (a variable seen only as a value, after
     /// them). Returns one `@` per LTI written, as 9.6 prints.

@@ -240,16 +240,6 @@ impl SmemParams {
         self.number("base-decay")
     }
 
-    pub fn base_inhibition(&self) -> bool {
-        self.on("base-inhibition")
-    }
-
-    /// The activation threshold: a candidate set larger than this is searched by
-    /// activation order (Soar manual, Semantic Memory, "Retrieval").
-    pub fn thresh(&self) -> i64 {
-        self.number("thresh") as i64
-    }
-
     /// `smem ?`: the settings and sub-commands, in 9.6's layout.
     pub fn listing(&self, enabled: bool) -> String {
         let row = |name: &str, value: &str, what: &str| {

@@ -571,6 +571,18 @@ impl Store {
     }
 }
 
+/// What lazy-commit held back is written when the store closes (Soar manual, ch. 9,
+/// `smem`: `lazy-commit` delays writing until exit).
+impl Drop for Store {
+    fn drop(&mut self) {
+        if !self.conn.is_autocommit() {
+            // Nothing can be reported from here; a failing commit leaves the file as it
+            // was at the last commit.
+            let _ = self.conn.execute_batch("COMMIT");
+        }
+    }
+}
+
 /// The error for a file SQLite cannot read as a database (or cannot open, or that another
 /// program holds locked).
 fn not_a_database(p: &SmemParams, e: &rusqlite::Error) -> String {
