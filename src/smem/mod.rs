@@ -105,15 +105,17 @@ impl Smem {
         Ok(marks)
     }
 
-    /// Activates an LTI by the activation mode (Soar manual, Semantic Memory,
-    /// "Retrieval"): recency takes the clock's time, frequency the count of activations,
-    /// base-level ln(Σ (now − t)^−d) over the last ten.
-    pub fn activate(&mut self, lti: i64) -> DbResult<()> {
+    /// Activates an LTI at time `now` (the decision cycle) by the activation mode (Soar
+    /// manual, Semantic Memory, "Retrieval"): recency takes the time, frequency the count
+    /// of activations, base-level ln(Σ (now − t)^−d) over the last ten. The store keeps
+    /// the clock past the latest time.
+    pub fn activate(&mut self, lti: i64, now: i64) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
         let store = self.store()?;
-        let now = store.var(schema::var::MAX_CYCLE)?.max(1);
-        store.set_var(schema::var::MAX_CYCLE, now + 1)?;
+        let now = now.max(1);
+        let clock = store.var(schema::var::MAX_CYCLE)?;
+        store.set_var(schema::var::MAX_CYCLE, clock.max(now + 1))?;
         let (total, _, first) = store.record(lti)?;
         let total = total + 1.0;
         let first = if first == 0 { now } else { first };

@@ -301,10 +301,11 @@ impl Store {
         rows.map(db).collect()
     }
 
-    /// An LTI's augmentations, in the order they were stored.
+    /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
+    /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
         let mut st = db(self.conn.prepare(
-            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY rowid",
+            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
         ))?;
         let rows: Vec<(i64, i64, i64)> = db(st
             .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))

@@ -19,6 +19,8 @@ struct LinkState {
     signature: Vec<u64>,
     /// The WMEs the results added.
     results: Vec<WmeId>,
+    /// The command processed last had a `^store`.
+    had_store: bool,
 }
 
 /// Each `^smem` link's record, by the link's identifier.
@@ -120,24 +122,23 @@ impl AgentCore {
             if old.signature == signature {
                 continue;
             }
+            // Between phases only stores are processed, and a command of stores that goes
+            // takes its results with it (observed on soar-sml 9.6.5); the rest waits for
+            // the output phase.
             let store = self.symbols.find_str("store");
-            if store_only && !cmd_wmes.is_empty() && cmd_wmes.iter().any(|w| Some(w.attr) != store) {
+            let all_stores = cmd_wmes.iter().all(|w| Some(w.attr) == store);
+            if store_only && !(all_stores && (!cmd_wmes.is_empty() || old.had_store)) {
                 continue;
             }
             old.signature = signature;
+            old.had_store = cmd_wmes.iter().any(|w| Some(w.attr) == store);
             let gone = std::mem::take(&mut old.results);
-            for w in gone.into_iter().rev() {
-                if let Some(wme) = self.wm.get(w).copied() {
-                    self.trace_wme(false, &wme);
-                    self.remove_wme(w);
-                    self.decider.wme_changes += 1;
-                    changed = true;
-                }
-            }
-            if cmd_wmes.is_empty() {
-                continue;
-            }
-            let added = self.smem_process(res, level, &cmd_wmes);
+            // The new results come in before the old ones go (observed on soar-sml 9.6.5).
+            let added = if cmd_wmes.is_empty() {
+                Vec::new()
+            } else {
+                self.smem_process(res, level, &cmd_wmes, !gone.is_empty())
+            };
             changed |= !added.is_empty();
             self.decider.wme_changes += added.len() as u64;
             for &w in added.iter().rev() {
@@ -147,6 +148,49 @@ impl AgentCore {
                 }
             }
             self.smem.links.by_link.entry(link).or_default().results = added;
+            // The old results go as 9.6 removes them: what was retrieved and nothing else
+            // links, newest first, then the result link's own WMEs, oldest first; what
+            // something else links stays (observed on soar-sml 9.6.5).
+            let (mut on_result, below): (Vec<WmeId>, Vec<WmeId>) = gone
+                .into_iter()
+                .partition(|&w| self.wm.get(w).is_some_and(|x| x.id == res));
+            // The `^success`es go first, then `^retrieved`, whatever their timetags.
+            let (success, retrieved) = (
+                self.symbols.find_str("success"),
+                self.symbols.find_str("retrieved"),
+            );
+            on_result.sort_by_key(|&w| {
+                let attr = self.wm.get(w).map(|x| x.attr);
+                let rank = if attr == success {
+                    0
+                } else if attr == retrieved {
+                    1
+                } else {
+                    2
+                };
+                (rank, self.wm.get(w).map_or(0, |x| x.timetag))
+            });
+            let linked_elsewhere = |agent: &AgentCore, id: Sym| {
+                agent.wm.all().into_iter().any(|w| {
+                    !on_result.contains(&w) && agent.wm.get(w).is_some_and(|x| x.value == id)
+                })
+            };
+            let below: Vec<WmeId> = below
+                .into_iter()
+                .filter(|&w| {
+                    self.wm
+                        .get(w)
+                        .is_some_and(|x| !linked_elsewhere(self, x.id))
+                })
+                .collect();
+            for w in below.into_iter().rev().chain(on_result) {
+                if let Some(wme) = self.wm.get(w).copied() {
+                    self.trace_wme(false, &wme);
+                    self.remove_wme(w);
+                    self.decider.wme_changes += 1;
+                    changed = true;
+                }
+            }
         }
         if changed {
             self.collect_garbage();
@@ -207,7 +251,14 @@ impl AgentCore {
     }
 
     /// Carries a command out; the WMEs of its results, in the order they are made.
-    fn smem_process(&mut self, res: Sym, level: u32, wmes: &[Wme]) -> Vec<WmeId> {
+    fn smem_process(
+        &mut self,
+        res: Sym,
+        level: u32,
+        wmes: &[Wme],
+        replacing: bool,
+    ) -> Vec<WmeId> {
+        let now = self.decider.d_cycle_count as i64;
         let mut added = Vec::new();
         let Some(cmd) = self.smem_command(wmes) else {
             self.smem_result(res, "status", Some("bad-cmd"), None, &mut added);
@@ -227,7 +278,7 @@ impl AgentCore {
             match found {
                 Ok(Some(lti)) => {
                     let activate = if self.smem.params.activate_on_query() {
-                        self.smem.activate(lti)
+                        self.smem.activate(lti, now)
                     } else {
                         Ok(())
                     };
@@ -239,22 +290,25 @@ impl AgentCore {
                         self.smem_install(sti, lti, level, depth, &mut added)
                     });
                     match installed {
+                        // 9.6 gives `^retrieved` the later timetag on a fresh result and
+                        // `^success` on one that replaces an earlier command's (observed
+                        // on soar-sml 9.6.5).
+                        // The negative cue's `^success` comes before the cue's.
                         Ok(()) => {
-                            self.smem_result(res, "success", None, Some(q), &mut added);
-                            for x in [cmd.neg_query, cmd.math_query].into_iter().flatten() {
+                            if replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            for x in [cmd.neg_query, Some(q)].into_iter().flatten() {
                                 self.smem_result(res, "success", None, Some(x), &mut added);
                             }
-                            self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            if !replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
                         }
                         Err(e) => self.smem_error(res, &e, &mut added),
                     }
                 }
-                Ok(None) => {
-                    self.smem_result(res, "failure", None, Some(q), &mut added);
-                    for x in [cmd.neg_query, cmd.math_query].into_iter().flatten() {
-                        self.smem_result(res, "failure", None, Some(x), &mut added);
-                    }
-                }
+                Ok(None) => self.smem_result(res, "failure", None, Some(q), &mut added),
                 Err(e) => self.smem_error(res, &e, &mut added),
             }
         }
@@ -266,7 +320,7 @@ impl AgentCore {
                 Ok(true) => {
                     let done = self
                         .smem
-                        .activate(lti)
+                        .activate(lti, now)
                         .and_then(|()| self.smem_install(r, lti, level, depth, &mut added));
                     match done {
                         Ok(()) => self.smem_result(res, "success", None, Some(r), &mut added),
@@ -364,6 +418,7 @@ impl AgentCore {
     /// an LTI gets a new one; an identifier value without one gets one too, empty), and
     /// the LTI is activated. 9.6 prints `@` for each object stored.
     fn smem_store_object(&mut self, id: Sym) -> Result<(), String> {
+        let now = self.decider.d_cycle_count as i64;
         let lti = match self.symbols.lti(id) {
             Some(l) => l,
             None => {
@@ -391,7 +446,7 @@ impl AgentCore {
             };
             self.smem.store()?.add_aug(lti, &attr, &value)?;
         }
-        self.smem.activate(lti)?;
+        self.smem.activate(lti, now)?;
         self.smem.stats.stores += 1;
         let lazy = self.smem.params.lazy_commit();
         self.smem.store()?.commit(lazy)?;
