@@ -216,7 +216,7 @@ impl AgentCore {
         self.decider.cycle_scratch = sc;
         self.update_slots();
         // Semantic memory stores what the rules asked it to store, at once.
-        self.smem_after_elaboration();
+        self.smem_after_elaboration((apply && self.settings.trace.phases).then_some(o_support));
         true
     }
 

@@ -27,6 +27,9 @@ struct LinkState {
 #[derive(Debug, Default)]
 pub struct Links {
     by_link: FxHashMap<Sym, LinkState>,
+    /// While a command is processed, the results of the one before it: a result that is
+    /// made again is the same WME.
+    reusable: Vec<WmeId>,
 }
 
 /// A parsed `^command`.
@@ -63,17 +66,20 @@ impl AgentCore {
         ws
     }
 
-    /// Processes the `^store` commands after a working-memory phase of an elaboration.
-    pub(crate) fn smem_after_elaboration(&mut self) {
+    /// Processes the `^store` commands after a working-memory phase of an elaboration;
+    /// `header` is the elaboration's firing type when the apply phase's headers are
+    /// traced (9.6 adds the results in a working-memory phase of their own, with its
+    /// header).
+    pub(crate) fn smem_after_elaboration(&mut self, header: Option<bool>) {
         if self.smem.enabled {
-            self.smem_go(true);
+            self.smem_go(true, header);
         }
     }
 
     /// Processes every changed command at the output phase.
     pub(crate) fn smem_output_phase(&mut self) {
         if self.smem.enabled {
-            self.smem_go(false);
+            self.smem_go(false, None);
         }
     }
 
@@ -82,7 +88,7 @@ impl AgentCore {
         self.smem.links = Links::default();
     }
 
-    fn smem_go(&mut self, store_only: bool) {
+    fn smem_go(&mut self, store_only: bool, mut header: Option<bool>) {
         let states: Vec<(Sym, u32)> = self
             .decider
             .goals
@@ -118,30 +124,45 @@ impl AgentCore {
                     }
                 }
             }
+            let store = self.symbols.find_str("store");
             let old = self.smem.links.by_link.entry(link).or_default();
             if old.signature == signature {
                 continue;
             }
-            // Between phases only stores are processed, and a command of stores that goes
-            // takes its results with it (observed on soar-sml 9.6.5); the rest waits for
-            // the output phase.
-            let store = self.symbols.find_str("store");
+            // Between phases only a command of stores is processed, and a command with a
+            // store that changes takes its results with it (observed on soar-sml 9.6.5);
+            // the rest waits for the output phase.
             let all_stores = cmd_wmes.iter().all(|w| Some(w.attr) == store);
-            if store_only && !(all_stores && (!cmd_wmes.is_empty() || old.had_store)) {
+            let process = !store_only || (all_stores && !cmd_wmes.is_empty());
+            if !process && !old.had_store {
                 continue;
             }
-            old.signature = signature;
-            old.had_store = cmd_wmes.iter().any(|w| Some(w.attr) == store);
-            let gone = std::mem::take(&mut old.results);
-            // The new results come in before the old ones go (observed on soar-sml 9.6.5).
-            let added = if cmd_wmes.is_empty() {
-                Vec::new()
+            if process {
+                old.signature = signature;
+                old.had_store = cmd_wmes.iter().any(|w| Some(w.attr) == store);
             } else {
-                self.smem_process(res, level, &cmd_wmes, !gone.is_empty())
+                old.had_store = false;
+            }
+            let gone = std::mem::take(&mut old.results);
+            // The new results come in before the old ones go; a result that is already
+            // there stays (observed on soar-sml 9.6.5).
+            self.smem.links.reusable = gone.clone();
+            let added = if process && !cmd_wmes.is_empty() {
+                self.smem_process(cmd, res, level, &cmd_wmes, !gone.is_empty())
+            } else {
+                Vec::new()
             };
-            changed |= !added.is_empty();
-            self.decider.wme_changes += added.len() as u64;
-            for &w in added.iter().rev() {
+            self.smem.links.reusable.clear();
+            let fresh: Vec<WmeId> = added.iter().copied().filter(|w| !gone.contains(w)).collect();
+            let gone: Vec<WmeId> = gone.into_iter().filter(|w| !added.contains(w)).collect();
+            if !fresh.is_empty() || !gone.is_empty() {
+                if let Some(o_support) = header.take() {
+                    self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
+                }
+            }
+            changed |= !fresh.is_empty();
+            self.decider.wme_changes += fresh.len() as u64;
+            for &w in fresh.iter().rev() {
                 if let Some(wme) = self.wm.get(w).copied() {
                     self.trace_wme(true, &wme);
                     self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
@@ -244,15 +265,13 @@ impl AgentCore {
         if (c.query.is_some() && c.retrieve.is_some()) || (modifiers && c.query.is_none()) {
             return None;
         }
-        if c.retrieve.is_some_and(|r| self.symbols.lti(r).is_none()) {
-            return None;
-        }
         Some(c)
     }
 
     /// Carries a command out; the WMEs of its results, in the order they are made.
     fn smem_process(
         &mut self,
+        cmd_id: Sym,
         res: Sym,
         level: u32,
         wmes: &[Wme],
@@ -260,14 +279,15 @@ impl AgentCore {
     ) -> Vec<WmeId> {
         let now = self.decider.d_cycle_count as i64;
         let mut added = Vec::new();
+        // 9.6.5 answers a malformed command with `^bad-cmd <command>` (observed).
         let Some(cmd) = self.smem_command(wmes) else {
-            self.smem_result(res, "status", Some("bad-cmd"), None, &mut added);
+            self.smem_result(res, "bad-cmd", None, Some(cmd_id), &mut added);
             return added;
         };
         for &s in &cmd.stores {
             match self.smem_store_object(s) {
                 Ok(()) => self.smem_result(res, "success", None, Some(s), &mut added),
-                Err(e) => self.smem_error(res, &e, &mut added),
+                Err(e) => self.smem_error(res, s, &e, &mut added),
             }
         }
         let depth = cmd.depth.unwrap_or(1);
@@ -305,41 +325,59 @@ impl AgentCore {
                                 self.smem_result(res, "retrieved", None, Some(sti), &mut added);
                             }
                         }
-                        Err(e) => self.smem_error(res, &e, &mut added),
+                        Err(e) => self.smem_error(res, q, &e, &mut added),
                     }
                 }
                 Ok(None) => self.smem_result(res, "failure", None, Some(q), &mut added),
-                Err(e) => self.smem_error(res, &e, &mut added),
+                Err(e) => self.smem_error(res, q, &e, &mut added),
             }
         }
         if let Some(r) = cmd.retrieve {
+            // An identifier that stands for no LTI is a retrieve that fails, uncounted;
+            // one that does gets a new identifier for the LTI, with its augmentations
+            // (observed on soar-sml 9.6.5).
             let lti = self.symbols.lti(r).unwrap_or(0);
-            self.smem.stats.retrieves += 1;
+            if lti > 0 {
+                self.smem.stats.retrieves += 1;
+            }
             let exists = self.smem.store().and_then(|s| s.lti_exists(lti));
             match exists {
                 Ok(true) => {
-                    let done = self
-                        .smem
-                        .activate(lti, now)
-                        .and_then(|()| self.smem_install(r, lti, level, depth, &mut added));
+                    let sti = self.symbols.new_id('L', level);
+                    if let Some(d) = self.symbols.id_data_mut(sti) {
+                        d.lti = lti;
+                    }
+                    // A retrieve counts as an activation update but leaves the LTI's
+                    // recency as it was (observed on soar-sml 9.6.5).
+                    self.smem.stats.act_updates += 1;
+                    let done = self.smem_install(sti, lti, level, depth, &mut added);
                     match done {
-                        Ok(()) => self.smem_result(res, "success", None, Some(r), &mut added),
-                        Err(e) => self.smem_error(res, &e, &mut added),
+                        Ok(()) => {
+                            if replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            self.smem_result(res, "success", None, Some(r), &mut added);
+                            if !replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                        }
+                        Err(e) => self.smem_error(res, r, &e, &mut added),
                     }
                 }
                 Ok(false) => self.smem_result(res, "failure", None, Some(r), &mut added),
-                Err(e) => self.smem_error(res, &e, &mut added),
+                Err(e) => self.smem_error(res, r, &e, &mut added),
             }
         }
         added
     }
 
-    /// A database failure: the message on the print stream and `^status bad-cmd`.
-    fn smem_error(&mut self, res: Sym, e: &str, added: &mut Vec<WmeId>) {
+    /// A database failure: the message on the print stream and `^failure` of what was
+    /// asked.
+    fn smem_error(&mut self, res: Sym, asked: Sym, e: &str, added: &mut Vec<WmeId>) {
         self.fresh_line();
         self.output.push_str(e);
         self.output.push('\n');
-        self.smem_result(res, "status", Some("bad-cmd"), None, added);
+        self.smem_result(res, "failure", None, Some(asked), added);
     }
 
     /// `(res ^attr value)` into working memory (matched later, with the others).
@@ -357,7 +395,15 @@ impl AgentCore {
             (Some(w), None) => self.symbols.str(w),
             (None, None) => return,
         };
-        added.push(self.wm.add(res, a, v, false));
+        let again = self.smem.links.reusable.iter().position(|&w| {
+            self.wm
+                .get(w)
+                .is_some_and(|x| (x.id, x.attr, x.value) == (res, a, v))
+        });
+        match again {
+            Some(i) => added.push(self.smem.links.reusable.swap_remove(i)),
+            None => added.push(self.wm.add(res, a, v, false)),
+        }
     }
 
     fn smem_sym(&mut self, v: &Val) -> Sym {
