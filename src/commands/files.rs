@@ -105,7 +105,8 @@ impl Interpreter {
             self.per_file_summary(name);
         }
         if !top_level {
-            if self.after_star {
+            // A line of `smem --add`'s `@` marks goes on after the file (as in 9.6).
+            if self.after_star && !self.after_at_marks {
                 self.events.push(super::Event::Text("\n".into()));
                 self.after_star = false;
             }
