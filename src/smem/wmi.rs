@@ -30,6 +30,8 @@ pub struct Links {
     /// While a command is processed, the results of the one before it: a result that is
     /// made again is the same WME.
     reusable: Vec<WmeId>,
+    /// The identifiers a retrieval deeper than one level filled, for `^depth-retrieved`.
+    deeper: Vec<Sym>,
 }
 
 /// A parsed `^command`.
@@ -324,6 +326,7 @@ impl AgentCore {
                             if !replacing {
                                 self.smem_result(res, "retrieved", None, Some(sti), &mut added);
                             }
+                            self.smem_depth_results(res, &mut added);
                         }
                         Err(e) => self.smem_error(res, q, &e, &mut added),
                     }
@@ -360,6 +363,7 @@ impl AgentCore {
                             if !replacing {
                                 self.smem_result(res, "retrieved", None, Some(sti), &mut added);
                             }
+                            self.smem_depth_results(res, &mut added);
                         }
                         Err(e) => self.smem_error(res, r, &e, &mut added),
                     }
@@ -378,6 +382,14 @@ impl AgentCore {
         self.output.push_str(e);
         self.output.push('\n');
         self.smem_result(res, "failure", None, Some(asked), added);
+    }
+
+    /// `(res ^depth-retrieved X)` for each identifier a deeper retrieval filled (observed
+    /// on soar-sml 9.6.5).
+    fn smem_depth_results(&mut self, res: Sym, added: &mut Vec<WmeId>) {
+        for x in std::mem::take(&mut self.smem.links.deeper).into_iter().rev() {
+            self.smem_result(res, "depth-retrieved", None, Some(x), added);
+        }
     }
 
     /// `(res ^attr value)` into working memory (matched later, with the others).
@@ -454,6 +466,7 @@ impl AgentCore {
         }
         if depth > 1 {
             for (child, l) in children {
+                self.smem.links.deeper.push(child);
                 self.smem_install(child, l, level, depth - 1, added)?;
             }
         }
