@@ -585,6 +585,8 @@ pub struct AgentCore {
     pub learn: crate::learn::LearnState,
     /// Reinforcement learning's parameters, RL rules and per-state data.
     pub rl: crate::rl::RlState,
+    /// Semantic memory: its store, settings and working-memory interface.
+    pub smem: crate::smem::Smem,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
@@ -634,6 +636,7 @@ impl AgentCore {
             output_callback: None,
             learn: crate::learn::LearnState::default(),
             rl: crate::rl::RlState::default(),
+            smem: crate::smem::Smem::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),

@@ -36,6 +36,7 @@ kernel_modules!(
     rhs,
     rl,
     rng,
+    smem,
     source,
     stdlib,
     symbols,

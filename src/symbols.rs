@@ -37,6 +37,9 @@ pub struct IdData {
     pub is_goal: bool,
     /// `(impasse <i> ...)` conditions test this.
     pub is_impasse: bool,
+    /// The long-term identifier this one stands for in working memory (`@N`), 0 for none
+    /// (Soar manual, Semantic Memory, "Working Memory Interface").
+    pub lti: i64,
 }
 
 /// An identifier's name (`S12`), written without the formatting machinery: justifications
@@ -292,6 +295,7 @@ impl Symbols {
             level,
             is_goal: false,
             is_impasse: false,
+            lti: 0,
         }));
         debug_assert_eq!(self.ids[slot].len() as u64 + 1, number);
         self.ids[slot].push(x);
@@ -356,6 +360,11 @@ impl Symbols {
 
     pub fn is_goal(&self, s: Sym) -> bool {
         self.id_data(s).is_some_and(|d| d.is_goal)
+    }
+
+    /// The LTI an identifier stands for, if any.
+    pub fn lti(&self, s: Sym) -> Option<i64> {
+        self.id_data(s).map(|d| d.lti).filter(|&l| l > 0)
     }
 
     pub fn is_impasse(&self, s: Sym) -> bool {

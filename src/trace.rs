@@ -144,14 +144,20 @@ fn print_rec(
         // 9.6 measures the line without the brackets `--varprint` adds (observed).
         let mut width = indent.len() + 1 + agent.symbols.text(id).len();
         for w in &wmes {
+            // A value that stands for an LTI shows it: `L3 (@1)` (Soar manual, Semantic
+            // Memory; the form 9.6.5 prints).
+            let lti = agent
+                .symbols
+                .lti(w.value)
+                .map_or(String::new(), |l| format!(" (@{l})"));
             let item = format!(
-                " ^{} {}{}",
+                " ^{} {}{lti}{}",
                 sym_shown(agent, w.attr, varprint),
                 sym_shown(agent, w.value, varprint),
                 if w.acceptable { " +" } else { "" }
             );
             let item_width = format!(
-                " ^{} {}{}",
+                " ^{} {}{lti}{}",
                 agent.symbols.text(w.attr),
                 agent.symbols.text(w.value),
                 if w.acceptable { " +" } else { "" }

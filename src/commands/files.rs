@@ -95,7 +95,7 @@ impl Interpreter {
         }
         // A nested file's `*` marks get a line of their own: 9.6 ends the line of marks
         // before it with " \n" and its own marks with a newline.
-        if !top_level && self.after_star {
+        if !top_level && self.after_star && !self.after_at_marks {
             self.events.push(super::Event::Text(" \n".into()));
             self.after_star = false;
         }
@@ -105,7 +105,8 @@ impl Interpreter {
             self.per_file_summary(name);
         }
         if !top_level {
-            if self.after_star {
+            // A line of `smem --add`'s `@` marks goes on after the file (as in 9.6).
+            if self.after_star && !self.after_at_marks {
                 self.events.push(super::Event::Text("\n".into()));
                 self.after_star = false;
             }

@@ -26,6 +26,7 @@ mod rules;
 mod save;
 mod running;
 mod settings;
+mod smem;
 mod stats;
 pub mod tokenizer;
 mod tracing;
@@ -151,6 +152,9 @@ pub struct Interpreter {
     pub exit_requested: bool,
     /// The last thing printed was an `sp` progress mark, so other output starts a new line.
     after_star: bool,
+    /// The line of marks holds only `smem --add`'s `@` marks (a nested `source` goes on on
+    /// it, as in 9.6).
+    after_at_marks: bool,
     /// The `output log` file, when one is open.
     log: Option<output::OutputLog>,
     /// Set from outside (the REPL's Ctrl-C handler) to stop a `run` at the next decision.
@@ -200,6 +204,7 @@ impl Interpreter {
             report: LoadReport::default(),
             exit_requested: false,
             after_star: false,
+            after_at_marks: false,
             log: None,
             interrupt: None,
             live: None,
@@ -438,22 +443,27 @@ impl Interpreter {
         d
     }
 
-    /// Prints a command's result; `*` progress marks of `sp` run together on one line.
+    /// Prints a command's result; `*` progress marks of `sp` (and `@` marks of `smem --add`)
+    /// run together on one line.
     fn print_result(&mut self, result: String) {
         if result.is_empty() {
             return;
         }
-        let this_is_star = result.chars().all(|c| c == '*' || c == '#');
+        // `smem --add`'s `@` marks run on with them, as in 9.6.
+        let this_is_star = result.chars().all(|c| c == '*' || c == '#' || c == '@');
         if self.after_star && !this_is_star {
             self.events.push(Event::Text("\n".into()));
         }
         if self.after_star && this_is_star {
+            self.after_at_marks &= result.chars().all(|c| c == '@');
             // One event per line of marks, not one per rule.
             if let Some(Event::Text(t)) = self.events.last_mut() {
                 t.push_str(&result);
                 return;
             }
         }
+        let at_marks = result.chars().all(|c| c == '@');
+        self.after_at_marks = this_is_star && at_marks && (!self.after_star || self.after_at_marks);
         self.after_star = this_is_star;
         let mut r = result;
         if !this_is_star && !r.ends_with('\n') {
@@ -552,6 +562,7 @@ impl Interpreter {
             "stats" => self.cmd_stats_options(&ctx, args),
             "save" => self.cmd_save(&ctx, args),
             "rl" => self.cmd_rl(&ctx, args),
+            "smem" => self.cmd_smem(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -184,6 +184,19 @@ impl Interpreter {
         if let Some(id) = self.agent.symbols.find_id(target) {
             return Ok(self.print_id(id, style));
         }
+        if let Some(lti) = target.strip_prefix('@') {
+            // Semantic memory (Soar manual, ch. 9, `print`): `@` is all of it, `@N` one LTI.
+            let smem = &mut self.agent.smem;
+            let text = if lti.is_empty() {
+                smem.print_all()
+            } else {
+                let n = lti.parse::<i64>().unwrap_or(0);
+                smem.print_lti(n).map(|t| {
+                    t.unwrap_or_else(|| format!("LTI @{n} not found in semantic memory."))
+                })
+            };
+            return text.map_err(|e| ctx.error(e));
+        }
         if let Ok(tt) = target.parse::<u64>() {
             // A timetag prints the object its WME belongs to.
             let id = self

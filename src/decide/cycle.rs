@@ -333,6 +333,9 @@ impl AgentCore {
             Phase::Output => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Output));
                 self.run_output_callbacks();
+                // Semantic memory's commands are processed at the end of the output phase
+                // (observed on soar-sml 9.6.5: their results are traced in it).
+                self.smem_output_phase();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
                 self.decider.phase = Some(Phase::Input);
@@ -441,6 +444,7 @@ impl AgentCore {
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
         self.rl.reinitialize();
+        self.smem_reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

@@ -215,6 +215,8 @@ impl AgentCore {
         sc.new_prefs = new_prefs;
         self.decider.cycle_scratch = sc;
         self.update_slots();
+        // Semantic memory stores what the rules asked it to store, at once.
+        self.smem_after_elaboration((apply && self.settings.trace.phases).then_some(o_support));
         true
     }
 

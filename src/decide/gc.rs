@@ -25,7 +25,7 @@ impl AgentCore {
     /// Removes WMEs no longer linked to a goal or the io link. Only identifiers that lost a
     /// link can have become unlinked: each is searched upward for a goal, and the structure
     /// below one that has none goes (cycles included).
-    pub(super) fn collect_garbage(&mut self) {
+    pub(crate) fn collect_garbage(&mut self) {
         self.collect_garbage_traced_at(None);
     }
 

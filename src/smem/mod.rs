@@ -1,0 +1,217 @@
+//! Semantic memory (Soar manual, ch. 6, "Semantic Memory"): a long-term store of
+//! identifiers (LTIs, written `@N`) and their augmentations, kept in SQLite with 9.6.5's
+//! schema. This module owns the store and what the `smem` command and the working-memory
+//! interface (`wmi.rs`) do with it: adding and removing knowledge, cue-based queries with
+//! the activation that breaks their ties, and printing.
+
+pub mod params;
+mod print;
+pub mod query;
+mod schema;
+pub mod store;
+pub mod text;
+pub mod wmi;
+
+use params::{Mode, SmemParams};
+use store::{DbResult, Store, Val};
+use text::{Clause, Item, Node};
+
+/// The counts of `smem --stats`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SmemStats {
+    pub retrieves: u64,
+    pub queries: u64,
+    pub stores: u64,
+    pub act_updates: u64,
+}
+
+/// The semantic memory of one agent.
+#[derive(Debug, Default)]
+pub struct Smem {
+    pub params: SmemParams,
+    pub enabled: bool,
+    /// The database, opened at its first use.
+    store: Option<Store>,
+    pub stats: SmemStats,
+    /// The working-memory interface's record of each state's commands and results.
+    pub(crate) links: wmi::Links,
+}
+
+impl Smem {
+    /// Whether the database is open (its store settings are then fixed).
+    pub fn is_open(&self) -> bool {
+        self.store.is_some()
+    }
+
+    /// The store, opened on first use.
+    pub fn store(&mut self) -> DbResult<&mut Store> {
+        if self.store.is_none() {
+            self.store = Some(Store::open(&self.params)?);
+        }
+        match self.store.as_mut() {
+            Some(s) => Ok(s),
+            None => Err("smem: the database is not open".into()),
+        }
+    }
+
+    /// `smem --add`: stores the clauses, merging with the LTIs named `@N`. Variables get
+    /// new LTIs in the order their clauses come (a variable seen only as a value, after
+    /// them). Returns one `@` per LTI written, as 9.6 prints.
+    pub fn add(&mut self, clauses: &[Clause]) -> DbResult<String> {
+        let store = self.store()?;
+        let mut vars: Vec<(String, i64)> = Vec::new();
+        let mut order: Vec<&Node> = clauses.iter().map(|c| &c.id).collect();
+        for c in clauses {
+            for (_, values) in &c.augs {
+                order.extend(values.iter().filter_map(|v| match v {
+                    Item::Node(n) => Some(n),
+                    Item::Const(_) => None,
+                }));
+            }
+        }
+        for n in order {
+            match n {
+                Node::Var(v) if !vars.iter().any(|(name, _)| name == v) => {
+                    let id = store.new_lti()?;
+                    vars.push((v.clone(), id));
+                }
+                Node::Lti(id) => store.make_lti(*id)?,
+                Node::Var(_) => {}
+            }
+        }
+        let lti_of = |n: &Node| match n {
+            Node::Lti(id) => *id,
+            Node::Var(v) => vars
+                .iter()
+                .find(|(name, _)| name == v)
+                .map_or(0, |(_, id)| *id),
+        };
+        let mut marks = String::new();
+        for c in clauses {
+            let id = lti_of(&c.id);
+            for (attr, values) in &c.augs {
+                for v in values {
+                    let value = match v {
+                        Item::Const(k) => k.clone(),
+                        Item::Node(n) => Val::Lti(lti_of(n)),
+                    };
+                    store.add_aug(id, attr, &value)?;
+                }
+            }
+            marks.push('@');
+        }
+        let lazy = self.params.lazy_commit();
+        self.store()?.commit(lazy)?;
+        Ok(marks)
+    }
+
+    /// Activates an LTI at time `now` (the decision cycle) by the activation mode (Soar
+    /// manual, Semantic Memory, "Retrieval"): recency takes the time, frequency the count
+    /// of activations, base-level ln(Σ (now − t)^−d) over the last ten. The store keeps
+    /// the clock past the latest time.
+    pub fn activate(&mut self, lti: i64, now: i64) -> DbResult<()> {
+        let mode = self.params.mode();
+        let decay = self.params.base_decay();
+        let store = self.store()?;
+        let now = now.max(1);
+        let clock = store.var(schema::var::MAX_CYCLE)?;
+        store.set_var(schema::var::MAX_CYCLE, clock.max(now + 1))?;
+        let (total, _, first) = store.record(lti)?;
+        let total = total + 1.0;
+        let first = if first == 0 { now } else { first };
+        let mut history = store.history(lti)?;
+        history.insert(0, now);
+        history.truncate(10);
+        let value = match mode {
+            Mode::Recency => now as f64,
+            Mode::Frequency => total,
+            Mode::BaseLevel => base_level(&history, now, decay, total),
+        };
+        store.write_activation(lti, (total, now, first), &history, value)?;
+        self.stats.act_updates += 1;
+        Ok(())
+    }
+
+    /// `print @N`: one LTI (`None` when it does not exist).
+    pub fn print_lti(&mut self, lti: i64) -> DbResult<Option<String>> {
+        let store = self.store()?;
+        if !store.lti_exists(lti)? {
+            return Ok(None);
+        }
+        print::lti(store, lti).map(Some)
+    }
+
+    /// `print @`: every LTI.
+    pub fn print_all(&mut self) -> DbResult<String> {
+        let store = self.store()?;
+        let mut s = String::new();
+        for lti in store.ltis()? {
+            s.push_str(&print::lti(store, lti)?);
+        }
+        Ok(s)
+    }
+
+    /// `smem --export`: the store (or one LTI) as an `smem --add` command.
+    pub fn export(&mut self, only: Option<i64>) -> DbResult<String> {
+        let store = self.store()?;
+        let ltis = match only {
+            Some(l) => vec![l],
+            None => store.ltis()?,
+        };
+        let mut s = String::from("smem --add {\n");
+        for lti in ltis {
+            s.push_str(&print::export_clause(store, lti)?);
+        }
+        s.push_str("}\n");
+        Ok(s)
+    }
+
+    /// `smem --remove`: augmentations by attribute (and value), or all of an LTI's.
+    /// Fails on an LTI that does not exist.
+    pub fn remove(&mut self, clauses: &[Clause]) -> Result<String, String> {
+        let store = self.store()?;
+        for c in clauses {
+            let Node::Lti(id) = c.id else {
+                return Err("Error: Invalid LTI.".into());
+            };
+            if !store.lti_exists(id)? {
+                return Err("Error: No LTI found for that id.".into());
+            }
+            if c.augs.is_empty() {
+                store.remove_augs(id, None, None)?;
+            }
+            for (attr, values) in &c.augs {
+                if values.is_empty() {
+                    store.remove_augs(id, Some(attr), None)?;
+                }
+                for v in values {
+                    let value = match v {
+                        Item::Const(k) => k.clone(),
+                        Item::Node(Node::Lti(l)) => Val::Lti(*l),
+                        Item::Node(Node::Var(_)) => continue,
+                    };
+                    store.remove_augs(id, Some(attr), Some(&value))?;
+                }
+            }
+        }
+        let lazy = self.params.lazy_commit();
+        self.store()?.commit(lazy)?;
+        Ok("@".repeat(clauses.len()))
+    }
+}
+
+/// Base-level activation: ln of Σ (now − t + 1)^−d over the activation times (older ones
+/// beyond the ten kept are counted as if at the oldest kept time).
+fn base_level(history: &[i64], now: i64, decay: f64, total: f64) -> f64 {
+    let mut sum = 0.0;
+    for &t in history {
+        sum += ((now - t + 1) as f64).powf(-decay);
+    }
+    let extra = total - history.len() as f64;
+    if extra > 0.0 {
+        if let Some(&oldest) = history.last() {
+            sum += extra * ((now - oldest + 1) as f64).powf(-decay);
+        }
+    }
+    sum.ln()
+}

@@ -1,0 +1,64 @@
+//! How 9.6 prints semantic memory: `print @N` and `smem --query`'s answers as
+//! `(@N ^attr value ... [+activation])`, attributes in text order with the values of one
+//! attribute together, and `smem --export`'s clauses (checked on soar-sml 9.6.5).
+
+use super::store::{DbResult, Store, Val};
+use crate::printer::constants::rereadable;
+use std::collections::BTreeMap;
+
+/// A value as `print @` shows it: a float with sixteen decimals.
+fn value_text(v: &Val) -> String {
+    match v {
+        Val::Str(s) => rereadable(s),
+        Val::Int(i) => i.to_string(),
+        Val::Float(f) => format!("{f:.16}"),
+        Val::Lti(l) => format!("@{l}"),
+    }
+}
+
+/// A value as `smem --export` writes it: a float with six decimals.
+fn export_text(v: &Val) -> String {
+    match v {
+        Val::Float(f) => format!("{f:.6}"),
+        v => value_text(v),
+    }
+}
+
+/// The augmentations grouped by attribute text, attributes in order, values as stored.
+fn grouped(store: &Store, lti: i64, text: fn(&Val) -> String) -> DbResult<BTreeMap<String, Vec<String>>> {
+    let mut by_attr: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for (a, v) in store.augs(lti)? {
+        by_attr.entry(text(&a)).or_default().push(text(&v));
+    }
+    Ok(by_attr)
+}
+
+/// `(@N ^attr value ... [+A.AAA])` and a newline.
+pub fn lti(store: &Store, lti: i64) -> DbResult<String> {
+    let mut s = format!("(@{lti}");
+    for (a, values) in grouped(store, lti, value_text)? {
+        s.push_str(&format!(" ^{a}"));
+        for v in values {
+            s.push(' ');
+            s.push_str(&v);
+        }
+    }
+    s.push_str(&format!(" [{:+.3}])\n", store.shown_activation(lti)?));
+    Ok(s)
+}
+
+/// One clause of `smem --export` (none for an LTI without augmentations).
+pub fn export_clause(store: &Store, lti: i64) -> DbResult<String> {
+    let by_attr = grouped(store, lti, export_text)?;
+    if by_attr.is_empty() {
+        return Ok(String::new());
+    }
+    let mut s = format!("(@{lti}");
+    for (a, values) in by_attr {
+        for v in values {
+            s.push_str(&format!(" ^{a} {v}"));
+        }
+    }
+    s.push_str(")\n");
+    Ok(s)
+}

@@ -1,0 +1,591 @@
+//! The store of semantic memory: a SQLite database with 9.6.5's tables (`schema.rs`), in
+//! memory or in a file (Soar manual, Semantic Memory, "Semantic Memory Storage"). Long-term
+//! identifiers (LTIs) are rows of `smem_lti`, their augmentations rows of
+//! `smem_augmentations`, and constants are kept once in the symbol tables. Every method
+//! answers with a plain error text on a database failure, never a panic.
+
+use super::params::SmemParams;
+use super::schema::{self, kind, var};
+use rusqlite::{params, Connection, OptionalExtension};
+
+/// A value in semantic memory: a constant or an LTI.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Val {
+    Str(String),
+    Int(i64),
+    Float(f64),
+    Lti(i64),
+}
+
+/// A database failure, as text for the command's error.
+pub type DbResult<T> = Result<T, String>;
+
+fn db<T>(r: rusqlite::Result<T>) -> DbResult<T> {
+    r.map_err(|e| format!("semantic memory database error: {e}"))
+}
+
+/// An open store.
+pub struct Store {
+    conn: Connection,
+    /// Where new LTI numbers are looked for (9.6 takes the lowest free number from here).
+    next_lti: i64,
+}
+
+impl std::fmt::Debug for Store {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Store").finish_non_exhaustive()
+    }
+}
+
+impl Store {
+    /// Opens the store the parameters name, making its tables if it has none. A file that
+    /// is not a database, or a database without 9.6's tables that already holds others,
+    /// is refused with a message that says so.
+    pub fn open(p: &SmemParams) -> DbResult<Store> {
+        let conn = if p.in_file() {
+            if p.path().is_empty() {
+                return Err("smem: no database path is set (smem --set path FILE)".into());
+            }
+            db(Connection::open(p.path()))?
+        } else {
+            db(Connection::open_in_memory())?
+        };
+        let page = p.page_size();
+        let cache = p.cache_size();
+        let sync = if p.safety() { "FULL" } else { "OFF" };
+        let setup = format!(
+            "PRAGMA page_size = {page}; PRAGMA cache_size = {cache}; PRAGMA synchronous = {sync};"
+        );
+        conn.execute_batch(&setup).map_err(|e| not_a_database(p, &e))?;
+        let mut store = Store { conn, next_lti: 1 };
+        let tables: i64 = store
+            .conn
+            .query_row(
+                "SELECT count(*) FROM sqlite_master WHERE type='table'",
+                [],
+                |r| r.get(0),
+            )
+            .map_err(|e| not_a_database(p, &e))?;
+        let version: Option<String> = if tables > 0 {
+            store
+                .conn
+                .query_row(
+                    "SELECT version_number FROM versions WHERE system='smem_schema'",
+                    [],
+                    |r| r.get(0),
+                )
+                .optional()
+                .unwrap_or(None)
+        } else {
+            None
+        };
+        match version {
+            Some(v) if v == schema::VERSION => {
+                if !p.append() {
+                    store.clear()?;
+                }
+            }
+            Some(v) => {
+                return Err(format!(
+                    "smem: the database {} has semantic memory schema {v}; this kernel reads {}",
+                    p.path(),
+                    schema::VERSION
+                ))
+            }
+            None if tables > 0 => {
+                return Err(format!(
+                    "smem: {} is a database without semantic memory's tables",
+                    p.path()
+                ))
+            }
+            None => store.create()?,
+        }
+        if p.lazy_commit() {
+            db(store.conn.execute_batch("BEGIN"))?;
+        }
+        Ok(store)
+    }
+
+    fn create(&mut self) -> DbResult<()> {
+        let tx = db(self.conn.transaction())?;
+        for s in schema::CREATE {
+            db(tx.execute(s, []))?;
+        }
+        db(tx.execute(
+            "INSERT INTO versions (system, version_number) VALUES ('smem_schema', ?1)",
+            [schema::VERSION],
+        ))?;
+        for c in b'A'..=b'Z' {
+            db(tx.execute(
+                "INSERT INTO smem_ascii (ascii_num, ascii_chr) VALUES (?1, ?2)",
+                params![c as i64, (c as char).to_string()],
+            ))?;
+        }
+        db(tx.execute(
+            "INSERT INTO smem_constants_store (smem_act_max, smem_act_low) VALUES (?1, ?2)",
+            params![i64::MAX as f64, schema::ACT_LOW],
+        ))?;
+        db(tx.commit())?;
+        for (k, v) in [
+            (var::MAX_CYCLE, 1),
+            (var::NODES, 0),
+            (var::EDGES, 0),
+            (var::THRESH, 100),
+            (var::MODE, 0),
+        ] {
+            self.set_var(k, v)?;
+        }
+        Ok(())
+    }
+
+    /// Commits what a lazy-commit store holds back, and starts holding back again.
+    pub fn commit(&mut self, lazy: bool) -> DbResult<()> {
+        if !self.conn.is_autocommit() {
+            db(self.conn.execute_batch("COMMIT"))?;
+        }
+        if lazy {
+            db(self.conn.execute_batch("BEGIN"))?;
+        }
+        Ok(())
+    }
+
+    /// `smem --clear`: every LTI and constant goes; the clock starts again.
+    pub fn clear(&mut self) -> DbResult<()> {
+        for t in [
+            "smem_symbols_type",
+            "smem_symbols_integer",
+            "smem_symbols_float",
+            "smem_symbols_string",
+            "smem_lti",
+            "smem_lti_alias",
+            "smem_activation_history",
+            "smem_augmentations",
+            "smem_attribute_frequency",
+            "smem_wmes_constant_frequency",
+            "smem_wmes_lti_frequency",
+            "smem_prohibited",
+        ] {
+            db(self.conn.execute(&format!("DELETE FROM {t}"), []))?;
+        }
+        for (k, v) in [(var::MAX_CYCLE, 1), (var::NODES, 0), (var::EDGES, 0)] {
+            self.set_var(k, v)?;
+        }
+        self.next_lti = 1;
+        Ok(())
+    }
+
+    pub fn var(&self, key: i64) -> DbResult<i64> {
+        Ok(db(self
+            .conn
+            .query_row(
+                "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
+                [key],
+                |r| r.get(0),
+            )
+            .optional())?
+        .unwrap_or(0))
+    }
+
+    pub fn set_var(&self, key: i64, value: i64) -> DbResult<()> {
+        db(self.conn.execute(
+            "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
+            [key, value],
+        ))?;
+        Ok(())
+    }
+
+    fn bump_var(&self, key: i64, by: i64) -> DbResult<()> {
+        self.set_var(key, self.var(key)? + by)
+    }
+
+    /// A constant's symbol number, made when `create` asks for it and it is missing.
+    pub fn symbol(&self, v: &Val, create: bool) -> DbResult<Option<i64>> {
+        let (table, type_code) = match v {
+            Val::Str(_) => ("smem_symbols_string", kind::STR),
+            Val::Int(_) => ("smem_symbols_integer", kind::INT),
+            Val::Float(_) => ("smem_symbols_float", kind::FLOAT),
+            Val::Lti(_) => return Ok(None),
+        };
+        let find = format!("SELECT s_id FROM {table} WHERE symbol_value=?1");
+        let found: Option<i64> = db(match v {
+            Val::Str(s) => self.conn.query_row(&find, [s], |r| r.get(0)).optional(),
+            Val::Int(i) => self.conn.query_row(&find, [i], |r| r.get(0)).optional(),
+            Val::Float(f) => self.conn.query_row(&find, [f], |r| r.get(0)).optional(),
+            Val::Lti(_) => Ok(None),
+        })?;
+        if found.is_some() || !create {
+            return Ok(found);
+        }
+        db(self.conn.execute(
+            "INSERT INTO smem_symbols_type (s_id, symbol_type) VALUES (NULL, ?1)",
+            [type_code],
+        ))?;
+        let id = self.conn.last_insert_rowid();
+        let insert = format!("INSERT INTO {table} (s_id, symbol_value) VALUES (?1, ?2)");
+        db(match v {
+            Val::Str(s) => self.conn.execute(&insert, params![id, s]),
+            Val::Int(i) => self.conn.execute(&insert, params![id, i]),
+            Val::Float(f) => self.conn.execute(&insert, params![id, f]),
+            Val::Lti(_) => Ok(0),
+        })?;
+        Ok(Some(id))
+    }
+
+    /// The constant a symbol number stands for.
+    pub fn constant(&self, s_id: i64) -> DbResult<Val> {
+        let t: Option<i64> = db(self
+            .conn
+            .query_row(
+                "SELECT symbol_type FROM smem_symbols_type WHERE s_id=?1",
+                [s_id],
+                |r| r.get(0),
+            )
+            .optional())?;
+        let q = |table: &str| format!("SELECT symbol_value FROM {table} WHERE s_id=?1");
+        Ok(match t {
+            Some(kind::INT) => Val::Int(db(self
+                .conn
+                .query_row(&q("smem_symbols_integer"), [s_id], |r| r.get(0)))?),
+            Some(kind::FLOAT) => Val::Float(db(self
+                .conn
+                .query_row(&q("smem_symbols_float"), [s_id], |r| r.get(0)))?),
+            _ => Val::Str(
+                db(self
+                    .conn
+                    .query_row(&q("smem_symbols_string"), [s_id], |r| r.get(0))
+                    .optional())?
+                .unwrap_or_default(),
+            ),
+        })
+    }
+
+    pub fn lti_exists(&self, id: i64) -> DbResult<bool> {
+        Ok(db(self
+            .conn
+            .query_row("SELECT 1 FROM smem_lti WHERE lti_id=?1", [id], |_| Ok(()))
+            .optional())?
+        .is_some())
+    }
+
+    /// Makes LTI `id` (empty) unless it exists.
+    pub fn make_lti(&mut self, id: i64) -> DbResult<()> {
+        if self.lti_exists(id)? {
+            return Ok(());
+        }
+        db(self.conn.execute(
+            "INSERT INTO smem_lti (lti_id, total_augmentations, activation_base_level, activations_total, activations_last, activations_first, lti_augmentations) VALUES (?1, 0, 0.0, 0.0, 0, 0, 0)",
+            [id],
+        ))?;
+        db(self.conn.execute(
+            "INSERT OR REPLACE INTO smem_prohibited (lti_id, prohibited, dirty) VALUES (?1, 0, 0)",
+            [id],
+        ))?;
+        self.bump_var(var::NODES, 1)
+    }
+
+    /// A new LTI: the lowest free number from where the last one was found.
+    pub fn new_lti(&mut self) -> DbResult<i64> {
+        let mut id = self.next_lti.max(1);
+        while self.lti_exists(id)? {
+            id += 1;
+        }
+        self.next_lti = id + 1;
+        self.make_lti(id)?;
+        Ok(id)
+    }
+
+    /// Every LTI, by number.
+    pub fn ltis(&self) -> DbResult<Vec<i64>> {
+        let mut st = db(self.conn.prepare("SELECT lti_id FROM smem_lti ORDER BY lti_id"))?;
+        let rows = db(st.query_map([], |r| r.get(0)))?;
+        rows.map(db).collect()
+    }
+
+    /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
+    /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
+    pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
+        let mut st = db(self.conn.prepare(
+            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
+        ))?;
+        let rows: Vec<(i64, i64, i64)> = db(st
+            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+            .and_then(Iterator::collect))?;
+        rows.into_iter()
+            .map(|(a, c, l)| {
+                let attr = self.constant(a)?;
+                let value = if l != 0 {
+                    Val::Lti(l)
+                } else {
+                    self.constant(c)?
+                };
+                Ok((attr, value))
+            })
+            .collect()
+    }
+
+    /// Adds an augmentation unless the LTI has it; true if it was added.
+    pub fn add_aug(&mut self, lti: i64, attr: &Val, value: &Val) -> DbResult<bool> {
+        let Some(a) = self.symbol(attr, true)? else {
+            return Ok(false);
+        };
+        let (c, l) = match value {
+            Val::Lti(l) => {
+                self.make_lti(*l)?;
+                (0, *l)
+            }
+            v => (self.symbol(v, true)?.unwrap_or(0), 0),
+        };
+        let exists = db(self
+            .conn
+            .query_row(
+                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_constant_s_id=?3 AND value_lti_id=?4",
+                [lti, a, c, l],
+                |_| Ok(()),
+            )
+            .optional())?;
+        if exists.is_some() {
+            return Ok(false);
+        }
+        let act: Option<f64> = db(self.conn.query_row(
+            "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
+            [lti],
+            |r| r.get(0),
+        ))?;
+        let weight = if l != 0 { 1.0 } else { 0.0 };
+        db(self.conn.execute(
+            "INSERT INTO smem_augmentations (lti_id, attribute_s_id, value_constant_s_id, value_lti_id, activation_value, edge_weight) VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
+            params![lti, a, c, l, act.unwrap_or(schema::ACT_LOW), weight],
+        ))?;
+        self.count_aug(lti, a, c, l, 1)?;
+        Ok(true)
+    }
+
+    /// Keeps the counts 9.6 keeps beside an augmentation (the LTI's, the attribute's and
+    /// the WME's frequencies, the edge count) as one is added (`by` 1) or removed (-1).
+    fn count_aug(&self, lti: i64, a: i64, c: i64, l: i64, by: i64) -> DbResult<()> {
+        let lti_aug = i64::from(l != 0) * by;
+        db(self.conn.execute(
+            "UPDATE smem_lti SET total_augmentations = total_augmentations + ?2, lti_augmentations = lti_augmentations + ?3 WHERE lti_id=?1",
+            [lti, by, lti_aug],
+        ))?;
+        let bump = |table: &str, key: &str, args: &[i64]| -> DbResult<()> {
+            let cond: Vec<String> = key
+                .split(',')
+                .enumerate()
+                .map(|(i, k)| format!("{k}=?{}", i + 2))
+                .collect();
+            let n = db(self.conn.execute(
+                &format!(
+                    "UPDATE {table} SET edge_frequency = edge_frequency + ?1 WHERE {}",
+                    cond.join(" AND ")
+                ),
+                rusqlite::params_from_iter(std::iter::once(by).chain(args.iter().copied())),
+            ))?;
+            if n == 0 && by > 0 {
+                let holes: Vec<String> = (0..=args.len()).map(|i| format!("?{}", i + 1)).collect();
+                db(self.conn.execute(
+                    &format!(
+                        "INSERT INTO {table} ({key},edge_frequency) VALUES ({})",
+                        holes.join(",")
+                    ),
+                    rusqlite::params_from_iter(args.iter().copied().chain(std::iter::once(1))),
+                ))?;
+            }
+            db(self.conn.execute(
+                &format!("DELETE FROM {table} WHERE edge_frequency <= 0"),
+                [],
+            ))?;
+            Ok(())
+        };
+        bump("smem_attribute_frequency", "attribute_s_id", &[a])?;
+        if l != 0 {
+            bump(
+                "smem_wmes_lti_frequency",
+                "attribute_s_id,value_lti_id",
+                &[a, l],
+            )?;
+        } else {
+            bump(
+                "smem_wmes_constant_frequency",
+                "attribute_s_id,value_constant_s_id",
+                &[a, c],
+            )?;
+        }
+        self.bump_var(var::EDGES, by)
+    }
+
+    /// Removes the augmentations of `lti` with attribute `attr` (all when `None`) and, when
+    /// given, value `value`; how many went.
+    pub fn remove_augs(&mut self, lti: i64, attr: Option<&Val>, value: Option<&Val>) -> DbResult<usize> {
+        let mut st = db(self.conn.prepare(
+            "SELECT rowid, attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1",
+        ))?;
+        let rows: Vec<(i64, i64, i64, i64)> = db(st
+            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?, r.get(3)?)))
+            .and_then(Iterator::collect))?;
+        drop(st);
+        let a = match attr {
+            Some(x) => match self.symbol(x, false)? {
+                Some(a) => Some(a),
+                None => return Ok(0),
+            },
+            None => None,
+        };
+        let v = match value {
+            Some(Val::Lti(l)) => Some((0, *l)),
+            Some(x) => match self.symbol(x, false)? {
+                Some(c) => Some((c, 0)),
+                None => return Ok(0),
+            },
+            None => None,
+        };
+        let mut gone = 0;
+        for (rowid, ra, rc, rl) in rows {
+            if a.is_some_and(|a| a != ra) || v.is_some_and(|v| v != (rc, rl)) {
+                continue;
+            }
+            db(self
+                .conn
+                .execute("DELETE FROM smem_augmentations WHERE rowid=?1", [rowid]))?;
+            self.count_aug(lti, ra, rc, rl, -1)?;
+            gone += 1;
+        }
+        Ok(gone)
+    }
+
+    /// The LTIs having an augmentation with this attribute and, when given, this value.
+    pub fn with_aug(&self, attr: &Val, value: Option<&Val>) -> DbResult<Vec<i64>> {
+        let Some(a) = self.symbol(attr, false)? else {
+            return Ok(Vec::new());
+        };
+        let (sql, args): (&str, Vec<i64>) = match value {
+            None => (
+                "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1",
+                vec![a],
+            ),
+            Some(Val::Lti(l)) => (
+                "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_lti_id=?2",
+                vec![a, *l],
+            ),
+            Some(v) => match self.symbol(v, false)? {
+                None => return Ok(Vec::new()),
+                Some(c) => (
+                    "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0",
+                    vec![a, c],
+                ),
+            },
+        };
+        let mut st = db(self.conn.prepare(sql))?;
+        let rows = db(st.query_map(rusqlite::params_from_iter(args), |r| r.get(0)))?;
+        rows.map(db).collect()
+    }
+
+    /// An LTI's activation as retrieval compares it (the lowest for one never activated).
+    pub fn activation(&self, lti: i64) -> DbResult<f64> {
+        let v: Option<Option<f64>> = db(self
+            .conn
+            .query_row(
+                "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
+                [lti],
+                |r| r.get(0),
+            )
+            .optional())?;
+        Ok(v.flatten().unwrap_or(schema::ACT_LOW))
+    }
+
+    /// An LTI's activation as `print` shows it (0 for one never activated).
+    pub fn shown_activation(&self, lti: i64) -> DbResult<f64> {
+        let a = self.activation(lti)?;
+        Ok(if a == schema::ACT_LOW { 0.0 } else { a })
+    }
+
+    /// The activation record of an LTI: (activations, last, first).
+    pub fn record(&self, lti: i64) -> DbResult<(f64, i64, i64)> {
+        db(self.conn.query_row(
+            "SELECT activations_total, activations_last, activations_first FROM smem_lti WHERE lti_id=?1",
+            [lti],
+            |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
+        ))
+    }
+
+    /// The times of an LTI's last activations (most recent first), for base-level.
+    pub fn history(&self, lti: i64) -> DbResult<Vec<i64>> {
+        let row: Option<Vec<Option<i64>>> = db(self
+            .conn
+            .query_row(
+                "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
+                [lti],
+                |r| (0..10).map(|i| r.get(i)).collect(),
+            )
+            .optional())?;
+        Ok(row.unwrap_or_default().into_iter().flatten().filter(|&t| t > 0).collect())
+    }
+
+    /// Writes an activation: the LTI's record, its history, and its augmentations' copy
+    /// of the value (which the retrieval's order reads).
+    pub fn write_activation(
+        &self,
+        lti: i64,
+        record: (f64, i64, i64),
+        history: &[i64],
+        value: f64,
+    ) -> DbResult<()> {
+        db(self.conn.execute(
+            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
+            params![lti, record.0, record.1, record.2, value],
+        ))?;
+        db(self.conn.execute(
+            "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
+            params![lti, value],
+        ))?;
+        let mut t = [0i64; 10];
+        for (slot, h) in t.iter_mut().zip(history) {
+            *slot = *h;
+        }
+        db(self.conn.execute(
+            "INSERT OR REPLACE INTO smem_activation_history (lti_id,t1,t2,t3,t4,t5,t6,t7,t8,t9,t10,touch1,touch2,touch3,touch4,touch5,touch6,touch7,touch8,touch9,touch10) VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,1,1,1,1,1,1,1,1,1,1)",
+            params![lti, t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9]],
+        ))?;
+        Ok(())
+    }
+
+    /// How many LTIs and augmentations the store holds.
+    pub fn counts(&self) -> DbResult<(i64, i64)> {
+        Ok((self.var(var::NODES)?, self.var(var::EDGES)?))
+    }
+
+    /// The bytes the database takes (pages in use times the page size).
+    pub fn bytes(&self) -> DbResult<i64> {
+        let pages: i64 = db(self.conn.query_row("PRAGMA page_count", [], |r| r.get(0)))?;
+        let size: i64 = db(self.conn.query_row("PRAGMA page_size", [], |r| r.get(0)))?;
+        Ok(pages * size)
+    }
+
+    /// `smem --backup FILE`: a copy of the database, made with SQLite's `VACUUM INTO`.
+    pub fn backup(&mut self, path: &str, lazy: bool) -> DbResult<()> {
+        self.commit(false)?;
+        let r = db(self.conn.execute("VACUUM INTO ?1", [path]));
+        if lazy {
+            db(self.conn.execute_batch("BEGIN"))?;
+        }
+        r.map(|_| ())
+    }
+}
+
+/// What lazy-commit held back is written when the store closes (Soar manual, ch. 9,
+/// `smem`: `lazy-commit` delays writing until exit).
+impl Drop for Store {
+    fn drop(&mut self) {
+        if !self.conn.is_autocommit() {
+            // Nothing can be reported from here; a failing commit leaves the file as it
+            // was at the last commit.
+            let _ = self.conn.execute_batch("COMMIT");
+        }
+    }
+}
+
+/// The error for a file SQLite cannot read as a database (or cannot open, or that another
+/// program holds locked).
+fn not_a_database(p: &SmemParams, e: &rusqlite::Error) -> String {
+    format!("smem: cannot use {} as a semantic memory database: {e}", p.path())
+}

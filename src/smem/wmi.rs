@@ -1,0 +1,562 @@
+//! The working-memory interface of semantic memory (Soar manual, ch. 6, "Semantic Memory",
+//! "Working Memory Interface"): each state's `^smem` link holds a `^command` the rules
+//! fill and a `^result` the architecture fills. A changed command is processed once: its
+//! `^store`s right after the working-memory phase that made them (observed on soar-sml
+//! 9.6.5: the `^success` follows the storing rule's WMEs in the same elaboration), the
+//! other commands at the output phase. The results of a command go when it changes.
+
+use super::query::{Cue, Math, Want};
+use super::store::Val;
+use crate::agent::AgentCore;
+use crate::symbols::{Sym, SymData};
+use crate::wm::{Wme, WmeId};
+use rustc_hash::FxHashMap;
+
+/// What was last processed on one `^smem` link.
+#[derive(Debug, Default)]
+struct LinkState {
+    /// The command's WMEs (and those of the objects it names), by timetag.
+    signature: Vec<u64>,
+    /// The WMEs the results added.
+    results: Vec<WmeId>,
+    /// The command processed last had a `^store`.
+    had_store: bool,
+}
+
+/// Each `^smem` link's record, by the link's identifier.
+#[derive(Debug, Default)]
+pub struct Links {
+    by_link: FxHashMap<Sym, LinkState>,
+    /// While a command is processed, the results of the one before it: a result that is
+    /// made again is the same WME.
+    reusable: Vec<WmeId>,
+    /// The identifiers a retrieval deeper than one level filled, for `^depth-retrieved`.
+    deeper: Vec<Sym>,
+}
+
+/// A parsed `^command`.
+#[derive(Debug, Default)]
+struct Command {
+    query: Option<Sym>,
+    neg_query: Option<Sym>,
+    math_query: Option<Sym>,
+    retrieve: Option<Sym>,
+    stores: Vec<Sym>,
+    prohibit: Vec<i64>,
+    depth: Option<i64>,
+}
+
+impl AgentCore {
+    /// The value of `id ^attr` (the first such WME).
+    fn smem_child(&self, id: Sym, attr: &str) -> Option<Sym> {
+        let a = self.symbols.find_str(attr)?;
+        self.wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w))
+            .find(|w| w.attr == a)
+            .map(|w| w.value)
+    }
+
+    /// An object's WMEs, oldest first.
+    fn smem_wmes(&self, id: Sym) -> Vec<Wme> {
+        let mut ws: Vec<Wme> = self
+            .wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w).copied())
+            .collect();
+        ws.sort_by_key(|w| w.timetag);
+        ws
+    }
+
+    /// Processes the `^store` commands after a working-memory phase of an elaboration;
+    /// `header` is the elaboration's firing type when the apply phase's headers are
+    /// traced (9.6 adds the results in a working-memory phase of their own, with its
+    /// header).
+    pub(crate) fn smem_after_elaboration(&mut self, header: Option<bool>) {
+        if self.smem.enabled {
+            self.smem_go(true, header);
+        }
+    }
+
+    /// Processes every changed command at the output phase.
+    pub(crate) fn smem_output_phase(&mut self) {
+        if self.smem.enabled {
+            self.smem_go(false, None);
+        }
+    }
+
+    /// `init-soar`: working memory is new, so are the links' records.
+    pub(crate) fn smem_reinitialize(&mut self) {
+        self.smem.links = Links::default();
+    }
+
+    fn smem_go(&mut self, store_only: bool, mut header: Option<bool>) {
+        let states: Vec<(Sym, u32)> = self
+            .decider
+            .goals
+            .iter()
+            .map(|g| (g.state, g.level))
+            .collect();
+        // The top state when no goal has been made yet.
+        let states = if states.is_empty() {
+            vec![(self.top.state, 1)]
+        } else {
+            states
+        };
+        let mut changed = false;
+        for (state, level) in states {
+            let Some(link) = self.smem_child(state, "smem") else {
+                continue;
+            };
+            let (Some(cmd), Some(res)) =
+                (self.smem_child(link, "command"), self.smem_child(link, "result"))
+            else {
+                continue;
+            };
+            let cmd_wmes = self.smem_wmes(cmd);
+            let mut signature: Vec<u64> = Vec::new();
+            for w in &cmd_wmes {
+                signature.push(w.timetag);
+                if self.symbols.is_id(w.value) {
+                    for c in self.smem_wmes(w.value) {
+                        signature.push(c.timetag);
+                        if self.symbols.is_id(c.value) {
+                            signature.extend(self.smem_wmes(c.value).iter().map(|x| x.timetag));
+                        }
+                    }
+                }
+            }
+            let store = self.symbols.find_str("store");
+            let old = self.smem.links.by_link.entry(link).or_default();
+            if old.signature == signature {
+                continue;
+            }
+            // Between phases only a command of stores is processed, and a command with a
+            // store that changes takes its results with it (observed on soar-sml 9.6.5);
+            // the rest waits for the output phase.
+            let all_stores = cmd_wmes.iter().all(|w| Some(w.attr) == store);
+            let process = !store_only || (all_stores && !cmd_wmes.is_empty());
+            if !process && !old.had_store {
+                continue;
+            }
+            if process {
+                old.signature = signature;
+                old.had_store = cmd_wmes.iter().any(|w| Some(w.attr) == store);
+            } else {
+                old.had_store = false;
+            }
+            let gone = std::mem::take(&mut old.results);
+            // The new results come in before the old ones go; a result that is already
+            // there stays (observed on soar-sml 9.6.5).
+            self.smem.links.reusable = gone.clone();
+            let added = if process && !cmd_wmes.is_empty() {
+                self.smem_process(cmd, res, level, &cmd_wmes, !gone.is_empty())
+            } else {
+                Vec::new()
+            };
+            self.smem.links.reusable.clear();
+            let fresh: Vec<WmeId> = added.iter().copied().filter(|w| !gone.contains(w)).collect();
+            let gone: Vec<WmeId> = gone.into_iter().filter(|w| !added.contains(w)).collect();
+            if !fresh.is_empty() || !gone.is_empty() {
+                if let Some(o_support) = header.take() {
+                    self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
+                }
+            }
+            changed |= !fresh.is_empty();
+            self.decider.wme_changes += fresh.len() as u64;
+            for &w in fresh.iter().rev() {
+                if let Some(wme) = self.wm.get(w).copied() {
+                    self.trace_wme(true, &wme);
+                    self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
+                }
+            }
+            self.smem.links.by_link.entry(link).or_default().results = added;
+            // The old results go as 9.6 removes them: what was retrieved and nothing else
+            // links, newest first, then the result link's own WMEs, oldest first; what
+            // something else links stays (observed on soar-sml 9.6.5).
+            let (mut on_result, below): (Vec<WmeId>, Vec<WmeId>) = gone
+                .into_iter()
+                .partition(|&w| self.wm.get(w).is_some_and(|x| x.id == res));
+            // The `^success`es go first, then `^retrieved`, whatever their timetags.
+            let (success, retrieved) = (
+                self.symbols.find_str("success"),
+                self.symbols.find_str("retrieved"),
+            );
+            on_result.sort_by_key(|&w| {
+                let attr = self.wm.get(w).map(|x| x.attr);
+                let rank = if attr == success {
+                    0
+                } else if attr == retrieved {
+                    1
+                } else {
+                    2
+                };
+                (rank, self.wm.get(w).map_or(0, |x| x.timetag))
+            });
+            let linked_elsewhere = |agent: &AgentCore, id: Sym| {
+                agent.wm.all().into_iter().any(|w| {
+                    !on_result.contains(&w) && agent.wm.get(w).is_some_and(|x| x.value == id)
+                })
+            };
+            let below: Vec<WmeId> = below
+                .into_iter()
+                .filter(|&w| {
+                    self.wm
+                        .get(w)
+                        .is_some_and(|x| !linked_elsewhere(self, x.id))
+                })
+                .collect();
+            for w in below.into_iter().rev().chain(on_result) {
+                if let Some(wme) = self.wm.get(w).copied() {
+                    self.trace_wme(false, &wme);
+                    self.remove_wme(w);
+                    self.decider.wme_changes += 1;
+                    changed = true;
+                }
+            }
+        }
+        if changed {
+            self.collect_garbage();
+        }
+    }
+
+    /// Reads a command; `None` when it is malformed (Soar manual, Semantic Memory: two
+    /// retrievals at once, a cue that is not an identifier, a modifier without a query, an
+    /// unknown attribute).
+    fn smem_command(&self, wmes: &[Wme]) -> Option<Command> {
+        let mut c = Command::default();
+        for w in wmes {
+            let is_id = self.symbols.is_id(w.value);
+            let one = |slot: &mut Option<Sym>| {
+                if slot.is_some() || !is_id {
+                    return false;
+                }
+                *slot = Some(w.value);
+                true
+            };
+            let ok = match self.symbols.text(w.attr).as_str() {
+                "query" => one(&mut c.query),
+                "neg-query" => one(&mut c.neg_query),
+                "math-query" => one(&mut c.math_query),
+                "retrieve" => one(&mut c.retrieve),
+                "store" => {
+                    c.stores.push(w.value);
+                    is_id
+                }
+                "prohibit" => match self.symbols.lti(w.value) {
+                    Some(l) => {
+                        c.prohibit.push(l);
+                        true
+                    }
+                    None => false,
+                },
+                "depth" => match self.symbols.get(w.value) {
+                    SymData::Int(n) if *n > 0 && c.depth.is_none() => {
+                        c.depth = Some(*n);
+                        true
+                    }
+                    _ => false,
+                },
+                _ => false,
+            };
+            if !ok {
+                return None;
+            }
+        }
+        let modifiers = c.neg_query.is_some() || c.math_query.is_some() || !c.prohibit.is_empty();
+        if (c.query.is_some() && c.retrieve.is_some()) || (modifiers && c.query.is_none()) {
+            return None;
+        }
+        Some(c)
+    }
+
+    /// Carries a command out; the WMEs of its results, in the order they are made.
+    fn smem_process(
+        &mut self,
+        cmd_id: Sym,
+        res: Sym,
+        level: u32,
+        wmes: &[Wme],
+        replacing: bool,
+    ) -> Vec<WmeId> {
+        let now = self.decider.d_cycle_count as i64;
+        let mut added = Vec::new();
+        // 9.6.5 answers a malformed command with `^bad-cmd <command>` (observed).
+        let Some(cmd) = self.smem_command(wmes) else {
+            self.smem_result(res, "bad-cmd", None, Some(cmd_id), &mut added);
+            return added;
+        };
+        for &s in &cmd.stores {
+            match self.smem_store_object(s) {
+                Ok(()) => self.smem_result(res, "success", None, Some(s), &mut added),
+                Err(e) => self.smem_error(res, s, &e, &mut added),
+            }
+        }
+        let depth = cmd.depth.unwrap_or(1);
+        if let Some(q) = cmd.query {
+            let cue = self.smem_cue(q, cmd.neg_query, cmd.math_query, &cmd.prohibit);
+            self.smem.stats.queries += 1;
+            let found = self.smem.query(&cue).map(|f| f.first().copied());
+            match found {
+                Ok(Some(lti)) => {
+                    let activate = if self.smem.params.activate_on_query() {
+                        self.smem.activate(lti, now)
+                    } else {
+                        Ok(())
+                    };
+                    let sti = self.symbols.new_id('L', level);
+                    if let Some(d) = self.symbols.id_data_mut(sti) {
+                        d.lti = lti;
+                    }
+                    let installed = activate.and_then(|()| {
+                        self.smem_install(sti, lti, level, depth, &mut added)
+                    });
+                    match installed {
+                        // 9.6 gives `^retrieved` the later timetag on a fresh result and
+                        // `^success` on one that replaces an earlier command's (observed
+                        // on soar-sml 9.6.5).
+                        // The negative cue's `^success` comes before the cue's.
+                        Ok(()) => {
+                            if replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            for x in [cmd.neg_query, Some(q)].into_iter().flatten() {
+                                self.smem_result(res, "success", None, Some(x), &mut added);
+                            }
+                            if !replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            self.smem_depth_results(res, &mut added);
+                        }
+                        Err(e) => self.smem_error(res, q, &e, &mut added),
+                    }
+                }
+                Ok(None) => self.smem_result(res, "failure", None, Some(q), &mut added),
+                Err(e) => self.smem_error(res, q, &e, &mut added),
+            }
+        }
+        if let Some(r) = cmd.retrieve {
+            // An identifier that stands for no LTI is a retrieve that fails, uncounted;
+            // one that does gets a new identifier for the LTI, with its augmentations
+            // (observed on soar-sml 9.6.5).
+            let lti = self.symbols.lti(r).unwrap_or(0);
+            if lti > 0 {
+                self.smem.stats.retrieves += 1;
+            }
+            let exists = self.smem.store().and_then(|s| s.lti_exists(lti));
+            match exists {
+                Ok(true) => {
+                    let sti = self.symbols.new_id('L', level);
+                    if let Some(d) = self.symbols.id_data_mut(sti) {
+                        d.lti = lti;
+                    }
+                    // A retrieve counts as an activation update but leaves the LTI's
+                    // recency as it was (observed on soar-sml 9.6.5).
+                    self.smem.stats.act_updates += 1;
+                    let done = self.smem_install(sti, lti, level, depth, &mut added);
+                    match done {
+                        Ok(()) => {
+                            if replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            self.smem_result(res, "success", None, Some(r), &mut added);
+                            if !replacing {
+                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            }
+                            self.smem_depth_results(res, &mut added);
+                        }
+                        Err(e) => self.smem_error(res, r, &e, &mut added),
+                    }
+                }
+                Ok(false) => self.smem_result(res, "failure", None, Some(r), &mut added),
+                Err(e) => self.smem_error(res, r, &e, &mut added),
+            }
+        }
+        added
+    }
+
+    /// A database failure: the message on the print stream and `^failure` of what was
+    /// asked.
+    fn smem_error(&mut self, res: Sym, asked: Sym, e: &str, added: &mut Vec<WmeId>) {
+        self.fresh_line();
+        self.output.push_str(e);
+        self.output.push('\n');
+        self.smem_result(res, "failure", None, Some(asked), added);
+    }
+
+    /// `(res ^depth-retrieved X)` for each identifier a deeper retrieval filled (observed
+    /// on soar-sml 9.6.5).
+    fn smem_depth_results(&mut self, res: Sym, added: &mut Vec<WmeId>) {
+        for x in std::mem::take(&mut self.smem.links.deeper).into_iter().rev() {
+            self.smem_result(res, "depth-retrieved", None, Some(x), added);
+        }
+    }
+
+    /// `(res ^attr value)` into working memory (matched later, with the others).
+    fn smem_result(
+        &mut self,
+        res: Sym,
+        attr: &str,
+        word: Option<&str>,
+        value: Option<Sym>,
+        added: &mut Vec<WmeId>,
+    ) {
+        let a = self.symbols.str(attr);
+        let v = match (word, value) {
+            (_, Some(v)) => v,
+            (Some(w), None) => self.symbols.str(w),
+            (None, None) => return,
+        };
+        let again = self.smem.links.reusable.iter().position(|&w| {
+            self.wm
+                .get(w)
+                .is_some_and(|x| (x.id, x.attr, x.value) == (res, a, v))
+        });
+        match again {
+            Some(i) => added.push(self.smem.links.reusable.swap_remove(i)),
+            None => added.push(self.wm.add(res, a, v, false)),
+        }
+    }
+
+    fn smem_sym(&mut self, v: &Val) -> Sym {
+        match v {
+            Val::Str(s) => self.symbols.str(s),
+            Val::Int(i) => self.symbols.int(*i),
+            Val::Float(f) => self.symbols.float(*f),
+            Val::Lti(_) => self.symbols.str(""),
+        }
+    }
+
+    fn smem_val(&self, s: Sym) -> Option<Val> {
+        match self.symbols.get(s) {
+            SymData::Str(x) => Some(Val::Str(x.to_string())),
+            SymData::Int(i) => Some(Val::Int(*i)),
+            SymData::Float(f) => Some(Val::Float(*f)),
+            SymData::Id(d) if d.lti > 0 => Some(Val::Lti(d.lti)),
+            SymData::Id(_) => None,
+        }
+    }
+
+    /// The LTI's augmentations onto `sti`, and those of the LTIs they name down to
+    /// `depth` levels (`^depth`; Soar manual, Semantic Memory, "Retrieval Depth").
+    fn smem_install(
+        &mut self,
+        sti: Sym,
+        lti: i64,
+        level: u32,
+        depth: i64,
+        added: &mut Vec<WmeId>,
+    ) -> Result<(), String> {
+        let augs = self.smem.store()?.augs(lti)?;
+        let mut children = Vec::new();
+        for (a, v) in augs {
+            let attr = self.smem_sym(&a);
+            let value = match v {
+                Val::Lti(l) => {
+                    let child = self.symbols.new_id('L', level);
+                    if let Some(d) = self.symbols.id_data_mut(child) {
+                        d.lti = l;
+                    }
+                    children.push((child, l));
+                    child
+                }
+                v => self.smem_sym(&v),
+            };
+            added.push(self.wm.add(sti, attr, value, false));
+        }
+        if depth > 1 {
+            for (child, l) in children {
+                self.smem.links.deeper.push(child);
+                self.smem_install(child, l, level, depth - 1, added)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `^store <id>`: the object's WMEs become its LTI's augmentations (an object without
+    /// an LTI gets a new one; an identifier value without one gets one too, empty), and
+    /// the LTI is activated. 9.6 prints `@` for each object stored.
+    fn smem_store_object(&mut self, id: Sym) -> Result<(), String> {
+        let now = self.decider.d_cycle_count as i64;
+        let lti = match self.symbols.lti(id) {
+            Some(l) => l,
+            None => {
+                let l = self.smem.store()?.new_lti()?;
+                if let Some(d) = self.symbols.id_data_mut(id) {
+                    d.lti = l;
+                }
+                l
+            }
+        };
+        self.smem.store()?.remove_augs(lti, None, None)?;
+        for w in self.smem_wmes(id) {
+            let Some(attr) = self.smem_val(w.attr).filter(|a| !matches!(a, Val::Lti(_))) else {
+                continue;
+            };
+            let value = match self.smem_val(w.value) {
+                Some(v) => v,
+                None => {
+                    let l = self.smem.store()?.new_lti()?;
+                    if let Some(d) = self.symbols.id_data_mut(w.value) {
+                        d.lti = l;
+                    }
+                    Val::Lti(l)
+                }
+            };
+            self.smem.store()?.add_aug(lti, &attr, &value)?;
+        }
+        self.smem.activate(lti, now)?;
+        self.smem.stats.stores += 1;
+        let lazy = self.smem.params.lazy_commit();
+        self.smem.store()?.commit(lazy)?;
+        self.output.push('@');
+        Ok(())
+    }
+
+    /// The cue of a query: its WMEs, a constant asking for itself, an LTI's stand-in for
+    /// the LTI, any other identifier for any value; the negative cue and the math tests
+    /// (`(<m> ^attr <t>) (<t> ^less 5)`) beside it.
+    fn smem_cue(
+        &self,
+        q: Sym,
+        neg: Option<Sym>,
+        math: Option<Sym>,
+        prohibit: &[i64],
+    ) -> Cue {
+        let element = |w: &Wme| -> Option<(Val, Want)> {
+            let attr = self.smem_val(w.attr)?;
+            let want = match self.smem_val(w.value) {
+                Some(Val::Lti(l)) => Want::Lti(l),
+                Some(v) => Want::Const(v),
+                None => Want::Any,
+            };
+            Some((attr, want))
+        };
+        let mut cue = Cue {
+            prohibit: prohibit.to_vec(),
+            ..Cue::default()
+        };
+        cue.pos = self.smem_wmes(q).iter().filter_map(element).collect();
+        if let Some(n) = neg {
+            cue.neg = self.smem_wmes(n).iter().filter_map(element).collect();
+        }
+        if let Some(m) = math {
+            for w in self.smem_wmes(m) {
+                let Some(attr) = self.smem_val(w.attr) else {
+                    continue;
+                };
+                for t in self.smem_wmes(w.value) {
+                    let n = match self.symbols.get(t.value) {
+                        SymData::Int(i) => Some(*i as f64),
+                        SymData::Float(f) => Some(*f),
+                        _ => None,
+                    };
+                    if let Some(test) = Math::from_word(&self.symbols.text(t.attr), n) {
+                        cue.math.push((attr.clone(), test));
+                    }
+                }
+            }
+        }
+        cue
+    }
+}
