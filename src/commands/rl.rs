@@ -82,24 +82,16 @@ impl Interpreter {
 
     /// `rl --set NAME VALUE`, refusing the values of the parts rusoar does not have.
     fn rl_set(&mut self, ctx: &Ctx, name: &str, value: &str) -> CmdResult {
-        let mut trial = self.agent.rl.params.clone();
-        match trial.set(name, value) {
-            Err(SetError::Name) => return Err(ctx.error("Invalid setting.")),
-            Err(SetError::Value) => return Err(ctx.error("Invalid value for setting.")),
-            Ok(()) => {}
-        }
-        let defaults = crate::rl::params::RlParams::default();
-        let missing = match name {
-            "apoptosis" if trial.apoptosis != defaults.apoptosis => Some("apoptosis is"),
-            "trace" if trial.trace => Some("the graph of RL updates (trace) is"),
-            _ => None,
-        };
-        if let Some(what) = missing {
+        if name == "trace" && value == "on" {
             return Err(ctx.error(format!(
-                "rl --set {name} {value}: {what} not yet supported by rusoar"
+                "rl --set {name} {value}: the graph of RL updates (trace) is not yet supported by rusoar"
             )));
         }
-        self.agent.rl.params = trial;
-        Ok(String::new())
+        match self.agent.rl.set_param(name, value) {
+            Err(SetError::Name) => Err(ctx.error("Invalid setting.")),
+            Err(SetError::Value) => Err(ctx.error("Invalid value for setting.")),
+            Err(SetError::Protected) => Err(ctx.error("Failed to set value.")),
+            Ok(()) => Ok(String::new()),
+        }
     }
 }

@@ -336,6 +336,7 @@ impl AgentCore {
                 // Semantic memory's commands are processed at the end of the output phase
                 // (observed on soar-sml 9.6.5: their results are traced in it).
                 self.smem_output_phase();
+                self.apoptosis_end_decision();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
                 self.decider.phase = Some(Phase::Input);

@@ -288,6 +288,7 @@ impl AgentCore {
 
     pub(super) fn retract(&mut self, inst_id: InstId) {
         self.send_rule_event(self.decider.insts[inst_id].prod, true);
+        self.apoptosis_note_retraction(self.decider.insts[inst_id].prod);
         let serial = self.decider.insts[inst_id].serial;
         if serial != 0 {
             self.justification_retracted(inst_id, serial);

@@ -9,8 +9,10 @@
 //! `update.rs` collects rewards and updates the rules on the agent; `gq.rs` weighs the
 //! GQ(λ) policies' traces; `template.rs` makes the
 //! RL rules of `:template` rules' matches; `params.rs` holds the parameters of the `rl`
-//! command.
+//! command; `apoptosis.rs` decays learned rules' activations so that unused ones go.
 
+mod apoptosis;
+mod forgetting;
 mod gq;
 pub mod params;
 mod template;
@@ -85,6 +87,9 @@ pub struct RlState {
     /// The number of the last rule a template made (`rl*<template>*<n>`); `init-soar`
     /// keeps it.
     pub template_count: u64,
+    /// The decay of learned rules while `apoptosis` is on; made with the decay and
+    /// threshold of the moment it is turned on (they cannot change while it is on).
+    pub rule_decay: Option<apoptosis::RuleDecay>,
 }
 
 impl RlState {
@@ -109,6 +114,52 @@ impl RlState {
     pub fn rule_excised(&mut self, id: ProdId) {
         self.rules.remove(&id);
         self.template_rules.clear();
+        if let Some(decay) = &mut self.rule_decay {
+            decay.remove(id);
+        }
+    }
+
+    /// Sets a parameter of the `rl` command, as 9.6 does: turning apoptosis on starts the
+    /// decay of learned rules, off drops it; its decay and threshold are fixed while on.
+    pub fn set_param(&mut self, name: &str, word: &str) -> Result<(), params::SetError> {
+        let apoptosis_on = self.params.apoptosis != params::Apoptosis::None;
+        if apoptosis_on && matches!(name, "apoptosis-decay" | "apoptosis-thresh") {
+            return Err(params::SetError::Protected);
+        }
+        self.params.set(name, word)?;
+        match (apoptosis_on, self.params.apoptosis != params::Apoptosis::None) {
+            (false, true) => {
+                self.rule_decay = Some(apoptosis::RuleDecay::new(
+                    self.params.apoptosis_decay,
+                    self.params.apoptosis_thresh,
+                ))
+            }
+            (true, false) => self.rule_decay = None,
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// How many times a rule is named among the states' last RL rules.
+    pub fn references_from_states(&self, id: ProdId) -> usize {
+        self.goals
+            .values()
+            .map(|g| g.prev_rules.iter().filter(|&&r| r == id).count())
+            .sum()
+    }
+
+    /// Whether apoptosis follows this learned rule's use (9.6: every chunk under
+    /// `chunks`; an RL chunk only while it has had no update and no state names it).
+    pub fn apoptosis_tracks(&self, id: ProdId) -> bool {
+        use params::Apoptosis;
+        match self.rules.get(&id) {
+            None => self.params.apoptosis == Apoptosis::Chunks,
+            Some(v) => {
+                self.params.apoptosis != Apoptosis::None
+                    && v.updates as i64 == 0
+                    && self.references_from_states(id) == 0
+            }
+        }
     }
 
     pub fn is_rl_rule(&self, id: ProdId) -> bool {

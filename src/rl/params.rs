@@ -133,6 +133,9 @@ pub enum SetError {
     Name,
     /// A value the parameter does not take: `Invalid value for setting.`
     Value,
+    /// A parameter that cannot change now (apoptosis's decay and threshold while it is
+    /// on): `Failed to set value.`
+    Protected,
 }
 
 /// A number as 9.6 prints a parameter: 16 significant digits, C's `%g` form.
