@@ -1,7 +1,6 @@
 //! The `rl` command (Soar manual, ch. 9, `rl`): reinforcement learning's parameters (the
-//! listing, `--get`, `--set`) and statistics (`--stats`), with 9.6's texts and error
-//! messages. The parts of Soar-RL rusoar does not have answer with an error that names
-//! them.
+//! listing, `--get`, `--set`), statistics (`--stats`) and trace (`-t`), with 9.6's texts
+//! and error messages.
 
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
@@ -74,19 +73,50 @@ impl Interpreter {
                         .ok_or_else(|| ctx.error("Invalid statistic.")),
                 }
             }
-            _ => Err(ctx.error(
-                "rl --trace: the graph of RL updates is not yet supported by rusoar",
-            )),
+            _ => {
+                count(0, 2)?;
+                self.rl_trace_command(ctx, words)
+            }
         }
     }
 
-    /// `rl --set NAME VALUE`, refusing the values of the parts rusoar does not have.
-    fn rl_set(&mut self, ctx: &Ctx, name: &str, value: &str) -> CmdResult {
-        if name == "trace" && value == "on" {
-            return Err(ctx.error(format!(
-                "rl --set {name} {value}: the graph of RL updates (trace) is not yet supported by rusoar"
-            )));
+    /// `rl -t [LEVEL]`, `rl -t print [LEVEL]`, `rl -t clear [LEVEL]`, `rl -t init [LEVEL]`,
+    /// with 9.6's reading of levels (C's `atoi`: `x` is 0) and its messages.
+    fn rl_trace_command(&mut self, ctx: &Ctx, words: &[String]) -> CmdResult {
+        let level_of = |w: &String, what: &str| match c_atoi(w) {
+            l if l >= 1 => Ok(l as u32),
+            _ => Err(ctx.error(format!("Invalid RL goal level for rl -t{what}."))),
+        };
+        let first = words.first().map(String::as_str);
+        let second = words.get(1);
+        match first {
+            Some("clear") => {
+                let level = second.map(|w| level_of(w, " clear")).transpose()?;
+                self.agent.rl.trace.clear(level);
+                Ok(String::new())
+            }
+            Some("init") => {
+                let level = second.map(|w| level_of(w, " init")).transpose()?;
+                self.agent.rl_trace_init(level);
+                Ok(String::new())
+            }
+            _ => {
+                let level = match (first, second) {
+                    (None, _) => 1,
+                    (Some("print"), None) => 1,
+                    (Some("print"), Some(w)) => level_of(w, "")?,
+                    (Some(_), Some(_)) => return Err(ctx.error("Invalid arguments to rl -t.")),
+                    (Some(_), None) => level_of(&words[0], "")?,
+                };
+                let mut out = format!("# RL Trace, Goal Level {level}:\n");
+                out.push_str(&self.agent.rl.trace.dot(level).unwrap_or_default());
+                Ok(out)
+            }
         }
+    }
+
+    /// `rl --set NAME VALUE`.
+    fn rl_set(&mut self, ctx: &Ctx, name: &str, value: &str) -> CmdResult {
         match self.agent.rl.set_param(name, value) {
             Err(SetError::Name) => Err(ctx.error("Invalid setting.")),
             Err(SetError::Value) => Err(ctx.error("Invalid value for setting.")),
@@ -94,4 +124,19 @@ impl Interpreter {
             Ok(()) => Ok(String::new()),
         }
     }
+}
+
+/// C's `atoi`: leading blanks, a sign, then as many digits as there are; 0 without any.
+fn c_atoi(text: &str) -> i64 {
+    let t = text.trim_start();
+    let (sign, digits) = match t.as_bytes().first() {
+        Some(b'-') => (-1, &t[1..]),
+        Some(b'+') => (1, &t[1..]),
+        _ => (1, t),
+    };
+    let n: i64 = digits
+        .bytes()
+        .take_while(u8::is_ascii_digit)
+        .fold(0i64, |acc, d| acc.saturating_mul(10).saturating_add(i64::from(d - b'0')));
+    sign * n
 }

@@ -445,6 +445,8 @@ impl AgentCore {
         self.decider.wm_base = (self.wm.additions(), self.wm.removals());
         self.learn.reset_for_init();
         self.rl.reinitialize();
+        // `rl -t init`, as 9.6 does at every init-soar: the RL trace starts from its roots.
+        self.rl_trace_init(None);
         self.smem_reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();

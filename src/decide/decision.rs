@@ -66,6 +66,7 @@ impl AgentCore {
             let (kind, on_operator, items) = match outcome {
                 Outcome::Winner(o) => {
                     let learning = self.rl_enabled();
+                    let mut decided = None;
                     if learning {
                         // Soar manual, 5.3 "Updating RL Rule Values": the selection
                         // updates the RL rules of the state's previous RL operator.
@@ -74,10 +75,12 @@ impl AgentCore {
                         let values = self.rl_candidates(goal.state, &prefs, &cands);
                         self.rl_tabulate_rewards();
                         self.rl_decided(goal.state, &values, chosen, policy);
+                        decided = Some((cands, values, chosen));
                     }
                     self.remove_goals_below(gi);
-                    if learning {
+                    if let Some((cands, values, chosen)) = decided {
                         self.rl_store(goal.state, o);
+                        self.rl_trace_record(goal.state, goal.level, &cands, &values, chosen, policy);
                     }
                     let w = self.add_wme(goal.state, op, o, false);
                     if let Some(wme) = self.wm.get(w).copied() {

@@ -347,6 +347,8 @@ impl AgentCore {
                 impasse: Some((kind, on_operator)),
             });
         }
+        // Each goal level has its RL trace from the first state at that level on.
+        self.rl.trace.root(level);
         self.decider.goals.push(Goal {
             state: s,
             level,

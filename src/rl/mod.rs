@@ -16,6 +16,8 @@ mod forgetting;
 mod gq;
 pub mod params;
 mod template;
+mod trace_graph;
+mod trace_record;
 mod update;
 mod update_log;
 
@@ -60,6 +62,8 @@ pub struct GoalData {
     /// The GQ(λ) importance ratio of the operator last selected with RL rules (set
     /// whenever `prev_rules` is).
     pub rho: f64,
+    /// Where the state is in its level's RL trace (`None`: at the root).
+    pub trace_node: Option<usize>,
 }
 
 /// The statistics `rl --stats` prints.
@@ -90,6 +94,8 @@ pub struct RlState {
     /// The decay of learned rules while `apoptosis` is on; made with the decay and
     /// threshold of the moment it is turned on (they cannot change while it is on).
     pub rule_decay: Option<apoptosis::RuleDecay>,
+    /// The RL trace of each goal level (`rl -t`).
+    pub trace: trace_graph::RlTrace,
 }
 
 impl RlState {
