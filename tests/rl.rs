@@ -1,7 +1,7 @@
 //! Reinforcement learning where the command goldens (`tests/commands/rl*.cmds`, compared
-//! with the official kernel) cannot check it: the parts of Soar-RL rusoar does not build
-//! answer with one error line that names them, and leave the parameters as they were; and
-//! what an RL rule learned survives a save and a reload as its printed text.
+//! with the official kernel) do not reach: apoptosis's modes over a longer run, the RL
+//! trace after a clear in the middle of a run, and what an RL rule learned surviving a
+//! save and a reload as its printed text.
 
 use rusoar::Agent;
 
@@ -13,34 +13,55 @@ fn output(agent: &mut Agent, command: &str) -> String {
     agent.take_output().trim_start_matches('\n').to_string()
 }
 
-fn refused(agent: &mut Agent, command: &str) -> String {
-    let err = agent
-        .source_text("t", command)
-        .expect_err("the command should be refused");
-    let message = err.message().to_string();
-    assert!(
-        message.ends_with("not yet supported by rusoar") && !message.contains('\n'),
-        "`{command}`: {message}"
-    );
-    message
+/// The chunks an agent holds, by name.
+fn chunks(agent: &mut Agent) -> usize {
+    output(agent, "print -c")
+        .lines()
+        .filter(|l| l.starts_with("chunk*"))
+        .count()
 }
 
 #[test]
-fn what_is_not_built_is_refused_by_name() {
+fn apoptosis_forgets_unused_chunks_and_rl_chunks_spares_the_others() {
+    // 20 chunks, of which 3 keep firing (tests/commands/rl-apoptosis.cmds has the trace).
+    let run = |mode: &str| {
+        let mut agent = Agent::default();
+        output(&mut agent, "chunk always");
+        output(&mut agent, &format!("rl --set apoptosis {mode}"));
+        output(
+            &mut agent,
+            "source tests/commands/agents/apoptosis-numbers.soar",
+        );
+        output(&mut agent, "run 200");
+        chunks(&mut agent)
+    };
+    // As the official kernel keeps them (soar_sml 9.6.5): all but the 3 in use go under
+    // `chunks`; `rl-chunks` forgets only RL rules, and these chunks are none.
+    assert_eq!(run("chunks"), 3);
+    assert_eq!(run("rl-chunks"), 20);
+    assert_eq!(run("none"), 20);
+}
+
+#[test]
+fn the_rl_trace_survives_a_clear_in_the_middle_of_a_run() {
     let mut agent = Agent::default();
-    for (command, names) in [
-        ("rl --set apoptosis chunks", "apoptosis"),
-        ("rl --set apoptosis rl-chunks", "apoptosis"),
-        ("rl --set trace on", "trace"),
-        ("rl --trace", "graph"),
-        ("rl -t", "graph"),
-    ] {
-        let message = refused(&mut agent, command);
-        assert!(message.contains(names), "`{command}`: {message}");
-    }
-    // Nothing was set.
-    assert_eq!(output(&mut agent, "rl -g apoptosis"), "none\n");
-    assert_eq!(output(&mut agent, "rl -g trace"), "off\n");
+    output(&mut agent, "srand 1");
+    output(
+        &mut agent,
+        "source tests/commands/agents/rl-left-right.soar",
+    );
+    output(&mut agent, "rl --set learning on");
+    output(&mut agent, "rl --set trace on");
+    output(&mut agent, "run 2");
+    output(&mut agent, "rl -t clear");
+    output(&mut agent, "run");
+    // The cleared tree is gone; the goals keep recording where nothing prints them until
+    // `rl -t init` sends them back to a root (as soar_sml 9.6.5 prints it).
+    assert_eq!(output(&mut agent, "rl -t"), "# RL Trace, Goal Level 1:\n");
+    output(&mut agent, "rl -t init");
+    output(&mut agent, "init-soar");
+    output(&mut agent, "run");
+    assert!(output(&mut agent, "rl -t").contains("^name initialize\\n- (2)"));
 }
 
 #[test]
