@@ -12,6 +12,7 @@ mod files;
 mod gp;
 pub mod help;
 mod memory;
+mod memory_usage;
 pub mod options;
 mod output;
 mod percepts;

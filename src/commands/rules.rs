@@ -122,9 +122,7 @@ impl Interpreter {
             Some("find") => self.cmd_production_find(ctx, &args[1..]),
             Some("break") => self.cmd_production_break(ctx, &args[1..]),
             Some("watch") => self.cmd_production_watch(ctx, &args[1..]),
-            Some("memory-usage") => Err(ctx
-                .error("production memory-usage: not supported by rusoar")
-                .with_note("9.6 counts the tokens its rete holds for each rule; rusoar's matcher keeps its partial matches differently, so it has no such counts to show")),
+            Some("memory-usage") => self.cmd_memory_usage(ctx, &args[1..]),
             Some(_) | None => Err(super::not_yet(ctx, "production")),
         }
     }

@@ -1313,6 +1313,51 @@ impl Rete {
             .collect()
     }
 
+    /// For `production memory-usage`: the partial matches 9.6's network holds for a rule.
+    /// Each condition's node keeps the matches of the conditions before it (the first, the
+    /// network's one empty match), so the count is one plus the matches through every
+    /// condition but the last; a negated conjunction of two or more conditions adds the
+    /// matches entering each of its own conditions (counted on soar_sml 9.6.5).
+    pub fn tokens_held(&self, p: ProdId, syms: &Symbols) -> u64 {
+        let Some(info) = self.production(p) else {
+            return 0;
+        };
+        let counts: Vec<u64> = info
+            .cond_nodes
+            .iter()
+            .map(|&n| self.count_matches_at(n, syms) as u64)
+            .collect();
+        let mut total = 1;
+        for (j, &n) in info.cond_nodes.iter().enumerate() {
+            let entering = if j == 0 { 1 } else { counts[j - 1] };
+            if j + 1 < counts.len() {
+                total += counts[j];
+            }
+            if let Kind::Ncc { partner } = self.nodes[n].kind {
+                let inner = self.ncc_condition_counts(n, partner, syms);
+                if inner.len() >= 2 {
+                    total += entering + inner[..inner.len() - 1].iter().sum::<u64>();
+                }
+            }
+        }
+        total
+    }
+
+    /// The matches through each condition of a negated conjunction's own branch, top down.
+    fn ncc_condition_counts(&self, ncc: NodeId, partner: NodeId, syms: &Symbols) -> Vec<u64> {
+        let top = self.nodes[ncc].parent;
+        let mut nodes = Vec::new();
+        let mut n = self.nodes[partner].parent;
+        while n != top && n != NodeId::NONE {
+            if matches!(self.nodes[n].kind, Kind::Join { .. } | Kind::Negative { .. } | Kind::Ncc { .. }) {
+                nodes.push(n);
+            }
+            n = self.nodes[n].parent;
+        }
+        nodes.reverse();
+        nodes.iter().map(|&c| self.count_matches_at(c, syms) as u64).collect()
+    }
+
     fn count_matches_at(&self, n: NodeId, syms: &Symbols) -> usize {
         let node = &self.nodes[n];
         if node.holds_tokens() {
