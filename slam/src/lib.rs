@@ -33,6 +33,7 @@ pub mod method;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;
+pub mod plan;
 pub mod report;
 pub mod results;
 pub mod rng;
