@@ -638,3 +638,120 @@ fn comparison(opts: &Options, experiments: &[(PartKind, Experiment)]) -> Result<
     compare::figure(&series, opts.world.run.dt, &opts.out)?;
     Ok(text)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::experiment::{execute, parse_options};
+    use super::*;
+
+    fn args(a: &[&str], out: &Path) -> Vec<String> {
+        a.iter()
+            .map(|s| s.to_string())
+            .chain(["--out".to_string(), out.display().to_string()])
+            .collect()
+    }
+
+    /// Every file under `dir`, by path relative to it, with its contents.
+    fn tree(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
+        let mut all = Vec::new();
+        let mut todo = vec![dir.to_path_buf()];
+        while let Some(d) = todo.pop() {
+            for e in std::fs::read_dir(&d).unwrap() {
+                let p = e.unwrap().path();
+                if p.is_dir() {
+                    todo.push(p);
+                } else {
+                    let rel = p.strip_prefix(dir).unwrap().to_path_buf();
+                    all.push((rel, std::fs::read(&p).unwrap()));
+                }
+            }
+        }
+        all.sort();
+        all
+    }
+
+    #[test]
+    fn runs_carried_out_apart_give_the_threads_files() {
+        let base = std::env::temp_dir().join(format!("rusoar-plan-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&base);
+        let a = [
+            "--seeds",
+            "2",
+            "--duration",
+            "20",
+            "--method",
+            "dr,thesis,v2,ekf",
+            "--io-log",
+            "--jobs",
+            "2",
+        ];
+        let threads = base.join("threads");
+        let opts = parse_options(&args(&a, &threads)).unwrap();
+        let text = match execute(plan(&opts).unwrap(), 2, false).unwrap() {
+            Finished::Comparison(t) => t,
+            Finished::Experiment(_) => panic!("a comparison was asked for"),
+        };
+        // The same runs, each through bytes as a Ray task sees them, in reverse order.
+        let apart = base.join("apart");
+        let plan = plan(&parse_options(&args(&a, &apart)).unwrap()).unwrap();
+        assert_eq!(plan.specs.len(), 6, "2 seeds × (off, on, v2)");
+        let specs: Vec<Vec<u8>> = plan.specs.iter().map(RunSpec::to_bytes).collect();
+        let mut assembly = Assembly::new(plan).unwrap();
+        for bytes in specs.iter().rev() {
+            let spec = RunSpec::from_bytes(bytes).unwrap();
+            let out = RunOutput::from_bytes(&run(&spec).to_bytes()).unwrap();
+            assembly.add(out).unwrap();
+        }
+        match assembly.finish(1).unwrap() {
+            Finished::Comparison(t) => assert_eq!(t, text),
+            Finished::Experiment(_) => panic!("a comparison was asked for"),
+        }
+        let (x, y) = (tree(&threads), tree(&apart));
+        assert!(x.iter().any(|(p, _)| p.ends_with("thesis/io-on-2.log")));
+        assert!(x.iter().any(|(p, _)| p.ends_with("thesis/ekf.md")));
+        assert_eq!(
+            x.iter().map(|f| &f.0).collect::<Vec<_>>(),
+            y.iter().map(|f| &f.0).collect::<Vec<_>>()
+        );
+        for ((p, a), (_, b)) in x.iter().zip(&y) {
+            assert!(a == b, "{} differs", p.display());
+        }
+        let _ = std::fs::remove_dir_all(&base);
+    }
+
+    #[test]
+    fn a_failed_run_crosses_as_bytes_with_its_nans() {
+        let opts = parse_options(&["--seeds".into(), "1".into(), "--slam".into(), "on".into()])
+            .unwrap();
+        let mut spec = plan(&opts).unwrap().specs.remove(0);
+        spec.rules_dir = PathBuf::from("/nonexistent");
+        assert_eq!(RunSpec::from_bytes(&spec.to_bytes()), Ok(spec.clone()));
+        let out = run(&spec);
+        assert!(!out.summary.outcome.completed() && out.summary.final_mm.is_nan());
+        let bytes = out.to_bytes();
+        let back = RunOutput::from_bytes(&bytes).unwrap();
+        assert!(back.summary.final_mm.is_nan());
+        assert_eq!(back.to_bytes(), bytes);
+        assert!(RunOutput::from_bytes(&bytes[..bytes.len() / 2]).is_err());
+        assert!(RunSpec::from_bytes(b"\xff").is_err());
+    }
+
+    #[test]
+    fn an_assembly_takes_each_of_its_runs_once() {
+        let base = std::env::temp_dir().join(format!("rusoar-plan-once-{}", std::process::id()));
+        let a = ["--seeds", "2", "--duration", "1", "--slam", "on"];
+        let plan = plan(&parse_options(&args(&a, &base)).unwrap()).unwrap();
+        let outputs: Vec<RunOutput> = plan.specs.iter().map(run).collect();
+        let mut assembly = Assembly::new(plan.clone()).unwrap();
+        assembly.add(outputs[0].clone()).unwrap();
+        let twice = assembly.add(outputs[0].clone()).unwrap_err();
+        assert!(twice.contains("twice"), "{twice}");
+        let mut foreign = outputs[1].clone();
+        foreign.summary.seed = 7;
+        let e = assembly.add(foreign).unwrap_err();
+        assert!(e.contains("not a run of this experiment"), "{e}");
+        let e = assembly.finish(1).unwrap_err();
+        assert_eq!(e, "only 1 of 2 runs finished");
+        let _ = std::fs::remove_dir_all(&base);
+    }
+}
