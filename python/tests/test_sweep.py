@@ -24,6 +24,9 @@ def ray():
     try:
         import ray
     except ImportError:
+        # CI installs the `ray` extra: there, a missing Ray is a broken install step.
+        if os.environ.get("CI"):
+            pytest.fail('Ray is not installed: CI installs "./python[ray]"')
         pytest.skip('Ray is not installed (pip install "./python[ray]")')
     ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
     yield ray
@@ -67,7 +70,7 @@ def assert_same_files(a, b, wall_clock=()):
 
 
 def test_a_comparison_equals_rusoar_slams(ray, tmp_path):
-    args = ["--seeds", "2", "--duration", "40", "--method", "dr,thesis,v2,ekf",
+    args = ["--seeds", "2", "--duration", "120", "--method", "dr,thesis,v2,ekf",
             "--rules", RULES, "--io-log"]
     assert sw.slam(args + ["--out", str(tmp_path / "threads")]) == 0
     [exp] = sw.sweep(args + ["--out", str(tmp_path / "ray")], progress=False)

@@ -22,7 +22,9 @@
 //!   [`super::report`]).
 //!
 //! Runs go in parallel over `--jobs` threads (default: all cores), each with its own agent.
-//! What they produce is data of [`super::results`]; the statistics are [`super::stats`]'s.
+//! They are planned, carried out and assembled into these files by [`super::plan`], the code
+//! the Python sweep's Ray tasks use too. What they produce is data of [`super::results`];
+//! the statistics are [`super::stats`]'s.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
