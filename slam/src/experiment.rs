@@ -36,8 +36,8 @@ use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
 use super::compare::Method;
-pub use super::plan::{tum, v2_rules_dir};
 use super::plan::{self, Assembly, Finished, Plan, RunSpec};
+pub use super::plan::{tum, v2_rules_dir};
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
 use super::soar_loop::{self, Outcome};
 use super::sonar::NoisePreset;
@@ -449,8 +449,7 @@ pub fn execute(plan: Plan, jobs: usize, progress: bool) -> Result<Finished, Stri
                         .unwrap_or_else(|p| p.into_inner())
                         .folder(&output)
                         .map(Path::to_path_buf);
-                    let written =
-                        folder.and_then(|dir| plan::write_files(&dir, &output.files));
+                    let written = folder.and_then(|dir| plan::write_files(&dir, &output.files));
                     let mut a = assembly.lock().unwrap_or_else(|p| p.into_inner());
                     if let Err(e) = written.and_then(|()| a.keep(output)) {
                         a.fail(e);
@@ -478,7 +477,9 @@ pub fn execute(plan: Plan, jobs: usize, progress: bool) -> Result<Finished, Stri
 /// to stderr.
 pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, String> {
     let mut single = opts.clone();
-    single.methods.retain(|m| !matches!(m, Method::V2 | Method::Oracle));
+    single
+        .methods
+        .retain(|m| !matches!(m, Method::V2 | Method::Oracle));
     match execute(plan::plan(&single)?, opts.jobs, progress)? {
         Finished::Experiment(exp) => Ok(*exp),
         Finished::Comparison(_) => Err("a single experiment was planned as a comparison".into()),

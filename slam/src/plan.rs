@@ -74,7 +74,8 @@ impl RunSpec {
     }
 
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
-        postcard::from_bytes(bytes).map_err(|e| format!("not a run description of rusoar slam: {e}"))
+        postcard::from_bytes(bytes)
+            .map_err(|e| format!("not a run description of rusoar slam: {e}"))
     }
 }
 
@@ -597,9 +598,7 @@ fn comparison(opts: &Options, experiments: &[(PartKind, Experiment)]) -> Result<
                         head: exp
                             .ekf_runs
                             .iter()
-                            .map(|r| {
-                                (r.seed, r.steps.iter().map(|k| k.heading_err_deg).collect())
-                            })
+                            .map(|r| (r.seed, r.steps.iter().map(|k| k.heading_err_deg).collect()))
                             .collect(),
                         rules: None,
                     });
@@ -721,8 +720,8 @@ mod tests {
 
     #[test]
     fn a_failed_run_crosses_as_bytes_with_its_nans() {
-        let opts = parse_options(&["--seeds".into(), "1".into(), "--slam".into(), "on".into()])
-            .unwrap();
+        let opts =
+            parse_options(&["--seeds".into(), "1".into(), "--slam".into(), "on".into()]).unwrap();
         let mut spec = plan(&opts).unwrap().specs.remove(0);
         spec.rules_dir = PathBuf::from("/nonexistent");
         assert_eq!(RunSpec::from_bytes(&spec.to_bytes()), Ok(spec.clone()));

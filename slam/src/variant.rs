@@ -68,7 +68,9 @@ impl fmt::Display for Drift {
 }
 
 /// One change to the thesis rules or to the functions they call.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum Variant {
     /// Hypothesis 2 is the only rule that corrects the odometry.
     H2Only,

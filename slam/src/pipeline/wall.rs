@@ -9,7 +9,9 @@
 use super::super::geom::{deg_0_360, Pose};
 
 /// A point in integer millimetres (`^X`, `^Y`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize,
+)]
 pub struct PointMm {
     /// `^X`, mm.
     pub x: i64,
@@ -18,7 +20,9 @@ pub struct PointMm {
 }
 
 /// The robot pose a wall was generated from (`^Ref`): mm and degrees 0..359.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize,
+)]
 pub struct RefPose {
     /// `^X`, mm.
     pub x: i64,
