@@ -36,6 +36,8 @@ __all__ = [
     "Experiment",
     "SlamError",
     "SlamUsageError",
+    "SweepError",
+    "RayUnavailable",
     "experiments",
     "main",
     "plan",
@@ -77,6 +79,10 @@ INSTALL_RAY = (
 
 class SweepError(ValueError):
     """Sweep options that cannot be used (an empty list, two values naming one folder)."""
+
+
+class RayUnavailable(RuntimeError):
+    """Ray could not be started here, or the cluster at ``--address`` could not be joined."""
 
 
 def plan(args):
@@ -218,7 +224,8 @@ def sweep(args=(), address=None, num_cpus=None, progress=True):
     returns an ``Experiment`` per combination. Uses the Ray this process is connected to,
     or else starts one (``ray.init(address=address, num_cpus=num_cpus)``) and shuts it down
     at the end. Raises ``SlamUsageError`` for options ``rusoar slam`` does not take,
-    ``SlamError`` for an experiment that could not be written."""
+    ``SweepError`` for lists that cannot be crossed, ``RayUnavailable`` when Ray cannot be
+    started or joined, ``SlamError`` for an experiment that could not be written."""
     ray = _import_ray()
     lists = experiments(args)
     # Every combination is planned before Ray starts, so that bad options fail at once.
@@ -226,8 +233,15 @@ def sweep(args=(), address=None, num_cpus=None, progress=True):
         slam_plan(argv)
     started = not ray.is_initialized()
     if started:
-        ray.init(address=address, num_cpus=num_cpus, include_dashboard=False,
-                 log_to_driver=False)
+        try:
+            ray.init(address=address, num_cpus=num_cpus, include_dashboard=False,
+                     log_to_driver=False)
+        except Exception as e:
+            # Ray's own exceptions vary with the way it failed (no cluster at the address,
+            # a version mismatch, options a cluster does not take); all mean no Ray to use.
+            raise RayUnavailable("cannot %s: %s" % (
+                "start Ray on this machine" if address is None else "join Ray at " + address,
+                e)) from e
     try:
         task = ray.remote(num_cpus=1)(_run_task)
         assemblies = [SlamAssembly(argv) for argv in lists]
@@ -301,7 +315,7 @@ def main(argv=None):
     except SweepError as e:
         print("error: %s" % e, file=sys.stderr)
         return 2
-    except SlamError as e:
+    except (SlamError, RayUnavailable) as e:
         print("error: %s" % e, file=sys.stderr)
         return 1
     for r in results:
