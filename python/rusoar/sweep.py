@@ -261,7 +261,13 @@ def sweep(args=(), address=None, num_cpus=None, progress=True):
             ready, refs = ray.wait(refs, num_returns=1)
             for ref in ready:
                 k = pending.pop(ref)
-                info = assemblies[k].add(ray.get(ref))
+                try:
+                    result = ray.get(ref)
+                except ray.exceptions.RayError as e:
+                    # A worker that died, or a machine of the cluster lost, after Ray's
+                    # retries.
+                    raise SlamError("a run's Ray task failed: %s" % e) from e
+                info = assemblies[k].add(result)
                 done += 1
                 if progress:
                     outcome = "" if info["outcome"] == "completed" else " — " + info["outcome"]
