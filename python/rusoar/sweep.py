@@ -67,6 +67,8 @@ Sweep options:
   --world A,B,...  --noise X,Y,...  --rules DIR1,DIR2,...
                    cross these: one experiment per combination, each in its own
                    subfolder of --out
+  (--jobs is rusoar slam's number of threads: a sweep runs as many tasks at once
+  as Ray has CPUs.)
 
 The options of `rusoar slam`:
 """
@@ -246,15 +248,21 @@ def sweep(args=(), address=None, num_cpus=None, progress=True):
         task = ray.remote(num_cpus=1)(_run_task)
         assemblies = [SlamAssembly(argv) for argv in lists]
         pending = {}
-        for k, assembly in enumerate(assemblies):
+        # Where each run's files go, for the progress lines: the experiment's folder when
+        # there are several, and a comparison's method folder (thesis, v2, oracle).
+        places = []
+        for k, (argv, assembly) in enumerate(zip(lists, assemblies)):
+            out = _out_of(argv)
+            places.append({})
             for r in assembly.runs():
                 pending[task.remote(r["spec"])] = k
+                place = os.path.relpath(str(r["out"]), out) if len(lists) == 1 else str(r["out"])
+                places[k][r["index"]] = "" if place == "." else place + " "
         total = len(pending)
         jobs = max(1, int(ray.cluster_resources().get("CPU", 1)))
         if progress:
             print("rusoar.sweep: %d experiment(s), %d run(s) as Ray tasks on %d CPU(s)"
                   % (len(assemblies), total, jobs), file=sys.stderr)
-        outs = [_out_of(argv) + " " if len(lists) > 1 else "" for argv in lists]
         refs = list(pending)
         done = 0
         while refs:
@@ -272,7 +280,7 @@ def sweep(args=(), address=None, num_cpus=None, progress=True):
                 if progress:
                     outcome = "" if info["outcome"] == "completed" else " — " + info["outcome"]
                     print("[%*d/%d] %sseed %d SLAM %s: %.2f s wall; final error %.0f mm%s"
-                          % (len(str(total)), done, total, outs[k],
+                          % (len(str(total)), done, total, places[k][info["index"]],
                              info["seed"], info["slam"], info["wall_time_s"], info["final_mm"],
                              outcome),
                           file=sys.stderr)
