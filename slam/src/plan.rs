@@ -68,11 +68,13 @@ pub struct RunOutput {
 }
 
 impl RunSpec {
+    /// The description as bytes, for another process.
     pub fn to_bytes(&self) -> Vec<u8> {
         // Serialising plain data into a growable buffer cannot fail.
         postcard::to_stdvec(self).unwrap_or_default()
     }
 
+    /// A description from [`RunSpec::to_bytes`]; an error for any other bytes.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
         postcard::from_bytes(bytes)
             .map_err(|e| format!("not a run description of rusoar slam: {e}"))
@@ -80,10 +82,12 @@ impl RunSpec {
 }
 
 impl RunOutput {
+    /// The result as bytes, for the process that assembles the experiment.
     pub fn to_bytes(&self) -> Vec<u8> {
         postcard::to_stdvec(self).unwrap_or_default()
     }
 
+    /// A result from [`RunOutput::to_bytes`]; an error for any other bytes.
     pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
         postcard::from_bytes(bytes).map_err(|e| format!("not a run result of rusoar slam: {e}"))
     }
@@ -394,6 +398,7 @@ impl Assembly {
         })
     }
 
+    /// The plan whose outputs it takes.
     pub fn plan(&self) -> &Plan {
         &self.plan
     }
