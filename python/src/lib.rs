@@ -4,7 +4,8 @@
 //!
 //! The agents live on a kernel thread ([`engine`]); the client keeps a copy of each agent's
 //! input and output links ([`mirror`]), as an SML client does, so reading them and changing
-//! the input-link cost no trip to that thread.
+//! the input-link cost no trip to that thread. [`slam`] is `rusoar slam` split into runs
+//! that can be carried out anywhere, for `rusoar.sweep`'s Ray tasks.
 
 mod agent;
 mod dispatch;
@@ -13,6 +14,7 @@ mod errors;
 mod kernel;
 mod mirror;
 mod shared;
+mod slam;
 mod sml_events;
 mod wme;
 
@@ -29,5 +31,6 @@ fn _rusoar(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<wme::FloatElement>()?;
     m.add_class::<wme::StringElement>()?;
     m.add("SoarError", m.py().get_type::<errors::SoarError>())?;
+    slam::register(m)?;
     Ok(())
 }

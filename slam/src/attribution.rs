@@ -18,7 +18,7 @@ use std::fmt::Write as _;
 use rusoar::{Agent, Symbol as Sym};
 
 /// The rule that issued a correction.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum Rule {
     /// Hypothesis 2: `slam*CheckWallRelation*Condition2*Apply*change*robot*position`.
     Hypothesis2,
@@ -48,14 +48,14 @@ impl Rule {
 
 /// A wall the correction used: its identifier and `^Time` (the step of the extraction that
 /// produced it, or of the earlier wall it was moved onto).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WallRef {
     pub id: String,
     pub time: f64,
 }
 
 /// What a correction was based on. Fields that do not apply to its rule are `None`.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Attribution {
     pub rule: Rule,
     /// The remembered wall trusted by the correction.

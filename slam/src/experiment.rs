@@ -22,22 +22,24 @@
 //!   [`super::report`]).
 //!
 //! Runs go in parallel over `--jobs` threads (default: all cores), each with its own agent.
-//! What they produce is data of [`super::results`]; the statistics are [`super::stats`]'s.
+//! They are planned, carried out and assembled into these files by [`super::plan`], the code
+//! the Python sweep's Ray tasks use too. What they produce is data of [`super::results`];
+//! the statistics are [`super::stats`]'s.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
-use std::time::Instant;
 
 use clap::parser::ValueSource;
 use clap::{value_parser, Arg, ArgAction, ArgMatches, Command};
 
-use super::compare::{self, Method, Series};
-use super::ekf;
+use super::compare::Method;
+use super::plan::{self, Assembly, Finished, Plan, RunSpec};
+pub use super::plan::{tum, v2_rules_dir};
 use super::results::{condition_name, Experiment, Options, Pair, RunSummary, SlamMode};
-use super::soar_loop::{self, LoopConfig, Outcome, RunResult};
+use super::soar_loop::{self, Outcome};
 use super::sonar::NoisePreset;
 use super::stats::{band, fmt_band, fmt_mm, fmt_p, p_is, quantile, wilcoxon};
 use super::variant::{parse_constant, Ablation, Constants, Drift, Variant};
@@ -363,229 +365,125 @@ fn options_from(m: &ArgMatches) -> Result<Options, String> {
 
 /// `rusoar slam ARGS...`.
 pub fn main(args: &[String]) -> ExitCode {
+    ExitCode::from(status(args))
+}
+
+/// `rusoar slam ARGS...`, giving its exit status: 0, 1 when a run or the experiment failed,
+/// 2 for bad options.
+pub fn status(args: &[String]) -> u8 {
     let opts = match parse_options(args) {
         Ok(o) => o,
         Err(e) => {
             let _ = e.print();
-            return if e.use_stderr() {
-                ExitCode::from(2)
-            } else {
-                ExitCode::SUCCESS
-            };
+            return if e.use_stderr() { 2 } else { 0 };
         }
     };
-    if opts
-        .methods
-        .iter()
-        .any(|m| matches!(m, Method::V2 | Method::Oracle))
-    {
-        return match run_comparison(&opts, true) {
-            Ok(text) => {
-                print!("{text}");
-                println!("Wrote {}", opts.out.display());
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("error: {e}");
-                ExitCode::FAILURE
-            }
-        };
-    }
-    match run_experiment(&opts, true) {
-        Ok(exp) => {
+    let finished = plan::plan(&opts).and_then(|p| execute(p, opts.jobs, true));
+    match finished {
+        Ok(Finished::Comparison(text)) => {
+            print!("{text}");
+            println!("Wrote {}", opts.out.display());
+            0
+        }
+        Ok(Finished::Experiment(exp)) => {
             print!("{}", exp.table());
             println!("Wrote {}", opts.out.display());
             if exp.runs.iter().all(|r| r.outcome.completed()) {
-                ExitCode::SUCCESS
+                0
             } else {
                 eprintln!("Some runs did not complete; see summary.md.");
-                ExitCode::FAILURE
+                1
             }
         }
         Err(e) => {
             eprintln!("error: {e}");
-            ExitCode::FAILURE
+            1
         }
     }
 }
 
-/// Runs every seed of every condition, writing the per-run files and `summary.md` into
-/// `opts.out`. With `progress`, prints a line per finished run to stderr.
-pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, String> {
-    std::fs::create_dir_all(&opts.out)
-        .map_err(|e| format!("cannot create {}: {e}", opts.out.display()))?;
-    let jobs: Vec<(u64, bool)> = (opts.first_seed..opts.first_seed + opts.seeds)
-        .flat_map(|seed| opts.slam.conditions().iter().map(move |&s| (seed, s)))
-        .collect();
-    let total = jobs.len();
+/// Carries out `plan`'s runs on up to `jobs` threads, each run with its own agent, writing
+/// each run's files as it finishes and then the reports. With `progress`, prints a line per
+/// finished run to stderr.
+pub fn execute(plan: Plan, jobs: usize, progress: bool) -> Result<Finished, String> {
+    let assembly = Assembly::new(plan)?;
+    let specs: Vec<RunSpec> = assembly.plan().specs.clone();
+    let total = specs.len();
     // The long runs (SLAM on) start first and the short ones fill in after them, so that
-    // no thread is left with a long run at the end; results keep the jobs' order.
+    // no thread is left with a long run at the end.
     let mut order: Vec<usize> = (0..total).collect();
-    order.sort_by_key(|&i| !jobs[i].1);
+    order.sort_by_key(|&i| !specs[i].slam);
+    let threads = jobs.min(total).max(1);
+    if progress {
+        for part in &assembly.plan().parts {
+            let o = &part.opts;
+            eprintln!(
+                "rusoar slam: {} seed(s) × {} condition(s), {} s each, world {} ({} sonar), drift {}, rules {}, {} thread(s)",
+                o.seeds,
+                o.slam.conditions().len(),
+                o.duration_s,
+                o.world_label,
+                o.world.run.noise,
+                o.ablation.drift,
+                o.ablation.label(),
+                threads
+            );
+        }
+    }
     let next = AtomicUsize::new(0);
     let done = AtomicUsize::new(0);
-    let results: Mutex<Vec<Option<RunSummary>>> = Mutex::new(vec![None; total]);
-    let ekf_runs: Mutex<Vec<ekf::EkfRun>> = Mutex::new(Vec::new());
-    let errors: Mutex<[ekf::table::ErrorsBySeed; 2]> = Mutex::new(Default::default());
-    let write_error: Mutex<Option<String>> = Mutex::new(None);
-    let started = Instant::now();
-    let threads = opts.jobs.min(total).max(1);
-    if progress {
-        eprintln!(
-            "rusoar slam: {} seed(s) × {} condition(s), {} s each, world {} ({} sonar), drift {}, rules {}, {} thread(s)",
-            opts.seeds,
-            opts.slam.conditions().len(),
-            opts.duration_s,
-            opts.world_label,
-            opts.world.run.noise,
-            opts.ablation.drift,
-            opts.ablation.label(),
-            threads
-        );
-    }
+    let assembly = Mutex::new(assembly);
     std::thread::scope(|scope| {
         for _ in 0..threads {
             let worker = || {
                 while let Some(&i) = order.get(next.fetch_add(1, Ordering::SeqCst)) {
-                    let (seed, slam) = jobs[i];
-                    let mut cfg = LoopConfig::new(opts.world.clone(), seed, slam, opts.duration_s);
-                    cfg.rules_dir = opts.rules_dir.clone();
-                    cfg.io_log = opts.io_log;
-                    cfg.ablation = opts.ablation.clone();
-                    cfg.oracle = opts.oracle;
-                    if seed == opts.first_seed {
-                        let n = cfg.steps();
-                        cfg.snapshot_steps = (1..=4).map(|q| (n * q / 4).max(1)).collect();
-                        cfg.sample_extraction_at = Some(sample_step(&cfg));
-                    }
-                    let result = soar_loop::run(&cfg);
-                    let summary = RunSummary::of(&result, opts.world.run.dt);
-                    let mut written = write_run(&opts.out, &result);
-                    if opts.ekf {
-                        let e = result.steps.iter().map(|s| s.pos_err_mm).collect();
-                        let mut all = errors.lock().unwrap_or_else(|p| p.into_inner());
-                        all[usize::from(slam)].insert(seed, e);
-                    }
-                    // A run that failed before its first step gives the filter nothing.
-                    if opts.ekf && !slam && written.is_ok() && !result.steps.is_empty() {
-                        written = ekf::replay(&result, ekf::Noise::STAGE2_HOUGH)
-                            .and_then(|run| {
-                                write_ekf_run(&opts.out, &run)?;
-                                Ok(run)
-                            })
-                            .map(|run| {
-                                let mut e = ekf_runs.lock().unwrap_or_else(|p| p.into_inner());
-                                e.push(run);
-                            });
-                    }
-                    if let Err(e) = written {
-                        let mut w = write_error.lock().unwrap_or_else(|p| p.into_inner());
-                        w.get_or_insert(e);
-                    }
+                    let output = plan::run(&specs[i]);
                     let k = done.fetch_add(1, Ordering::SeqCst) + 1;
                     if progress {
-                        eprintln!("{}", progress_line(k, total, &summary));
+                        eprintln!("{}", progress_line(k, total, &output.summary));
                     }
-                    let mut r = results.lock().unwrap_or_else(|p| p.into_inner());
-                    r[i] = Some(summary);
+                    // Files are written outside the lock, so that threads do not queue
+                    // behind one another's writes.
+                    let folder = assembly
+                        .lock()
+                        .unwrap_or_else(|p| p.into_inner())
+                        .folder(&output)
+                        .map(Path::to_path_buf);
+                    let written = folder.and_then(|dir| plan::write_files(&dir, &output.files));
+                    let mut a = assembly.lock().unwrap_or_else(|p| p.into_inner());
+                    if let Err(e) = written.and_then(|()| a.keep(output)) {
+                        a.fail(e);
+                    }
                 }
             };
             let spawned = std::thread::Builder::new()
                 .name("slam-run".into())
-                .stack_size(64 << 20)
+                .stack_size(plan::RUN_STACK_BYTES)
                 .spawn_scoped(scope, worker);
             if let Err(e) = spawned {
-                let mut w = write_error.lock().unwrap_or_else(|p| p.into_inner());
-                w.get_or_insert(format!("cannot start a worker thread: {e}"));
+                let mut a = assembly.lock().unwrap_or_else(|p| p.into_inner());
+                a.fail(format!("cannot start a worker thread: {e}"));
             }
         }
     });
-    if let Some(e) = write_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        return Err(e);
-    }
-    let runs: Vec<RunSummary> = results
+    assembly
         .into_inner()
         .unwrap_or_else(|p| p.into_inner())
-        .into_iter()
-        .flatten()
-        .collect();
-    if runs.len() != total {
-        return Err(format!("only {} of {total} runs finished", runs.len()));
-    }
-    let checkpoints: Vec<f64> = [60.0, 300.0, 600.0]
-        .into_iter()
-        .filter(|t| *t <= opts.duration_s + 1e-9)
-        .chain((![60.0, 300.0, 600.0].contains(&opts.duration_s)).then_some(opts.duration_s))
-        .collect();
-    let exp = Experiment {
-        runs,
-        duration_s: opts.duration_s,
-        checkpoints,
-        total_wall_s: started.elapsed().as_secs_f64(),
-        jobs: threads,
-        world_label: opts.world_label.clone(),
-        noise: opts.world.run.noise,
-        world: opts.world.clone(),
-        example_seed: opts.first_seed,
-        ekf_runs: Vec::new(),
-    };
-    let mut exp = exp;
-    let write = |name: &str, text: String| -> Result<(), String> {
-        let p = opts.out.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
-    };
-    if opts.reports {
-        write("runs.csv", exp.runs_csv())?;
-        write("summary.md", exp.summary_md(opts))?;
-        super::report::write_report(&exp, opts)?;
-    }
-    if opts.ekf {
-        let mut runs = ekf_runs.into_inner().unwrap_or_else(|p| p.into_inner());
-        runs.sort_by_key(|r| r.seed);
-        let [dr, thesis] = errors.into_inner().unwrap_or_else(|p| p.into_inner());
-        let command = if opts.command_line.is_empty() {
-            "rusoar slam --method ekf"
-        } else {
-            &opts.command_line
-        };
-        write("ekf.md", ekf::table::markdown(&runs, &dr, &thesis, command))?;
-        write("ekf-runs.csv", ekf::table::runs_csv(&runs, &dr))?;
-        exp.ekf_runs = runs;
-    }
-    Ok(exp)
+        .finish(threads)
 }
 
-/// An error naming the first run of `exp` that did not complete: a comparison of methods
-/// is only made over complete runs.
-fn all_completed(exp: &Experiment, what: &str) -> Result<(), String> {
-    match exp.runs.iter().find(|r| !r.outcome.completed()) {
-        Some(r) => Err(format!(
-            "{what}: seed {} ({}) did not complete: {}",
-            r.seed,
-            condition_name(r.slam),
-            r.outcome
-        )),
-        None => Ok(()),
+/// Runs every seed of every condition of the thesis rules' experiment, writing the per-run
+/// files and the reports into `opts.out`. With `progress`, prints a line per finished run
+/// to stderr.
+pub fn run_experiment(opts: &Options, progress: bool) -> Result<Experiment, String> {
+    let mut single = opts.clone();
+    single
+        .methods
+        .retain(|m| !matches!(m, Method::V2 | Method::Oracle));
+    match execute(plan::plan(&single)?, opts.jobs, progress)? {
+        Finished::Experiment(exp) => Ok(*exp),
+        Finished::Comparison(_) => Err("a single experiment was planned as a comparison".into()),
     }
-}
-
-/// `command` without its `--out DIR` (or `--out=DIR`).
-fn without_out(command: &str) -> String {
-    let mut words = command.split(' ');
-    let mut kept: Vec<&str> = Vec::new();
-    while let Some(w) = words.next() {
-        if w == "--out" {
-            words.next();
-        } else if !w.starts_with("--out=") {
-            kept.push(w);
-        }
-    }
-    kept.join(" ")
-}
-
-/// The rules v2 folder beside the thesis rules.
-pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
-    thesis_rules.join("v2")
 }
 
 /// Every method of `opts.methods` over the same seeds, each Soar rule set into its own
@@ -593,109 +491,13 @@ pub fn v2_rules_dir(thesis_rules: &Path) -> PathBuf {
 /// the runs without the SLAM rules, in `thesis/` or `dr/`), then `comparison.md`,
 /// `comparison.csv` and `fig-compare` in `opts.out`. Returns the table it printed.
 pub fn run_comparison(opts: &Options, progress: bool) -> Result<String, String> {
-    // The reports quote the command without its output folder, so that they do not depend on
-    // where they were written.
-    let mut cleaned = opts.clone();
-    cleaned.command_line = without_out(&opts.command_line);
-    let opts = &cleaned;
-    let has = |m: Method| opts.methods.contains(&m);
-    let mut series: Vec<Series> = Vec::new();
-    let world = &opts.world;
-    if has(Method::Dr) || has(Method::Thesis) || has(Method::Ekf) {
-        let mut o = opts.clone();
-        o.slam = if has(Method::Thesis) {
-            SlamMode::Both
-        } else {
-            SlamMode::Off
-        };
-        o.out = opts
-            .out
-            .join(if has(Method::Thesis) { "thesis" } else { "dr" });
-        o.oracle = false;
-        o.reports = false;
-        let exp = run_experiment(&o, progress)?;
-        all_completed(&exp, "the thesis rules' runs")?;
-        let runs = |slam: bool| -> Vec<&RunSummary> {
-            exp.runs.iter().filter(|r| r.slam == slam).collect()
-        };
-        series.push(Series::of_runs(Method::Dr, &runs(false), world));
-        if has(Method::Thesis) {
-            series.push(Series::of_runs(Method::Thesis, &runs(true), world));
-        }
-        if has(Method::Ekf) {
-            series.push(Series {
-                method: Method::Ekf,
-                pos: exp
-                    .ekf_runs
-                    .iter()
-                    .map(|r| (r.seed, r.steps.iter().map(|k| k.pos_err_mm).collect()))
-                    .collect(),
-                head: exp
-                    .ekf_runs
-                    .iter()
-                    .map(|r| (r.seed, r.steps.iter().map(|k| k.heading_err_deg).collect()))
-                    .collect(),
-                rules: None,
-            });
-        }
+    if !plan::is_comparison(opts) {
+        return Err("a comparison needs the v2 or oracle method".into());
     }
-    for (method, oracle) in [(Method::V2, false), (Method::Oracle, true)] {
-        if !has(method) {
-            continue;
-        }
-        let mut o = opts.clone();
-        o.slam = SlamMode::On;
-        o.ekf = false;
-        o.io_log = false;
-        o.oracle = oracle;
-        o.rules_dir = v2_rules_dir(&opts.rules_dir);
-        o.ablation = Ablation::new(
-            opts.ablation.drift,
-            &[Variant::Tenths],
-            Constants::default(),
-        )?;
-        o.out = opts.out.join(method.name());
-        o.reports = false;
-        let exp = run_experiment(&o, progress)?;
-        all_completed(&exp, method.label())?;
-        let runs: Vec<&RunSummary> = exp.runs.iter().filter(|r| r.slam).collect();
-        series.push(Series::of_runs(method, &runs, world));
+    match execute(plan::plan(opts)?, opts.jobs, progress)? {
+        Finished::Comparison(text) => Ok(text),
+        Finished::Experiment(_) => Err("a comparison was planned as a single experiment".into()),
     }
-    series.sort_by_key(|x| x.method);
-    let command = if opts.command_line.is_empty() {
-        "rusoar slam --method dr,thesis,v2,ekf,oracle"
-    } else {
-        &opts.command_line
-    };
-    let setup = format!(
-        "World `{}` ({} sonar), drift `{}`, {} s per run, seeds from {}:",
-        opts.world_label,
-        opts.world.run.noise,
-        opts.ablation.drift,
-        opts.duration_s,
-        opts.first_seed
-    );
-    let text = compare::markdown(&series, command, &setup);
-    let write = |name: &str, body: String| -> Result<(), String> {
-        let p = opts.out.join(name);
-        std::fs::write(&p, body).map_err(|e| format!("cannot write {}: {e}", p.display()))
-    };
-    write("comparison.md", text.clone())?;
-    write("comparison.csv", compare::csv(&series))?;
-    compare::figure(&series, opts.world.run.dt, &opts.out)?;
-    Ok(text)
-}
-
-/// The step from which the example run keeps one pipeline output for the Hough figure: 30 s in,
-/// or half-way through a shorter run (a full scan window has been seen by then).
-fn sample_step(cfg: &LoopConfig) -> u64 {
-    let dt = cfg.world.run.dt;
-    let at_30s = if dt > 0.0 {
-        (30.0 / dt).round() as u64
-    } else {
-        1
-    };
-    at_30s.min(cfg.steps() / 2).max(1)
 }
 
 fn progress_line(k: usize, total: usize, s: &RunSummary) -> String {
@@ -713,77 +515,6 @@ fn progress_line(k: usize, total: usize, s: &RunSummary) -> String {
         s.final_walls,
         s.corrections
     )
-}
-
-/// Writes an EKF run's step CSV, its TUM trajectories and its final features.
-fn write_ekf_run(out: &Path, r: &ekf::EkfRun) -> Result<(), String> {
-    let write = |name: String, text: String| -> Result<(), String> {
-        let p = out.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
-    };
-    write(format!("steps-ekf-{}.csv", r.seed), r.csv())?;
-    write(
-        format!("true-ekf-{}.tum", r.seed),
-        tum(r.steps.iter().map(|s| (s.time_s, s.true_pose))),
-    )?;
-    write(
-        format!("believed-ekf-{}.tum", r.seed),
-        tum(r.steps.iter().map(|s| (s.time_s, s.estimate))),
-    )?;
-    write(format!("map-ekf-{}.csv", r.seed), r.map_csv())
-}
-
-/// Writes a run's step CSV, its TUM trajectories and its final map.
-fn write_run(out: &Path, r: &RunResult) -> Result<(), String> {
-    let tag = format!("{}-{}", condition_name(r.slam), r.seed);
-    let write = |name: String, text: String| -> Result<(), String> {
-        let p = out.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
-    };
-    write(format!("steps-{tag}.csv"), r.csv())?;
-    write(
-        format!("true-{tag}.tum"),
-        tum(r.steps.iter().map(|s| (s.time_s, s.true_pose))),
-    )?;
-    write(
-        format!("believed-{tag}.tum"),
-        tum(r.steps.iter().map(|s| (s.time_s, s.believed))),
-    )?;
-    let mut map =
-        String::from("r_mm,th_deg,start_x_mm,start_y_mm,end_x_mm,end_y_mm,length_mm,time\n");
-    for w in &r.memory_walls {
-        let _ = writeln!(
-            map,
-            "{},{},{},{},{},{},{},{}",
-            w.r, w.th, w.start.0, w.start.1, w.end.0, w.end.1, w.length, w.time
-        );
-    }
-    write(format!("map-{tag}.csv"), map)?;
-    if !r.io_log.is_empty() {
-        let mut log = r.io_log.join("\n");
-        log.push('\n');
-        write(format!("io-{tag}.log"), log)?;
-    }
-    if r.slam {
-        let mut c = String::from(soar_loop::CORRECTIONS_HEADER);
-        c.push('\n');
-        for k in &r.stats.corrections {
-            c.push_str(&k.csv_row());
-            c.push('\n');
-        }
-        write(format!("corrections-{tag}.csv"), c)?;
-    }
-    Ok(())
-}
-
-/// A trajectory in TUM format: `t x y z qx qy qz qw`, metres, a yaw-only quaternion.
-pub fn tum(poses: impl Iterator<Item = (f64, super::geom::Pose)>) -> String {
-    let mut s = String::from("# t x y z qx qy qz qw\n");
-    for (t, p) in poses {
-        let (sz, cz) = (p.th / 2.0).sin_cos();
-        let _ = writeln!(s, "{t:.1} {:.4} {:.4} 0 0 0 {sz:.6} {cz:.6}", p.x, p.y);
-    }
-    s
 }
 
 impl Experiment {
@@ -1106,10 +837,10 @@ mod tests {
     #[test]
     fn the_quoted_command_leaves_out_the_output_folder() {
         assert_eq!(
-            without_out("rusoar slam --seeds 2 --out /tmp/x --quick"),
+            plan::without_out("rusoar slam --seeds 2 --out /tmp/x --quick"),
             "rusoar slam --seeds 2 --quick"
         );
-        assert_eq!(without_out("rusoar slam --out=/tmp/x"), "rusoar slam");
+        assert_eq!(plan::without_out("rusoar slam --out=/tmp/x"), "rusoar slam");
     }
 
     #[test]

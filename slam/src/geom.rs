@@ -9,7 +9,7 @@
 use std::f64::consts::{PI, TAU};
 
 /// A point in the plane.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Point {
     /// x coordinate.
     pub x: f64,
@@ -30,7 +30,7 @@ impl Point {
 }
 
 /// A robot pose: position in metres and heading in radians (counter-clockwise from +x).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Pose {
     /// x in metres.
     pub x: f64,
@@ -118,7 +118,7 @@ pub fn deg_0_360(d: f64) -> f64 {
 }
 
 /// A straight wall segment between two points.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Segment {
     /// First end point.
     pub a: Point,

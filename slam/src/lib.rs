@@ -10,7 +10,9 @@
 //! - [`soar_loop`]: the SoarRobot loop joining simulator, pipeline and the thesis rules;
 //! - [`experiment`]: `rusoar slam`, the thesis's experiment over many seeds, and [`report`]:
 //!   its figures (SVG and PNG) and `report.md`, both reading [`results`] (the experiment's
-//!   options and runs as data) and [`stats`] (the statistics over seeds);
+//!   options and runs as data) and [`stats`] (the statistics over seeds); [`plan`]: the
+//!   experiment as runs that can be carried out apart (threads, or Ray tasks from Python)
+//!   and assembled into the same files;
 //! - [`variant`]: the controls and ablations (`--drift`, `--variant`, the constants), and
 //!   [`attribution`]: which rule made each correction, on what evidence;
 //! - [`geom`], [`rng`]: plane geometry and the seeded random numbers they share;
@@ -33,6 +35,7 @@ pub mod method;
 pub mod odometry;
 pub mod pioneer;
 pub mod pipeline;
+pub mod plan;
 pub mod report;
 pub mod results;
 pub mod rng;

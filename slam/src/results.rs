@@ -75,7 +75,7 @@ pub struct Options {
 }
 
 /// The numbers of one run, kept after its steps are written out.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct RunSummary {
     pub seed: u64,
     pub slam: bool,

@@ -207,7 +207,7 @@ impl StepRecord {
 }
 
 /// How a run ended.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub enum Outcome {
     /// All steps ran.
     Completed,
@@ -246,7 +246,7 @@ impl fmt::Display for Outcome {
 }
 
 /// A wall of the map in memory (the top state's `^wallData.Wall`), as numbers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct MemoryWall {
     pub r: f64,
     pub th: f64,
@@ -258,7 +258,7 @@ pub struct MemoryWall {
 
 /// One `setOdometry` the rules carried out: how far it moved the believed pose, whether
 /// that brought the belief closer to the truth, and which rule made it on what evidence.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Correction {
     /// Loop step in which it was carried out.
     pub step: u64,

@@ -65,7 +65,7 @@ pub const P2DX_SONARS: [Transducer; NUM_SONARS] = [
 ];
 
 /// The sensor-noise presets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum NoisePreset {
     /// Stage 2.0.x: 3 rays over 15°, no noise.
     #[default]

@@ -17,7 +17,7 @@ use std::str::FromStr;
 use super::odometry::DriftParams;
 
 /// The odometry model of a run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum Drift {
     /// Stage 2.0.x's drift: biases drawn once per run plus noise.
     #[default]
@@ -68,7 +68,9 @@ impl fmt::Display for Drift {
 }
 
 /// One change to the thesis rules or to the functions they call.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize,
+)]
 pub enum Variant {
     /// Hypothesis 2 is the only rule that corrects the odometry.
     H2Only,
@@ -151,7 +153,7 @@ impl fmt::Display for Variant {
 }
 
 /// Overrides of the constants the thesis does not give (`None`: the value in `Elaborate.soar`).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Constants {
     /// `^r-tolerance`, mm (500 in `Elaborate.soar`).
     pub r_tolerance: Option<f64>,
@@ -224,7 +226,7 @@ pub fn parse_constant(s: &str, what: &str, lo: f64, hi: f64) -> Result<f64, Stri
 }
 
 /// Every control and ablation of a run. The default is the thesis's setup.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Ablation {
     pub drift: Drift,
     /// Sorted, no duplicates.

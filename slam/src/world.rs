@@ -44,7 +44,7 @@ use super::pipeline::Settings;
 use super::sonar::NoisePreset;
 
 /// Run settings of a world.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RunSettings {
     /// Simulator time step, s.
     pub dt: f64,
@@ -62,7 +62,7 @@ impl Default for RunSettings {
 }
 
 /// A simulated world.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct World {
     /// A short name for reports.
     pub name: String,

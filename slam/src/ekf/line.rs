@@ -8,7 +8,7 @@
 use super::super::geom::normalize_angle;
 
 /// A line `r = x cos θ + y sin θ`: r in metres, θ in radians.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Line {
     pub r: f64,
     pub th: f64,

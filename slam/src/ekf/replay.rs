@@ -23,7 +23,7 @@ pub const START_SD: [f64; 3] = [0.01, 0.01, 0.01];
 pub const MIN_WALL_LENGTH_M: f64 = 1.0;
 
 /// One step of the filter.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EkfStep {
     pub step: u64,
     pub time_s: f64,
@@ -42,7 +42,7 @@ pub struct EkfStep {
 }
 
 /// A whole run of the filter.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EkfRun {
     pub seed: u64,
     pub steps: Vec<EkfStep>,

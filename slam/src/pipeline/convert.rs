@@ -13,7 +13,7 @@ use super::super::sonar::Transducer;
 use super::Settings;
 
 /// One converted sonar return, in the believed frame, mm.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct SonarPoint {
     /// Return position x, mm.
     pub x: f64,

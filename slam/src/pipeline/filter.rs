@@ -16,7 +16,7 @@ use super::Settings;
 const MAX_CELLS: usize = 1 << 21;
 
 /// The vote space: a dense grid of vote counts over the returns' visible lines.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct VoteSpace {
     /// x of the grid's lower-left corner, mm.
     pub origin_x: f64,

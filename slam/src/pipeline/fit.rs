@@ -118,7 +118,7 @@ pub fn robust_fit(pts: &[(f64, f64)], r: f64, th: f64, floor: f64) -> (f64, f64)
 }
 
 /// A line `r = x cos θ + y sin θ` with its normal's cosine and sine.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Line {
     /// Distance parameter, mm (may be negative before [`Line::normalised`]).
     pub r: f64,

@@ -32,7 +32,7 @@ thread_local! {
 const MAX_CELLS: usize = 1 << 21;
 
 /// The voted Hough space.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Accumulator {
     theta_step_deg: u32,
     n_theta: usize,

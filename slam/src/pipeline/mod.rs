@@ -101,7 +101,7 @@ impl ScanWindow {
 }
 
 /// Everything one pass of the pipeline produced, for the input-link and for plots.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Extraction {
     /// All converted returns (Figure 15).
     pub points: Vec<SonarPoint>,

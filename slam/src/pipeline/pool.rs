@@ -43,7 +43,7 @@ pub fn give(pool: &'static LocalKey<Pool>, buf: Vec<u32>) {
 /// are zero. Kept as votes are cast, so that the cells voted can be zeroed and scanned
 /// without visiting the whole grid. `(u32::MAX, 0)` marks a line without votes, so the bands
 /// depend only on where the votes are.
-#[derive(Debug, Clone, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub struct Bands(Vec<(u32, u32)>);
 
 impl Bands {

@@ -26,7 +26,7 @@ use std::fmt;
 use std::str::FromStr;
 
 /// What votes in the Hough space (see the `hough` module).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 pub enum VoteMode {
     /// The thesis: every filtered return's position votes along its whole sinusoid.
     Points,
@@ -67,7 +67,7 @@ impl FromStr for VoteMode {
 }
 
 /// Pipeline settings.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Settings {
     /// What votes in the Hough space. Default `arcs`: a sonar return only says that the nearest
     /// surface in its cone is at that range, so a wall is tangent to the visible arcs of the

@@ -9,7 +9,9 @@
 use super::super::geom::{deg_0_360, Pose};
 
 /// A point in integer millimetres (`^X`, `^Y`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize,
+)]
 pub struct PointMm {
     /// `^X`, mm.
     pub x: i64,
@@ -18,7 +20,9 @@ pub struct PointMm {
 }
 
 /// The robot pose a wall was generated from (`^Ref`): mm and degrees 0..359.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[derive(
+    Debug, Clone, Copy, PartialEq, Eq, Hash, Default, serde::Serialize, serde::Deserialize,
+)]
 pub struct RefPose {
     /// `^X`, mm.
     pub x: i64,
@@ -40,7 +44,7 @@ impl RefPose {
 }
 
 /// A wall element (`^wallData.Wall`).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Wall {
     /// `^R`: distance from the origin to the line, mm, ≥ 0.
     pub r: i64,

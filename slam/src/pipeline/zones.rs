@@ -14,7 +14,7 @@
 use super::hough::Accumulator;
 
 /// A local maximum of a zone and the (r, θ) of its centre.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Peak {
     /// θ column of the maximum.
     pub t: usize,
@@ -29,7 +29,7 @@ pub struct Peak {
 }
 
 /// A zone: a connected group of Hough cells with more than k votes.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Zone {
     /// The zone's cells as (θ column, r bin).
     pub cells: Vec<(usize, usize)>,
