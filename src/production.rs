@@ -35,6 +35,20 @@ pub struct Production {
 }
 
 impl Production {
+    /// The kind of rule, as the listings of 9.6's commands name it: `chunks`, `defaults`,
+    /// `template` or `user` (justifications are never loaded rules).
+    pub fn kind_word(&self) -> &'static str {
+        if self.flags.chunk {
+            "chunks"
+        } else if self.flags.default {
+            "defaults"
+        } else if self.flags.template {
+            "template"
+        } else {
+            "user"
+        }
+    }
+
     /// The value of a rule that is an RL rule: a single action, a numeric-indifferent
     /// preference whose value is a number (Soar manual, ch. 5, "RL Rules"). Template rules
     /// and justifications are not RL rules.

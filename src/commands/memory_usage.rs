@@ -71,7 +71,7 @@ impl Interpreter {
                 .agent
                 .productions()
                 .rev()
-                .filter(|p| kind_of(p) == kind)
+                .filter(|p| p.kind_word() == kind)
                 .collect();
             for p in rules {
                 rows.push((self.tokens_held(p), p.name.clone()));
@@ -98,17 +98,6 @@ impl Interpreter {
     }
 }
 
-fn kind_of(p: &Production) -> &'static str {
-    if p.flags.chunk {
-        "chunks"
-    } else if p.flags.default {
-        "defaults"
-    } else if p.flags.template {
-        "template"
-    } else {
-        "user"
-    }
-}
 
 /// Sorts by count, fewest first, exactly as the C++ standard library 9.6 is built with
 /// (libstdc++'s introsort: median-of-three quicksort down to runs of 16, then one

@@ -272,22 +272,11 @@ impl Interpreter {
     /// justifications.
     fn rule_listing(&self, wanted: &dyn Fn(&str) -> bool, style: RuleStyle) -> String {
         let mut s = String::new();
-        let kind_of = |p: &Production| {
-            if p.flags.chunk {
-                "chunks"
-            } else if p.flags.default {
-                "defaults"
-            } else if p.flags.template {
-                "template"
-            } else {
-                "user"
-            }
-        };
         for kind in ["defaults", "user", "template", "chunks"] {
             if !wanted(kind) {
                 continue;
             }
-            for p in self.agent.productions().rev().filter(|p| kind_of(p) == kind) {
+            for p in self.agent.productions().rev().filter(|p| p.kind_word() == kind) {
                 s.push_str(&self.rule_text(p, style, false));
             }
         }
