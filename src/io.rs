@@ -38,6 +38,10 @@ pub enum IoError {
     /// [`crate::Io::mark_done`] was called twice for one command.
     #[error("output command `{0}` is already marked done")]
     AlreadyDone(String),
+    /// A WME was to hang from an identifier that is no longer in working memory (an input
+    /// object removed, and collected with what hung below it): nothing links it to a state.
+    #[error("`{0}` is not in working memory: input WMEs hang from linked identifiers")]
+    Unlinked(String),
 }
 
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.
@@ -135,6 +139,26 @@ impl AgentCore {
         }
     }
 
+    /// `s` if it is an identifier an input WME may hang from: a state, or one a WME in
+    /// working memory points at. A WME under an identifier that was collected would have
+    /// no link to a state, and garbage collection (which searches identifiers as they lose
+    /// a link) would never take it.
+    fn parent(&self, s: Sym) -> Result<Sym, IoError> {
+        let id = self.identifier(s)?;
+        let is_state = self.symbols.id_data(id).is_some_and(|d| d.is_goal) || id == self.top.state;
+        let pointed_at = || {
+            self.wm
+                .parent_wmes(id)
+                .iter()
+                .any(|&(w, _)| self.wm.get(w).is_some())
+        };
+        if is_state || pointed_at() {
+            Ok(id)
+        } else {
+            Err(IoError::Unlinked(self.symbols.text(id)))
+        }
+    }
+
     /// Adds `(id ^attr value)`: it gets its timetag now and reaches the matcher at the next
     /// input phase (see [`AgentCore::apply_input_changes`]), as an SML client's WMEs do.
     pub fn add_input(
@@ -143,7 +167,7 @@ impl AgentCore {
         attr: &str,
         value: impl Into<Value>,
     ) -> Result<InputWme, IoError> {
-        let id = self.identifier(id)?;
+        let id = self.parent(id)?;
         let value = self.value_sym(&value.into())?;
         let attr = self.symbols.str(attr);
         Ok(self.push_input(id, attr, value, false))
@@ -153,7 +177,7 @@ impl AgentCore {
     /// attribute's first letter, or `I` when that is not a letter or is `s` (9.6 names an
     /// SML client's `^sonar` object `I4`, keeping `S` for states; soar-sml 9.6.5).
     pub fn add_input_object(&mut self, id: Sym, attr: &str) -> Result<(InputWme, Sym), IoError> {
-        let id = self.identifier(id)?;
+        let id = self.parent(id)?;
         let child = self.symbols.new_id(input_letter(attr), 1);
         let attr = self.symbols.str(attr);
         Ok((self.push_input(id, attr, child, true), child))
@@ -205,15 +229,22 @@ impl AgentCore {
     pub fn update_input(&mut self, h: InputWme, value: impl Into<Value>) -> Result<bool, IoError> {
         let new = self.value_sym(&value.into())?;
         let e = self.live_entry(h)?;
-        let (id, attr, old_value) = (e.id, e.attr, e.value);
+        let (id, attr, old_value, object) = (e.id, e.attr, e.value, e.object);
         let old = e.wme.ok_or(IoError::StaleHandle)?;
         if new == old_value && self.inputs.update_mode == InputUpdate::SkipIfNoChange {
             return Ok(false);
         }
+        // The WME it hangs from may have gone with an object some other change unlinked.
+        self.parent(id)?;
         self.inputs.queue.push(InputChange::Remove(old));
         let w = self.queue_input_add(id, attr, new);
         let is_id = [self.symbols.is_id(old_value), self.symbols.is_id(new)];
         self.inputs.set_value(h, new, w, is_id);
+        // An object of this table replaced by another value goes as a removed one does,
+        // with the handles below it.
+        if object && !self.inputs.linked(old_value) {
+            self.drop_entries_below(old_value);
+        }
         Ok(true)
     }
 
@@ -251,7 +282,10 @@ impl AgentCore {
     /// SML client's buffered changes there (`do_buffered_wm_changes`, checked with soar-sml
     /// 9.6.5): first every added WME, newest first, then every removed one, newest first,
     /// each traced as `=>WM:` or `<=WM:`. The order decides the order of new matches, so
-    /// of firings, identifiers and random choices (`scripts/slam_oracle.py`).
+    /// of firings, identifiers and random choices (`scripts/slam_oracle.py`). An object
+    /// the removals unlink goes at once with what hangs below it, its lines before the
+    /// removals' (9.6 collects garbage in the input phase too: soar-sml 9.6.5 traces
+    /// `<=WM: (15: B1 ^a A1)` before `<=WM: (14: I2 ^b B1)` when `(I2 ^b B1)` is destroyed).
     pub(crate) fn apply_input_changes(&mut self) {
         if self.inputs.queue.is_empty() {
             return;
@@ -279,16 +313,21 @@ impl AgentCore {
             self.match_new_wme(w, &wme);
             self.trace_wme(true, &wme);
         }
+        let mut gone = Vec::new();
         for change in queue.iter().rev() {
             let InputChange::Remove(w) = *change else {
                 continue;
             };
-            if let Some(wme) = self.remove_wme(w) {
-                self.trace_wme(false, &wme);
-            }
+            gone.extend(self.remove_wme(w));
         }
         if batch {
             self.rete.end_doomed_batch();
+        }
+        if !gone.is_empty() {
+            self.collect_garbage();
+        }
+        for wme in &gone {
+            self.trace_wme(false, wme);
         }
     }
 
