@@ -14,7 +14,7 @@
 //! pseudo-random bytes, so the checks also run in `cargo test` on the stable toolchain.
 
 use arbitrary::{Result, Unstructured};
-use rusoar::{Agent, RunUnit};
+use rusoar::{Agent, RunUnit, StopReason};
 use std::fmt::Write;
 
 /// Attributes the rules share, so that one rule's actions meet another's conditions.
@@ -207,21 +207,38 @@ fn state_conditions(u: &mut Unstructured, rule: &mut Rule, kind: StateKind) -> R
     Ok(out)
 }
 
-/// A value for an action: a constant, a bound variable, a new object or arithmetic.
-fn action_value(u: &mut Unstructured, rule: &mut Rule, extra: &mut String) -> Result<String> {
+/// The attribute of the objects actions make. No condition tests it: a rule that made
+/// objects its own conditions (or another rule's) then match would make more on every
+/// elaboration cycle, without end, and that growth is the agent's, not a finding.
+const MADE: &str = "made";
+
+/// An action's attribute and value: a constant, a bound variable, arithmetic, or an object
+/// made by the action (under [`MADE`]).
+fn action_value(
+    u: &mut Unstructured,
+    rule: &mut Rule,
+    extra: &mut String,
+) -> Result<(&'static str, String)> {
+    let attr = pick(u, ATTRS)?;
     Ok(match u.int_in_range(0..=5)? {
-        0..=2 => pick(u, VALUES)?.to_string(),
-        3 if !rule.values.is_empty() => rule.values[u.choose_index(rule.values.len())?].clone(),
+        0..=2 => (attr, pick(u, VALUES)?.to_string()),
+        3 if !rule.values.is_empty() => (
+            attr,
+            rule.values[u.choose_index(rule.values.len())?].clone(),
+        ),
         4 => {
             let v = rule.fresh();
             let _ = write!(extra, " ({v} ^{} {})", pick(u, ATTRS)?, pick(u, VALUES)?);
-            v
+            (MADE, v)
         }
-        _ => format!(
-            "({} {} {})",
-            pick(u, &["+", "-", "*"])?,
-            pick(u, &["1", "2", "3.5"])?,
-            pick(u, &["1", "2", "-1"])?
+        _ => (
+            attr,
+            format!(
+                "({} {} {})",
+                pick(u, &["+", "-", "*"])?,
+                pick(u, &["1", "2", "3.5"])?,
+                pick(u, &["1", "2", "-1"])?
+            ),
         ),
     })
 }
@@ -243,8 +260,8 @@ fn actions_on(
             }
         }
         let mut extra = String::new();
-        let value = action_value(u, rule, &mut extra)?;
-        let _ = write!(out, " ({target} ^{} {value}){extra}", pick(u, ATTRS)?);
+        let (attr, value) = action_value(u, rule, &mut extra)?;
+        let _ = write!(out, " ({target} ^{attr} {value}){extra}");
     }
     Ok(out)
 }
@@ -358,6 +375,11 @@ pub fn random_agent(u: &mut Unstructured) -> Result<RandomAgent> {
     if u.ratio(1, 4)? {
         source.push_str("decide indifferent-selection --boltzmann\n");
     }
+    // A few objects on the top state for conditions that test the attributes of values.
+    source.push_str(
+        "sp {objects\n    (state <s> ^superstate nil)\n-->\n    \
+         (<s> ^a <x> ^b <y>) (<x> ^b x ^c 1) (<y> ^a y ^d <x>)\n}\n",
+    );
     let count = u.int_in_range(1..=MAX_RULES)?;
     let mut rule_names = Vec::new();
     for i in 0..count {
@@ -393,9 +415,18 @@ pub fn run_random_agent(agent: &mut Agent, spec: &RandomAgent) -> std::result::R
     }
     check(agent, "after loading")?;
     for (i, step) in spec.steps.iter().enumerate() {
+        let mut interrupted = false;
         let done = match step {
-            Step::Phase => agent.run(1, RunUnit::Phases).map(|_| ()),
-            Step::Decision => agent.run(1, RunUnit::Decisions).map(|_| ()),
+            Step::Phase | Step::Decision => {
+                let unit = if *step == Step::Phase {
+                    RunUnit::Phases
+                } else {
+                    RunUnit::Decisions
+                };
+                agent.run(1, unit).map(|r| {
+                    interrupted = r.stop == StopReason::Interrupted;
+                })
+            }
             Step::Command(c) => agent.execute(c).map(|_| ()),
         };
         if let Err(e) = done {
@@ -406,6 +437,10 @@ pub fn run_random_agent(agent: &mut Agent, spec: &RandomAgent) -> std::result::R
         }
         let _ = agent.take_output();
         check(agent, &format!("after step {} ({step:?})", i + 1))?;
+        // The embedder stopped it (a fuzz target's budget of events is spent).
+        if interrupted {
+            break;
+        }
     }
     Ok(())
 }
