@@ -19,7 +19,7 @@ pub use crate::inputs::{InputUpdate, InputWme};
 pub use crate::value::Value;
 use crate::inputs::{InputChange, InputEntry, InputTable};
 use crate::symbols::{Sym, SymData};
-use crate::wm::WmeId;
+use crate::wm::{Wme, WmeId};
 use rustc_hash::FxHashSet;
 
 /// A misuse of the input and output links.
@@ -193,8 +193,26 @@ impl AgentCore {
     fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
         let w = self.wm.add_typed(id, attr, value, false, links);
-        self.inputs.queue.push(InputChange::Add(w));
+        let tt = self.wm.get(w).map_or(0, |x| x.timetag);
+        self.inputs.queue.push(InputChange::Add(w, tt));
         w
+    }
+
+    /// The WME a queued input change names, if it is still the one with that timetag.
+    pub(crate) fn queued_input(&self, w: WmeId, tt: u64) -> Option<&Wme> {
+        self.wm.get(w).filter(|x| x.timetag == tt)
+    }
+
+    /// The WME of a live input entry, with its timetag; a stale handle when that WME went
+    /// with an object garbage collection took.
+    fn entry_wme(&self, e: &InputEntry) -> Result<(WmeId, u64), IoError> {
+        let w = e.wme.ok_or(IoError::StaleHandle)?;
+        match self.wm.get(w) {
+            Some(x) if x.id == e.id && x.attr == e.attr && x.value == e.value => {
+                Ok((w, x.timetag))
+            }
+            _ => Err(IoError::StaleHandle),
+        }
     }
 
     fn live_entry(&self, h: InputWme) -> Result<&InputEntry, IoError> {
@@ -230,13 +248,13 @@ impl AgentCore {
         let new = self.value_sym(&value.into())?;
         let e = self.live_entry(h)?;
         let (id, attr, old_value, object) = (e.id, e.attr, e.value, e.object);
-        let old = e.wme.ok_or(IoError::StaleHandle)?;
+        let (old, old_tt) = self.entry_wme(e)?;
         if new == old_value && self.inputs.update_mode == InputUpdate::SkipIfNoChange {
             return Ok(false);
         }
         // The WME it hangs from may have gone with an object some other change unlinked.
         self.parent(id)?;
-        self.inputs.queue.push(InputChange::Remove(old));
+        self.inputs.queue.push(InputChange::Remove(old, old_tt));
         let w = self.queue_input_add(id, attr, new);
         let is_id = [self.symbols.is_id(old_value), self.symbols.is_id(new)];
         self.inputs.set_value(h, new, w, is_id);
@@ -253,8 +271,8 @@ impl AgentCore {
     /// handles of the WMEs made under it become stale).
     pub fn remove_input(&mut self, h: InputWme) -> Result<(), IoError> {
         let e = self.live_entry(h)?;
-        let (old, object, value) = (e.wme.ok_or(IoError::StaleHandle)?, e.object, e.value);
-        self.inputs.queue.push(InputChange::Remove(old));
+        let ((old, tt), object, value) = (self.entry_wme(e)?, e.object, e.value);
+        self.inputs.queue.push(InputChange::Remove(old, tt));
         self.inputs.kill(h.slot, self.symbols.is_id(value));
         if object && !self.inputs.linked(value) {
             self.drop_entries_below(value);
@@ -296,18 +314,23 @@ impl AgentCore {
         let (mut added, mut removed) = (Vec::new(), Vec::new());
         for change in &queue {
             match *change {
-                InputChange::Add(w) => {
-                    added.extend(self.wm.get(w).map(|x| (x.attr, x.value, x.acceptable)))
+                InputChange::Add(w, tt) => added.extend(
+                    self.queued_input(w, tt)
+                        .map(|x| (x.attr, x.value, x.acceptable)),
+                ),
+                InputChange::Remove(w, tt) => {
+                    if self.queued_input(w, tt).is_some() {
+                        removed.push(w);
+                    }
                 }
-                InputChange::Remove(w) => removed.push(w),
             }
         }
         let batch = self.rete.begin_doomed_batch(&added, &removed);
         for change in queue.iter().rev() {
-            let InputChange::Add(w) = *change else {
+            let InputChange::Add(w, tt) = *change else {
                 continue;
             };
-            let Some(wme) = self.wm.get(w).copied() else {
+            let Some(wme) = self.queued_input(w, tt).copied() else {
                 continue;
             };
             self.match_new_wme(w, &wme);
@@ -315,10 +338,12 @@ impl AgentCore {
         }
         let mut gone = Vec::new();
         for change in queue.iter().rev() {
-            let InputChange::Remove(w) = *change else {
+            let InputChange::Remove(w, tt) = *change else {
                 continue;
             };
-            gone.extend(self.remove_wme(w));
+            if self.queued_input(w, tt).is_some() {
+                gone.extend(self.remove_wme(w));
+            }
         }
         if batch {
             self.rete.end_doomed_batch();
@@ -373,7 +398,7 @@ impl AgentCore {
     /// Input WMEs waiting for the next input phase to be added.
     pub(crate) fn pending_input_additions(&self) -> u64 {
         let adds = self.inputs.queue.iter();
-        adds.filter(|c| matches!(c, InputChange::Add(_))).count() as u64
+        adds.filter(|c| matches!(c, InputChange::Add(..))).count() as u64
     }
 
     /// A mark that changes when the output-link or a command on it changes: the newest
@@ -622,7 +647,7 @@ mod tests {
             .queue
             .iter()
             .map(|c| {
-                let InputChange::Add(w) = *c else {
+                let InputChange::Add(w, _) = *c else {
                     return "removal".into();
                 };
                 let w = a.wm.get(w).unwrap();

@@ -120,3 +120,33 @@ fn handles_below_a_replaced_object_go_stale() {
     assert!(late.is_err(), "{late:?}");
     assert_eq!(agent.check_invariants(), Ok(()));
 }
+
+/// Found by the `api_calls` fuzz target: a WME added under an input object whose removal
+/// was waiting went with the object's garbage at the input phase, but its handle stayed
+/// live; its WME's place in working memory then went to a rule's WME, and removing the
+/// handle removed that WME instead (`(O1 ^name act)`, with the operator still selected).
+/// The handle is stale, and a waiting change leaves a WME with another timetag alone.
+#[test]
+fn a_handle_whose_wme_was_collected_touches_no_other_wme() {
+    let mut agent = Agent::new("api");
+    agent
+        .execute(
+            "sp {propose (state <s> ^superstate nil) --> (<s> ^operator <o> +) (<o> ^name act)}",
+        )
+        .expect("a rule");
+    let il = agent.io().input_link();
+    let (object, a1) = agent.io().add_object(il, "a").expect("an object");
+    agent
+        .run(1, rusoar::RunUnit::Phases)
+        .expect("the input phase");
+    agent.io().remove(object).expect("the object goes");
+    let below = agent.io().add(a1, "b", "x").expect("A1 is still linked");
+    // The input phase adds and removes both, the rule proposes, a decision selects.
+    agent.run(3, rusoar::RunUnit::Decisions).expect("decisions");
+    assert!(agent.io().update(below, 1).is_err());
+    assert!(agent.io().remove(below).is_err());
+    agent.run(2, rusoar::RunUnit::Decisions).expect("decisions");
+    assert_eq!(agent.check_invariants(), Ok(()));
+    let op = agent.execute("print --depth 2 s1").expect("print");
+    assert!(op.contains("^name act"), "{op}");
+}
