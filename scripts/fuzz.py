@@ -2,7 +2,10 @@
 """Runs the coverage-guided fuzz targets of fuzz/ (cargo fuzz, nightly toolchain).
 
 Each target starts from seeds made from the project's own inputs: the test agents and
-command scripts of tests/, the thesis rules of rules/, and a world file. The seeds go in
+command scripts of tests/, the thesis rules of rules/, and a world file. The structure-aware
+targets (random_agent, api_calls, smem), whose bytes are choices rather than text, start
+from pseudo-random bytes of a fixed seed; smem also from the knowledge bases of the smem
+test agents. The seeds go in
 fuzz/corpus/TARGET (kept between runs, not committed); libFuzzer adds what it finds there.
 A crash, a panic, a hang (over --timeout seconds per input) or running out of memory stops
 the target and leaves the input in fuzz/artifacts/TARGET: each becomes a regression test
@@ -14,6 +17,7 @@ usage: python3 scripts/fuzz.py [--seconds S] [--timeout T] [TARGET ...]
 import argparse
 import glob
 import os
+import random
 import re
 import shutil
 import subprocess
@@ -21,7 +25,8 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FUZZ = os.path.join(ROOT, "fuzz")
-TARGETS = ["command_line", "production_parser", "source_files", "world_file"]
+TARGETS = ["command_line", "production_parser", "source_files", "world_file",
+           "random_agent", "api_calls", "smem"]
 
 WORLD_SEED = """name = "seed-room"
 
@@ -72,6 +77,32 @@ def agent_files():
     return files
 
 
+def rule_bodies(text):
+    """The bodies of the `sp {...}` commands of a file: up to the brace that closes the
+    command's, braces inside |strings| and after a # comment set aside."""
+    bodies = []
+    for m in re.finditer(r"^sp \{", text, re.M):
+        depth, i, quoted = 1, m.end(), False
+        while i < len(text) and depth:
+            c = text[i]
+            if quoted:
+                quoted = c != "|"
+            elif c == "|":
+                quoted = True
+            elif c == "#":
+                i = text.find("\n", i)
+                if i < 0:
+                    break
+            elif c == "{":
+                depth += 1
+            elif c == "}":
+                depth -= 1
+            i += 1
+        if depth == 0:
+            bodies.append(text[m.end():i - 1])
+    return bodies
+
+
 def seeds(target):
     """The seed inputs of a target, as (name, text)."""
     out = []
@@ -83,7 +114,7 @@ def seeds(target):
         out += [(os.path.basename(f), read(f)) for f in agent_files()]
     elif target == "production_parser":
         for f in agent_files():
-            for i, body in enumerate(re.findall(r"^sp \{(.*?)^\}", read(f), re.S | re.M)):
+            for i, body in enumerate(rule_bodies(read(f))):
                 out.append(("%s-%d" % (os.path.basename(f), i), body))
     elif target == "source_files":
         files = agent_files()
@@ -92,7 +123,17 @@ def seeds(target):
             out.append((os.path.basename(f), read(f) + "\n#file\n" + read(other)))
     elif target == "world_file":
         out.append(("seed-room.toml", WORLD_SEED))
-    return [(n, t) for n, t in out if len(t.encode()) <= 4096]
+    if target in ("random_agent", "api_calls", "smem"):
+        rng = random.Random(target)
+        for i in range(16):
+            data = bytes(rng.randrange(256) for _ in range(rng.choice((64, 512, 1500))))
+            out.append(("bytes-%d" % i, data))
+    if target == "smem":
+        for f in sorted(glob.glob(os.path.join(ROOT, "tests", "agents", "smem*.soar"))):
+            for i, kb in enumerate(re.findall(r"^smem --add (\{.*?\})\s*$", read(f), re.S | re.M)):
+                out.append(("%s-%d" % (os.path.basename(f), i), kb))
+    out = [(n, t if isinstance(t, bytes) else t.encode()) for n, t in out]
+    return [(n, t) for n, t in out if len(t) <= 4096]
 
 
 def prepare(target):
@@ -101,7 +142,7 @@ def prepare(target):
     for name, text in seeds(target):
         path = os.path.join(corpus, "seed-" + re.sub(r"[^A-Za-z0-9_.-]", "_", name))
         if not os.path.exists(path):
-            with open(path, "w", encoding="utf-8") as f:
+            with open(path, "wb") as f:
                 f.write(text)
     return corpus
 

@@ -185,8 +185,11 @@ impl InputTable {
 
 /// An input-link change the embedding program made, waiting for the next input phase.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// Each names its WME with its timetag: garbage collection may take a waiting WME (with an
+/// object a rule unlinked) and its handle go to another WME before the input phase, which
+/// then leaves the other alone.
 pub(crate) enum InputChange {
-    Add(WmeId),
-    Remove(WmeId),
+    Add(WmeId, u64),
+    Remove(WmeId, u64),
 }
 

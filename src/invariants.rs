@@ -5,10 +5,17 @@
 //! - Every WME's identifier is linked to a goal, through WMEs (acceptable-preference ones
 //!   included) and the identifiers preferences name: garbage collection leaves nothing
 //!   unlinked (Soar manual, ch. 2, "Working memory", on the removal of unlinked elements).
+//!   Objects below an identifier no WME ever pointed at are the exception: collection
+//!   searches only identifiers that lose a link, so an object made by an action whose link
+//!   to it failed (`(<v> ^b <new>)` with `<v>` bound to a constant) stays, as in 9.6.
 //! - No token of the matcher holds a WME that left working memory.
 //! - Each slot's preferences are live and are for that slot's identifier and attribute,
 //!   and each WME a slot shows is in working memory with the slot's identifier and
 //!   attribute.
+//! - Each WME in a goal dependency set is in working memory, the goal it is charged to is
+//!   a live substate, and the WME's identifier belongs to a goal above that substate (the
+//!   GDS holds only what a substate's reasoning tested higher up; Soar manual, ch. 2, "The
+//!   Goal Dependency Set").
 
 use crate::agent::AgentCore;
 use crate::rete::NIL_WME;
@@ -22,7 +29,39 @@ impl AgentCore {
         self.check_links(&mut out);
         self.check_tokens(&mut out);
         self.check_slots(&mut out);
+        self.check_gds(&mut out);
         out
+    }
+
+    fn check_gds(&self, out: &mut Vec<String>) {
+        for (&w, &goal) in self.decider.gds.iter() {
+            let Some(wme) = self.wm.get(w) else {
+                out.push(format!(
+                    "goal dependency set of {}: holds a WME no longer in working memory",
+                    self.symbols.text(goal)
+                ));
+                continue;
+            };
+            let shown = format!(
+                "({}: {} ^{} {})",
+                wme.timetag,
+                self.symbols.text(wme.id),
+                self.symbols.text(wme.attr),
+                self.symbols.text(wme.value)
+            );
+            let live = self.decider.goals.iter().skip(1).any(|g| g.state == goal);
+            if !live {
+                out.push(format!(
+                    "goal dependency set: {shown} is charged to {}, which is not a substate",
+                    self.symbols.text(goal)
+                ));
+            } else if self.sym_level(wme.id) >= self.sym_level(goal) {
+                out.push(format!(
+                    "goal dependency set of {}: {shown} is not from a goal above it",
+                    self.symbols.text(goal)
+                ));
+            }
+        }
     }
 
     fn check_links(&self, out: &mut Vec<String>) {
@@ -40,6 +79,9 @@ impl AgentCore {
         let mut linked: FxHashSet<Sym> = FxHashSet::default();
         let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
         stack.push(self.top.state);
+        let all = self.wm.all();
+        let never_linked = all.iter().filter_map(|&w| self.wm.get(w)).map(|w| w.id);
+        stack.extend(never_linked.filter(|&id| !self.wm.ever_pointed_at(id)));
         while let Some(id) = stack.pop() {
             if !linked.insert(id) {
                 continue;
@@ -56,7 +98,7 @@ impl AgentCore {
                 }
             }
         }
-        for w in self.wm.all() {
+        for w in all {
             let Some(wme) = self.wm.get(w) else { continue };
             if !linked.contains(&wme.id) {
                 out.push(format!(
@@ -133,9 +175,33 @@ mod tests {
         let mut core = AgentCore::new("t");
         let loose = core.symbols.new_id('X', 1);
         let (attr, value) = (core.symbols.str("color"), core.symbols.str("red"));
+        let thing = core.symbols.str("thing");
+        let link = core.add_wme(core.top.state, thing, loose, false);
         core.add_wme(loose, attr, value, false);
+        assert_eq!(core.invariant_violations(), Vec::<String>::new());
+        // The link goes, and no garbage collection follows.
+        core.remove_wme(link);
         let found = core.invariant_violations();
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(found[0].contains("X1 ^color red") && found[0].contains("not linked"));
+    }
+
+    #[test]
+    fn an_object_nothing_ever_pointed_at_is_not_garbage() {
+        let mut core = AgentCore::new("t");
+        let loose = core.symbols.new_id('X', 1);
+        let (attr, value) = (core.symbols.str("color"), core.symbols.str("red"));
+        core.add_wme(loose, attr, value, false);
+        assert_eq!(core.invariant_violations(), Vec::<String>::new());
+    }
+
+    #[test]
+    fn a_dependency_charged_to_the_top_state_is_named() {
+        let mut core = AgentCore::new("t");
+        let w = core.wm.of_id(core.top.state).next().expect("S1 has WMEs");
+        core.decider.gds.insert(w, core.top.state);
+        let found = core.invariant_violations();
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(found[0].contains("charged to S1, which is not a substate"));
     }
 }

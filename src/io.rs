@@ -19,7 +19,7 @@ pub use crate::inputs::{InputUpdate, InputWme};
 pub use crate::value::Value;
 use crate::inputs::{InputChange, InputEntry, InputTable};
 use crate::symbols::{Sym, SymData};
-use crate::wm::WmeId;
+use crate::wm::{Wme, WmeId};
 use rustc_hash::FxHashSet;
 
 /// A misuse of the input and output links.
@@ -38,6 +38,10 @@ pub enum IoError {
     /// [`crate::Io::mark_done`] was called twice for one command.
     #[error("output command `{0}` is already marked done")]
     AlreadyDone(String),
+    /// A WME was to hang from an identifier that is no longer in working memory (an input
+    /// object removed, and collected with what hung below it): nothing links it to a state.
+    #[error("`{0}` is not in working memory: input WMEs hang from linked identifiers")]
+    Unlinked(String),
 }
 
 /// One command the rules placed on the output-link: `(I3 ^name <cmd>)` and its parameters.
@@ -135,6 +139,26 @@ impl AgentCore {
         }
     }
 
+    /// `s` if it is an identifier an input WME may hang from: a state, or one a WME in
+    /// working memory points at. A WME under an identifier that was collected would have
+    /// no link to a state, and garbage collection (which searches identifiers as they lose
+    /// a link) would never take it.
+    fn parent(&self, s: Sym) -> Result<Sym, IoError> {
+        let id = self.identifier(s)?;
+        let is_state = self.symbols.id_data(id).is_some_and(|d| d.is_goal) || id == self.top.state;
+        let pointed_at = || {
+            self.wm
+                .parent_wmes(id)
+                .iter()
+                .any(|&(w, _)| self.wm.get(w).is_some())
+        };
+        if is_state || pointed_at() {
+            Ok(id)
+        } else {
+            Err(IoError::Unlinked(self.symbols.text(id)))
+        }
+    }
+
     /// Adds `(id ^attr value)`: it gets its timetag now and reaches the matcher at the next
     /// input phase (see [`AgentCore::apply_input_changes`]), as an SML client's WMEs do.
     pub fn add_input(
@@ -143,7 +167,7 @@ impl AgentCore {
         attr: &str,
         value: impl Into<Value>,
     ) -> Result<InputWme, IoError> {
-        let id = self.identifier(id)?;
+        let id = self.parent(id)?;
         let value = self.value_sym(&value.into())?;
         let attr = self.symbols.str(attr);
         Ok(self.push_input(id, attr, value, false))
@@ -153,7 +177,7 @@ impl AgentCore {
     /// attribute's first letter, or `I` when that is not a letter or is `s` (9.6 names an
     /// SML client's `^sonar` object `I4`, keeping `S` for states; soar-sml 9.6.5).
     pub fn add_input_object(&mut self, id: Sym, attr: &str) -> Result<(InputWme, Sym), IoError> {
-        let id = self.identifier(id)?;
+        let id = self.parent(id)?;
         let child = self.symbols.new_id(input_letter(attr), 1);
         let attr = self.symbols.str(attr);
         Ok((self.push_input(id, attr, child, true), child))
@@ -169,8 +193,26 @@ impl AgentCore {
     fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
         let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
         let w = self.wm.add_typed(id, attr, value, false, links);
-        self.inputs.queue.push(InputChange::Add(w));
+        let tt = self.wm.get(w).map_or(0, |x| x.timetag);
+        self.inputs.queue.push(InputChange::Add(w, tt));
         w
+    }
+
+    /// The WME a queued input change names, if it is still the one with that timetag.
+    pub(crate) fn queued_input(&self, w: WmeId, tt: u64) -> Option<&Wme> {
+        self.wm.get(w).filter(|x| x.timetag == tt)
+    }
+
+    /// The WME of a live input entry, with its timetag; a stale handle when that WME went
+    /// with an object garbage collection took.
+    fn entry_wme(&self, e: &InputEntry) -> Result<(WmeId, u64), IoError> {
+        let w = e.wme.ok_or(IoError::StaleHandle)?;
+        match self.wm.get(w) {
+            Some(x) if x.id == e.id && x.attr == e.attr && x.value == e.value => {
+                Ok((w, x.timetag))
+            }
+            _ => Err(IoError::StaleHandle),
+        }
     }
 
     fn live_entry(&self, h: InputWme) -> Result<&InputEntry, IoError> {
@@ -205,15 +247,22 @@ impl AgentCore {
     pub fn update_input(&mut self, h: InputWme, value: impl Into<Value>) -> Result<bool, IoError> {
         let new = self.value_sym(&value.into())?;
         let e = self.live_entry(h)?;
-        let (id, attr, old_value) = (e.id, e.attr, e.value);
-        let old = e.wme.ok_or(IoError::StaleHandle)?;
+        let (id, attr, old_value, object) = (e.id, e.attr, e.value, e.object);
+        let (old, old_tt) = self.entry_wme(e)?;
         if new == old_value && self.inputs.update_mode == InputUpdate::SkipIfNoChange {
             return Ok(false);
         }
-        self.inputs.queue.push(InputChange::Remove(old));
+        // The WME it hangs from may have gone with an object some other change unlinked.
+        self.parent(id)?;
+        self.inputs.queue.push(InputChange::Remove(old, old_tt));
         let w = self.queue_input_add(id, attr, new);
         let is_id = [self.symbols.is_id(old_value), self.symbols.is_id(new)];
         self.inputs.set_value(h, new, w, is_id);
+        // An object of this table replaced by another value goes as a removed one does,
+        // with the handles below it.
+        if object && !self.inputs.linked(old_value) {
+            self.drop_entries_below(old_value);
+        }
         Ok(true)
     }
 
@@ -222,8 +271,8 @@ impl AgentCore {
     /// handles of the WMEs made under it become stale).
     pub fn remove_input(&mut self, h: InputWme) -> Result<(), IoError> {
         let e = self.live_entry(h)?;
-        let (old, object, value) = (e.wme.ok_or(IoError::StaleHandle)?, e.object, e.value);
-        self.inputs.queue.push(InputChange::Remove(old));
+        let ((old, tt), object, value) = (self.entry_wme(e)?, e.object, e.value);
+        self.inputs.queue.push(InputChange::Remove(old, tt));
         self.inputs.kill(h.slot, self.symbols.is_id(value));
         if object && !self.inputs.linked(value) {
             self.drop_entries_below(value);
@@ -251,7 +300,10 @@ impl AgentCore {
     /// SML client's buffered changes there (`do_buffered_wm_changes`, checked with soar-sml
     /// 9.6.5): first every added WME, newest first, then every removed one, newest first,
     /// each traced as `=>WM:` or `<=WM:`. The order decides the order of new matches, so
-    /// of firings, identifiers and random choices (`scripts/slam_oracle.py`).
+    /// of firings, identifiers and random choices (`scripts/slam_oracle.py`). An object
+    /// the removals unlink goes at once with what hangs below it, its lines before the
+    /// removals' (9.6 collects garbage in the input phase too: soar-sml 9.6.5 traces
+    /// `<=WM: (15: B1 ^a A1)` before `<=WM: (14: I2 ^b B1)` when `(I2 ^b B1)` is destroyed).
     pub(crate) fn apply_input_changes(&mut self) {
         if self.inputs.queue.is_empty() {
             return;
@@ -262,33 +314,45 @@ impl AgentCore {
         let (mut added, mut removed) = (Vec::new(), Vec::new());
         for change in &queue {
             match *change {
-                InputChange::Add(w) => {
-                    added.extend(self.wm.get(w).map(|x| (x.attr, x.value, x.acceptable)))
+                InputChange::Add(w, tt) => added.extend(
+                    self.queued_input(w, tt)
+                        .map(|x| (x.attr, x.value, x.acceptable)),
+                ),
+                InputChange::Remove(w, tt) => {
+                    if self.queued_input(w, tt).is_some() {
+                        removed.push(w);
+                    }
                 }
-                InputChange::Remove(w) => removed.push(w),
             }
         }
         let batch = self.rete.begin_doomed_batch(&added, &removed);
         for change in queue.iter().rev() {
-            let InputChange::Add(w) = *change else {
+            let InputChange::Add(w, tt) = *change else {
                 continue;
             };
-            let Some(wme) = self.wm.get(w).copied() else {
+            let Some(wme) = self.queued_input(w, tt).copied() else {
                 continue;
             };
             self.match_new_wme(w, &wme);
             self.trace_wme(true, &wme);
         }
+        let mut gone = Vec::new();
         for change in queue.iter().rev() {
-            let InputChange::Remove(w) = *change else {
+            let InputChange::Remove(w, tt) = *change else {
                 continue;
             };
-            if let Some(wme) = self.remove_wme(w) {
-                self.trace_wme(false, &wme);
+            if self.queued_input(w, tt).is_some() {
+                gone.extend(self.remove_wme(w));
             }
         }
         if batch {
             self.rete.end_doomed_batch();
+        }
+        if !gone.is_empty() {
+            self.collect_garbage();
+        }
+        for wme in &gone {
+            self.trace_wme(false, wme);
         }
     }
 
@@ -334,7 +398,7 @@ impl AgentCore {
     /// Input WMEs waiting for the next input phase to be added.
     pub(crate) fn pending_input_additions(&self) -> u64 {
         let adds = self.inputs.queue.iter();
-        adds.filter(|c| matches!(c, InputChange::Add(_))).count() as u64
+        adds.filter(|c| matches!(c, InputChange::Add(..))).count() as u64
     }
 
     /// A mark that changes when the output-link or a command on it changes: the newest
@@ -583,7 +647,7 @@ mod tests {
             .queue
             .iter()
             .map(|c| {
-                let InputChange::Add(w) = *c else {
+                let InputChange::Add(w, _) = *c else {
                     return "removal".into();
                 };
                 let w = a.wm.get(w).unwrap();

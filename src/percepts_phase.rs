@@ -30,8 +30,10 @@ impl AgentCore {
         let dc = self.decider.d_cycle_count;
         for change in &self.inputs.queue {
             let line = match *change {
-                InputChange::Add(w) => {
-                    let Some(wme) = self.wm.get(w) else { continue };
+                InputChange::Add(w, tt) => {
+                    let Some(wme) = self.wm.get(w).filter(|x| x.timetag == tt) else {
+                        continue;
+                    };
                     let (value, kind) = match self.symbols.get(wme.value) {
                         SymData::Int(i) => (i.to_string(), "int"),
                         SymData::Float(_) => (self.symbols.text(wme.value), "float"),
@@ -45,7 +47,7 @@ impl AgentCore {
                         self.symbols.text(wme.attr),
                     )
                 }
-                InputChange::Remove(w) => match self.wm.get(w) {
+                InputChange::Remove(w, tt) => match self.wm.get(w).filter(|x| x.timetag == tt) {
                     Some(wme) => format!("{dc} -{} remove-wme\n", wme.timetag),
                     None => continue,
                 },

@@ -75,11 +75,10 @@ pub fn print_object_at(
 ) -> String {
     let mut out = String::new();
     let mut seen = std::collections::HashSet::new();
-    let mut frontier = vec![(id, 0usize)];
+    let mut frontier = std::collections::VecDeque::from([(id, 0usize)]);
     // Breadth first, so an identifier prints at its shallowest depth.
     let mut order = Vec::new();
-    while let Some((x, d)) = frontier.first().copied() {
-        frontier.remove(0);
+    while let Some((x, d)) = frontier.pop_front() {
         if !seen.insert(x) {
             continue;
         }
@@ -87,7 +86,7 @@ pub fn print_object_at(
         if d + 1 < depth {
             for w in sorted_wmes(agent, x) {
                 if agent.symbols.is_id(w.value) && !seen.contains(&w.value) {
-                    frontier.push((w.value, d + 1));
+                    frontier.push_back((w.value, d + 1));
                 }
             }
         }
@@ -97,40 +96,51 @@ pub fn print_object_at(
         order.iter().map(|(x, d)| (*x, *d)).collect();
     let mut printed = std::collections::HashSet::new();
     let mut col = start_col;
-    print_rec(
-        agent,
-        id,
-        0,
-        depth,
-        (internal, varprint),
-        &owners,
-        &mut printed,
-        &mut out,
-        &mut col,
-    );
+    // Depth first with a stack of its own, not the call stack: a chain of objects may be
+    // as long as working memory. An identifier is checked when its turn comes, so the
+    // order is that of a recursive walk.
+    let mut stack = vec![(id, 0usize)];
+    while let Some((x, level)) = stack.pop() {
+        let children = print_one(
+            agent,
+            x,
+            level,
+            (internal, varprint),
+            &mut printed,
+            &mut out,
+            &mut col,
+        );
+        if level + 1 < depth {
+            let owned = children
+                .into_iter()
+                .filter(|&v| agent.symbols.is_id(v) && owners.get(&v) == Some(&(level + 1)));
+            let from = stack.len();
+            stack.extend(owned.map(|v| (v, level + 1)));
+            stack[from..].reverse();
+        }
+    }
     out
 }
 
-#[allow(clippy::too_many_arguments)]
-fn print_rec(
+/// Prints one object at `level` (none when it was printed or has no WMEs) and returns its
+/// WMEs' values in the order printed, for the walk to go on below it.
+fn print_one(
     agent: &AgentCore,
     id: Sym,
     level: usize,
-    depth: usize,
     (internal, varprint): (bool, bool),
-    owners: &std::collections::HashMap<Sym, usize>,
     printed: &mut std::collections::HashSet<Sym>,
     out: &mut String,
     // The stream's column where the first line starts (0 after it).
     col: &mut usize,
-) {
+) -> Vec<Sym> {
     if !printed.insert(id) {
-        return;
+        return Vec::new();
     }
     // An identifier with no WMEs prints nothing, at the top too (9.6 prints an empty text).
     let wmes = sorted_wmes(agent, id);
     if wmes.is_empty() {
-        return;
+        return Vec::new();
     }
     let indent = "  ".repeat(level);
     if internal {
@@ -183,23 +193,7 @@ fn print_rec(
         out.push('\n');
     }
     *col = 0;
-    if level + 1 < depth {
-        for w in &wmes {
-            if agent.symbols.is_id(w.value) && owners.get(&w.value) == Some(&(level + 1)) {
-                print_rec(
-                    agent,
-                    w.value,
-                    level + 1,
-                    depth,
-                    (internal, varprint),
-                    owners,
-                    printed,
-                    out,
-                    col,
-                );
-            }
-        }
-    }
+    wmes.iter().map(|w| w.value).collect()
 }
 
 /// `matches <rule>` (`production matches`): each condition with its partial-match count;

@@ -57,6 +57,11 @@ pub struct WorkingMemory {
     /// Emptied lists, kept for their room: identifiers come and go with every firing.
     spare_id_lists: Vec<Vec<WmeId>>,
     spare_parent_lists: Vec<Vec<(WmeId, bool)>>,
+    /// A bit per symbol: whether a WME has ever pointed at it. Garbage collection searches
+    /// only identifiers that lose a link, so one no WME ever pointed at (the object of an
+    /// action whose link to it failed) stays, as in 9.6; the invariant checker tells
+    /// those from objects collection missed by this.
+    pointed_at: Vec<u64>,
 }
 
 /// At most this many emptied lists of each kind are kept.
@@ -83,6 +88,7 @@ impl WorkingMemory {
             link_pos: Vec::new(),
             spare_id_lists: Vec::new(),
             spare_parent_lists: Vec::new(),
+            pointed_at: Vec::new(),
         }
     }
 
@@ -142,6 +148,11 @@ impl WorkingMemory {
                 self.link_pos[w.0 as usize][slot] = NOT_LINKED;
                 continue;
             }
+            let (word, bit) = (target.0 as usize / 64, target.0 % 64);
+            if self.pointed_at.len() <= word {
+                self.pointed_at.resize(word + 1, 0);
+            }
+            self.pointed_at[word] |= 1 << bit;
             let spare = &mut self.spare_parent_lists;
             let list = self
                 .parents
@@ -279,6 +290,13 @@ impl WorkingMemory {
         pools.push(Pool::of_vec::<[u32; 2]>("wme link place", self.link_pos.capacity()));
         hash_table_bytes::<Sym, IdList>(self.by_id.capacity())
             + hash_table_bytes::<Sym, Vec<(WmeId, bool)>>(self.parents.capacity())
+    }
+
+    /// Whether a WME has ever pointed at `x` (as its value or attribute).
+    pub(crate) fn ever_pointed_at(&self, x: Sym) -> bool {
+        self.pointed_at
+            .get(x.0 as usize / 64)
+            .is_some_and(|word| word & (1 << (x.0 % 64)) != 0)
     }
 
     /// `init-soar`: timetags start again at 1, as in the official kernel.

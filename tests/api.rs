@@ -173,7 +173,9 @@ fn a_panicking_host_function_is_reported_and_the_agent_goes_on() {
                (<s> ^a (exec boom 1) ^b (exec add 1 2.5) ^c (exec fails))}",
         )
         .unwrap();
-    agent.run(1, RunUnit::Decisions).unwrap();
+    // The panic stops the run after the phase it happened in: the decision is not done.
+    let r = agent.run(1, RunUnit::Decisions).unwrap();
+    assert_eq!((r.decisions, r.stop), (0, StopReason::Interrupted));
     let trace = agent.take_output();
     assert!(
         trace.contains("rhs function boom panicked: out of cheese"),
@@ -193,6 +195,23 @@ fn a_panicking_host_function_is_reported_and_the_agent_goes_on() {
     // Still usable.
     let r = agent.run(2, RunUnit::Decisions).unwrap();
     assert_eq!(r.stop, StopReason::LimitReached);
+    assert_eq!(agent.check_invariants(), Ok(()));
+}
+
+#[test]
+fn a_panicking_function_in_sml_form_stops_the_run_too() {
+    let mut agent = Agent::default();
+    agent.register_sml_rhs_function("boom", |_, _| panic!("no more"));
+    agent
+        .execute("sp {t (state <s> ^superstate nil) --> (<s> ^a (exec boom 1))}")
+        .unwrap();
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!((r.decisions, r.stop), (0, StopReason::Interrupted));
+    assert!(agent
+        .take_output()
+        .contains("rhs function boom panicked: no more"));
+    let r = agent.run(2, RunUnit::Decisions).unwrap();
+    assert_eq!((r.decisions, r.stop), (2, StopReason::LimitReached));
 }
 
 #[test]

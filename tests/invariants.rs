@@ -56,3 +56,23 @@ fn an_object_named_only_by_a_preference_is_linked() {
     assert_eq!(agent.execute("print b1").expect("print"), "(B1 ^name b)\n");
     assert_eq!(agent.check_invariants(), Ok(()));
 }
+
+/// Found by the random-agent generator: an action on a variable bound to a constant
+/// (`(<v1> ^b <v2>)` with `<v1>` = 3.5) fails, and the new object `<v2>` it would have
+/// linked stays in working memory with no link, as in 9.6 (soar_sml 9.6.5 prints
+/// `(V1 ^a y)` after the same decision): garbage collection only searches identifiers that
+/// lose a link. Such an object is not reported as unlinked.
+#[test]
+fn an_object_whose_link_failed_stays_and_is_no_violation() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {link (state <s> ^type state) -(<s> ^a z) (<s> ^a <v1>) -(<v1> ^b 1) \
+             --> (<v1> ^c <v1>) (<v1> ^b <v2>) (<v2> ^a y)}\n\
+             sp {number (state <s> ^type state) --> (<s> ^d 3.5) (<s> ^a (* 3.5 1))}\n\
+             watch 0\nrun 1",
+        )
+        .expect("the agent runs");
+    assert_eq!(agent.execute("print v1").expect("print"), "(V1 ^a y)\n");
+    assert_eq!(agent.check_invariants(), Ok(()));
+}

@@ -1,6 +1,10 @@
 //! What the fuzz targets share: an agent that cannot run for ever, in a folder of its own,
 //! and the filter that keeps fuzzed commands from reaching files outside that folder.
 
+pub mod api_calls;
+pub mod random_agent;
+pub mod smem_agent;
+
 use rusoar::{Agent, AgentEvent};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -34,7 +38,10 @@ pub fn bounded_agent() -> Agent {
 /// Panics (a finding) when one of the kernel's consistency checks fails.
 pub fn assert_invariants(agent: &Agent) {
     if let Err(broken) = agent.check_invariants() {
-        panic!("the kernel's invariants do not hold:\n{}", broken.join("\n"));
+        panic!(
+            "the kernel's invariants do not hold:\n{}",
+            broken.join("\n")
+        );
     }
 }
 

@@ -267,7 +267,59 @@ impl Rete {
             && (w == NIL_WME || self.wmes[w.0 as usize].is_some())
     }
 
+    /// Left-activates `n` with (parent token `t`, WME `w`), and everything below it,
+    /// depth first. Memories and joins hand their children to the `pending` stack instead
+    /// of calling down, so the walk needs no call-stack depth however long a chain of
+    /// conditions is. Each waiting activation is checked when its turn comes, as a
+    /// recursive walk would check it then; what a call from here pushed is all done when
+    /// it returns (negative and NCC nodes rely on that).
     pub(crate) fn left_activation(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        let base = self.pending.len();
+        self.left_activation_one(n, t, w, syms, sink);
+        while self.pending.len() > base {
+            match self.pending.pop().expect("above base") {
+                Pending::Child(c, t, w) => {
+                    if self.child_may_activate(c, t, w) {
+                        self.left_activation_one(c, t, w, syms, sink);
+                    }
+                }
+                Pending::Candidate(n, t, wm) => {
+                    let batch = self.doom.active;
+                    if batch
+                        && (self.tokens[t].doomed || self.wme_doomed(wm))
+                        && self.may_skip_doomed(n)
+                    {
+                        continue;
+                    }
+                    let depth = self.tokens[t].depth + 1;
+                    if self.wmes[wm.0 as usize].is_some()
+                        && self.tokens[t].alive
+                        && self.node_tests_pass(n, t, wm, depth, syms)
+                    {
+                        self.push_children(n, t, wm);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Queues the left activations of the children of `n` with (`t`, `w`), to run head
+    /// first: the head of a node's children is the last of its list, and the stack pops
+    /// the last first (the order of `activate_children`).
+    fn push_children(&mut self, n: NodeId, t: TokId, w: WmeId) {
+        let children = self.nodes[n].children.as_slice();
+        self.pending
+            .extend(children.iter().map(|&c| Pending::Child(c, t, w)));
+    }
+
+    fn left_activation_one(
         &mut self,
         n: NodeId,
         t: TokId,
@@ -280,7 +332,7 @@ impl Rete {
             Kind::Root => {}
             Kind::Memory => {
                 let nt = self.new_token(n, t, w);
-                self.activate_children(n, nt, NIL_WME, syms, sink);
+                self.push_children(n, nt, NIL_WME);
             }
             Kind::Join {
                 amem,
@@ -294,23 +346,14 @@ impl Rete {
                         return;
                     }
                 }
-                let depth = self.tokens[t].depth + 1;
                 let base = self.scratch.len();
                 self.push_amem_candidates(amem, n, t);
-                let batch = self.doom.active;
-                let t_doomed = batch && self.tokens[t].doomed;
+                let from = self.pending.len();
                 for i in base..self.scratch.len() {
-                    let wm = WmeId(self.scratch[i]);
-                    if batch && (t_doomed || self.wme_doomed(wm)) && self.may_skip_doomed(n) {
-                        continue;
-                    }
-                    if self.wmes[wm.0 as usize].is_some()
-                        && self.tokens[t].alive
-                        && self.node_tests_pass(n, t, wm, depth, syms)
-                    {
-                        self.activate_children(n, t, wm, syms, sink);
-                    }
+                    self.pending
+                        .push(Pending::Candidate(n, t, WmeId(self.scratch[i])));
                 }
+                self.pending[from..].reverse();
                 self.scratch.truncate(base);
             }
             Kind::Negative { .. } | Kind::Ncc { .. } | Kind::NccPartner { .. } => {
@@ -445,4 +488,14 @@ impl Rete {
         }
         None
     }
+}
+
+/// A left activation on the matcher's `pending` stack.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Pending {
+    /// Left-activate the node with (token, WME), if both are still alive.
+    Child(NodeId, TokId, WmeId),
+    /// A WME of a join's alpha memory, to be tested against the token and, when it passes,
+    /// to activate the join's children.
+    Candidate(NodeId, TokId, WmeId),
 }

@@ -475,6 +475,10 @@ pub struct Rete {
     free_hentries: Vec<u32>,
     /// The activations' shared stack of list copies (see `activate.rs`).
     scratch: Vec<u32>,
+    /// Left activations waiting their turn: the matcher walks the network depth first
+    /// with this stack rather than the call stack, so a rule of thousands of conditions
+    /// joined one to the next cannot overflow it (`activate.rs`).
+    pending: Vec<activate::Pending>,
     /// The successors of an alpha memory that just emptied (reused buffer).
     emptied_succ: Vec<NodeId>,
     /// The same for alpha-memory successors.
@@ -532,6 +536,7 @@ impl Rete {
             hentries: Vec::new(),
             free_hentries: Vec::new(),
             scratch: Vec::new(),
+            pending: Vec::new(),
             succ_scratch: Vec::new(),
             emptied_succ: Vec::new(),
             root: NodeId::new(0),

@@ -88,10 +88,13 @@ pub(crate) fn args<'a>(symbols: &'a Symbols, syms: &[Sym]) -> Vec<RhsArg<'a>> {
         .collect()
 }
 
-/// Runs `f`, turning a panic into an error message.
-pub(crate) fn guarded<T>(name: &str, f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+/// Runs `f`; a panic in it is caught and its message returned as the outer error.
+pub(crate) fn guarded<T>(
+    name: &str,
+    f: impl FnOnce() -> Result<T, String>,
+) -> Result<Result<T, String>, String> {
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
-        Ok(r) => r,
+        Ok(r) => Ok(r),
         Err(payload) => {
             let why = payload
                 .downcast_ref::<&str>()

@@ -139,8 +139,14 @@ impl Registry {
         self.functions.contains_key(name) || self.typed.contains_key(name)
     }
 
-    /// Calls the string function registered as `name`, if any (a panic in it is an error).
-    pub fn call(&mut self, name: &str, agent: &str, args: &str) -> Option<Result<String, String>> {
+    /// Calls the string function registered as `name`, if any; a panic in it is the outer
+    /// error (see [`host::guarded`]).
+    pub fn call(
+        &mut self,
+        name: &str,
+        agent: &str,
+        args: &str,
+    ) -> Option<Result<Result<String, String>, String>> {
         let f = self.functions.get_mut(name)?;
         Some(host::guarded(name, || Ok(f(agent, args))))
     }
@@ -533,7 +539,15 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
             symbols: ctx.symbols,
         };
         let args = host::args(ctx.symbols, rest);
-        let result = host::guarded(function, || f(&call, &args));
+        let result = match host::guarded(function, || f(&call, &args)) {
+            Ok(r) => r,
+            Err(panicked) => {
+                // A panic is the host program's bug, not the agent's: the run stops after
+                // this phase (as `(interrupt)` stops it), and the agent can go on.
+                ctx.interrupt = true;
+                Err(panicked)
+            }
+        };
         let function = function.to_string();
         let function = function.as_str();
         return match result {
@@ -552,20 +566,28 @@ fn exec(args: &[Sym], ctx: &mut RhsContext) -> Sym {
             .and_then(|()| numeric_form(&registry.numbers)),
         None => None,
     };
+    let mut interrupt = false;
     let result = fast.unwrap_or_else(|| {
         let mut argument = String::new();
         for a in rest {
             text::push_value_text(ctx.symbols, *a, &mut argument);
         }
         match registry.call(function, ctx.agent_name, &argument) {
-            Some(Ok(r)) => r,
-            Some(Err(why)) => {
+            Some(Ok(Ok(r))) => r,
+            Some(Ok(Err(why))) => {
                 report_host_error(ctx.output, ctx.symbols, &why);
                 format!("Error: {why}")
+            }
+            Some(Err(panicked)) => {
+                interrupt = true;
+                report_host_error(ctx.output, ctx.symbols, &panicked);
+                format!("Error: {panicked}")
             }
             None => format!("Error: Nobody was registered to implement rhs function {function}"),
         }
     });
+    // As for a typed function: a panic stops the run after this phase.
+    ctx.interrupt |= interrupt;
     ctx.str_sym(&result)
 }
 

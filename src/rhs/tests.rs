@@ -996,11 +996,11 @@ fn registry_registers_replaces_and_unregisters() {
     assert!(r
         .register("f", Box::new(|_: &str, a: &str| a.to_uppercase()))
         .is_none());
-    assert_eq!(r.call("f", "agent", "abc"), Some(Ok("ABC".into())));
+    assert_eq!(r.call("f", "agent", "abc"), Some(Ok(Ok("ABC".into()))));
     assert!(r
         .register("f", Box::new(|ag: &str, _: &str| ag.to_string()))
         .is_some());
-    assert_eq!(r.call("f", "me", ""), Some(Ok("me".into())));
+    assert_eq!(r.call("f", "me", ""), Some(Ok(Ok("me".into()))));
     assert!(r.unregister("f"));
     assert_eq!(r.call("f", "agent", "abc"), None);
     // A panic in a function is an error, not the end of the program.
@@ -1018,8 +1018,8 @@ fn registry_registers_replaces_and_unregisters() {
             n.to_string()
         }),
     );
-    assert_eq!(r.call("counter", "a", ""), Some(Ok("1".into())));
-    assert_eq!(r.call("counter", "a", ""), Some(Ok("2".into())));
+    assert_eq!(r.call("counter", "a", ""), Some(Ok(Ok("1".into()))));
+    assert_eq!(r.call("counter", "a", ""), Some(Ok(Ok("2".into()))));
 }
 
 #[test]
