@@ -4,6 +4,7 @@
 
 #[path = "../fuzz/src/api_calls.rs"]
 mod api_calls;
+mod seeded;
 
 use arbitrary::Unstructured;
 use rusoar::Agent;
@@ -11,23 +12,10 @@ use rusoar::Agent;
 const SEQUENCES: u64 = 300;
 const BYTES: usize = 600;
 
-/// Bytes from a 64-bit xorshift generator: the same for a seed on every platform.
-fn bytes(seed: u64) -> Vec<u8> {
-    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    (0..BYTES)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 24) as u8
-        })
-        .collect()
-}
-
 #[test]
 fn random_call_sequences_keep_the_invariants() {
     for seed in 0..SEQUENCES {
-        let data = bytes(seed);
+        let data = seeded::bytes(seed, BYTES);
         let mut agent = Agent::new("api");
         if let Err(why) = api_calls::run_api_calls(&mut agent, &mut Unstructured::new(&data)) {
             panic!("seed {seed}: {why}");

@@ -4,6 +4,7 @@
 
 #[path = "../fuzz/src/random_agent.rs"]
 mod random_agent;
+mod seeded;
 
 use arbitrary::Unstructured;
 use random_agent::{random_agent, run_random_agent};
@@ -13,23 +14,10 @@ use rusoar::Agent;
 const AGENTS: u64 = 1500;
 const BYTES: usize = 1500;
 
-/// Bytes from a 64-bit xorshift generator: the same for a seed on every platform.
-fn bytes(seed: u64) -> Vec<u8> {
-    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
-    (0..BYTES)
-        .map(|_| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 24) as u8
-        })
-        .collect()
-}
-
 #[test]
 fn random_agents_keep_the_invariants_after_every_phase() {
     for seed in 0..AGENTS {
-        let data = bytes(seed);
+        let data = seeded::bytes(seed, BYTES);
         let spec = random_agent(&mut Unstructured::new(&data)).expect("bytes make an agent");
         let mut agent = Agent::new("random");
         if let Err(why) = run_random_agent(&mut agent, &spec) {
@@ -44,7 +32,7 @@ fn the_generator_makes_varied_agents() {
     // them use every kind of rule the generator knows.
     let all: Vec<String> = (0..40)
         .map(|seed| {
-            random_agent(&mut Unstructured::new(&bytes(seed)))
+            random_agent(&mut Unstructured::new(&seeded::bytes(seed, BYTES)))
                 .unwrap()
                 .source
         })
