@@ -83,7 +83,7 @@ impl Interpreter {
     /// `rl -t [LEVEL]`, `rl -t print [LEVEL]`, `rl -t clear [LEVEL]`, `rl -t init [LEVEL]`,
     /// with 9.6's reading of levels (C's `atoi`: `x` is 0) and its messages.
     fn rl_trace_command(&mut self, ctx: &Ctx, words: &[String]) -> CmdResult {
-        let level_of = |w: &String, what: &str| match c_atoi(w) {
+        let level_of = |w: &String, what: &str| match super::settings::atoi(w) {
             l if l >= 1 => Ok(l as u32),
             _ => Err(ctx.error(format!("Invalid RL goal level for rl -t{what}."))),
         };
@@ -124,19 +124,4 @@ impl Interpreter {
             Ok(()) => Ok(String::new()),
         }
     }
-}
-
-/// C's `atoi`: leading blanks, a sign, then as many digits as there are; 0 without any.
-fn c_atoi(text: &str) -> i64 {
-    let t = text.trim_start();
-    let (sign, digits) = match t.as_bytes().first() {
-        Some(b'-') => (-1, &t[1..]),
-        Some(b'+') => (1, &t[1..]),
-        _ => (1, t),
-    };
-    let n: i64 = digits
-        .bytes()
-        .take_while(u8::is_ascii_digit)
-        .fold(0i64, |acc, d| acc.saturating_mul(10).saturating_add(i64::from(d - b'0')));
-    sign * n
 }

@@ -449,7 +449,7 @@ fn phase_name(p: Phase) -> &'static str {
 }
 
 /// C's `atoi`: optional blanks and sign, then digits; anything else ends the number.
-fn atoi(s: &str) -> i64 {
+pub(super) fn atoi(s: &str) -> i64 {
     let t = s.trim_start();
     let (neg, digits) = match t.as_bytes().first() {
         Some(b'-') => (true, &t[1..]),
