@@ -587,6 +587,8 @@ pub struct AgentCore {
     pub rl: crate::rl::RlState,
     /// Semantic memory: its store, settings and working-memory interface.
     pub smem: crate::smem::Smem,
+    /// Episodic memory: its store, settings and working-memory interface.
+    pub epmem: crate::epmem::Epmem,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
@@ -637,6 +639,7 @@ impl AgentCore {
             learn: crate::learn::LearnState::default(),
             rl: crate::rl::RlState::default(),
             smem: crate::smem::Smem::default(),
+            epmem: crate::epmem::Epmem::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),

@@ -21,6 +21,7 @@ kernel_modules!(
     ast,
     commands,
     decide,
+    epmem,
     events,
     inputs,
     io,

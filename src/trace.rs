@@ -43,22 +43,32 @@ pub fn wme_line(agent: &AgentCore, w: &Wme, internal: bool, varprint: bool) -> S
     )
 }
 
-/// The WMEs of an object as `print` orders them: by attribute text, newest first on ties.
+/// The WMEs of an object as `print` orders them: by attribute text, newest first on ties,
+/// but episodic memory's results oldest first (9.6 lists them in the order it made them).
 pub fn sorted_wmes(agent: &AgentCore, id: Sym) -> Vec<Wme> {
-    let mut ws: Vec<Wme> = agent
-        .wm
-        .of_id(id)
-        .filter_map(|w| agent.wm.get(w).copied())
+    let ids: Vec<crate::wm::WmeId> = agent.wm.of_id(id).collect();
+    let n = ids.len();
+    let mut ws: Vec<(Vec<u8>, bool, u64, Wme)> = ids
+        .into_iter()
+        .enumerate()
+        .filter_map(|(i, w)| {
+            let wme = *agent.wm.get(w)?;
+            let made_by_epmem = agent.epmem.made(w);
+            let rank = if made_by_epmem {
+                wme.timetag
+            } else {
+                (n - i) as u64
+            };
+            Some((
+                agent.symbols.text(wme.attr).into_bytes(),
+                made_by_epmem,
+                rank,
+                wme,
+            ))
+        })
         .collect();
-    ws.reverse();
-    ws.sort_by(|a, b| {
-        agent
-            .symbols
-            .text(a.attr)
-            .as_bytes()
-            .cmp(agent.symbols.text(b.attr).as_bytes())
-    });
-    ws
+    ws.sort_by(|a, b| (&a.0, a.1, a.2).cmp(&(&b.0, b.1, b.2)));
+    ws.into_iter().map(|x| x.3).collect()
 }
 
 /// `print <id>` with `--depth` and `--internal` (children indented two spaces per level, each

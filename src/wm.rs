@@ -62,6 +62,9 @@ pub struct WorkingMemory {
     /// action whose link to it failed) stays, as in 9.6; the invariant checker tells
     /// those from objects collection missed by this.
     pointed_at: Vec<u64>,
+    /// While episodic memory keeps its record of working memory, every addition and removal
+    /// in order (`true` for an addition), for it to read at its next episode.
+    journal: Option<Vec<(bool, Wme)>>,
 }
 
 /// At most this many emptied lists of each kind are kept.
@@ -89,6 +92,20 @@ impl WorkingMemory {
             spare_id_lists: Vec::new(),
             spare_parent_lists: Vec::new(),
             pointed_at: Vec::new(),
+            journal: None,
+        }
+    }
+
+    /// Starts (or stops) keeping the journal of changes episodic memory reads.
+    pub(crate) fn keep_journal(&mut self, on: bool) {
+        self.journal = on.then(Vec::new);
+    }
+
+    /// The changes since the journal was last taken (none when it is not kept).
+    pub(crate) fn take_journal(&mut self) -> Vec<(bool, Wme)> {
+        match self.journal.as_mut() {
+            Some(j) => std::mem::take(j),
+            None => Vec::new(),
         }
     }
 
@@ -161,6 +178,9 @@ impl WorkingMemory {
             self.link_pos[w.0 as usize][slot] = list.len() as u32;
             list.push((w, slot == 1));
         }
+        if let Some(j) = self.journal.as_mut() {
+            j.push((true, wme));
+        }
         w
     }
 
@@ -219,6 +239,9 @@ impl WorkingMemory {
         }
         self.unlink(w, 0, wme.value);
         self.unlink(w, 1, wme.attr);
+        if let Some(j) = self.journal.as_mut() {
+            j.push((false, wme));
+        }
         self.free.push(w.0);
         self.count -= 1;
         self.removals += 1;

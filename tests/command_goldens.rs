@@ -183,7 +183,7 @@ fn masked_stats(text: &str) -> String {
     out.join("\n")
 }
 
-/// What `smem` prints, with the figures of the SQLite library masked: its version and the
+/// What `smem` and `epmem` print, with the figures of the SQLite library masked: its version and the
 /// bytes it has allocated (9.6.5 is built with SQLite 3.40.0 and counts its allocator's
 /// bytes; rusoar links another SQLite and reports its database's size).
 fn masked_smem(text: &str) -> String {
@@ -210,7 +210,7 @@ fn comparable(command: &str, text: &str) -> String {
     let text = neutral_identity_counts(&neutral_title(text));
     if first == "stats" || first == "st" {
         masked_stats(&text)
-    } else if first == "smem" {
+    } else if first == "smem" || first == "epmem" {
         masked_smem(&text)
     } else {
         text

@@ -27,6 +27,7 @@ mod rules;
 mod save;
 mod running;
 mod settings;
+mod epmem;
 mod smem;
 mod stats;
 pub mod tokenizer;
@@ -564,6 +565,7 @@ impl Interpreter {
             "save" => self.cmd_save(&ctx, args),
             "rl" => self.cmd_rl(&ctx, args),
             "smem" => self.cmd_smem(&ctx, args),
+            "epmem" => self.cmd_epmem(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "exit" => {
                 self.exit_requested = true;

@@ -262,6 +262,7 @@ impl AgentCore {
                 self.run_input_callbacks();
                 self.replay_input_changes();
                 self.capture_input_changes();
+                self.epmem_input_phase();
                 self.apply_input_changes();
                 self.classify_new_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Input));
@@ -297,6 +298,7 @@ impl AgentCore {
             }
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
+                self.epmem_selection_phase();
                 self.decide_context_slots();
                 self.reduce_exploration_parameters();
                 self.classify_new_matches();
@@ -336,6 +338,7 @@ impl AgentCore {
                 // Semantic memory's commands are processed at the end of the output phase
                 // (observed on soar-sml 9.6.5: their results are traced in it).
                 self.smem_output_phase();
+                self.epmem_output_phase();
                 self.apoptosis_end_decision();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
@@ -448,6 +451,7 @@ impl AgentCore {
         // `rl -t init`, as 9.6 does at every init-soar: the RL trace starts from its roots.
         self.rl_trace_init(None);
         self.smem_reinitialize();
+        self.epmem_close();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

@@ -289,8 +289,9 @@ impl AgentCore {
         add(self, e, k.command, c);
         let r2 = self.symbols.new_id('R', level);
         add(self, e, k.result, r2);
-        let one = self.symbols.int(1);
-        add(self, e, k.present_id, one);
+        // The next episode's number (1 until episodic memory stores one).
+        let present = self.symbols.int(self.epmem.time());
+        add(self, e, k.present_id, present);
         let l = self.symbols.new_id('L', level);
         add(self, s, k.smem, l);
         let c2 = self.symbols.new_id('C', level);

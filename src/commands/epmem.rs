@@ -1,0 +1,238 @@
+//! The `epmem` command (Soar manual, ch. 9, `epmem`): the settings, `--get`/`--set`,
+//! `--enable`/`--disable`, `--init`, episodes printed and drawn, the statistics and
+//! timers, with 9.6's texts and error messages (checked on soar-sml 9.6.5).
+
+use super::options::{self, opt};
+use super::{CmdResult, Ctx, Interpreter};
+use crate::epmem::params::SetError;
+
+/// The statistics of `epmem --stats`: name, and the label of the listing.
+const STATS: [(&str, &str); 14] = [
+    ("time", "Time"),
+    ("db-lib-version", "SQLite Version"),
+    ("mem-usage", "Memory Usage"),
+    ("mem-high", "Memory Highwater"),
+    ("retrievals", "Retrievals"),
+    ("queries", "Queries"),
+    ("nexts", "Nexts"),
+    ("prevs", "Prevs"),
+    ("ncb-wmes", "Last Retrieval WMEs"),
+    ("qry-pos", "Last Query Positive"),
+    ("qry-neg", "Last Query Negative"),
+    ("qry-ret", "Last Query Retrieved"),
+    ("qry-card", "Last Query Cardinality"),
+    ("qry-lits", "Last Query Literals"),
+];
+
+/// The timers of `epmem --timers`, in 9.6's order. rusoar does not time its episodic
+/// memory: each reads 0, as 9.6's do with `timers off`.
+const TIMERS: [&str; 29] = [
+    "_total",
+    "epmem_api",
+    "epmem_hash",
+    "epmem_init",
+    "epmem_ncb_retrieval",
+    "epmem_next",
+    "epmem_prev",
+    "epmem_query",
+    "epmem_storage",
+    "epmem_trigger",
+    "epmem_wm_phase",
+    "ncb_edge",
+    "ncb_edge_rit",
+    "ncb_node",
+    "ncb_node_rit",
+    "query_cleanup",
+    "query_dnf",
+    "query_graph_match",
+    "query_result",
+    "query_sql_edge",
+    "query_sql_end_ep",
+    "query_sql_end_now",
+    "query_sql_end_point",
+    "query_sql_start_ep",
+    "query_sql_start_now",
+    "query_sql_start_point",
+    "query_walk",
+    "query_walk_edge",
+    "query_walk_interval",
+];
+
+/// A 40-column row of `--stats` and `--timers`.
+fn row40(label: &str, value: &str) -> String {
+    let width = 40usize.saturating_sub(label.len() + 1);
+    format!("{label}:{value:>width$}\n")
+}
+
+/// A banner of `--stats`, `--timers` and `--print`: the title centred in 40 columns.
+fn banner(title: &str) -> String {
+    let left = 40usize.saturating_sub(title.len()) / 2;
+    let right = 40usize.saturating_sub(title.len() + left);
+    let rule = "=".repeat(40);
+    format!(
+        "{rule}\n{}{title}{}\n{rule}\n",
+        " ".repeat(left),
+        " ".repeat(right)
+    )
+}
+
+impl Interpreter {
+    /// `epmem [OPTION [ARGS]]`.
+    pub(super) fn cmd_epmem(&mut self, ctx: &Ctx, args: &[String]) -> CmdResult {
+        if matches!(args.first().map(String::as_str), Some("?" | "help")) {
+            return Ok(self.agent.epmem.params.listing());
+        }
+        let specs = [
+            opt('b', "backup"),
+            opt('d', "disable"),
+            opt('e', "enable"),
+            opt('g', "get"),
+            opt('i', "init"),
+            opt('p', "print"),
+            opt('s', "set"),
+            opt('S', "stats"),
+            opt('t', "timers"),
+            opt('v', "viz"),
+        ];
+        let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
+        let words = &parsed.args;
+        let Some((option, _)) = parsed.options.first() else {
+            if !words.is_empty() {
+                return Err(ctx.error("Too many arguments, check syntax."));
+            }
+            return Ok(self.agent.epmem.params.listing());
+        };
+        if parsed.options.len() > 1 {
+            return Err(ctx.error("epmem takes only one option at a time."));
+        }
+        let count = |min: usize, max: usize| {
+            if words.len() < min {
+                Err(ctx.error("Too few arguments."))
+            } else if words.len() > max {
+                Err(ctx.error("Too many arguments."))
+            } else {
+                Ok(())
+            }
+        };
+        match *option {
+            "enable" | "disable" => {
+                count(0, 0)?;
+                let on = *option == "enable";
+                let _ = self.agent.epmem.params.set(
+                    "learning",
+                    if on { "on" } else { "off" },
+                    false,
+                );
+                Ok(format!(
+                    "Episodic memory {}.\n",
+                    if on { "enabled" } else { "disabled" }
+                ))
+            }
+            "get" => {
+                count(1, 1)?;
+                match self.agent.epmem.params.get(&words[0]) {
+                    Some(v) => Ok(format!("{} is {v}\n", words[0])),
+                    None => Err(ctx.error("Invalid epmem parameter.")),
+                }
+            }
+            "set" => {
+                count(2, 2)?;
+                let open = self.agent.epmem.is_open();
+                match self.agent.epmem.params.set(&words[0], &words[1], open) {
+                    Err(SetError::Name) => Err(ctx.error("Invalid epmem parameter.")),
+                    Err(SetError::Value) => {
+                        Err(ctx.error("Invalid setting for epmem parameter."))
+                    }
+                    Err(SetError::Protected) => Err(ctx.error(
+                        "This parameter is protected while the episodic memory database is open.",
+                    )),
+                    Ok(()) => Ok(format!("{} is now {}\n", words[0], words[1])),
+                }
+            }
+            "init" => {
+                count(0, 0)?;
+                self.agent.epmem_close();
+                self.agent.epmem_attach();
+                Ok("Episodic memory system re-initialized.\n".into())
+            }
+            "print" | "viz" => {
+                count(1, 1)?;
+                let t = words[0].parse::<i64>().unwrap_or(0);
+                let store = self.agent.epmem.store();
+                let valid = store.is_some_and(|s| s.valid(t));
+                let Some(store) = store.filter(|_| valid) else {
+                    return Err(ctx.error("Invalid episode."));
+                };
+                // 9.6 ends both with a blank line.
+                if *option == "viz" {
+                    Ok(format!("{}\n", store.visualize_episode(t)))
+                } else {
+                    let title = banner(&format!("Episode {t}"));
+                    Ok(format!("{title}{}\n", store.print_episode(t)))
+                }
+            }
+            "backup" => {
+                count(1, 1)?;
+                Err(ctx.error(
+                    "rusoar keeps episodic memory in memory only: there is no database to back up.",
+                ))
+            }
+            "stats" => {
+                count(0, 1)?;
+                let values = self.epmem_stat_values();
+                match words.first() {
+                    None => {
+                        let mut s = banner("Episodic Memory Statistics");
+                        for ((_, label), v) in STATS.iter().zip(&values) {
+                            s.push_str(&row40(label, v));
+                        }
+                        Ok(s)
+                    }
+                    Some(w) => STATS
+                        .iter()
+                        .zip(&values)
+                        .find(|((name, _), _)| name == w)
+                        .map(|(_, v)| format!(" {v}"))
+                        .ok_or_else(|| ctx.error("Invalid statistic.")),
+                }
+            }
+            _ => {
+                // "timers"
+                count(0, 1)?;
+                match words.first() {
+                    None => {
+                        let mut s = banner("Episodic Memory Timers");
+                        for t in TIMERS {
+                            s.push_str(&row40(t, "0"));
+                        }
+                        Ok(s)
+                    }
+                    Some(w) if TIMERS.contains(&w.as_str()) => Ok(" 0".into()),
+                    Some(_) => Err(ctx.error("Invalid timer.")),
+                }
+            }
+        }
+    }
+
+    /// The statistics' values, in the order of [`STATS`].
+    fn epmem_stat_values(&self) -> Vec<String> {
+        let e = &self.agent.epmem;
+        let s = e.stats;
+        vec![
+            e.time().to_string(),
+            rusqlite::version().to_string(),
+            "0".into(),
+            "0".into(),
+            s.retrievals.to_string(),
+            s.queries.to_string(),
+            s.nexts.to_string(),
+            s.prevs.to_string(),
+            s.ncb_wmes.to_string(),
+            s.qry_pos.to_string(),
+            s.qry_neg.to_string(),
+            s.qry_ret.to_string(),
+            s.qry_card.to_string(),
+            s.qry_lits.to_string(),
+        ]
+    }
+}

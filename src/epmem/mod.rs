@@ -1,0 +1,106 @@
+//! Episodic memory (Soar manual, ch. 7, "Episodic Memory"): snapshots of the top state's
+//! working memory, stored as they change (`store.rs`, `encode.rs`), rebuilt on request
+//! (`retrieve.rs`) and searched by cue (`query.rs`) through each state's `^epmem` link
+//! (`wmi.rs`). The store lives in memory for the agent's lifetime.
+
+mod encode;
+pub mod params;
+pub mod print;
+mod query;
+mod retrieve;
+pub mod store;
+mod wmi;
+
+use crate::symbols::Sym;
+use crate::wm::WmeId;
+use rustc_hash::FxHashMap;
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+
+/// The counts of `epmem --stats`.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct EpmemStats {
+    pub retrievals: u64,
+    pub queries: u64,
+    pub nexts: u64,
+    pub prevs: u64,
+    pub ncb_wmes: u64,
+    pub qry_pos: u64,
+    pub qry_neg: u64,
+    pub qry_ret: i64,
+    pub qry_card: i64,
+    pub qry_lits: u64,
+}
+
+/// What episodic memory knows of working memory between episodes (9.6 keeps it on WMEs and
+/// identifiers): which WMEs and identifiers are stored as which rows and nodes, which
+/// identifiers got new WMEs, and which rows end at the next episode.
+#[derive(Debug, Default)]
+pub(crate) struct Encoder {
+    /// The row (constant or edge) of each stored WME, by timetag.
+    pub wme_row: FxHashMap<u64, i64>,
+    /// The node of each stored identifier.
+    pub node_of: FxHashMap<Sym, i64>,
+    /// The stored WMEs that point at each node, by timetag: a node no WME points at is free
+    /// to stand for another identifier.
+    pub refs: FxHashMap<i64, Vec<u64>>,
+    /// Edges whose WMEs are gone, by `(parent node, attribute)`: (child node, edge), most
+    /// recently freed first. A new identifier under the same parent and attribute takes
+    /// one, so that the same structure keeps the same nodes.
+    pub pools: FxHashMap<(i64, i64), VecDeque<(i64, i64)>>,
+    /// The pool each edge in use goes back to.
+    pub pool_of: FxHashMap<i64, (i64, i64)>,
+    /// Stored identifiers with new WMEs since the last episode.
+    pub adds: BTreeSet<Sym>,
+    /// Rows whose WMEs went since the last episode (`false`: one came back).
+    pub const_removals: BTreeMap<i64, bool>,
+    pub edge_removals: BTreeMap<i64, bool>,
+}
+
+/// Each state's record of its `^epmem` link.
+#[derive(Debug, Default)]
+pub(crate) struct LinkState {
+    /// The newest timetag and the number of the command's WMEs when last looked at.
+    pub last_cmd_time: u64,
+    pub last_cmd_count: usize,
+    /// The episode retrieved last (for `next` and `previous`).
+    pub last_memory: Option<i64>,
+    /// The WMEs the results added.
+    pub results: Vec<WmeId>,
+}
+
+/// The episodic memory of one agent.
+#[derive(Debug, Default)]
+pub struct Epmem {
+    pub params: params::EpmemParams,
+    pub stats: EpmemStats,
+    /// The store, made at the first episode or command after learning is on.
+    pub(crate) store: Option<store::Store>,
+    pub(crate) encoder: Encoder,
+    pub(crate) links: FxHashMap<Sym, LinkState>,
+    /// The newest output-link timetag an episode was triggered by (`trigger output`).
+    pub(crate) last_output_time: u64,
+    /// Each state's `^present-id` is to move on at the next working-memory phase.
+    pub(crate) present_due: bool,
+}
+
+impl Epmem {
+    /// Whether the store is open (9.6's "connected" database).
+    pub fn is_open(&self) -> bool {
+        self.store.is_some()
+    }
+
+    /// The next episode's number (each state's `^present-id`).
+    pub fn time(&self) -> i64 {
+        self.store.as_ref().map_or(1, |s| s.time)
+    }
+
+    /// Whether episodic memory's results hold this WME.
+    pub(crate) fn made(&self, w: WmeId) -> bool {
+        !self.links.is_empty() && self.links.values().any(|l| l.results.contains(&w))
+    }
+
+    /// The store, for printing.
+    pub fn store(&self) -> Option<&store::Store> {
+        self.store.as_ref()
+    }
+}

@@ -1,0 +1,195 @@
+//! The episodic store (Soar manual, ch. 7, "Episodic Memory", "Episodic Storage"): not a
+//! copy of working memory per episode but each WME's intervals of existence. A WME with a
+//! constant value is a *constant* row `(parent node, attribute, value)`; one with an
+//! identifier value is an *edge* row `(parent node, attribute, child node)`, the child
+//! being a node that stands for the identifier. Each row keeps the episodes it was in as
+//! closed ranges plus the open one it is in now. Rows are numbered as 9.6 numbers them,
+//! which fixes the order in which episodes are printed and rebuilt.
+
+use rustc_hash::FxHashMap;
+
+/// The node of the top state: every episode hangs from it.
+pub const ROOT: i64 = 0;
+
+/// The attribute an acceptable-preference WME is stored under (9.6 prints it
+/// `operator*`).
+pub const ACCEPTABLE: i64 = 0;
+
+/// A constant as the store keeps it.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+pub enum Constant {
+    Str(String),
+    Int(i64),
+    /// The float's bits (floats are kept exactly).
+    Float(u64),
+}
+
+/// The episodes one row was in.
+#[derive(Debug, Clone, Default)]
+pub struct Life {
+    /// Closed ranges of episodes, oldest first.
+    pub ranges: Vec<(i64, i64)>,
+    /// The start of the range it is in now, while it is in working memory.
+    pub now: Option<i64>,
+    /// The last thing done to the row was to end its range (9.6's "max" flag): a WME that
+    /// shows it again starts a new range.
+    pub ended: bool,
+}
+
+impl Life {
+    /// Whether the row was in episode `t`.
+    pub fn at(&self, t: i64) -> bool {
+        if self.now.is_some_and(|s| s <= t) {
+            return true;
+        }
+        let i = self.ranges.partition_point(|&(_, end)| end < t);
+        self.ranges.get(i).is_some_and(|&(start, _)| start <= t)
+    }
+
+    /// Every start and end of its ranges up to `limit`, as (episode, is the end).
+    pub fn bounds(&self, limit: i64, out: &mut Vec<(i64, bool)>) {
+        for &(s, e) in &self.ranges {
+            if s <= limit {
+                out.push((s, false));
+                out.push((e.min(limit), true));
+            }
+        }
+        if let Some(s) = self.now {
+            if s <= limit {
+                out.push((s, false));
+                out.push((limit, true));
+            }
+        }
+    }
+}
+
+/// One row: `(parent node, attribute, value or child node)`.
+pub type Triple = (i64, i64, i64);
+
+/// A table of rows (constants or edges), numbered from 1 in the order they are made.
+#[derive(Debug, Default)]
+pub struct Rows {
+    pub triples: Vec<Triple>,
+    pub lives: Vec<Life>,
+    /// The rows by `(parent, attribute)`, for queries.
+    pub by_parent: FxHashMap<(i64, i64), Vec<i64>>,
+    /// Constants only: the row of a triple (edges may repeat a triple).
+    index: FxHashMap<Triple, i64>,
+}
+
+impl Rows {
+    /// Adds a row; its number.
+    pub fn add(&mut self, t: Triple) -> i64 {
+        self.triples.push(t);
+        self.lives.push(Life::default());
+        let id = self.triples.len() as i64;
+        self.by_parent.entry((t.0, t.1)).or_default().push(id);
+        self.index.entry(t).or_insert(id);
+        id
+    }
+
+    /// The first row with this triple.
+    pub fn find(&self, t: &Triple) -> Option<i64> {
+        self.index.get(t).copied()
+    }
+
+    pub fn triple(&self, id: i64) -> Triple {
+        self.triples[(id - 1) as usize]
+    }
+
+    pub fn life(&self, id: i64) -> &Life {
+        &self.lives[(id - 1) as usize]
+    }
+
+    pub fn life_mut(&mut self, id: i64) -> &mut Life {
+        &mut self.lives[(id - 1) as usize]
+    }
+
+    /// The rows in episode `t`, by number.
+    pub fn at(&self, t: i64) -> Vec<i64> {
+        (1..=self.triples.len() as i64)
+            .filter(|&id| self.life(id).at(t))
+            .collect()
+    }
+}
+
+/// The store: the symbol table, the rows, and the clock of episodes.
+#[derive(Debug)]
+pub struct Store {
+    hash: FxHashMap<Constant, i64>,
+    constants: Vec<Constant>,
+    pub consts: Rows,
+    pub edges: Rows,
+    /// The next node for an identifier.
+    pub next_node: i64,
+    /// The next episode (9.6's `time` statistic): episodes are 1 to `time - 1`.
+    pub time: i64,
+}
+
+impl Default for Store {
+    fn default() -> Self {
+        Store {
+            hash: FxHashMap::default(),
+            constants: vec![Constant::Str("operator*".into())],
+            consts: Rows::default(),
+            edges: Rows::default(),
+            next_node: 1,
+            time: 1,
+        }
+    }
+}
+
+impl Store {
+    /// The number of a constant, made on first use.
+    pub fn hash(&mut self, c: Constant) -> i64 {
+        if let Some(&h) = self.hash.get(&c) {
+            return h;
+        }
+        let h = self.constants.len() as i64;
+        self.constants.push(c.clone());
+        self.hash.insert(c, h);
+        h
+    }
+
+    /// The number of a constant the store has seen.
+    pub fn find_hash(&self, c: &Constant) -> Option<i64> {
+        self.hash.get(c).copied()
+    }
+
+    pub fn constant(&self, h: i64) -> &Constant {
+        &self.constants[h as usize]
+    }
+
+    /// Whether `t` is a stored episode.
+    pub fn valid(&self, t: i64) -> bool {
+        t >= 1 && t < self.time
+    }
+
+    /// A constant as `epmem --print` writes it.
+    pub fn text(&self, h: i64) -> String {
+        match self.constant(h) {
+            Constant::Str(s) => s.clone(),
+            Constant::Int(i) => i.to_string(),
+            Constant::Float(bits) => crate::printer::constants::float_text(f64::from_bits(*bits)),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_life_answers_for_each_episode() {
+        let l = Life {
+            ranges: vec![(1, 2), (5, 5)],
+            now: Some(8),
+            ended: false,
+        };
+        let inside: Vec<i64> = (1..10).filter(|&t| l.at(t)).collect();
+        assert_eq!(inside, [1, 2, 5, 8, 9]);
+        let mut b = Vec::new();
+        l.bounds(8, &mut b);
+        assert_eq!(b, [(1, false), (2, true), (5, false), (5, true), (8, false), (8, true)]);
+    }
+}

@@ -1,0 +1,410 @@
+//! The working-memory interface of episodic memory (Soar manual, ch. 7, "Working Memory
+//! Interface"): at the output phase (or before the decision with `phase selection`) an
+//! episode is stored when `trigger` or `force` says so, every state's `^present-id` moves
+//! on, and each state whose `^epmem.command` changed gets its results: a `retrieve`,
+//! `next` or `previous` rebuilds an episode, a `query` searches for one, anything else is
+//! `^status bad-cmd`. Results replace the previous command's.
+
+use super::retrieve::Triples;
+use crate::agent::AgentCore;
+use crate::symbols::{Sym, SymData};
+use crate::wm::{Wme, WmeId};
+
+/// A state's `^epmem` link: the link, its `^command` and its `^result`.
+type Link = (Sym, Sym, Sym);
+
+/// A parsed `^command` (9.6's `_epmem_respond_to_cmd_parse`).
+#[derive(Debug, Default)]
+struct Command {
+    retrieve: Option<i64>,
+    next: Option<Sym>,
+    previous: Option<Sym>,
+    query: Option<Sym>,
+    neg_query: Option<Sym>,
+    before: Option<i64>,
+    after: Option<i64>,
+    prohibit: Vec<i64>,
+}
+
+impl AgentCore {
+    /// 9.6's `epmem_go`: stores an episode if one is due, then answers commands.
+    pub(crate) fn epmem_go(&mut self) {
+        if !self.epmem.params.learning() {
+            return;
+        }
+        self.epmem_attach();
+        if self.epmem_episode_due() {
+            self.epmem_new_episode();
+        }
+        self.epmem_respond();
+    }
+
+    /// The output phase's part.
+    pub(crate) fn epmem_output_phase(&mut self) {
+        if self.epmem.params.at_output() {
+            self.epmem_go();
+        }
+    }
+
+    /// The decision phase's part, before the selection (`phase selection`).
+    pub(crate) fn epmem_selection_phase(&mut self) {
+        if !self.epmem.params.at_output() {
+            self.epmem_go();
+        }
+    }
+
+    /// Whether `trigger` or `force` calls for an episode now.
+    fn epmem_episode_due(&mut self) -> bool {
+        match self.epmem.params.force() {
+            "remember" => {
+                self.epmem.params.clear_force();
+                return true;
+            }
+            "ignore" => {
+                self.epmem.params.clear_force();
+                return false;
+            }
+            _ => {}
+        }
+        match self.epmem.params.trigger() {
+            "dc" => true,
+            "output" => {
+                let newest = self
+                    .wm
+                    .of_id(self.top.output_link)
+                    .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
+                    .max()
+                    .unwrap_or(0);
+                let due = newest > self.epmem.last_output_time;
+                self.epmem.last_output_time = self.epmem.last_output_time.max(newest);
+                due
+            }
+            _ => false,
+        }
+    }
+
+    /// The value of `id ^attr` (the first such WME).
+    fn epmem_child(&self, id: Sym, attr: &str) -> Option<Sym> {
+        let a = self.symbols.find_str(attr)?;
+        self.wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w))
+            .find(|w| w.attr == a)
+            .map(|w| w.value)
+    }
+
+    /// The states, bottom first, with their `^epmem` links' command and result.
+    fn epmem_states(&self) -> Vec<(Sym, Option<Link>)> {
+        let mut states: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
+        if states.is_empty() {
+            states.push(self.top.state);
+        }
+        states.reverse();
+        states
+            .into_iter()
+            .map(|s| {
+                let link = self.epmem_child(s, "epmem").and_then(|e| {
+                    Some((e, self.epmem_child(e, "command")?, self.epmem_child(e, "result")?))
+                });
+                (s, link)
+            })
+            .collect()
+    }
+
+    /// Moves every state's `^present-id` on to the next episode: the new WMEs and the old.
+    fn epmem_move_present(&mut self, added: &mut Vec<WmeId>, removed: &mut Vec<Wme>) {
+        if !std::mem::take(&mut self.epmem.present_due) {
+            return;
+        }
+        let time = self.epmem.time();
+        let attr = self.symbols.str("present-id");
+        let value = self.symbols.int(time);
+        for (state, link) in self.epmem_states() {
+            let Some((e, _, _)) = link else { continue };
+            let old: Vec<WmeId> = self
+                .wm
+                .of_id(e)
+                .filter(|&w| self.wm.get(w).is_some_and(|x| x.attr == attr))
+                .collect();
+            let w = self.wm.add(e, attr, value, false);
+            self.match_wme_now(w, (e, attr, value), false);
+            added.push(w);
+            for o in old {
+                if let Some(x) = self.wm.get(o).copied() {
+                    removed.push(x);
+                    self.remove_wme(o);
+                }
+                // A substate's own WMEs go with it: the new one takes the old one's place.
+                if let Some(g) = self.decider.goals.iter_mut().find(|g| g.state == state) {
+                    for x in g.wmes.iter_mut().filter(|x| **x == o) {
+                        *x = w;
+                    }
+                }
+            }
+        }
+    }
+
+    /// The input phase: a `^present-id` change waiting since the last episode is made.
+    pub(crate) fn epmem_input_phase(&mut self) {
+        if !self.epmem.present_due {
+            return;
+        }
+        let (mut added, mut removed) = (Vec::new(), Vec::new());
+        self.epmem_move_present(&mut added, &mut removed);
+        self.epmem_trace_changes(&added, &removed);
+    }
+
+    fn epmem_trace_changes(&mut self, added: &[WmeId], removed: &[Wme]) {
+        self.decider.wme_changes += (added.len() + removed.len()) as u64;
+        for &w in added.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme(true, &wme);
+            }
+        }
+        for wme in removed {
+            self.trace_wme(false, wme);
+        }
+    }
+
+    /// 9.6's `epmem_respond_to_cmd`.
+    fn epmem_respond(&mut self) {
+        let mut wm_phase = false;
+        let mut added: Vec<WmeId> = Vec::new();
+        let mut removed: Vec<Wme> = Vec::new();
+        let mut work: Vec<(Sym, Sym, Sym, Vec<Wme>)> = Vec::new();
+        for (state, link) in self.epmem_states() {
+            let Some((_, cmd, res)) = link else { continue };
+            // Every WME under the command, breadth-first.
+            let mut seen = vec![cmd];
+            let mut queue = std::collections::VecDeque::from([cmd]);
+            let mut count = 0;
+            let mut newest = 0;
+            let mut top_level: Option<Vec<Wme>> = None;
+            while let Some(id) = queue.pop_front() {
+                let wmes = self.epmem_augs_of(id);
+                for w in &wmes {
+                    count += 1;
+                    newest = newest.max(w.timetag);
+                    if self.symbols.is_id(w.value) && !seen.contains(&w.value) {
+                        seen.push(w.value);
+                        queue.push_back(w.value);
+                    }
+                }
+                top_level.get_or_insert(wmes);
+            }
+            let info = self.epmem.links.entry(state).or_default();
+            let mut new_cue = false;
+            if newest > info.last_cmd_time {
+                info.last_cmd_time = newest;
+                new_cue = true;
+            }
+            if info.last_cmd_count != count {
+                info.last_cmd_count = count;
+                new_cue = true;
+            }
+            if !new_cue {
+                continue;
+            }
+            wm_phase = true;
+            let old = std::mem::take(&mut info.results);
+            for w in old.into_iter().rev() {
+                if let Some(x) = self.wm.get(w).copied() {
+                    removed.push(x);
+                    self.remove_wme(w);
+                }
+            }
+            if count > 0 {
+                work.push((state, cmd, res, top_level.unwrap_or_default()));
+            }
+        }
+        if !wm_phase {
+            return;
+        }
+        let mut gone_present = Vec::new();
+        self.epmem_move_present(&mut added, &mut gone_present);
+        for (state, _cmd, res, cmds) in work {
+            let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
+            self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
+            let mut mine = Vec::new();
+            for (id, attr, value) in retrieval.into_iter().chain(meta) {
+                let w = self.wm.add(id, attr, value, false);
+                self.match_wme_now(w, (id, attr, value), false);
+                mine.push(w);
+            }
+            added.extend(&mine);
+            self.epmem.links.entry(state).or_default().results = mine;
+        }
+        gone_present.append(&mut removed);
+        self.epmem_trace_changes(&added, &gone_present);
+        self.collect_garbage();
+    }
+
+    /// Reads and carries out one state's command.
+    fn epmem_command(
+        &mut self,
+        state: Sym,
+        res: Sym,
+        cmds: &[Wme],
+        meta: &mut Triples,
+        retrieval: &mut Triples,
+    ) {
+        let Some(c) = self.epmem_parse(cmds) else {
+            let (a, v) = (self.symbols.str("status"), self.symbols.str("bad-cmd"));
+            meta.push((res, a, v));
+            return;
+        };
+        if let Some(t) = c.retrieve {
+            self.epmem_install(state, res, Some(t), meta, retrieval);
+            self.epmem.stats.retrievals += 1;
+        } else if let Some(x) = c.next.or(c.previous) {
+            let last = self.epmem.links.get(&state).and_then(|l| l.last_memory);
+            let store = self.epmem.store.as_ref();
+            let t = match (last, c.next.is_some()) {
+                (Some(l), true) => Some(l + 1).filter(|&t| store.is_some_and(|s| s.valid(t))),
+                (Some(l), false) => Some(l - 1).filter(|&t| t >= 1),
+                (None, _) => None,
+            };
+            self.epmem_install(state, res, t, meta, retrieval);
+            if c.next.is_some() {
+                self.epmem.stats.nexts += 1;
+            } else {
+                self.epmem.stats.prevs += 1;
+            }
+            let got = self.epmem.links.get(&state).and_then(|l| l.last_memory).is_some();
+            let a = self.symbols.str(if got { "success" } else { "failure" });
+            meta.push((res, a, x));
+        } else if let Some(q) = c.query {
+            self.epmem_query(state, res, q, &c, meta, retrieval);
+            self.epmem.stats.queries += 1;
+        }
+    }
+
+    fn epmem_parse(&self, cmds: &[Wme]) -> Option<Command> {
+        let mut c = Command::default();
+        // 9.6's paths: 1 retrieve, 2 next/previous, 3 query and its modifiers.
+        let mut path = 0;
+        for w in cmds {
+            let int = match self.symbols.get(w.value) {
+                SymData::Int(i) => Some(*i),
+                _ => None,
+            };
+            let is_id = self.symbols.is_id(w.value);
+            match self.symbols.text(w.attr).as_str() {
+                "retrieve" if path == 0 && int.is_some_and(|i| i > 0) => {
+                    c.retrieve = int;
+                    path = 1;
+                }
+                "next" if path == 0 && is_id => {
+                    c.next = Some(w.value);
+                    path = 2;
+                }
+                "previous" if path == 0 && is_id => {
+                    c.previous = Some(w.value);
+                    path = 2;
+                }
+                "query" if (path == 0 || path == 3) && is_id && c.query.is_none() => {
+                    c.query = Some(w.value);
+                    path = 3;
+                }
+                "neg-query" if (path == 0 || path == 3) && is_id && c.neg_query.is_none() => {
+                    c.neg_query = Some(w.value);
+                    path = 3;
+                }
+                "before" if (path == 0 || path == 3) && int.is_some() => {
+                    let b = int.unwrap_or(0);
+                    c.before = Some(c.before.map_or(b, |x| x.min(b)));
+                    path = 3;
+                }
+                "after" if (path == 0 || path == 3) && int.is_some() => {
+                    let a = int.unwrap_or(0);
+                    c.after = Some(c.after.map_or(a, |x| x.max(a)));
+                    path = 3;
+                }
+                "prohibit" if (path == 0 || path == 3) && int.is_some() => {
+                    c.prohibit.push(int.unwrap_or(0));
+                    path = 3;
+                }
+                _ => return None,
+            }
+        }
+        if path == 0 || (path == 3 && c.query.is_none()) {
+            return None;
+        }
+        Some(c)
+    }
+
+    fn epmem_query(
+        &mut self,
+        state: Sym,
+        res: Sym,
+        q: Sym,
+        c: &Command,
+        meta: &mut Triples,
+        retrieval: &mut Triples,
+    ) {
+        if let (Some(b), Some(a)) = (c.before, c.after) {
+            if b <= a {
+                let (s, v) = (self.symbols.str("status"), self.symbols.str("bad-cmd"));
+                meta.push((res, s, v));
+                return;
+            }
+        }
+        let cue = self.epmem_cue(q, c.neg_query);
+        let stats = &mut self.epmem.stats;
+        stats.qry_pos = cue.pos_literals;
+        stats.qry_neg = cue.neg_literals;
+        stats.qry_lits = cue.pos_literals + cue.neg_literals;
+        let found = self.epmem_search(&cue, c.before, c.after, &c.prohibit);
+        let cues = [Some(q), c.neg_query];
+        let Some(found) = found else {
+            let a = self.symbols.str("failure");
+            for x in cues.into_iter().flatten() {
+                meta.push((res, a, x));
+            }
+            return;
+        };
+        self.epmem.stats.qry_ret = found.episode;
+        self.epmem.stats.qry_card = found.cardinality;
+        let mut add = |agent: &mut AgentCore, attr: &str, value: Sym| {
+            let a = agent.symbols.str(attr);
+            meta.push((res, a, value));
+        };
+        let v = self.symbols.int(cue.leaves as i64);
+        add(self, "cue-size", v);
+        let v = self.symbols.int(found.cardinality);
+        add(self, "match-cardinality", v);
+        let v = self.symbols.float(found.score);
+        add(self, "match-score", v);
+        let v = self.symbols.float(found.score / found.perfect_score);
+        add(self, "normalized-match-score", v);
+        for x in cues.into_iter().flatten() {
+            add(self, "success", x);
+        }
+        let mut nodes: Vec<(i64, Sym)> = Vec::new();
+        if self.epmem.params.graph_match() {
+            let v = self.symbols.int(i64::from(found.graph_matched));
+            add(self, "graph-match", v);
+            if found.graph_matched {
+                let level = self.symbols.id_data(res).map_or(1, |d| d.level);
+                let mapping = self.symbols.new_id('M', level);
+                add(self, "mapping", mapping);
+                let (node_attr, cue_attr) = (self.symbols.str("node"), self.symbols.str("cue"));
+                for &(cue_sym, node) in &found.bindings {
+                    let n = self.symbols.new_id('N', level);
+                    meta.push((mapping, node_attr, n));
+                    meta.push((n, cue_attr, cue_sym));
+                    nodes.push((node, n));
+                }
+            }
+        }
+        let ids = self.epmem_install(state, res, Some(found.episode), meta, retrieval);
+        nodes.sort_by_key(|&(node, _)| node);
+        nodes.dedup_by_key(|x| x.0);
+        let retrieved = self.symbols.str("retrieved");
+        for (node, n) in nodes {
+            if let Some(&x) = ids.get(&node) {
+                meta.push((n, retrieved, x));
+            }
+        }
+    }
+}
