@@ -17,6 +17,7 @@
 //! | `v2-line-r` | `th r rx ry e` | its distance from the origin, ≥ 0 |
 //! | `v2-lo`, `v2-hi` | `rx ry e mth sx sy ex ey` | where the wall's ends, turned by −e about the robot, lie along the map line's direction (−sin, cos): the lower and the higher |
 //! | `v2-px`, `v2-py` | `mth mr s` | the point of the map line at `s` along it |
+//! | `v2-sense` | `tha thb` | 1 when the normals agree, −1 when they are opposite (parallel walls), 0 otherwise |
 //! | `v2-x`, `v2-y`, `v2-th` | `cx cy cth rx ry e d mth gr gth` | the corrected pose: turned by −gth·e about (rx, ry), then moved by −gr·d along the map's normal |
 //!
 //! Wrong arguments (count or type) give an error message and no value, never a panic.
@@ -62,6 +63,20 @@ pub fn offset(th: f64, r: f64, rx: f64, ry: f64, e: f64, mth: f64, mr: f64) -> f
         -r2 - mr
     } else {
         NOT_PARALLEL
+    }
+}
+
+/// How the normals `tha` and `thb` (degrees) relate: 1 when they agree and −1 when they are
+/// opposite, within [`PARALLEL_DEG`] (the two sides of a room), 0 when the lines are not
+/// parallel. An offset along one normal is `sense` times the same offset along the other.
+pub fn sense(tha: f64, thb: f64) -> f64 {
+    let diff = wrap180(thb - tha).abs();
+    if diff <= PARALLEL_DEG {
+        1.0
+    } else if diff >= 180.0 - PARALLEL_DEG {
+        -1.0
+    } else {
+        0.0
     }
 }
 
@@ -118,7 +133,7 @@ fn numbers<const N: usize>(name: &str, args: &[RhsArg]) -> Result<[f64; N], Stri
 }
 
 /// The names [`register`] adds.
-pub const FUNCTION_NAMES: [&str; 11] = [
+pub const FUNCTION_NAMES: [&str; 12] = [
     "v2-wrap90",
     "v2-offset",
     "v2-line-th",
@@ -127,6 +142,7 @@ pub const FUNCTION_NAMES: [&str; 11] = [
     "v2-hi",
     "v2-px",
     "v2-py",
+    "v2-sense",
     "v2-x",
     "v2-y",
     "v2-th",
@@ -166,6 +182,10 @@ pub fn register(agent: &mut Agent) {
         let [mth, mr, s] = numbers("v2-py", a)?;
         let (sn, cs) = mth.to_radians().sin_cos();
         Ok(Value::Float(mr * sn + s * cs))
+    });
+    agent.register_rhs_function("v2-sense", |_, a| {
+        let [tha, thb] = numbers("v2-sense", a)?;
+        Ok(Value::Float(sense(tha, thb)))
     });
     for (name, pick) in [("v2-x", 0usize), ("v2-y", 1), ("v2-th", 2)] {
         agent.register_rhs_function(name, move |_, a| {
@@ -217,6 +237,14 @@ mod tests {
         // Turning about a point behind the robot moves it sideways too.
         let (x, y, _) = corrected(1000.0, 0.0, 0.0, 0.0, 0.0, 90.0, 0.0, 0.0, 0.0, 1.0);
         assert!(x.abs() < 1e-9 && (y + 1000.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn sense_tells_the_two_sides_of_a_room() {
+        assert_eq!(sense(0.6, 0.6), 1.0);
+        assert_eq!(sense(0.6, 180.6), -1.0);
+        assert_eq!(sense(359.0, 1.0), 1.0);
+        assert_eq!(sense(0.6, 90.6), 0.0);
     }
 
     #[test]

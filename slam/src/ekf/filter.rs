@@ -1,6 +1,14 @@
-//! The EKF over the robot pose and the walls: state `[x, y, φ, r₁, θ₁, r₂, θ₂, ...]` (metres,
-//! radians), prediction from an odometry increment, and updates from robot-relative line
-//! measurements with χ² gating and new-feature initialisation.
+//! The EKF over the robot pose, the odometry's biases and the walls: state
+//! `[x, y, φ, βx, βy, βa, r₁, θ₁, r₂, θ₂, ...]` (metres, radians), prediction from an odometry
+//! increment, and updates from robot-relative line measurements with χ² gating and new-feature
+//! initialisation.
+//!
+//! The biases are Stage 2's run-long drift (`odometry.rs`): a distance βx (fraction of the
+//! distance), a heading drift per metre travelled βy (rad/m) and a rotation βa (fraction of the
+//! turn). They are states because they are constant over a run: taken as white noise, their
+//! effect grows with the square root of the distance in the filter and linearly in truth, and a
+//! heading bias of 0.86°/m outruns a filter that believes its heading to within a few degrees;
+//! its walls are then rejected by the gate and it never recovers.
 
 use nalgebra::{DMatrix, DVector, Matrix2, Vector2};
 
@@ -11,14 +19,17 @@ use super::line::{to_robot_jacobian, to_world_jacobians, Line};
 /// The filter's noise model and gates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Noise {
-    /// Translation noise: variance `(bias_x·d)² + std_x²·d` for a step of d metres.
+    /// Half-widths of the biases' uniform draws: distance (fraction), heading per metre
+    /// travelled (rad/m), rotation (fraction). The bias states start at zero with the draws'
+    /// variance, half-width²/3.
     pub bias_x: f64,
-    pub std_x: f64,
-    /// Heading noise from rotation: `(bias_a·a)² + std_a²·a/2π` for a turn of a radians.
-    pub bias_a: f64,
-    pub std_a: f64,
-    /// Heading noise from travel: `(bias_y·d)² + std_y²·d`, rad.
     pub bias_y: f64,
+    pub bias_a: f64,
+    /// Translation noise: variance `std_x²·d` for a step of d metres.
+    pub std_x: f64,
+    /// Heading noise from rotation: `std_a²·a/2π` for a turn of a radians.
+    pub std_a: f64,
+    /// Heading noise from travel: `std_y²·d`, rad.
     pub std_y: f64,
     /// Standard deviations of a measured wall: r (m) and θ (rad).
     pub sd_r: f64,
@@ -31,22 +42,25 @@ pub struct Noise {
 
 impl Noise {
     /// The noise model for Stage 2's odometry drift (`odometry::DriftParams::STAGE2`) and the
-    /// Hough pipeline's 50 mm and 1° resolution. The run-long biases are taken as white noise
-    /// of twice their half-width per step, to cover their correlation over steps (the factor
-    /// was chosen on seeds 101–120: `docs/slam/ekf-baseline.md`).
+    /// Hough pipeline's walls: 30 mm and 1°, half the Hough bins, since the pipeline refits
+    /// each wall to its returns (the measurement noise was chosen on seeds 101–120:
+    /// `docs/slam/ekf-baseline.md`).
     pub const STAGE2_HOUGH: Noise = Noise {
-        bias_x: 0.015 * 2.0,
+        bias_x: 0.015,
+        bias_y: 0.015,
+        bias_a: 0.025,
         std_x: 0.03,
-        bias_a: 0.025 * 2.0,
         std_a: 0.05,
-        bias_y: 0.015 * 2.0,
         std_y: 0.03,
-        sd_r: 0.06,
-        sd_th: 0.035,
+        sd_r: 0.03,
+        sd_th: 0.0175,
         gate_p: 0.95,
         new_p: 0.999,
     };
 }
+
+/// State entries before the first feature: the pose (x, y, φ) and the biases (βx, βy, βa).
+const ROBOT: usize = 6;
 
 /// What became of one measurement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -70,10 +84,26 @@ pub struct Ekf {
 }
 
 impl Ekf {
-    /// A filter at `start` with the pose standard deviations `sd` (m, m, rad) and no features.
+    /// A filter at `start` with the pose standard deviations `sd` (m, m, rad), biases of zero
+    /// and no features.
     pub fn new(start: Pose, sd: [f64; 3], noise: Noise) -> Self {
-        let x = DVector::from_vec(vec![start.x, start.y, normalize_angle(start.th)]);
-        let p = DMatrix::from_diagonal(&DVector::from_vec(sd.iter().map(|s| s * s).collect()));
+        let x = DVector::from_vec(vec![
+            start.x,
+            start.y,
+            normalize_angle(start.th),
+            0.0,
+            0.0,
+            0.0,
+        ]);
+        let var = [
+            sd[0] * sd[0],
+            sd[1] * sd[1],
+            sd[2] * sd[2],
+            noise.bias_x * noise.bias_x / 3.0,
+            noise.bias_y * noise.bias_y / 3.0,
+            noise.bias_a * noise.bias_a / 3.0,
+        ];
+        let p = DMatrix::from_diagonal(&DVector::from_vec(var.to_vec()));
         Ekf {
             x,
             p,
@@ -93,19 +123,24 @@ impl Ekf {
         self.p.fixed_view::<3, 3>(0, 0).into_owned()
     }
 
+    /// The estimated biases (βx, βy rad/m, βa).
+    pub fn biases(&self) -> [f64; 3] {
+        [self.x[3], self.x[4], self.x[5]]
+    }
+
     /// The number of wall features.
     pub fn features(&self) -> usize {
-        (self.x.len() - 3) / 2
+        (self.x.len() - ROBOT) / 2
     }
 
     /// Feature `i` as a world line.
     pub fn feature(&self, i: usize) -> Line {
-        Line::new(self.x[3 + 2 * i], self.x[4 + 2 * i])
+        Line::new(self.x[ROBOT + 2 * i], self.x[ROBOT + 1 + 2 * i])
     }
 
     /// Feature `i`'s standard deviations (r m, θ rad).
     pub fn feature_sd(&self, i: usize) -> (f64, f64) {
-        let k = 3 + 2 * i;
+        let k = ROBOT + 2 * i;
         (self.p[(k, k)].sqrt(), self.p[(k + 1, k + 1)].sqrt())
     }
 
@@ -124,32 +159,47 @@ impl Ekf {
     }
 
     /// Moves the pose by an odometry increment: `distance` metres along the mid-step heading and
-    /// a turn of `rotation` radians, the integration the odometry itself uses.
+    /// a turn of `rotation` radians as the odometry measured them, less what the estimated
+    /// biases added to them (Stage 2: `dx = odx + |odx|·βx`, `da = oda + |oda|·βa + |odx|·βy`),
+    /// integrated as the odometry itself integrates.
     pub fn predict(&mut self, distance: f64, rotation: f64) {
         let n = &self.noise;
-        let (d, a) = (distance.abs(), rotation.abs());
-        let var_d = (n.bias_x * d).powi(2) + n.std_x * n.std_x * d;
-        let var_a = (n.bias_a * a).powi(2)
-            + n.std_a * n.std_a * a / std::f64::consts::TAU
-            + (n.bias_y * d).powi(2)
-            + n.std_y * n.std_y * d;
-        let mid = self.x[2] + rotation / 2.0;
+        let (dm, am) = (distance.abs(), rotation.abs());
+        let var_d = n.std_x * n.std_x * dm;
+        let var_a = n.std_a * n.std_a * am / std::f64::consts::TAU + n.std_y * n.std_y * dm;
+        let (bx, by, ba) = (self.x[3], self.x[4], self.x[5]);
+        let d = distance - dm * bx;
+        let a = rotation - am * ba - dm * by;
+        let mid = self.x[2] + a / 2.0;
         let (s, c) = mid.sin_cos();
-        self.x[0] += distance * c;
-        self.x[1] += distance * s;
-        self.x[2] = normalize_angle(self.x[2] + rotation);
-        let mut f = nalgebra::Matrix3::identity();
-        f[(0, 2)] = -distance * s;
-        f[(1, 2)] = distance * c;
-        let g = nalgebra::Matrix3x2::new(c, -distance * s / 2.0, s, distance * c / 2.0, 0.0, 1.0);
+        self.x[0] += d * c;
+        self.x[1] += d * s;
+        self.x[2] = normalize_angle(self.x[2] + a);
+        // ∂(x, y, φ)/∂(x, y, φ, βx, βy, βa); the biases stay.
+        let mut f = nalgebra::Matrix6::identity();
+        f[(0, 2)] = -d * s;
+        f[(1, 2)] = d * c;
+        f[(0, 3)] = -dm * c;
+        f[(1, 3)] = -dm * s;
+        f[(0, 4)] = d * s * dm / 2.0;
+        f[(1, 4)] = -d * c * dm / 2.0;
+        f[(2, 4)] = -dm;
+        f[(0, 5)] = d * s * am / 2.0;
+        f[(1, 5)] = -d * c * am / 2.0;
+        f[(2, 5)] = -am;
+        let g = nalgebra::Matrix3x2::new(c, -d * s / 2.0, s, d * c / 2.0, 0.0, 1.0);
         let q = g * Matrix2::new(var_d, 0.0, 0.0, var_a) * g.transpose();
-        let prr = f * self.p.fixed_view::<3, 3>(0, 0) * f.transpose() + q;
-        self.p.fixed_view_mut::<3, 3>(0, 0).copy_from(&prr);
-        let m = self.x.len() - 3;
+        let mut prr = f * self.p.fixed_view::<ROBOT, ROBOT>(0, 0) * f.transpose();
+        let mut pose = prr.fixed_view_mut::<3, 3>(0, 0);
+        pose += q;
+        self.p.fixed_view_mut::<ROBOT, ROBOT>(0, 0).copy_from(&prr);
+        let m = self.x.len() - ROBOT;
         if m > 0 {
-            let prm = f * self.p.view((0, 3), (3, m));
-            self.p.view_mut((0, 3), (3, m)).copy_from(&prm);
-            self.p.view_mut((3, 0), (m, 3)).copy_from(&prm.transpose());
+            let prm = f * self.p.view((0, ROBOT), (ROBOT, m));
+            self.p.view_mut((0, ROBOT), (ROBOT, m)).copy_from(&prm);
+            self.p
+                .view_mut((ROBOT, 0), (m, ROBOT))
+                .copy_from(&prm.transpose());
         }
     }
 
@@ -165,7 +215,7 @@ impl Ekf {
         nalgebra::Matrix2x3<f64>,
         Matrix2<f64>,
     ) {
-        let k = 3 + 2 * i;
+        let k = ROBOT + 2 * i;
         let world = self.feature(i);
         let pred = world.to_robot(self.x[0], self.x[1], self.x[2]);
         let z = z.facing(pred.th);
@@ -214,7 +264,7 @@ impl Ekf {
     }
 
     fn update(&mut self, z: Line, i: usize) {
-        let k = 3 + 2 * i;
+        let k = ROBOT + 2 * i;
         let (nu, s, hr, hm) = self.innovation(z, i);
         let Some(s_inv) = s.try_inverse() else {
             return;
@@ -225,7 +275,7 @@ impl Ekf {
         self.x += &gain * nu;
         self.x[2] = normalize_angle(self.x[2]);
         for f in 0..self.features() {
-            let t = 4 + 2 * f;
+            let t = ROBOT + 1 + 2 * f;
             self.x[t] = normalize_angle(self.x[t]);
         }
         self.p -= &gain * pht.transpose();
@@ -311,6 +361,26 @@ mod tests {
             ekf.pose()
         );
         assert!(ekf.nees(&Pose::new(0.9, 0.0, 0.0)).is_finite());
+    }
+
+    #[test]
+    fn a_heading_bias_is_learned_from_a_wall() {
+        // The robot drives straight along x beside the wall y = 3 m; its odometry reports a
+        // turn of 0.01 rad per metre that never happened (a heading bias βy), for 30 m.
+        let noise = quiet();
+        let mut ekf = Ekf::new(Pose::new(0.0, 0.0, 0.0), [0.01, 0.01, 0.01], noise);
+        let wall = Line::new(3.0, std::f64::consts::FRAC_PI_2);
+        let step = 0.03;
+        for k in 1..=1000 {
+            ekf.predict(step, step * 0.01);
+            if k % 25 == 0 {
+                let truth = Pose::new(step * k as f64, 0.0, 0.0);
+                ekf.observe(wall.to_robot(truth.x, truth.y, truth.th));
+            }
+        }
+        let by = ekf.biases()[1];
+        assert!(by > 0.005 && by < 0.015, "βy = {by}");
+        assert!(ekf.pose().th.abs() < 0.01, "{:?}", ekf.pose());
     }
 
     #[test]
