@@ -146,7 +146,14 @@ impl Interpreter {
                     Err(SetError::Protected) => Err(ctx.error(
                         "This parameter is protected while the episodic memory database is open.",
                     )),
-                    Ok(()) => Ok(format!("{} is now {}\n", words[0], words[1])),
+                    Ok(()) => {
+                        let mut s = format!("{} is now {}\n", words[0], words[1]);
+                        // Said, not left for the user to find out when the file is missing.
+                        if words[0] == "database" && words[1] == "file" {
+                            s.push_str("Warning: rusoar keeps episodic memory in memory: episodes are not written to a file and are gone when the agent is.\n");
+                        }
+                        Ok(s)
+                    }
                 }
             }
             "init" => {
