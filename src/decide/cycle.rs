@@ -262,8 +262,8 @@ impl AgentCore {
                 self.run_input_callbacks();
                 self.replay_input_changes();
                 self.capture_input_changes();
-                self.epmem_input_phase();
                 self.apply_input_changes();
+                self.epmem_trace_present();
                 self.classify_new_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Input));
                 self.decider.phase = Some(Phase::Propose);
@@ -298,10 +298,11 @@ impl AgentCore {
             }
             Phase::Decide => {
                 self.trace_phase(TraceEvent::PhaseBegin(Phase::Decide));
-                self.epmem_selection_phase();
                 self.decide_context_slots();
                 self.reduce_exploration_parameters();
                 self.classify_new_matches();
+                // With `epmem phase selection`, after the decision (9.6's place for it).
+                self.epmem_selection_phase();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Decide));
                 self.decider.decisions += 1;
                 self.decider.e_cycles_this_phase = 0;
@@ -452,6 +453,7 @@ impl AgentCore {
         self.rl_trace_init(None);
         self.smem_reinitialize();
         self.epmem_close();
+        self.epmem.present_trace.clear();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

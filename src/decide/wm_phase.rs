@@ -209,6 +209,7 @@ impl AgentCore {
                 self.match_new_wme(w, &wme);
             }
         }
+        self.epmem_trace_present_adds();
         for &w in &added {
             self.gds_for_new_wme(w);
         }
@@ -238,6 +239,7 @@ impl AgentCore {
             self.warn_added_and_removed(&traced_adds, adds_at + gc_lines);
         }
         self.trace_removed_wmes(decided);
+        self.epmem_trace_present_removals();
         self.classify_new_matches();
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
         // minor quiescence): a result that ends a tie removes the tie's substate before the

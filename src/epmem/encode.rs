@@ -250,7 +250,7 @@ impl AgentCore {
         }
         enc.adds.clear();
         store.time = time + 1;
-        self.epmem.present_due = true;
+        self.epmem_move_present();
     }
 
     /// Stores one identifier's new WMEs (9.6's `_epmem_store_level`): first the edges of

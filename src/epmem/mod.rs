@@ -12,7 +12,7 @@ pub mod store;
 mod wmi;
 
 use crate::symbols::Sym;
-use crate::wm::WmeId;
+use crate::wm::{Wme, WmeId};
 use rustc_hash::FxHashMap;
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 
@@ -79,8 +79,9 @@ pub struct Epmem {
     pub(crate) links: FxHashMap<Sym, LinkState>,
     /// The newest output-link timetag an episode was triggered by (`trigger output`).
     pub(crate) last_output_time: u64,
-    /// Each state's `^present-id` is to move on at the next working-memory phase.
-    pub(crate) present_due: bool,
+    /// The `^present-id` changes of the last episode, shown (`=>WM:`, `<=WM:`) at the
+    /// next working-memory phase, as 9.6 traces its module WMEs.
+    pub(crate) present_trace: Vec<(bool, Wme)>,
 }
 
 impl Epmem {

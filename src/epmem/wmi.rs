@@ -111,11 +111,9 @@ impl AgentCore {
             .collect()
     }
 
-    /// Moves every state's `^present-id` on to the next episode: the new WMEs and the old.
-    fn epmem_move_present(&mut self, added: &mut Vec<WmeId>, removed: &mut Vec<Wme>) {
-        if !std::mem::take(&mut self.epmem.present_due) {
-            return;
-        }
+    /// Moves every state's `^present-id` on to the next episode; the trace shows the
+    /// change at the next working-memory phase.
+    pub(crate) fn epmem_move_present(&mut self) {
         let time = self.epmem.time();
         let attr = self.symbols.str("present-id");
         let value = self.symbols.int(time);
@@ -128,10 +126,12 @@ impl AgentCore {
                 .collect();
             let w = self.wm.add(e, attr, value, false);
             self.match_wme_now(w, (e, attr, value), false);
-            added.push(w);
+            if let Some(x) = self.wm.get(w).copied() {
+                self.epmem.present_trace.push((true, x));
+            }
             for o in old {
                 if let Some(x) = self.wm.get(o).copied() {
-                    removed.push(x);
+                    self.epmem.present_trace.push((false, x));
                     self.remove_wme(o);
                 }
                 // A substate's own WMEs go with it: the new one takes the old one's place.
@@ -144,25 +144,40 @@ impl AgentCore {
         }
     }
 
-    /// The input phase: a `^present-id` change waiting since the last episode is made.
-    pub(crate) fn epmem_input_phase(&mut self) {
-        if !self.epmem.present_due {
-            return;
-        }
-        let (mut added, mut removed) = (Vec::new(), Vec::new());
-        self.epmem_move_present(&mut added, &mut removed);
-        self.epmem_trace_changes(&added, &removed);
+    /// A working-memory phase: the `^present-id` WMEs made since the last one are traced,
+    /// after the phase's own additions (they are older)...
+    pub(crate) fn epmem_trace_present_adds(&mut self) {
+        self.epmem_trace_present_kind(true);
     }
 
-    fn epmem_trace_changes(&mut self, added: &[WmeId], removed: &[Wme]) {
-        self.decider.wme_changes += (added.len() + removed.len()) as u64;
-        for &w in added.iter().rev() {
-            if let Some(wme) = self.wm.get(w).copied() {
-                self.trace_wme(true, &wme);
-            }
+    /// ... and the ones they replaced, after the phase's own removals.
+    pub(crate) fn epmem_trace_present_removals(&mut self) {
+        self.epmem_trace_present_kind(false);
+    }
+
+    /// Both, where there is no other change (the input phase).
+    pub(crate) fn epmem_trace_present(&mut self) {
+        self.epmem_trace_present_adds();
+        self.epmem_trace_present_removals();
+    }
+
+    fn epmem_trace_present_kind(&mut self, added: bool) {
+        if self.epmem.present_trace.is_empty() {
+            return;
         }
-        for wme in removed {
-            self.trace_wme(false, wme);
+        let (mine, rest): (Vec<_>, Vec<_>) = std::mem::take(&mut self.epmem.present_trace)
+            .into_iter()
+            .partition(|c| c.0 == added);
+        self.epmem.present_trace = rest;
+        self.decider.wme_changes += mine.len() as u64;
+        if added {
+            for (_, w) in mine.iter().rev() {
+                self.trace_wme(true, w);
+            }
+        } else {
+            for (_, w) in &mine {
+                self.trace_wme(false, w);
+            }
         }
     }
 
@@ -220,8 +235,6 @@ impl AgentCore {
         if !wm_phase {
             return;
         }
-        let mut gone_present = Vec::new();
-        self.epmem_move_present(&mut added, &mut gone_present);
         for (state, _cmd, res, cmds) in work {
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
             self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
@@ -234,8 +247,17 @@ impl AgentCore {
             added.extend(&mine);
             self.epmem.links.entry(state).or_default().results = mine;
         }
-        gone_present.append(&mut removed);
-        self.epmem_trace_changes(&added, &gone_present);
+        self.decider.wme_changes += (added.len() + removed.len()) as u64;
+        for &w in added.iter().rev() {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.trace_wme(true, &wme);
+            }
+        }
+        self.epmem_trace_present_adds();
+        self.epmem_trace_present_removals();
+        for wme in &removed {
+            self.trace_wme(false, wme);
+        }
         self.collect_garbage();
     }
 
