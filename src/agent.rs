@@ -587,6 +587,8 @@ pub struct AgentCore {
     pub rl: crate::rl::RlState,
     /// Semantic memory: its store, settings and working-memory interface.
     pub smem: crate::smem::Smem,
+    /// Working-memory activation: its settings, decay histories and forgetting.
+    pub wma: crate::wma::Wma,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
@@ -637,6 +639,7 @@ impl AgentCore {
             learn: crate::learn::LearnState::default(),
             rl: crate::rl::RlState::default(),
             smem: crate::smem::Smem::default(),
+            wma: crate::wma::Wma::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),
@@ -867,6 +870,9 @@ impl AgentCore {
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
         self.justification_wme_removed(w, wme.timetag, rule_retractions);
+        if self.wma.on() {
+            self.wma_wme_removed(&wme);
+        }
         if self.events.any() {
             self.events
                 .send(&crate::events::AgentEvent::WmeRemoved(wme));

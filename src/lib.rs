@@ -46,6 +46,7 @@ kernel_modules!(
     value,
     wm,
     wme_filters,
+    wma,
 );
 
 mod api;

@@ -36,7 +36,7 @@ pub enum RunUnit {
 }
 
 impl AgentCore {
-    pub(super) fn operator_sym(&self) -> Sym {
+    pub(crate) fn operator_sym(&self) -> Sym {
         self.top.operator
     }
 
@@ -336,6 +336,10 @@ impl AgentCore {
                 // Semantic memory's commands are processed at the end of the output phase
                 // (observed on soar-sml 9.6.5: their results are traced in it).
                 self.smem_output_phase();
+                // Activation histories, then forgetting, before apoptosis (9.6's order).
+                if self.wma.on() {
+                    self.wma_end_decision();
+                }
                 self.apoptosis_end_decision();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
@@ -448,6 +452,7 @@ impl AgentCore {
         // `rl -t init`, as 9.6 does at every init-soar: the RL trace starts from its roots.
         self.rl_trace_init(None);
         self.smem_reinitialize();
+        self.wma.reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;
