@@ -89,12 +89,16 @@ impl DecayHistory {
         let mut sum = 0.0;
         let mut oldest_age = 0;
         for r in self.newest_first() {
-            oldest_age = t - r.step;
-            sum += r.count as f64 * (oldest_age as f64).powf(-decay);
+            oldest_age = t.saturating_sub(r.step);
+            // 9.6 reads powers from a table whose entry for age 0 is 0: references of the
+            // current decision add nothing yet.
+            if oldest_age > 0 {
+                sum += r.count as f64 * (oldest_age as f64).powf(-decay);
+            }
         }
         if petrov && self.total > self.in_ring {
             let d_inv = 1.0 - decay;
-            let span = (t - self.first_step) as f64;
+            let span = t.saturating_sub(self.first_step) as f64;
             sum += ((self.total - self.in_ring) as f64
                 * (span.powf(d_inv) - (oldest_age as f64).powf(d_inv)))
                 / (d_inv * (span - oldest_age as f64));
@@ -160,7 +164,7 @@ impl DecayModel {
         if fresh && !self.alone.is_empty() {
             let mut extra = 0;
             for r in h.newest_first() {
-                let age = at - r.step;
+                let age = at.saturating_sub(r.step);
                 let n = (r.count as usize).min(MAX_REFS - 1);
                 if self.alone[n] > age {
                     extra += self.alone[n] - age;
