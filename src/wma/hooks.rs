@@ -19,8 +19,7 @@ enum Support {
     O,
     /// By an i-supported preference: referencing it references what its support rests on.
     I(PrefId),
-    /// Made by the architecture (the goal stack, operators, the io link, input): it never
-    /// decays.
+    /// Made by the architecture (the goal stack, the io link, input): it never decays.
     Architecture,
 }
 
@@ -121,12 +120,10 @@ impl AgentCore {
     }
 
     /// The WME's support: its slot's newest acceptable preference for its value (9.6
-    /// keeps the preference a WME was made for on the WME). A selected operator is
-    /// supported by its proposal; the `+` WMEs of an operator slot by none.
+    /// keeps the preference a WME was made for on the WME). An operator slot's WMEs, the
+    /// selected operator and the `+` ones, are supported by their proposals (observed:
+    /// rules testing them reference what the proposals rest on).
     fn wma_support(&self, wme: &Wme) -> Support {
-        if wme.acceptable {
-            return Support::Architecture;
-        }
         let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
             return Support::Architecture;
         };
