@@ -589,6 +589,8 @@ pub struct AgentCore {
     pub smem: crate::smem::Smem,
     /// Episodic memory: its store, settings and working-memory interface.
     pub epmem: crate::epmem::Epmem,
+    /// Working-memory activation: its settings, decay histories and forgetting.
+    pub wma: crate::wma::Wma,
     /// The program's event listeners.
     pub(crate) events: crate::events::EventListeners,
     /// `multi-attributes`: what the reorderer expects of declared attributes.
@@ -640,6 +642,7 @@ impl AgentCore {
             rl: crate::rl::RlState::default(),
             smem: crate::smem::Smem::default(),
             epmem: crate::epmem::Epmem::default(),
+            wma: crate::wma::Wma::default(),
             events: crate::events::EventListeners::default(),
             multi_attributes: Default::default(),
             watched_rules: Default::default(),
@@ -870,6 +873,9 @@ impl AgentCore {
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
         self.justification_wme_removed(w, wme.timetag, rule_retractions);
+        if self.wma.on() {
+            self.wma_wme_removed(&wme);
+        }
         if self.events.any() {
             self.events
                 .send(&crate::events::AgentEvent::WmeRemoved(wme));

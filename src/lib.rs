@@ -47,6 +47,7 @@ kernel_modules!(
     value,
     wm,
     wme_filters,
+    wma,
 );
 
 mod api;

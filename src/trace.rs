@@ -10,10 +10,11 @@ use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
 use crate::wm::{Wme, WmeId};
 
-/// `(tt: id ^attr value[ +])`
+/// `(tt: id ^attr value[ +])`, with its activation when working-memory activation is on.
 pub fn wme_internal(agent: &AgentCore, w: &Wme) -> String {
     let mut out = String::new();
-    crate::trace_text::wme_text(&mut out, &agent.symbols, w);
+    let activation = agent.wme_activation(w);
+    crate::trace_text::wme_text_activated(&mut out, &agent.symbols, w, activation);
     out
 }
 
@@ -34,8 +35,13 @@ pub fn wme_line(agent: &AgentCore, w: &Wme, internal: bool, varprint: bool) -> S
     } else {
         String::new()
     };
+    // 9.6 prints a WME's activation wherever it prints its timetag (`print_wme`).
+    let activation = match agent.wme_activation(w).filter(|_| internal) {
+        Some(a) => format!(" [{}]", crate::wma::activation_text(a)),
+        None => String::new(),
+    };
     format!(
-        "({tt}{} ^{} {}{})",
+        "({tt}{} ^{} {}{activation}{})",
         sym_shown(agent, w.id, varprint),
         sym_shown(agent, w.attr, varprint),
         sym_shown(agent, w.value, varprint),
@@ -415,7 +421,12 @@ impl AgentCore {
             }
         }
         if self.settings.trace.wmes && self.wme_filters.passes(w, added) {
-            self.emit(&TraceEvent::Wme { added, wme: w });
+            let activation = self.wme_activation(w);
+            self.emit(&TraceEvent::Wme {
+                added,
+                wme: w,
+                activation,
+            });
         }
     }
 }

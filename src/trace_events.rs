@@ -24,7 +24,12 @@ pub(crate) enum TraceEvent<'a> {
     /// goal when only the retractions of goals that are gone are pending.
     InnerElaboration { level: u32, goal: Option<Sym> },
     /// A WME enters (`added`) or leaves working memory (`trace --wmes`).
-    Wme { added: bool, wme: &'a Wme },
+    /// With working-memory activation on, the WME's activation (printed after it).
+    Wme {
+        added: bool,
+        wme: &'a Wme,
+        activation: Option<f64>,
+    },
     /// A preference is asserted (`added`) or retracted (`trace --preferences`), at the
     /// level of the goal it was made for, with the rule or justification that made it.
     Preference {

@@ -47,9 +47,13 @@ impl TraceText96 {
                     "\n--- Inner Elaboration Phase, active level {level} goal {goal} ---"
                 );
             }
-            TraceEvent::Wme { added, wme } => {
+            TraceEvent::Wme {
+                added,
+                wme,
+                activation,
+            } => {
                 out.push_str(if added { "=>WM: " } else { "<=WM: " });
-                wme_text(out, symbols, wme);
+                wme_text_activated(out, symbols, wme, activation);
                 out.push('\n');
             }
             TraceEvent::Preference {
@@ -359,15 +363,29 @@ pub(crate) fn pref_text(
 
 /// `(tt: id ^attr value[ +])`, as `print --internal` shows a WME.
 pub(crate) fn wme_text(out: &mut String, symbols: &Symbols, w: &Wme) {
+    wme_text_activated(out, symbols, w, None);
+}
+
+/// [`wme_text`] with, when working-memory activation is on, the WME's activation before
+/// the `+` (`(17: S1 ^name test [2.1])`, 9.6's `print_wme`).
+pub(crate) fn wme_text_activated(
+    out: &mut String,
+    symbols: &Symbols,
+    w: &Wme,
+    activation: Option<f64>,
+) {
     let _ = write!(
         out,
-        "({}: {} ^{} {}{})",
+        "({}: {} ^{} {}",
         w.timetag,
         symbols.text(w.id),
         symbols.text(w.attr),
         symbols.text(w.value),
-        if w.acceptable { " +" } else { "" }
     );
+    if let Some(a) = activation {
+        let _ = write!(out, " [{}]", crate::wma::activation_text(a));
+    }
+    out.push_str(if w.acceptable { " +)" } else { ")" });
 }
 
 fn pe_or_ie(o_support: bool) -> &'static str {

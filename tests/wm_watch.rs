@@ -1,7 +1,6 @@
-//! `wm watch` where the command goldens cannot compare it with the official kernel, and
-//! `wm activation`, which rusoar does not build. soar-sml 9.6.5 crashes or hangs at the
-//! next `wm watch` after a reset (`-R`) that removed two or more filters; rusoar removes
-//! them all and goes on.
+//! `wm watch` where the command goldens cannot compare it with the official kernel:
+//! soar-sml 9.6.5 crashes or hangs at the next `wm watch` after a reset (`-R`) that
+//! removed two or more filters; rusoar removes them all and goes on.
 
 use rusoar::Agent;
 
@@ -31,17 +30,4 @@ fn a_reset_removes_every_filter_of_its_kind() {
         "Removed: (* ^* 5)  removes\n"
     );
     assert_eq!(output(&mut agent, "wm watch -l"), "");
-}
-
-#[test]
-fn wm_activation_says_it_is_not_built() {
-    let mut agent = Agent::default();
-    for command in ["wm activation", "wm activation --get activation", "wma"] {
-        let err = agent.source_text("t", command).unwrap_err();
-        let message = err.message();
-        assert!(
-            message.ends_with(": not yet supported by rusoar") && !message.contains('\n'),
-            "`{command}`: {message}"
-        );
-    }
 }

@@ -13,8 +13,7 @@ impl Interpreter {
             Some("add") => self.cmd_wm_add(ctx, &args[1..]),
             Some("remove") => self.cmd_wm_remove(ctx, &args[1..]),
             Some("watch") => self.cmd_wm_watch(ctx, &args[1..]),
-            // Working-memory activation is not built.
-            Some("activation") => Err(super::not_yet(ctx, "wm activation")),
+            Some("activation") => self.cmd_wm_activation(ctx, &args[1..]),
             // 9.6's text, its spelling included.
             None => Err(ctx.error("The 'wm' commands contains commands and settings related to working memomory: add, remove, activation and watch.")),
             _ => Err(ctx.error(

@@ -32,6 +32,7 @@ mod smem;
 mod stats;
 pub mod tokenizer;
 mod tracing;
+mod wm_activation;
 mod wm_watch;
 
 use crate::agent::{AgentCore, PhaseCallback};

@@ -36,7 +36,7 @@ pub enum RunUnit {
 }
 
 impl AgentCore {
-    pub(super) fn operator_sym(&self) -> Sym {
+    pub(crate) fn operator_sym(&self) -> Sym {
         self.top.operator
     }
 
@@ -340,6 +340,10 @@ impl AgentCore {
                 // (observed on soar-sml 9.6.5: their results are traced in it).
                 self.smem_output_phase();
                 self.epmem_output_phase();
+                // Activation histories, then forgetting, before apoptosis (9.6's order).
+                if self.wma.on() {
+                    self.wma_end_decision();
+                }
                 self.apoptosis_end_decision();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;
@@ -454,6 +458,7 @@ impl AgentCore {
         self.smem_reinitialize();
         self.epmem_close();
         self.epmem.present_trace.clear();
+        self.wma.reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

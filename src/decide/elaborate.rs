@@ -44,6 +44,10 @@ impl AgentCore {
         let apply = self.decider.phase == Some(Phase::Apply);
         let retractions = std::mem::take(&mut self.matches.retractions);
         self.matches.compact();
+        // Working-memory activation counts the WMEs of every match about to fire.
+        if self.wma.on() {
+            self.wma_tested_in_prods();
+        }
         let mut pending = std::mem::take(&mut self.matches.assertions);
         let mut sc = std::mem::take(&mut self.decider.cycle_scratch);
         // Token ids are reused: resolve retractions to their instantiations before new

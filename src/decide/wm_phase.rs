@@ -16,7 +16,7 @@ use rustc_hash::FxHashSet;
 
 impl AgentCore {
     /// Marks slot `key` (at `slot`, if it exists) for `update_slots`.
-    pub(super) fn mark_changed(&mut self, key: (Sym, Sym), slot: Option<SlotId>) {
+    pub(crate) fn mark_changed(&mut self, key: (Sym, Sym), slot: Option<SlotId>) {
         if let Some(id) = slot {
             let slots = &mut self.decider.slots;
             if !slots.slot(id).changed {
@@ -73,6 +73,9 @@ impl AgentCore {
             let slot = self.decider.slots.entry_id(key);
             self.decider.slots.slot_mut(slot).push(pid, value);
             self.mark_changed(key, Some(slot));
+            if self.wma.on() {
+                self.wma_preference_added(pid);
+            }
         }
     }
 
@@ -84,7 +87,7 @@ impl AgentCore {
     /// Brings working memory in line with the changed slots: a non-context slot shows each
     /// value with an acceptable and no reject preference; an operator slot shows its
     /// acceptable preferences as `+` WMEs. Then unlinked structure goes.
-    pub(super) fn update_slots(&mut self) {
+    pub(crate) fn update_slots(&mut self) {
         // Soar head-inserts changed slots as they are first marked, so they are decided in
         // the reverse of marking order: the first action of the first firing gets the
         // lowest timetag (observed on 9.6).
@@ -195,6 +198,11 @@ impl AgentCore {
         let mut added = std::mem::take(&mut sc.added);
         for &(id, attr, value, acc) in &adds {
             added.push(self.add_slot_wme(id, attr, value, acc));
+        }
+        if self.wma.on() {
+            for &w in &added {
+                self.wma_wme_created(w);
+            }
         }
         // Where the `=>WM:` lines start: 9.6 warns there of a WME this phase adds and
         // removes (see below).

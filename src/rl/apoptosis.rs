@@ -16,31 +16,13 @@
 //! a doubling and binary search.
 
 use crate::rete::ProdId;
+use crate::wma::decay::{DecayHistory, DecayModel};
 use std::collections::{BTreeMap, BTreeSet};
 
-/// How many reference times a rule keeps (older ones enter Petrov's estimate).
-const HISTORY: usize = 10;
-/// The most references in one decision the estimate tables allow for.
-const MAX_REFS: usize = 50;
-
-#[derive(Debug, Clone, Copy, Default)]
-struct Reference {
-    count: u64,
-    step: u64,
-}
-
-/// One rule's references.
+/// One rule's references, and its place in the queue.
 #[derive(Debug, Clone)]
 struct History {
-    refs: [Reference; HISTORY],
-    /// Where the next reference goes (the ring's head).
-    next: usize,
-    /// How many slots of the ring are filled.
-    filled: usize,
-    /// References in the ring, and in all.
-    in_ring: u64,
-    total: u64,
-    first_step: u64,
+    refs: DecayHistory,
     /// The decision at which the rule is checked next (0: not queued).
     check_at: u64,
     /// References since the last decision ended.
@@ -50,32 +32,18 @@ struct History {
 impl History {
     fn new() -> Self {
         History {
-            refs: [Reference::default(); HISTORY],
-            next: 0,
-            filled: 0,
-            in_ring: 0,
-            total: 0,
-            first_step: 0,
+            refs: DecayHistory::new(),
             check_at: 0,
             buffered: 0,
         }
-    }
-
-    /// The ring from the newest reference back.
-    fn newest_first(&self) -> impl Iterator<Item = &Reference> {
-        (1..=self.filled).map(move |k| &self.refs[(self.next + HISTORY - k) % HISTORY])
     }
 }
 
 /// The decay of learned rules' activations, and the rules due to be forgotten.
 #[derive(Debug, Clone)]
 pub struct RuleDecay {
-    /// The decay exponent `d` (positive) and the threshold `e^thresh`.
-    decay: f64,
-    threshold: f64,
-    /// For each reference count below [`MAX_REFS`], the decisions one reference of that
-    /// many takes to decay below the threshold alone.
-    alone: [u64; MAX_REFS],
+    /// The decay exponent, threshold and first estimate (Petrov's estimate always on).
+    model: DecayModel,
     step: u64,
     histories: BTreeMap<ProdId, History>,
     touched: BTreeSet<ProdId>,
@@ -87,14 +55,8 @@ impl RuleDecay {
     /// A decay with exponent `decay` (0 < d < 1) and threshold `thresh` (a log value,
     /// negative), starting at decision 1.
     pub fn new(decay: f64, thresh: f64) -> Self {
-        let mut alone = [0u64; MAX_REFS];
-        for (n, slot) in alone.iter_mut().enumerate().skip(1) {
-            *slot = ((thresh - (n as f64).ln()) / -decay).exp().ceil() as u64;
-        }
         RuleDecay {
-            decay,
-            threshold: thresh.exp(),
-            alone,
+            model: DecayModel::new(decay, thresh, true, true),
             step: 1,
             histories: BTreeMap::new(),
             touched: BTreeSet::new(),
@@ -134,21 +96,12 @@ impl RuleDecay {
             let Some(h) = self.histories.get_mut(&rule) else {
                 continue;
             };
-            let slot = &mut h.refs[h.next];
-            h.in_ring = h.in_ring + h.buffered - slot.count;
-            *slot = Reference {
-                count: h.buffered,
-                step,
-            };
-            if h.total == 0 {
-                h.first_step = step;
-            }
-            h.filled = (h.filled + 1).min(HISTORY);
-            h.next = (h.next + 1) % HISTORY;
-            h.total += h.buffered;
+            h.refs.record(h.buffered, step);
             h.buffered = 0;
             let old = h.check_at;
-            let at = self.forgetting_time(&self.histories[&rule], step, true);
+            let at = self
+                .model
+                .forgetting_time(&self.histories[&rule].refs, step, true);
             self.requeue(rule, old, at);
         }
     }
@@ -170,7 +123,7 @@ impl RuleDecay {
                     h.check_at = 0;
                 }
             } else {
-                let at = self.forgetting_time(h, self.step, false);
+                let at = self.model.forgetting_time(&h.refs, self.step, false);
                 if let Some(h) = self.histories.get_mut(&rule) {
                     h.check_at = 0;
                 }
@@ -203,80 +156,9 @@ impl RuleDecay {
         }
     }
 
-    /// The decision at which a rule is to be checked: after a fresh reference, the sum of
-    /// what each reference alone still needs (an underestimate); otherwise, or when that
-    /// adds nothing, the exact first decision below the threshold.
-    fn forgetting_time(&self, h: &History, now: u64, fresh: bool) -> u64 {
-        let mut at = now;
-        if fresh {
-            let mut extra = 0;
-            for r in h.newest_first() {
-                let age = at - r.step;
-                let n = (r.count as usize).min(MAX_REFS - 1);
-                if self.alone[n] > age {
-                    extra += self.alone[n] - age;
-                }
-            }
-            at += extra;
-        }
-        if at == now {
-            at += self.exact_extra(h, at);
-        }
-        at
-    }
-
-    /// The decisions after `from` until the activation first falls below the threshold.
-    fn exact_extra(&self, h: &History, from: u64) -> u64 {
-        let mut upper = 1;
-        if self.below_threshold(h, from + upper) {
-            return upper;
-        }
-        while !self.below_threshold(h, from + upper) {
-            upper *= 2;
-        }
-        let mut lower = if upper < 4 { upper } else { upper / 2 };
-        while lower != upper {
-            let mid = (lower + upper) / 2;
-            if self.below_threshold(h, from + mid) {
-                upper = mid;
-                if upper - lower <= 1 {
-                    lower = mid;
-                }
-            } else {
-                lower = mid;
-                if upper - lower <= 1 {
-                    lower = upper;
-                }
-            }
-        }
-        upper
-    }
-
     fn below_threshold(&self, h: &History, t: u64) -> bool {
-        self.activation_sum(h, t) < self.threshold
-    }
-
-    /// The sum of decayed references at decision `t` (the activation before its log).
-    fn activation_sum(&self, h: &History, t: u64) -> f64 {
-        if h.filled == 0 {
-            // 9.6's value for a rule with no references: e, above any threshold.
-            return std::f64::consts::E;
-        }
-        let mut sum = 0.0;
-        let mut oldest_age = 0;
-        for r in h.newest_first() {
-            oldest_age = t - r.step;
-            sum += r.count as f64 * (oldest_age as f64).powf(-self.decay);
-        }
-        if h.total > h.in_ring {
-            // Petrov's estimate of the references that left the ring.
-            let d_inv = 1.0 - self.decay;
-            let span = (t - h.first_step) as f64;
-            sum += ((h.total - h.in_ring) as f64
-                * (span.powf(d_inv) - (oldest_age as f64).powf(d_inv)))
-                / (d_inv * (span - oldest_age as f64));
-        }
-        sum
+        // 9.6's value for a rule with no references is e, above any threshold.
+        !h.refs.is_empty() && self.model.below_threshold(&h.refs, t)
     }
 }
 
@@ -345,7 +227,7 @@ mod tests {
             assert!(d.end_decision().is_empty());
         }
         let h = &d.histories[&rule(1)];
-        assert_eq!((h.total, h.in_ring), (12, 10));
+        assert_eq!(h.refs.counts(), (10, 12, 1));
         assert!(forgotten_at(&mut d, rule(1), 100_000).expect("forgotten") > 1000);
     }
 }

@@ -44,7 +44,7 @@ const USAGE: &[(&str, &str)] = &[
     ("svs", "svs ..."),
     ("trace", "trace [0-5]\ntrace -l|--level 0-5\ntrace flags [remove|0]\ntrace -L|--learning 0-2\ntrace -n|-t|-f\ntrace -N|--none"),
     ("visualize", "visualize ..."),
-    ("wm", "wm add id [^]attribute value [+]\nwm remove timetag\nwm watch -a|-r [-t adds|removes|both] id attribute value\nwm watch [-l|-R] [-t adds|removes|both]\nwm activation ..."),
+    ("wm", "wm add id [^]attribute value [+]\nwm remove timetag\nwm watch -a|-r [-t adds|removes|both] id attribute value\nwm watch [-l|-R] [-t adds|removes|both]\nwm activation\nwm activation -g|--get parameter\nwm activation -s|--set parameter value\nwm activation -S|--stats [forgotten-wmes]\nwm activation -h|--history timetag"),
 ];
 
 fn usage(command: &str) -> Option<&'static str> {
@@ -91,6 +91,7 @@ const ITEMS: &[(&str, &str, &str)] = &[
     ("running.rs", "cmd_run", "run"),
     ("stats.rs", "SPECS", "stats"),
     ("wm_watch.rs", "cmd_wm_watch", "wm"),
+    ("wm_activation.rs", "cmd_wm_activation", "wm"),
     ("stats.rs", "host_name", ""),
     ("save.rs", "cmd_save", "save"),
     ("rete_net.rs", "save_rete_network", "save"),

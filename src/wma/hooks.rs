@@ -1,0 +1,420 @@
+//! Where working-memory activation meets the decision cycle (Soar manual, ch. 8,
+//! "Working Memory Activation"): the references a WME gets (from the matches about to
+//! fire, from preferences for it, at its creation), the end of each decision (histories
+//! recorded, forgetting), and the support of a WME as activation sees it. Every caller
+//! checks [`super::Wma::on`] first.
+
+use crate::agent::{AgentCore, MatchSet};
+use crate::decide::ids::PrefId;
+use crate::decide::procedure::PrefType;
+use crate::rete::NIL_WME;
+use crate::symbols::Sym;
+use crate::wm::{Wme, WmeId};
+use rustc_hash::FxHashSet;
+
+/// How a WME is supported, as activation sees it (9.6's `wma_activate_wme`).
+#[derive(Debug, Clone, Copy)]
+enum Support {
+    /// By an o-supported preference: the WME decays.
+    O,
+    /// By an i-supported preference: referencing it references what its support rests on.
+    I(PrefId),
+    /// Made by the architecture (the goal stack, the io link, input): it never decays.
+    Architecture,
+}
+
+impl AgentCore {
+    /// The WMEs of every match about to fire gain a reference, at the start of each
+    /// elaboration cycle (9.6 counts its whole list of new matches there, those that wait
+    /// for another phase included).
+    pub(crate) fn wma_tested_in_prods(&mut self) {
+        let pending: Vec<_> = self
+            .matches
+            .assertions
+            .iter()
+            .copied()
+            .filter(|&k| k != MatchSet::GONE)
+            .collect();
+        for (p, t) in pending {
+            for w in self.rete.match_wmes(p, t) {
+                if w != NIL_WME {
+                    self.wma_activate(w, 1);
+                }
+            }
+        }
+    }
+
+    /// A preference joined its slot: an acceptable preference for a value already in
+    /// working memory references that WME; any preference for a value not there yet is
+    /// counted for the WME when it comes (9.6's `add_preference_to_tm`).
+    pub(crate) fn wma_preference_added(&mut self, pid: PrefId) {
+        let p = &self.decider.prefs[pid];
+        let (kind, id, attr, value) = (p.kind, p.id, p.attr, p.value);
+        if self.wma_context_slot(id, attr) {
+            return;
+        }
+        let existing = self
+            .decider
+            .slots
+            .get(&(id, attr))
+            .and_then(|s| s.wmes.get(&(value, false)));
+        match existing {
+            Some(w) if kind == PrefType::Acceptable => self.wma_activate(w, 1),
+            Some(_) => {}
+            None => self.wma.value_reference((id, attr, value)),
+        }
+    }
+
+    /// A WME a slot decision made: if o-supported, it starts with the references made to
+    /// its value before it existed (9.6's `decide_non_context_slot`).
+    pub(crate) fn wma_wme_created(&mut self, w: WmeId) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        if wme.acceptable {
+            return;
+        }
+        let Some(n) = self
+            .wma
+            .take_value_references((wme.id, wme.attr, wme.value))
+        else {
+            return;
+        };
+        if matches!(self.wma_support(&wme), Support::O) {
+            self.wma_ensure_element(&wme);
+            self.wma.reference(wme.timetag, n);
+        }
+    }
+
+    /// A WME left working memory.
+    pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
+        self.wma.remove(wme.timetag);
+    }
+
+    /// `n` references to a WME: an o-supported one gets them (and a decay element if it
+    /// has none); an i-supported one passes them to the o-supported WMEs its support
+    /// rests on; an architectural one ignores them.
+    fn wma_activate(&mut self, w: WmeId, n: u64) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        if self.wma.reference(wme.timetag, n) {
+            return;
+        }
+        match self.wma_support(&wme) {
+            Support::O => {
+                self.wma_ensure_element(&wme);
+                self.wma.reference(wme.timetag, n);
+            }
+            Support::I(pid) => {
+                for tt in self.wma_o_set(pid) {
+                    self.wma.reference(tt, n);
+                }
+            }
+            Support::Architecture => {}
+        }
+    }
+
+    fn wma_context_slot(&self, id: Sym, attr: Sym) -> bool {
+        attr == self.operator_sym() && self.symbols.is_goal(id)
+    }
+
+    /// The WME's support: its slot's newest acceptable preference for its value (9.6
+    /// keeps the preference a WME was made for on the WME). An operator slot's WMEs, the
+    /// selected operator and the `+` ones, are supported by their proposals (observed:
+    /// rules testing them reference what the proposals rest on).
+    fn wma_support(&self, wme: &Wme) -> Support {
+        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+            return Support::Architecture;
+        };
+        // A result's preference belongs to the justification built for it in 9.6, and
+        // has the justification's support (observed: the WMEs a result's justification
+        // rests on gain its references).
+        let mut found = None;
+        let mut justified = None;
+        for pid in slot.prefs_for(wme.value) {
+            let p = &self.decider.prefs[pid];
+            if p.alive && p.kind == PrefType::Acceptable {
+                found = Some(pid);
+                if p.inst.is_some_and(|i| self.decider.insts[i].serial != 0) {
+                    justified = Some(pid);
+                }
+            }
+        }
+        let found = justified.or(found);
+        match found {
+            Some(pid) if self.decider.prefs[pid].o_support => Support::O,
+            Some(pid) => Support::I(pid),
+            None => Support::Architecture,
+        }
+    }
+
+    /// The WMEs the firing that made a preference matched, while that match is known.
+    fn wma_pref_conditions(&self, pid: PrefId) -> Vec<WmeId> {
+        let p = &self.decider.prefs[pid];
+        if let Some(i) = p.inst {
+            let inst = &self.decider.insts[i];
+            // A justification's conditions are the WMEs it was built on.
+            if inst.alive && inst.serial != 0 {
+                return self
+                    .learn
+                    .grounds_of
+                    .get(&inst.serial)
+                    .map(|g| {
+                        g.iter()
+                            .filter(|&&(w, tt)| self.wm.get(w).is_some_and(|x| x.timetag == tt))
+                            .map(|&(w, _)| w)
+                            .collect()
+                    })
+                    .unwrap_or_default();
+            }
+            let key = (inst.prod, inst.token);
+            if inst.alive && self.decider.inst_by_token.get(&key) == Some(&i) {
+                return self
+                    .rete
+                    .match_wmes(inst.prod, inst.token)
+                    .into_iter()
+                    .filter(|&w| w != NIL_WME)
+                    .collect();
+            }
+        }
+        p.matched
+            .as_deref()
+            .unwrap_or(&[])
+            .iter()
+            .filter_map(|w| self.wm.by_timetag(w.timetag))
+            .collect()
+    }
+
+    /// The decay element of an o-supported WME, made with its first references: the
+    /// average, rounded down, of the decayed sums of the WMEs its creating firings tested
+    /// (9.6's `wma_calculate_initial_boost`).
+    fn wma_ensure_element(&mut self, wme: &Wme) {
+        if self.wma.element(wme.timetag).is_some() {
+            return;
+        }
+        let now = self.decider.d_cycle_count;
+        let mut seen: FxHashSet<u64> = FxHashSet::default();
+        let (mut count, mut sum) = (0u64, 0.0f64);
+        let creators: Vec<PrefId> = self
+            .decider
+            .slots
+            .get(&(wme.id, wme.attr))
+            .map(|s| {
+                s.prefs_for(wme.value)
+                    .filter(|&pid| {
+                        let p = &self.decider.prefs[pid];
+                        p.alive && p.o_support && p.kind == PrefType::Acceptable
+                    })
+                    .collect()
+            })
+            .unwrap_or_default();
+        for pid in creators {
+            for cw in self.wma_pref_conditions(pid) {
+                let Some(c) = self.wm.get(cw).copied() else {
+                    continue;
+                };
+                if !seen.insert(c.timetag) {
+                    continue;
+                }
+                if let Some(el) = self.wma.element(c.timetag) {
+                    if !el.just_created {
+                        count += 1;
+                        sum += self.wma.time_sum(c.timetag, now);
+                    }
+                    continue;
+                }
+                match self.wma_support(&c) {
+                    Support::Architecture => {
+                        count += 1;
+                        sum += super::TIME_SUM_NONE;
+                    }
+                    // Only a support already found counts (9.6 looks at the o-set the
+                    // preference has, without making one).
+                    Support::I(p2) => {
+                        let members = self.wma_cached_o_set(p2).unwrap_or_default();
+                        for m in members {
+                            let fresh = self.wma.element(m).is_some_and(|e| e.just_created);
+                            if !fresh && seen.insert(m) {
+                                count += 1;
+                                sum += self.wma.time_sum(m, now);
+                            }
+                        }
+                    }
+                    Support::O => {}
+                }
+            }
+        }
+        let boost = if count > 0 {
+            (sum / count as f64).floor() as u64
+        } else {
+            0
+        };
+        self.wma.create(wme.timetag, boost);
+    }
+
+    fn wma_cached_o_set(&self, pid: PrefId) -> Option<Vec<u64>> {
+        let p = &self.decider.prefs[pid];
+        let key = (p.id, p.attr, p.value);
+        match self.wma.o_sets.get(&pid) {
+            Some((k, set)) if *k == key && p.alive => Some(set.clone()),
+            _ => None,
+        }
+    }
+
+    /// The o-supported and architectural WMEs an i-supported preference's support rests
+    /// on, through other i-supported WMEs; found once and kept (9.6's `wma_o_set`).
+    /// O-supported WMEs found get their decay elements.
+    fn wma_o_set(&mut self, pid: PrefId) -> Vec<u64> {
+        if let Some(set) = self.wma_cached_o_set(pid) {
+            return set;
+        }
+        let mut out = std::collections::BTreeSet::new();
+        let mut visiting = FxHashSet::default();
+        self.wma_collect_o_set(pid, &mut out, &mut visiting);
+        let set: Vec<u64> = out.into_iter().collect();
+        let p = &self.decider.prefs[pid];
+        let key = (p.id, p.attr, p.value);
+        self.wma.o_sets.insert(pid, (key, set.clone()));
+        set
+    }
+
+    fn wma_collect_o_set(
+        &mut self,
+        pid: PrefId,
+        out: &mut std::collections::BTreeSet<u64>,
+        visiting: &mut FxHashSet<PrefId>,
+    ) {
+        if !visiting.insert(pid) {
+            return;
+        }
+        for cw in self.wma_pref_conditions(pid) {
+            let Some(c) = self.wm.get(cw).copied() else {
+                continue;
+            };
+            match self.wma_support(&c) {
+                Support::O => {
+                    self.wma_ensure_element(&c);
+                    out.insert(c.timetag);
+                }
+                Support::I(p2) => match self.wma_cached_o_set(p2) {
+                    Some(set) => out.extend(set),
+                    None => {
+                        let mut sub = std::collections::BTreeSet::new();
+                        self.wma_collect_o_set(p2, &mut sub, visiting);
+                        let set: Vec<u64> = sub.into_iter().collect();
+                        let p = &self.decider.prefs[p2];
+                        let key = (p.id, p.attr, p.value);
+                        self.wma.o_sets.insert(p2, (key, set.clone()));
+                        out.extend(set);
+                    }
+                },
+                Support::Architecture => {
+                    out.insert(c.timetag);
+                }
+            }
+        }
+    }
+
+    /// The end of a decision, in the output phase (9.6's `wma_go`): the decision's
+    /// references join the histories, then forgetting removes the WMEs whose activation
+    /// is below the threshold, by removing their o-supported preferences and running a
+    /// working-memory phase.
+    pub(crate) fn wma_end_decision(&mut self) {
+        let now = self.decider.d_cycle_count;
+        self.wma.purge_removed();
+        self.wma.record_decision(now);
+        let due = self.wma.due(now);
+        if due.is_empty() || self.wma.params.fake_forgetting {
+            return;
+        }
+        let lti_only = self.wma.params.forget_lti_only;
+        let mut forgot = false;
+        for tt in due {
+            let Some(w) = self.wm.by_timetag(tt) else {
+                continue;
+            };
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            if lti_only {
+                forgot |= self.wma_forget_lti_object(wme.id);
+            } else {
+                forgot |= self.wma_forget_wme(&wme);
+            }
+        }
+        if !forgot {
+            return;
+        }
+        // The removals are traced as any others: 9.6.5 prints no heading around them
+        // (observed with `watch --wmes`).
+        let before = self.wm.removals();
+        self.update_slots();
+        self.wma.forgotten += self.wm.removals() - before;
+    }
+
+    /// `forget-wme lti`: a long-term identifier's WMEs go all together, once every
+    /// o-supported one is below the threshold; other identifiers' never.
+    fn wma_forget_lti_object(&mut self, id: Sym) -> bool {
+        if self.symbols.lti(id).is_none() {
+            return false;
+        }
+        let wmes: Vec<Wme> = self
+            .wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w).copied())
+            .collect();
+        let all_below = wmes.iter().all(|w| match self.wma_support(w) {
+            Support::O => self
+                .wma
+                .element(w.timetag)
+                .is_some_and(|e| e.forget_at == 0),
+            _ => true,
+        });
+        if !all_below {
+            return false;
+        }
+        let mut forgot = false;
+        for w in &wmes {
+            forgot |= self.wma_forget_wme(w);
+        }
+        forgot
+    }
+
+    /// Takes out of their slot the o-supported preferences for a WME's value (9.6's
+    /// `wma_forgetting_forget_wme`); the next working-memory phase removes the WME.
+    fn wma_forget_wme(&mut self, wme: &Wme) -> bool {
+        let key = (wme.id, wme.attr);
+        let Some(slot) = self.decider.slots.id_of(&key) else {
+            return false;
+        };
+        let gone: Vec<PrefId> = self
+            .decider
+            .slots
+            .slot(slot)
+            .prefs_for(wme.value)
+            .filter(|&pid| {
+                let p = &self.decider.prefs[pid];
+                p.alive && p.o_support
+            })
+            .collect();
+        for &pid in &gone {
+            self.decider.slots.slot_mut(slot).remove(pid, wme.value);
+            self.decider.free_pref(pid);
+        }
+        if gone.is_empty() {
+            return false;
+        }
+        self.mark_changed(key, Some(slot));
+        true
+    }
+}
+
+impl AgentCore {
+    /// A WME's activation as 9.6 prints it beside the WME; `None` while activation is off.
+    pub(crate) fn wme_activation(&self, w: &Wme) -> Option<f64> {
+        self.wma
+            .on()
+            .then(|| self.wma.activation(w.timetag, self.decider.d_cycle_count))
+    }
+}
