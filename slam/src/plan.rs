@@ -575,7 +575,7 @@ fn all_completed(exp: &Experiment, what: &str) -> Result<(), String> {
 }
 
 /// The comparison of the methods' experiments: `comparison.md`, `comparison.csv` and
-/// `fig-compare` in `opts.out`. Returns `comparison.md`'s text.
+/// the `fig-compare` figures in `opts.out`. Returns `comparison.md`'s text.
 fn comparison(opts: &Options, experiments: &[(PartKind, Experiment)]) -> Result<String, String> {
     let has = |m: Method| opts.methods.contains(&m);
     let world = &opts.world;
@@ -639,7 +639,7 @@ fn comparison(opts: &Options, experiments: &[(PartKind, Experiment)]) -> Result<
     };
     write("comparison.md", text.clone())?;
     write("comparison.csv", compare::csv(&series))?;
-    compare::figure(&series, opts.world.run.dt, &opts.out)?;
+    compare::figure(&series, opts.world.run.dt, opts.world.run.noise, &opts.out)?;
     Ok(text)
 }
 

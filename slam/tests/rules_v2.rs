@@ -97,6 +97,8 @@ fn the_default_comparison_repeats_byte_for_byte() {
         "comparison.md",
         "comparison.csv",
         "fig-compare.svg",
+        "fig-compare-diff.svg",
+        "fig-compare-heading.png",
         "thesis/steps-on-1.csv",
         "thesis/ekf.md",
         "v2/steps-on-2.csv",

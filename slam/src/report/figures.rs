@@ -5,7 +5,8 @@
 //! `<stem>.png`. The figures answer the thesis's plots (Experiment and Result):
 //!
 //! - [`TimeBands`]: a quantity against time, median and 10–90 % band across seeds per condition
-//!   (position error: Figure 30; walls in memory: Figure 28 as a count);
+//!   (position error: Figure 30; walls in memory: Figure 28 as a count), or a paired difference
+//!   with its confidence band, with dashed lines at targets;
 //! - [`MapFigure`]: true walls, true and believed paths, and walls of a map, in one or more
 //!   panels (Figures 26 and 29; snapshots over time: Figure 28);
 //! - [`HoughFigure`]: one voted Hough space with its zones (Figure 20, 21) beside the returns and
@@ -90,6 +91,23 @@ impl Band {
             .filter(|v| v.is_finite())
             .fold(0.0, f64::max)
     }
+
+    /// The lowest value drawn, 0 when none is negative.
+    fn y_min(&self) -> f64 {
+        self.median
+            .iter()
+            .chain(&self.lo)
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::min)
+    }
+}
+
+/// A dashed horizontal line across a [`TimeBands`] figure, with a legend entry: a target.
+pub struct HLine {
+    pub label: String,
+    pub value: f64,
+    pub color: RGBColor,
 }
 
 /// One line of a [`TimeBands`] figure.
@@ -107,6 +125,8 @@ pub struct TimeBands<'a> {
     pub x_label: String,
     pub y_label: String,
     pub series: Vec<BandSeries<'a>>,
+    /// Targets, drawn dashed across the whole time axis.
+    pub hlines: Vec<HLine>,
 }
 
 impl Figure for TimeBands<'_> {
@@ -122,21 +142,42 @@ impl Figure for TimeBands<'_> {
             .flat_map(|s| s.band.t.last().copied())
             .fold(0.0, f64::max)
             .max(1e-3);
-        let y_max = (self
+        let lines = self
+            .hlines
+            .iter()
+            .map(|h| h.value)
+            .filter(|v| v.is_finite());
+        let top = self
             .series
             .iter()
             .map(|s| s.band.y_max())
-            .fold(0.0, f64::max)
-            * 1.08)
-            .max(1e-3);
+            .chain(lines.clone())
+            .fold(0.0, f64::max);
+        let bottom = self
+            .series
+            .iter()
+            .map(|s| s.band.y_min())
+            .chain(lines)
+            .fold(0.0, f64::min);
+        // A margin of 8 % of the span beyond each end that holds data; 0 stays the edge when
+        // nothing is negative, as an error's axis should.
+        let span = (top - bottom).max(1e-3);
+        let y_max = if top > 0.0 { top + 0.08 * span } else { 0.0 };
+        let y_min = if bottom < 0.0 {
+            bottom - 0.08 * span
+        } else {
+            0.0
+        };
+        let y_max = y_max.max(y_min + 1e-3);
         let mut chart = ChartBuilder::on(root)
             .caption(&self.title, (FONT, 22))
             .margin(15)
             .x_label_area_size(50)
-            .y_label_area_size(75)
-            .build_cartesian_2d(0.0..x_max, 0.0..y_max)
+            // Room for a minus sign before the tick labels.
+            .y_label_area_size(if y_min < 0.0 { 88 } else { 75 })
+            .build_cartesian_2d(0.0..x_max, y_min..y_max)
             .map_err(err)?;
-        let (fx, fy) = (tick_format(x_max), tick_format(y_max));
+        let (fx, fy) = (tick_format(x_max), tick_format(y_max - y_min));
         chart
             .configure_mesh()
             .x_desc(&self.x_label)
@@ -148,6 +189,25 @@ impl Figure for TimeBands<'_> {
             .light_line_style(RGBColor(235, 235, 235))
             .draw()
             .map_err(err)?;
+        if y_min < 0.0 {
+            // A difference's axis: the line of no difference.
+            chart
+                .draw_series(LineSeries::new(
+                    [(0.0, 0.0), (x_max, 0.0)],
+                    BLACK.stroke_width(1),
+                ))
+                .map_err(err)?;
+        }
+        for h in &self.hlines {
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(0.0, h.value), (x_max, h.value)],
+                    10,
+                    6,
+                    h.color.stroke_width(2),
+                ))
+                .map_err(err)?;
+        }
         for s in &self.series {
             let b = s.band;
             if !b.lo.is_empty() && b.lo.len() == b.t.len() && b.hi.len() == b.t.len() {
@@ -187,6 +247,11 @@ impl Figure for TimeBands<'_> {
                 };
                 (s.label.clone(), sw)
             })
+            .chain(
+                self.hlines
+                    .iter()
+                    .map(|h| (h.label.clone(), Swatch::Dashed(h.color))),
+            )
             .collect();
         legend_box(
             &chart.plotting_area().strip_coord_spec(),

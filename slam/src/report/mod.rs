@@ -7,6 +7,7 @@
 //! |---|---|---|
 //! | `fig-error` | position error against time, median and 10–90 % band across seeds, SLAM on vs off | Figure 30 |
 //! | `fig-heading` | heading error against time, the same way | — |
+//! | `fig-error-diff`, `fig-heading-diff` | the paired difference on − off against time, mean with its 95 % bootstrap band | — |
 //! | `fig-walls` | walls in memory and walls extracted so far against time, on vs off | Figure 28 (as counts) |
 //! | `fig-map` | the example seed: true walls, true and believed paths, and the walls of the map, off and on | Figures 26, 29 |
 //! | `fig-map-time` | the example seed with the SLAM rules: the map at four times | Figure 28 |
@@ -19,6 +20,7 @@
 
 pub mod figures;
 pub mod mapeval;
+pub mod paired;
 pub mod pixfont;
 
 use std::fmt::Write as _;
@@ -198,6 +200,76 @@ fn example(exp: &Experiment, slam: bool) -> Option<&RunSummary> {
         .find(|r| r.seed == exp.example_seed && r.slam == slam)
 }
 
+/// The seeds both conditions completed: (SLAM on, SLAM off) per seed, in seed order.
+fn paired_runs(exp: &Experiment) -> Vec<(&RunSummary, &RunSummary)> {
+    let off = exp.completed(false);
+    exp.completed(true)
+        .into_iter()
+        .filter_map(|on| Some((on, *off.iter().find(|r| r.seed == on.seed)?)))
+        .collect()
+}
+
+/// `fig-error-diff` and `fig-heading-diff`: the paired difference SLAM on − off over time,
+/// mean over seeds with its 95 % bootstrap band. Written only when both conditions ran.
+fn difference_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, String> {
+    let pairs = paired_runs(exp);
+    if pairs.is_empty() {
+        return Ok(Vec::new());
+    }
+    let dt = pairs[0].0.dt;
+    let metres = |r: &RunSummary| -> Vec<f64> { r.pos_err_mm.iter().map(|e| e / 1000.0).collect() };
+    let pos: Vec<(Vec<f64>, Vec<f64>)> = pairs
+        .iter()
+        .map(|(on, off)| (metres(on), metres(off)))
+        .collect();
+    let head: Vec<(Vec<f64>, Vec<f64>)> = pairs
+        .iter()
+        .map(|(on, off)| (on.heading_err_deg.clone(), off.heading_err_deg.clone()))
+        .collect();
+    let mut out = Vec::new();
+    for (stem, title, y, data, caption) in [
+        (
+            "fig-error-diff",
+            "Position error, SLAM on − off, paired",
+            "on − off, m",
+            &pos,
+            "The paired difference in position error, SLAM on − off, against time: mean over seeds with its 95 % bootstrap band (2,000 resamples of the seeds, fixed seed). Above 0 the rules made the error larger.",
+        ),
+        (
+            "fig-heading-diff",
+            "Heading error, SLAM on − off, paired",
+            "on − off, degrees",
+            &head,
+            "The paired difference in heading error, SLAM on − off, the same way.",
+        ),
+    ] {
+        let slices: Vec<(&[f64], &[f64])> =
+            data.iter().map(|(a, b)| (a.as_slice(), b.as_slice())).collect();
+        let band = paired::difference_over_time(&slices, dt, CURVE_POINTS);
+        let fig = TimeBands {
+            title: format!(
+                "{title}: mean of {} seeds, 95 % bootstrap band",
+                pairs.len()
+            ),
+            x_label: "time, s".into(),
+            y_label: y.into(),
+            series: vec![BandSeries {
+                label: "SLAM on − off".into(),
+                color: ON,
+                band: &band,
+                dashed: false,
+            }],
+            hlines: Vec::new(),
+        };
+        save(&fig, dir, stem)?;
+        out.push(FigureFile {
+            stem: stem.into(),
+            caption: caption.into(),
+        });
+    }
+    Ok(out)
+}
+
 /// Writes every figure into `dir`; returns what was written.
 pub fn write_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, String> {
     let mut out = Vec::new();
@@ -271,6 +343,7 @@ pub fn write_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, St
                     dashed: false,
                 })
                 .collect(),
+            hlines: Vec::new(),
         };
         save(&fig, dir, stem)?;
         out.push(FigureFile {
@@ -278,6 +351,8 @@ pub fn write_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, St
             caption: caption.into(),
         });
     }
+
+    out.extend(difference_figures(exp, dir)?);
 
     // Walls over time (Figure 28 as counts).
     let walls: Vec<(bool, Band, Band)> = completed
@@ -317,6 +392,7 @@ pub fn write_figures(exp: &Experiment, dir: &Path) -> Result<Vec<FigureFile>, St
             x_label: "time, s".into(),
             y_label: "walls".into(),
             series,
+            hlines: Vec::new(),
         },
         dir,
         "fig-walls",
