@@ -293,14 +293,14 @@ fn relevant_rows(store: &Store, cue: &Cue) -> Vec<(bool, i64)> {
         }
     }
     let mut out = Vec::new();
-    for (i, &(_, a, v)) in store.consts.triples.iter().enumerate() {
-        if consts.contains(&(a, v)) {
-            out.push((false, i as i64 + 1));
+    for key in consts {
+        if let Some(rows) = store.consts.by_attr_value.get(&key) {
+            out.extend(rows.iter().map(|&r| (false, r)));
         }
     }
-    for (i, &(_, a, _)) in store.edges.triples.iter().enumerate() {
-        if edge_attrs.contains(&a) {
-            out.push((true, i as i64 + 1));
+    for a in edge_attrs {
+        if let Some(rows) = store.edges.by_attr.get(&a) {
+            out.extend(rows.iter().map(|&r| (true, r)));
         }
     }
     out
@@ -344,12 +344,10 @@ fn evaluate(store: &Store, cue: &Cue, t: i64) -> Eval {
                 for p in parents {
                     match l.constant {
                         Some(Some(v)) => {
-                            if let Some(rows) = store.consts.by_parent.get(&(p, a)) {
-                                for &r in rows {
-                                    let (_, _, rv) = store.consts.triple(r);
-                                    if rv == v && store.consts.life(r).at(t) {
-                                        found.insert((p, rv));
-                                    }
+                            // A constant's triple has one row.
+                            if let Some(r) = store.consts.find(&(p, a, v)) {
+                                if store.consts.life(r).at(t) {
+                                    found.insert((p, v));
                                 }
                             }
                         }

@@ -73,6 +73,11 @@ pub struct Rows {
     pub lives: Vec<Life>,
     /// The rows by `(parent, attribute)`, for queries.
     pub by_parent: FxHashMap<(i64, i64), Vec<i64>>,
+    /// The rows by `(attribute, value)` (a constant's value, an edge's child), for the
+    /// rows a query can match under any parent.
+    pub by_attr_value: FxHashMap<(i64, i64), Vec<i64>>,
+    /// The rows by attribute.
+    pub by_attr: FxHashMap<i64, Vec<i64>>,
     /// Constants only: the row of a triple (edges may repeat a triple).
     index: FxHashMap<Triple, i64>,
 }
@@ -84,6 +89,8 @@ impl Rows {
         self.lives.push(Life::default());
         let id = self.triples.len() as i64;
         self.by_parent.entry((t.0, t.1)).or_default().push(id);
+        self.by_attr_value.entry((t.1, t.2)).or_default().push(id);
+        self.by_attr.entry(t.1).or_default().push(id);
         self.index.entry(t).or_insert(id);
         id
     }
