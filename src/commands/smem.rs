@@ -184,7 +184,7 @@ impl Interpreter {
                     .unwrap_or(1)
                     .max(1);
                 let cue = command_line_cue(&clauses);
-                let found = smem.query(&cue).map_err(db)?;
+                let found = smem.query_first(&cue, how_many).map_err(db)?;
                 let mut s = String::new();
                 if found.is_empty() {
                     s.push_str("SMem| No results for query.\n");

@@ -3,7 +3,7 @@
 //! numbers meet the math elements (`math-query`) and that are not prohibited; the most
 //! activated first, the higher number first among equals (as 9.6 orders them).
 
-use super::store::{DbResult, Store, Val};
+use super::store::{AugValue, DbResult, Store, Val};
 use super::Smem;
 
 /// What a cue element asks of an augmentation's value.
@@ -60,14 +60,6 @@ fn number(v: &Val) -> Option<f64> {
     }
 }
 
-fn having(store: &Store, attr: &Val, want: &Want) -> DbResult<Vec<i64>> {
-    match want {
-        Want::Const(v) => store.with_aug(attr, Some(v)),
-        Want::Lti(l) => store.with_aug(attr, Some(&Val::Lti(*l))),
-        Want::Any => store.with_aug(attr, None),
-    }
-}
-
 /// The numbers an LTI has for an attribute.
 fn numbers(store: &Store, lti: i64, attr: &Val) -> DbResult<Vec<f64>> {
     Ok(store
@@ -78,29 +70,89 @@ fn numbers(store: &Store, lti: i64, attr: &Val) -> DbResult<Vec<f64>> {
         .collect())
 }
 
+/// A cue element by symbol numbers, for the checks on each candidate; `None` when the
+/// store has never seen its attribute or value, so that no LTI can have it.
+fn element(store: &Store, attr: &Val, want: &Want) -> DbResult<Option<(i64, AugValue)>> {
+    let Some(a) = store.symbol(attr, false)? else {
+        return Ok(None);
+    };
+    Ok(match want {
+        Want::Const(v) => store.symbol(v, false)?.map(|c| (a, AugValue::Const(c))),
+        Want::Lti(l) => Some((a, AugValue::Lti(*l))),
+        Want::Any => Some((a, AugValue::Any)),
+    })
+}
+
+/// What an element asks, as `Store::walk_ranked` and `Store::aug_count` take it.
+fn value_of(want: &Want) -> Option<Val> {
+    match want {
+        Want::Const(v) => Some(v.clone()),
+        Want::Lti(l) => Some(Val::Lti(*l)),
+        Want::Any => None,
+    }
+}
+
 impl Smem {
-    /// The LTIs that match the cue, best first.
-    pub fn query(&mut self, cue: &Cue) -> DbResult<Vec<i64>> {
+    /// The first `limit` LTIs that match the cue, best first. As 9.6 does, the candidates
+    /// are those of the element with the fewest augmentations, walked in the order of their
+    /// activation, and each is checked against the rest of the cue; without a math element
+    /// the walk stops at the `limit`th match, so a cue of one common and one rare element
+    /// costs the rare one's candidates, not the common one's.
+    pub fn query_first(&mut self, cue: &Cue, limit: usize) -> DbResult<Vec<i64>> {
         let store = self.store()?;
-        let mut candidates: Option<Vec<i64>> = None;
-        let firsts = cue
+        let firsts: Vec<(&Val, Want)> = cue
             .pos
             .iter()
             .map(|(a, w)| (a, w.clone()))
-            .chain(cue.math.iter().map(|(a, _)| (a, Want::Any)));
-        for (attr, want) in firsts {
-            let with = having(store, attr, &want)?;
-            candidates = Some(match candidates {
-                None => with,
-                Some(c) => c.into_iter().filter(|x| with.contains(x)).collect(),
-            });
+            .chain(cue.math.iter().map(|(a, _)| (a, Want::Any)))
+            .collect();
+        if firsts.is_empty() {
+            return Ok(Vec::new());
         }
-        let mut candidates = candidates.unwrap_or_default();
-        candidates.retain(|x| !cue.prohibit.contains(x));
+        let mut counts = Vec::with_capacity(firsts.len());
+        for (attr, want) in &firsts {
+            counts.push(store.aug_count(attr, value_of(want).as_ref())?);
+        }
+        let lead = (0..firsts.len()).min_by_key(|&i| counts[i]).unwrap_or(0);
+        if counts[lead] == 0 {
+            return Ok(Vec::new());
+        }
+        let mut checks = Vec::with_capacity(firsts.len());
+        for (i, (attr, want)) in firsts.iter().enumerate() {
+            if i == lead {
+                continue;
+            }
+            match element(store, attr, want)? {
+                Some(e) => checks.push(e),
+                None => return Ok(Vec::new()),
+            }
+        }
+        let mut absent = Vec::with_capacity(cue.neg.len());
         for (attr, want) in &cue.neg {
-            let with = having(store, attr, want)?;
-            candidates.retain(|x| !with.contains(x));
+            if let Some(e) = element(store, attr, want)? {
+                absent.push(e);
+            }
         }
+        let (attr, want) = &firsts[lead];
+        let mut candidates = Vec::new();
+        let want_all = !cue.math.is_empty();
+        store.walk_ranked(attr, value_of(want).as_ref(), |c| {
+            if cue.prohibit.contains(&c) {
+                return Ok(false);
+            }
+            for &(a, v) in &checks {
+                if !store.has_aug(c, a, v)? {
+                    return Ok(false);
+                }
+            }
+            for &(a, v) in &absent {
+                if store.has_aug(c, a, v)? {
+                    return Ok(false);
+                }
+            }
+            candidates.push(c);
+            Ok(!want_all && candidates.len() >= limit)
+        })?;
         for (attr, test) in &cue.math {
             let mut kept = Vec::new();
             for &c in &candidates {
@@ -133,11 +185,7 @@ impl Smem {
             }
             candidates = kept.into_iter().map(|(c, _)| c).collect();
         }
-        let mut ranked = Vec::with_capacity(candidates.len());
-        for c in candidates {
-            ranked.push((store.activation(c)?, c));
-        }
-        ranked.sort_by(|a, b| b.0.total_cmp(&a.0).then(b.1.cmp(&a.1)));
-        Ok(ranked.into_iter().map(|(_, c)| c).collect())
+        candidates.truncate(limit);
+        Ok(candidates)
     }
 }

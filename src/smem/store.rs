@@ -7,6 +7,8 @@
 use super::params::SmemParams;
 use super::schema::{self, kind, var};
 use rusqlite::{params, Connection, OptionalExtension};
+use rustc_hash::FxHashMap;
+use std::cell::RefCell;
 
 /// A value in semantic memory: a constant or an LTI.
 #[derive(Debug, Clone, PartialEq)]
@@ -15,6 +17,29 @@ pub enum Val {
     Int(i64),
     Float(f64),
     Lti(i64),
+}
+
+/// `Connection::execute` through the statement cache: the same few statements run once
+/// per augmentation, so parsing them each time would cost more than running them.
+fn exec<P: rusqlite::Params>(conn: &Connection, sql: &str, p: P) -> rusqlite::Result<usize> {
+    conn.prepare_cached(sql)?.execute(p)
+}
+
+/// `Connection::query_row` through the statement cache.
+fn row<T, P, F>(conn: &Connection, sql: &str, p: P, f: F) -> rusqlite::Result<T>
+where
+    P: rusqlite::Params,
+    F: FnOnce(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
+{
+    conn.prepare_cached(sql)?.query_row(p, f)
+}
+
+/// An augmentation's value by symbol numbers, for `Store::has_aug`.
+#[derive(Debug, Clone, Copy)]
+pub enum AugValue {
+    Const(i64),
+    Lti(i64),
+    Any,
 }
 
 /// A database failure, as text for the command's error.
@@ -29,6 +54,20 @@ pub struct Store {
     conn: Connection,
     /// Where new LTI numbers are looked for (9.6 takes the lowest free number from here).
     next_lti: i64,
+    /// Symbol numbers already looked up, both ways. A symbol row is never changed once
+    /// written and only `clear` deletes them, so these stay true; every query and
+    /// retrieval needs them, and a map lookup is far cheaper than a statement.
+    sym_ids: RefCell<FxHashMap<SymKey, i64>>,
+    sym_vals: RefCell<FxHashMap<i64, Val>>,
+}
+
+/// A constant as a map key (floats by their bits, as the symbol table's unique index
+/// tells them apart).
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+enum SymKey {
+    Str(String),
+    Int(i64),
+    Float(u64),
 }
 
 impl std::fmt::Debug for Store {
@@ -57,7 +96,18 @@ impl Store {
             "PRAGMA page_size = {page}; PRAGMA cache_size = {cache}; PRAGMA synchronous = {sync};"
         );
         conn.execute_batch(&setup).map_err(|e| not_a_database(p, &e))?;
-        let mut store = Store { conn, next_lti: 1 };
+        conn.set_prepared_statement_cache_capacity(64);
+        // Without the planner's stability guarantee, this SQLite re-plans a statement each
+        // time a value bound in an equality changes (its estimate of how many rows match
+        // a small integer): every retrieval then parses its statements again, which costs
+        // more than running them. The plans here do not depend on the values.
+        db(conn.set_db_config(rusqlite::config::DbConfig::SQLITE_DBCONFIG_ENABLE_QPSG, true))?;
+        let mut store = Store {
+            conn,
+            next_lti: 1,
+            sym_ids: RefCell::default(),
+            sym_vals: RefCell::default(),
+        };
         let tables: i64 = store
             .conn
             .query_row(
@@ -165,19 +215,19 @@ impl Store {
             "smem_wmes_lti_frequency",
             "smem_prohibited",
         ] {
-            db(self.conn.execute(&format!("DELETE FROM {t}"), []))?;
+            db(exec(&self.conn, &format!("DELETE FROM {t}"), []))?;
         }
         for (k, v) in [(var::MAX_CYCLE, 1), (var::NODES, 0), (var::EDGES, 0)] {
             self.set_var(k, v)?;
         }
         self.next_lti = 1;
+        self.sym_ids.borrow_mut().clear();
+        self.sym_vals.borrow_mut().clear();
         Ok(())
     }
 
     pub fn var(&self, key: i64) -> DbResult<i64> {
-        Ok(db(self
-            .conn
-            .query_row(
+        Ok(db(row(&self.conn, 
                 "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
                 [key],
                 |r| r.get(0),
@@ -187,7 +237,7 @@ impl Store {
     }
 
     pub fn set_var(&self, key: i64, value: i64) -> DbResult<()> {
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
             [key, value],
         ))?;
@@ -200,6 +250,23 @@ impl Store {
 
     /// A constant's symbol number, made when `create` asks for it and it is missing.
     pub fn symbol(&self, v: &Val, create: bool) -> DbResult<Option<i64>> {
+        let key = match v {
+            Val::Str(x) => SymKey::Str(x.clone()),
+            Val::Int(i) => SymKey::Int(*i),
+            Val::Float(f) => SymKey::Float(f.to_bits()),
+            Val::Lti(_) => return Ok(None),
+        };
+        if let Some(&id) = self.sym_ids.borrow().get(&key) {
+            return Ok(Some(id));
+        }
+        let found = self.symbol_row(v, create)?;
+        if let Some(id) = found {
+            self.sym_ids.borrow_mut().insert(key, id);
+        }
+        Ok(found)
+    }
+
+    fn symbol_row(&self, v: &Val, create: bool) -> DbResult<Option<i64>> {
         let (table, type_code) = match v {
             Val::Str(_) => ("smem_symbols_string", kind::STR),
             Val::Int(_) => ("smem_symbols_integer", kind::INT),
@@ -208,24 +275,24 @@ impl Store {
         };
         let find = format!("SELECT s_id FROM {table} WHERE symbol_value=?1");
         let found: Option<i64> = db(match v {
-            Val::Str(s) => self.conn.query_row(&find, [s], |r| r.get(0)).optional(),
-            Val::Int(i) => self.conn.query_row(&find, [i], |r| r.get(0)).optional(),
-            Val::Float(f) => self.conn.query_row(&find, [f], |r| r.get(0)).optional(),
+            Val::Str(s) => row(&self.conn, &find, [s], |r| r.get(0)).optional(),
+            Val::Int(i) => row(&self.conn, &find, [i], |r| r.get(0)).optional(),
+            Val::Float(f) => row(&self.conn, &find, [f], |r| r.get(0)).optional(),
             Val::Lti(_) => Ok(None),
         })?;
         if found.is_some() || !create {
             return Ok(found);
         }
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT INTO smem_symbols_type (s_id, symbol_type) VALUES (NULL, ?1)",
             [type_code],
         ))?;
         let id = self.conn.last_insert_rowid();
         let insert = format!("INSERT INTO {table} (s_id, symbol_value) VALUES (?1, ?2)");
         db(match v {
-            Val::Str(s) => self.conn.execute(&insert, params![id, s]),
-            Val::Int(i) => self.conn.execute(&insert, params![id, i]),
-            Val::Float(f) => self.conn.execute(&insert, params![id, f]),
+            Val::Str(s) => exec(&self.conn, &insert, params![id, s]),
+            Val::Int(i) => exec(&self.conn, &insert, params![id, i]),
+            Val::Float(f) => exec(&self.conn, &insert, params![id, f]),
             Val::Lti(_) => Ok(0),
         })?;
         Ok(Some(id))
@@ -233,36 +300,38 @@ impl Store {
 
     /// The constant a symbol number stands for.
     pub fn constant(&self, s_id: i64) -> DbResult<Val> {
-        let t: Option<i64> = db(self
-            .conn
-            .query_row(
+        if let Some(v) = self.sym_vals.borrow().get(&s_id) {
+            return Ok(v.clone());
+        }
+        let (v, known) = self.constant_row(s_id)?;
+        if known {
+            self.sym_vals.borrow_mut().insert(s_id, v.clone());
+        }
+        Ok(v)
+    }
+
+    /// The constant of a symbol row, and whether the row exists.
+    fn constant_row(&self, s_id: i64) -> DbResult<(Val, bool)> {
+        let t: Option<i64> = db(row(&self.conn, 
                 "SELECT symbol_type FROM smem_symbols_type WHERE s_id=?1",
                 [s_id],
                 |r| r.get(0),
             )
             .optional())?;
         let q = |table: &str| format!("SELECT symbol_value FROM {table} WHERE s_id=?1");
-        Ok(match t {
-            Some(kind::INT) => Val::Int(db(self
-                .conn
-                .query_row(&q("smem_symbols_integer"), [s_id], |r| r.get(0)))?),
-            Some(kind::FLOAT) => Val::Float(db(self
-                .conn
-                .query_row(&q("smem_symbols_float"), [s_id], |r| r.get(0)))?),
+        Ok((match t {
+            Some(kind::INT) => Val::Int(db(row(&self.conn, &q("smem_symbols_integer"), [s_id], |r| r.get(0)))?),
+            Some(kind::FLOAT) => Val::Float(db(row(&self.conn, &q("smem_symbols_float"), [s_id], |r| r.get(0)))?),
             _ => Val::Str(
-                db(self
-                    .conn
-                    .query_row(&q("smem_symbols_string"), [s_id], |r| r.get(0))
+                db(row(&self.conn, &q("smem_symbols_string"), [s_id], |r| r.get(0))
                     .optional())?
                 .unwrap_or_default(),
             ),
-        })
+        }, t.is_some()))
     }
 
     pub fn lti_exists(&self, id: i64) -> DbResult<bool> {
-        Ok(db(self
-            .conn
-            .query_row("SELECT 1 FROM smem_lti WHERE lti_id=?1", [id], |_| Ok(()))
+        Ok(db(row(&self.conn, "SELECT 1 FROM smem_lti WHERE lti_id=?1", [id], |_| Ok(()))
             .optional())?
         .is_some())
     }
@@ -272,11 +341,11 @@ impl Store {
         if self.lti_exists(id)? {
             return Ok(());
         }
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT INTO smem_lti (lti_id, total_augmentations, activation_base_level, activations_total, activations_last, activations_first, lti_augmentations) VALUES (?1, 0, 0.0, 0.0, 0, 0, 0)",
             [id],
         ))?;
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT OR REPLACE INTO smem_prohibited (lti_id, prohibited, dirty) VALUES (?1, 0, 0)",
             [id],
         ))?;
@@ -296,7 +365,7 @@ impl Store {
 
     /// Every LTI, by number.
     pub fn ltis(&self) -> DbResult<Vec<i64>> {
-        let mut st = db(self.conn.prepare("SELECT lti_id FROM smem_lti ORDER BY lti_id"))?;
+        let mut st = db(self.conn.prepare_cached("SELECT lti_id FROM smem_lti ORDER BY lti_id"))?;
         let rows = db(st.query_map([], |r| r.get(0)))?;
         rows.map(db).collect()
     }
@@ -304,7 +373,7 @@ impl Store {
     /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
     /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
-        let mut st = db(self.conn.prepare(
+        let mut st = db(self.conn.prepare_cached(
             "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
         ))?;
         let rows: Vec<(i64, i64, i64)> = db(st
@@ -335,9 +404,7 @@ impl Store {
             }
             v => (self.symbol(v, true)?.unwrap_or(0), 0),
         };
-        let exists = db(self
-            .conn
-            .query_row(
+        let exists = db(row(&self.conn, 
                 "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_constant_s_id=?3 AND value_lti_id=?4",
                 [lti, a, c, l],
                 |_| Ok(()),
@@ -346,13 +413,13 @@ impl Store {
         if exists.is_some() {
             return Ok(false);
         }
-        let act: Option<f64> = db(self.conn.query_row(
+        let act: Option<f64> = db(row(&self.conn, 
             "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
             [lti],
             |r| r.get(0),
         ))?;
         let weight = if l != 0 { 1.0 } else { 0.0 };
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT INTO smem_augmentations (lti_id, attribute_s_id, value_constant_s_id, value_lti_id, activation_value, edge_weight) VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
             params![lti, a, c, l, act.unwrap_or(schema::ACT_LOW), weight],
         ))?;
@@ -364,7 +431,7 @@ impl Store {
     /// the WME's frequencies, the edge count) as one is added (`by` 1) or removed (-1).
     fn count_aug(&self, lti: i64, a: i64, c: i64, l: i64, by: i64) -> DbResult<()> {
         let lti_aug = i64::from(l != 0) * by;
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "UPDATE smem_lti SET total_augmentations = total_augmentations + ?2, lti_augmentations = lti_augmentations + ?3 WHERE lti_id=?1",
             [lti, by, lti_aug],
         ))?;
@@ -374,7 +441,7 @@ impl Store {
                 .enumerate()
                 .map(|(i, k)| format!("{k}=?{}", i + 2))
                 .collect();
-            let n = db(self.conn.execute(
+            let n = db(exec(&self.conn, 
                 &format!(
                     "UPDATE {table} SET edge_frequency = edge_frequency + ?1 WHERE {}",
                     cond.join(" AND ")
@@ -383,7 +450,7 @@ impl Store {
             ))?;
             if n == 0 && by > 0 {
                 let holes: Vec<String> = (0..=args.len()).map(|i| format!("?{}", i + 1)).collect();
-                db(self.conn.execute(
+                db(exec(&self.conn, 
                     &format!(
                         "INSERT INTO {table} ({key},edge_frequency) VALUES ({})",
                         holes.join(",")
@@ -391,10 +458,17 @@ impl Store {
                     rusqlite::params_from_iter(args.iter().copied().chain(std::iter::once(1))),
                 ))?;
             }
-            db(self.conn.execute(
-                &format!("DELETE FROM {table} WHERE edge_frequency <= 0"),
-                [],
-            ))?;
+            // Only a decrement can bring a count to zero, and only this row's.
+            if by < 0 {
+                db(exec(
+                    &self.conn,
+                    &format!(
+                        "DELETE FROM {table} WHERE {} AND edge_frequency <= 0",
+                        cond.join(" AND ")
+                    ),
+                    rusqlite::params_from_iter(std::iter::once(0).chain(args.iter().copied())),
+                ))?;
+            }
             Ok(())
         };
         bump("smem_attribute_frequency", "attribute_s_id", &[a])?;
@@ -417,7 +491,7 @@ impl Store {
     /// Removes the augmentations of `lti` with attribute `attr` (all when `None`) and, when
     /// given, value `value`; how many went.
     pub fn remove_augs(&mut self, lti: i64, attr: Option<&Val>, value: Option<&Val>) -> DbResult<usize> {
-        let mut st = db(self.conn.prepare(
+        let mut st = db(self.conn.prepare_cached(
             "SELECT rowid, attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1",
         ))?;
         let rows: Vec<(i64, i64, i64, i64)> = db(st
@@ -444,47 +518,125 @@ impl Store {
             if a.is_some_and(|a| a != ra) || v.is_some_and(|v| v != (rc, rl)) {
                 continue;
             }
-            db(self
-                .conn
-                .execute("DELETE FROM smem_augmentations WHERE rowid=?1", [rowid]))?;
+            db(exec(&self.conn, "DELETE FROM smem_augmentations WHERE rowid=?1", [rowid]))?;
             self.count_aug(lti, ra, rc, rl, -1)?;
             gone += 1;
         }
         Ok(gone)
     }
-
-    /// The LTIs having an augmentation with this attribute and, when given, this value.
-    pub fn with_aug(&self, attr: &Val, value: Option<&Val>) -> DbResult<Vec<i64>> {
+    /// How many augmentations have `attr` and, when given, `value`: 9.6's frequency
+    /// counts, kept beside the augmentations, so this costs one lookup.
+    pub fn aug_count(&self, attr: &Val, value: Option<&Val>) -> DbResult<i64> {
         let Some(a) = self.symbol(attr, false)? else {
-            return Ok(Vec::new());
+            return Ok(0);
         };
-        let (sql, args): (&str, Vec<i64>) = match value {
+        let n: Option<i64> = match value {
+            None => db(row(
+                &self.conn,
+                "SELECT edge_frequency FROM smem_attribute_frequency WHERE attribute_s_id=?1",
+                [a],
+                |r| r.get(0),
+            )
+            .optional())?,
+            Some(Val::Lti(l)) => db(row(
+                &self.conn,
+                "SELECT edge_frequency FROM smem_wmes_lti_frequency WHERE attribute_s_id=?1 AND value_lti_id=?2",
+                [a, *l],
+                |r| r.get(0),
+            )
+            .optional())?,
+            Some(v) => match self.symbol(v, false)? {
+                None => return Ok(0),
+                Some(c) => db(row(
+                    &self.conn,
+                    "SELECT edge_frequency FROM smem_wmes_constant_frequency WHERE attribute_s_id=?1 AND value_constant_s_id=?2",
+                    [a, c],
+                    |r| r.get(0),
+                )
+                .optional())?,
+            },
+        };
+        Ok(n.unwrap_or(0))
+    }
+
+    /// Walks the LTIs with an augmentation `attr` (and `value` when given), most activated
+    /// first and the higher number first among equals (the order retrieval answers in),
+    /// until `visit` says stop. The order comes from the index on the augmentations' copy
+    /// of their LTI's activation, so the first answers cost no sort of the rest.
+    pub fn walk_ranked(
+        &self,
+        attr: &Val,
+        value: Option<&Val>,
+        mut visit: impl FnMut(i64) -> DbResult<bool>,
+    ) -> DbResult<()> {
+        let Some(a) = self.symbol(attr, false)? else {
+            return Ok(());
+        };
+        let (sql, b) = match value {
             None => (
-                "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1",
-                vec![a],
+                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 ORDER BY activation_value DESC, lti_id DESC",
+                None,
             ),
             Some(Val::Lti(l)) => (
-                "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_lti_id=?2",
-                vec![a, *l],
+                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=0 AND value_lti_id=?2 ORDER BY activation_value DESC, lti_id DESC",
+                Some(*l),
             ),
             Some(v) => match self.symbol(v, false)? {
-                None => return Ok(Vec::new()),
+                None => return Ok(()),
                 Some(c) => (
-                    "SELECT DISTINCT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0",
-                    vec![a, c],
+                    "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0 ORDER BY activation_value DESC, lti_id DESC",
+                    Some(c),
                 ),
             },
         };
-        let mut st = db(self.conn.prepare(sql))?;
-        let rows = db(st.query_map(rusqlite::params_from_iter(args), |r| r.get(0)))?;
-        rows.map(db).collect()
+        let mut st = db(self.conn.prepare_cached(sql))?;
+        let mut rows = match b {
+            Some(b) => db(st.query([a, b]))?,
+            None => db(st.query([a]))?,
+        };
+        // An attribute alone can come with several values per LTI: each LTI once.
+        let mut seen = FxHashMap::default();
+        while let Some(r) = db(rows.next())? {
+            let lti: i64 = db(r.get(0))?;
+            if b.is_none() && seen.insert(lti, ()).is_some() {
+                continue;
+            }
+            if visit(lti)? {
+                break;
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether `lti` has an augmentation `attr` (with `value` when given). Symbols are
+    /// looked up by the caller once per cue element, as `attr`'s and `value`'s numbers.
+    pub fn has_aug(&self, lti: i64, a: i64, value: AugValue) -> DbResult<bool> {
+        let found = match value {
+            AugValue::Any => row(
+                &self.conn,
+                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 LIMIT 1",
+                [lti, a],
+                |_| Ok(()),
+            ),
+            AugValue::Lti(v) => row(
+                &self.conn,
+                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_lti_id=?3 LIMIT 1",
+                [lti, a, v],
+                |_| Ok(()),
+            ),
+            AugValue::Const(c) => row(
+                &self.conn,
+                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_constant_s_id=?3 AND value_lti_id=0 LIMIT 1",
+                [lti, a, c],
+                |_| Ok(()),
+            ),
+        };
+        Ok(db(found.optional())?.is_some())
     }
 
     /// An LTI's activation as retrieval compares it (the lowest for one never activated).
     pub fn activation(&self, lti: i64) -> DbResult<f64> {
-        let v: Option<Option<f64>> = db(self
-            .conn
-            .query_row(
+        let v: Option<Option<f64>> = db(row(&self.conn, 
                 "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
                 [lti],
                 |r| r.get(0),
@@ -501,7 +653,7 @@ impl Store {
 
     /// The activation record of an LTI: (activations, last, first).
     pub fn record(&self, lti: i64) -> DbResult<(f64, i64, i64)> {
-        db(self.conn.query_row(
+        db(row(&self.conn, 
             "SELECT activations_total, activations_last, activations_first FROM smem_lti WHERE lti_id=?1",
             [lti],
             |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
@@ -510,9 +662,7 @@ impl Store {
 
     /// The times of an LTI's last activations (most recent first), for base-level.
     pub fn history(&self, lti: i64) -> DbResult<Vec<i64>> {
-        let row: Option<Vec<Option<i64>>> = db(self
-            .conn
-            .query_row(
+        let row: Option<Vec<Option<i64>>> = db(row(&self.conn, 
                 "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
                 [lti],
                 |r| (0..10).map(|i| r.get(i)).collect(),
@@ -530,11 +680,11 @@ impl Store {
         history: &[i64],
         value: f64,
     ) -> DbResult<()> {
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
             params![lti, record.0, record.1, record.2, value],
         ))?;
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
             params![lti, value],
         ))?;
@@ -542,7 +692,7 @@ impl Store {
         for (slot, h) in t.iter_mut().zip(history) {
             *slot = *h;
         }
-        db(self.conn.execute(
+        db(exec(&self.conn, 
             "INSERT OR REPLACE INTO smem_activation_history (lti_id,t1,t2,t3,t4,t5,t6,t7,t8,t9,t10,touch1,touch2,touch3,touch4,touch5,touch6,touch7,touch8,touch9,touch10) VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,1,1,1,1,1,1,1,1,1,1)",
             params![lti, t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9]],
         ))?;
@@ -556,15 +706,15 @@ impl Store {
 
     /// The bytes the database takes (pages in use times the page size).
     pub fn bytes(&self) -> DbResult<i64> {
-        let pages: i64 = db(self.conn.query_row("PRAGMA page_count", [], |r| r.get(0)))?;
-        let size: i64 = db(self.conn.query_row("PRAGMA page_size", [], |r| r.get(0)))?;
+        let pages: i64 = db(row(&self.conn, "PRAGMA page_count", [], |r| r.get(0)))?;
+        let size: i64 = db(row(&self.conn, "PRAGMA page_size", [], |r| r.get(0)))?;
         Ok(pages * size)
     }
 
     /// `smem --backup FILE`: a copy of the database, made with SQLite's `VACUUM INTO`.
     pub fn backup(&mut self, path: &str, lazy: bool) -> DbResult<()> {
         self.commit(false)?;
-        let r = db(self.conn.execute("VACUUM INTO ?1", [path]));
+        let r = db(exec(&self.conn, "VACUUM INTO ?1", [path]));
         if lazy {
             db(self.conn.execute_batch("BEGIN"))?;
         }

@@ -296,7 +296,7 @@ impl AgentCore {
         if let Some(q) = cmd.query {
             let cue = self.smem_cue(q, cmd.neg_query, cmd.math_query, &cmd.prohibit);
             self.smem.stats.queries += 1;
-            let found = self.smem.query(&cue).map(|f| f.first().copied());
+            let found = self.smem.query_first(&cue, 1).map(|f| f.first().copied());
             match found {
                 Ok(Some(lti)) => {
                     let activate = if self.smem.params.activate_on_query() {
