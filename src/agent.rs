@@ -832,6 +832,16 @@ impl AgentCore {
         w
     }
 
+    /// The value of `id ^attr` (the first such WME): how the memories find their links.
+    pub(crate) fn child_of(&self, id: Sym, attr: &str) -> Option<Sym> {
+        let a = self.symbols.find_str(attr)?;
+        self.wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w))
+            .find(|w| w.attr == a)
+            .map(|w| w.value)
+    }
+
     /// Matches a WME in the network and against the justifications' negations, which
     /// retract in 9.6's place among the rules' retractions (see `justification_wme_added`).
     pub(crate) fn match_wme_now(&mut self, w: WmeId, fields: (Sym, Sym, Sym), acceptable: bool) {

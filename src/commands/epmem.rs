@@ -3,6 +3,7 @@
 //! timers, with 9.6's texts and error messages (checked on soar-sml 9.6.5).
 
 use super::options::{self, opt};
+use super::memory_stats::{banner, stats_answer, timers_answer};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::epmem::params::SetError;
 
@@ -24,8 +25,7 @@ const STATS: [(&str, &str); 14] = [
     ("qry-lits", "Last Query Literals"),
 ];
 
-/// The timers of `epmem --timers`, in 9.6's order. rusoar does not time its episodic
-/// memory: each reads 0, as 9.6's do with `timers off`.
+/// The timers of `epmem --timers`, in 9.6's order.
 const TIMERS: [&str; 29] = [
     "_total",
     "epmem_api",
@@ -57,24 +57,6 @@ const TIMERS: [&str; 29] = [
     "query_walk_edge",
     "query_walk_interval",
 ];
-
-/// A 40-column row of `--stats` and `--timers`.
-fn row40(label: &str, value: &str) -> String {
-    let width = 40usize.saturating_sub(label.len() + 1);
-    format!("{label}:{value:>width$}\n")
-}
-
-/// A banner of `--stats`, `--timers` and `--print`: the title centred in 40 columns.
-fn banner(title: &str) -> String {
-    let left = 40usize.saturating_sub(title.len()) / 2;
-    let right = 40usize.saturating_sub(title.len() + left);
-    let rule = "=".repeat(40);
-    format!(
-        "{rule}\n{}{title}{}\n{rule}\n",
-        " ".repeat(left),
-        " ".repeat(right)
-    )
-}
 
 impl Interpreter {
     /// `epmem [OPTION [ARGS]]`.
@@ -187,36 +169,12 @@ impl Interpreter {
             "stats" => {
                 count(0, 1)?;
                 let values = self.epmem_stat_values();
-                match words.first() {
-                    None => {
-                        let mut s = banner("Episodic Memory Statistics");
-                        for ((_, label), v) in STATS.iter().zip(&values) {
-                            s.push_str(&row40(label, v));
-                        }
-                        Ok(s)
-                    }
-                    Some(w) => STATS
-                        .iter()
-                        .zip(&values)
-                        .find(|((name, _), _)| name == w)
-                        .map(|(_, v)| format!(" {v}"))
-                        .ok_or_else(|| ctx.error("Invalid statistic.")),
-                }
+                stats_answer(ctx, "Episodic Memory Statistics", &STATS, &values, words.first())
             }
             _ => {
                 // "timers"
                 count(0, 1)?;
-                match words.first() {
-                    None => {
-                        let mut s = banner("Episodic Memory Timers");
-                        for t in TIMERS {
-                            s.push_str(&row40(t, "0"));
-                        }
-                        Ok(s)
-                    }
-                    Some(w) if TIMERS.contains(&w.as_str()) => Ok(" 0".into()),
-                    Some(_) => Err(ctx.error("Invalid timer.")),
-                }
+                timers_answer(ctx, "Episodic Memory Timers", &TIMERS, words.first())
             }
         }
     }

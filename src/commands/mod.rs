@@ -28,6 +28,7 @@ mod save;
 mod running;
 mod settings;
 mod epmem;
+mod memory_stats;
 mod smem;
 mod stats;
 pub mod tokenizer;

@@ -12,23 +12,7 @@ use crate::decide::procedure::PrefType;
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
 
-/// A state's WMEs that the architecture makes and 9.6 keeps out of slots.
-const STATE_ARCH_ATTRS: [&str; 10] = [
-    "type",
-    "superstate",
-    "attribute",
-    "impasse",
-    "choices",
-    "quiescence",
-    "item",
-    "item-count",
-    "non-numeric",
-    "non-numeric-count",
-];
-
-/// The memories' link WMEs on a state, which 9.6 puts in slots of their own (without
-/// preferences), oldest first.
-const STATE_MODULE_ATTRS: [&str; 3] = ["reward-link", "epmem", "smem"];
+use crate::decide::state::{STATE_ARCH_ATTRS, STATE_MODULE_ATTRS};
 /// The same on the episodic and semantic memories' link objects.
 const EPMEM_MODULE_ATTRS: [&str; 3] = ["command", "result", "present-id"];
 const SMEM_MODULE_ATTRS: [&str; 2] = ["command", "result"];

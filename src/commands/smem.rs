@@ -4,6 +4,7 @@
 //! 9.6's texts and error messages (checked on soar-sml 9.6.5).
 
 use super::options::{self, opt};
+use super::memory_stats::{stats_answer, timers_answer};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::smem::params::SetError;
 use crate::smem::query::{Cue, Want};
@@ -23,8 +24,7 @@ const STATS: [(&str, &str); 10] = [
     ("spread-size", "Spread Size"),
 ];
 
-/// The timers of `smem --timers`, in 9.6's order. rusoar does not time its semantic
-/// memory: each reads 0, as 9.6's do with `timers off`.
+/// The timers of `smem --timers`, in 9.6's order.
 const TIMERS: [&str; 29] = [
     "_total",
     "smem_api",
@@ -56,12 +56,6 @@ const TIMERS: [&str; 29] = [
     "spreading-wma-3",
     "three_activation",
 ];
-
-/// A 40-column row of `--stats` and `--timers`.
-fn row40(label: &str, value: &str) -> String {
-    let width = 40usize.saturating_sub(label.len() + 1);
-    format!("{label}:{value:>width$}\n")
-}
 
 /// A 52-column row of the summary, with its note.
 fn row52(label: &str, value: &str, note: &str) -> String {
@@ -270,42 +264,12 @@ impl Interpreter {
             "stats" => {
                 count(0, 1)?;
                 let values = self.smem_stat_values().map_err(db)?;
-                match words.first() {
-                    None => {
-                        let mut s = String::new();
-                        s.push_str("========================================\n");
-                        s.push_str("       Semantic Memory Statistics       \n");
-                        s.push_str("========================================\n");
-                        for ((_, label), v) in STATS.iter().zip(&values) {
-                            s.push_str(&row40(label, v));
-                        }
-                        Ok(s)
-                    }
-                    Some(w) => STATS
-                        .iter()
-                        .zip(&values)
-                        .find(|((name, _), _)| name == w)
-                        .map(|(_, v)| format!(" {v}"))
-                        .ok_or_else(|| ctx.error("Invalid statistic.")),
-                }
+                stats_answer(ctx, "Semantic Memory Statistics", &STATS, &values, words.first())
             }
             _ => {
                 // "timers"
                 count(0, 1)?;
-                match words.first() {
-                    None => {
-                        let mut s = String::new();
-                        s.push_str("========================================\n");
-                        s.push_str("         Semantic Memory Timers         \n");
-                        s.push_str("========================================\n");
-                        for t in TIMERS {
-                            s.push_str(&row40(t, "0"));
-                        }
-                        Ok(s)
-                    }
-                    Some(w) if TIMERS.contains(&w.as_str()) => Ok(" 0".into()),
-                    Some(_) => Err(ctx.error("Invalid timer.")),
-                }
+                timers_answer(ctx, "Semantic Memory Timers", &TIMERS, words.first())
             }
         }
     }

@@ -8,6 +8,24 @@ use crate::symbols::Sym;
 use crate::wm::WmeId;
 use rustc_hash::FxHashMap;
 
+/// A state's WMEs that the architecture makes (9.6's impasse WMEs, kept out of slots).
+pub(crate) const STATE_ARCH_ATTRS: [&str; 10] = [
+    "type",
+    "superstate",
+    "attribute",
+    "impasse",
+    "choices",
+    "quiescence",
+    "item",
+    "item-count",
+    "non-numeric",
+    "non-numeric-count",
+];
+
+/// The memories' link WMEs on a state, which 9.6 puts in slots of their own (without
+/// preferences), oldest first.
+pub(crate) const STATE_MODULE_ATTRS: [&str; 3] = ["reward-link", "epmem", "smem"];
+
 crate::ids::id_type!(index InstId => Instantiation);
 crate::ids::id_type!(index PrefId => Preference);
 

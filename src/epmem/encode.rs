@@ -7,27 +7,11 @@
 use super::store::{Constant, Store, ACCEPTABLE, ROOT};
 use super::Encoder;
 use crate::agent::AgentCore;
+use crate::decide::state::{STATE_ARCH_ATTRS as IMPASSE_ATTRS, STATE_MODULE_ATTRS as MODULE_ATTRS};
 use crate::symbols::{Sym, SymData};
 use crate::wm::{Wme, WmeId};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::VecDeque;
-
-/// The architecture's own WMEs on a state (9.6's impasse WMEs), listed before the rest.
-const IMPASSE_ATTRS: [&str; 10] = [
-    "type",
-    "superstate",
-    "attribute",
-    "impasse",
-    "choices",
-    "quiescence",
-    "item",
-    "item-count",
-    "non-numeric",
-    "non-numeric-count",
-];
-
-/// The memories' links on a state, made before any rule's WME (so listed last).
-const MODULE_ATTRS: [&str; 3] = ["reward-link", "epmem", "smem"];
 
 /// An edge reserved for a WME whose value's node is known before its level is stored.
 struct Reservation {

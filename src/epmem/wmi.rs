@@ -83,16 +83,6 @@ impl AgentCore {
         }
     }
 
-    /// The value of `id ^attr` (the first such WME).
-    fn epmem_child(&self, id: Sym, attr: &str) -> Option<Sym> {
-        let a = self.symbols.find_str(attr)?;
-        self.wm
-            .of_id(id)
-            .filter_map(|w| self.wm.get(w))
-            .find(|w| w.attr == a)
-            .map(|w| w.value)
-    }
-
     /// The states, bottom first, with their `^epmem` links' command and result.
     fn epmem_states(&self) -> Vec<(Sym, Option<Link>)> {
         let mut states: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
@@ -103,8 +93,8 @@ impl AgentCore {
         states
             .into_iter()
             .map(|s| {
-                let link = self.epmem_child(s, "epmem").and_then(|e| {
-                    Some((e, self.epmem_child(e, "command")?, self.epmem_child(e, "result")?))
+                let link = self.child_of(s, "epmem").and_then(|e| {
+                    Some((e, self.child_of(e, "command")?, self.child_of(e, "result")?))
                 });
                 (s, link)
             })

@@ -47,16 +47,6 @@ struct Command {
 }
 
 impl AgentCore {
-    /// The value of `id ^attr` (the first such WME).
-    fn smem_child(&self, id: Sym, attr: &str) -> Option<Sym> {
-        let a = self.symbols.find_str(attr)?;
-        self.wm
-            .of_id(id)
-            .filter_map(|w| self.wm.get(w))
-            .find(|w| w.attr == a)
-            .map(|w| w.value)
-    }
-
     /// An object's WMEs, oldest first.
     fn smem_wmes(&self, id: Sym) -> Vec<Wme> {
         let mut ws: Vec<Wme> = self
@@ -105,11 +95,11 @@ impl AgentCore {
         };
         let mut changed = false;
         for (state, level) in states {
-            let Some(link) = self.smem_child(state, "smem") else {
+            let Some(link) = self.child_of(state, "smem") else {
                 continue;
             };
             let (Some(cmd), Some(res)) =
-                (self.smem_child(link, "command"), self.smem_child(link, "result"))
+                (self.child_of(link, "command"), self.child_of(link, "result"))
             else {
                 continue;
             };
