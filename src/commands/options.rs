@@ -41,6 +41,17 @@ pub struct Parsed {
 }
 
 impl Parsed {
+    /// Whether the words after the options number `min` to `max`: 9.6's message when not.
+    pub fn arg_count(&self, min: usize, max: usize) -> Result<(), &'static str> {
+        if self.args.len() < min {
+            Err("Too few arguments.")
+        } else if self.args.len() > max {
+            Err("Too many arguments.")
+        } else {
+            Ok(())
+        }
+    }
+
     pub fn has(&self, long: &str) -> bool {
         self.options.iter().any(|(l, _)| *l == long)
     }

@@ -33,15 +33,7 @@ impl Interpreter {
         if parsed.options.len() > 1 {
             return Err(ctx.error("rl takes only one option at a time."));
         }
-        let count = |min: usize, max: usize| {
-            if words.len() < min {
-                Err(ctx.error("Too few arguments."))
-            } else if words.len() > max {
-                Err(ctx.error("Too many arguments."))
-            } else {
-                Ok(())
-            }
-        };
+        let count = |min, max| parsed.arg_count(min, max).map_err(|m| ctx.error(m));
         match *option {
             "get" => {
                 count(1, 1)?;
