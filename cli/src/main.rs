@@ -189,6 +189,9 @@ fn main() -> ExitCode {
     }
     let mut agent = Agent::new("soar");
     let code = run(&mut agent);
+    if let Err(e) = agent.commit_memories() {
+        eprintln!("{e}");
+    }
     // The process ends here: freeing a large agent piece by piece only costs time.
     std::mem::forget(agent);
     code

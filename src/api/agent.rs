@@ -6,6 +6,7 @@ use crate::commands::{Event, Interpreter, LoadReport};
 use crate::events::AgentEvent;
 use crate::io::{InputUpdate, Value};
 use crate::rhs::host::{RhsArg, RhsCall};
+use crate::source::Severity;
 use crate::symbols::Sym;
 use crate::wm::Wme;
 use std::cell::RefCell;
@@ -295,6 +296,21 @@ impl Agent {
     /// Sets the directory relative paths resolve against.
     pub fn set_working_directory(&mut self, dir: impl Into<PathBuf>) {
         self.interp.set_cwd(dir.into());
+    }
+
+    /// Writes what the long-term memories' `lazy-commit` holds back to their database
+    /// files (an agent that is dropped does this too). A program that ends without dropping
+    /// its agent calls this first, or the episodes and facts since the last commit are lost.
+    pub fn commit_memories(&mut self) -> Result<(), Error> {
+        let core = &mut self.interp.agent;
+        let smem = core.smem.commit();
+        let epmem = core.epmem.commit();
+        smem.and(epmem).map_err(|m| Error::Command {
+            severity: Severity::Error,
+            rendered: format!("error: {m}"),
+            message: m,
+            location: None,
+        })
     }
 
     /// Whether the `exit` command was run.

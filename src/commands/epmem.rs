@@ -112,6 +112,7 @@ impl Interpreter {
             "set" => {
                 count(2, 2)?;
                 let open = self.agent.epmem.is_open();
+                let before = self.agent.epmem.params.get(&words[0]);
                 match self.agent.epmem.params.set(&words[0], &words[1], open) {
                     Err(SetError::Name) => Err(ctx.error("Invalid epmem parameter.")),
                     Err(SetError::Value) => {
@@ -122,9 +123,13 @@ impl Interpreter {
                     )),
                     Ok(()) => {
                         let mut s = format!("{} is now {}\n", words[0], words[1]);
-                        // Said, not left for the user to find out when the file is missing.
-                        if words[0] == "database" && words[1] == "file" {
-                            s.push_str("Warning: rusoar keeps episodic memory in memory: episodes are not written to a file and are gone when the agent is.\n");
+                        let now = self.agent.epmem.params.get(&words[0]);
+                        let switched = words[0] == "path" || (words[0] == "database" && now != before);
+                        if open && switched {
+                            s.push_str("To finalize episodic memory database switch, issue an epmem --init command.\n\n");
+                        }
+                        if words[0] == "append" && now.as_deref() == Some("off") {
+                            s.push_str("Warning: Since append mode is off, starting/reinitializing,\n         Soar will erase the episodic memory database.\n\n");
                         }
                         Ok(s)
                     }
@@ -134,7 +139,12 @@ impl Interpreter {
                 count(0, 0)?;
                 self.agent.epmem_close();
                 self.agent.epmem_attach();
-                Ok("Episodic memory system re-initialized.\n".into())
+                let mut s = String::from("Episodic memory system re-initialized.\n");
+                let p = &self.agent.epmem.params;
+                if p.get("database").as_deref() == Some("file") && p.get("append").as_deref() == Some("on") {
+                    s.push_str("Note: There was no effective change to episodic memory contents \n      because Soar is storing episodic memory to a database file and append \n      mode is on.\n");
+                }
+                Ok(s)
             }
             "print" | "viz" => {
                 count(1, 1)?;
@@ -154,9 +164,15 @@ impl Interpreter {
             }
             "backup" => {
                 count(1, 1)?;
-                Err(ctx.error(
-                    "rusoar keeps episodic memory in memory only: there is no database to back up.",
-                ))
+                if !self.agent.epmem.is_open() {
+                    return Err(ctx.error(
+                        "Error while backing up database: Episodic database is not currently connected.",
+                    ));
+                }
+                match self.agent.epmem.backup(&words[0]) {
+                    Ok(()) => Ok(format!("Episodic memory database backed up to {}\n", words[0])),
+                    Err(e) => Err(ctx.error(format!("Error while backing up database: {e}"))),
+                }
             }
             "stats" => {
                 count(0, 1)?;

@@ -4,6 +4,7 @@
 //! row (reusing the node and edge of an identifier that stood at the same place before),
 //! while the rows of WMEs that went end their ranges.
 
+use super::disk::{Changes, Disk};
 use super::store::{Constant, Store, ACCEPTABLE, ROOT};
 use super::Encoder;
 use crate::agent::AgentCore;
@@ -26,15 +27,46 @@ impl AgentCore {
         if self.epmem.store.is_some() {
             return;
         }
-        self.epmem.store = Some(Store::default());
         self.epmem.encoder = Encoder::default();
+        let store = self.epmem_open_store();
+        // Edges the file already holds are free for the identifiers stored afresh, each
+        // `(parent, attribute)` pool newest first.
+        let enc = &mut self.epmem.encoder;
+        for id in 1..=store.edges.len() as i64 {
+            let (parent, attr, child) = store.edges.triple(id);
+            enc.pools.entry((parent, attr)).or_default().push_front((child, id));
+        }
+        self.epmem.store = Some(store);
         self.epmem.encoder.node_of.insert(self.top.state, ROOT);
         self.epmem.encoder.adds.insert(self.top.state);
         self.wm.keep_journal(true);
     }
 
-    /// Closes the store (`init-soar`, `epmem --init`): what it held is gone.
+    /// The store `database` names: a new one in memory, or the file's. A file that cannot
+    /// be used is reported, and episodic memory goes on in memory (as 9.6 does).
+    fn epmem_open_store(&mut self) -> Store {
+        if self.epmem.params.get("database").as_deref() != Some("file") {
+            return Store::default();
+        }
+        match Disk::open(&self.epmem.params) {
+            Ok((disk, store)) => {
+                self.epmem.disk = Some(disk);
+                store
+            }
+            Err(e) => {
+                self.fresh_line();
+                self.output.push_str(&e);
+                self.output.push_str("\n...Switching to memory-based database.\n");
+                let _ = self.epmem.params.set("database", "memory", false);
+                Store::default()
+            }
+        }
+    }
+
+    /// Closes the store (`init-soar`, `epmem --init`): one in memory is gone, a file keeps
+    /// what was written to it.
     pub(crate) fn epmem_close(&mut self) {
+        self.epmem.disk = None;
         self.epmem.store = None;
         self.epmem.encoder = Encoder::default();
         self.epmem.links.clear();
@@ -209,17 +241,24 @@ impl AgentCore {
         let Some(store) = self.epmem.store.as_mut() else {
             return;
         };
-        for c in new_consts {
+        for &c in &new_consts {
             store.consts.life_mut(c).now = Some(time);
         }
-        for e in new_edges {
+        for &e in &new_edges {
             store.edges.life_mut(e).now = Some(time);
         }
+        let mut changes = Changes {
+            started: [new_consts, new_edges],
+            ended: [Vec::new(), Vec::new()],
+        };
         let enc = &mut self.epmem.encoder;
-        for (rows, removals) in [
+        for (k, (rows, removals)) in [
             (&mut store.consts, &mut enc.const_removals),
             (&mut store.edges, &mut enc.edge_removals),
-        ] {
+        ]
+        .into_iter()
+        .enumerate()
+        {
             for (&r, &ended) in removals.iter() {
                 if !ended {
                     continue;
@@ -227,6 +266,7 @@ impl AgentCore {
                 let life = rows.life_mut(r);
                 if let Some(start) = life.now.take() {
                     life.ranges.push((start, time - 1));
+                    changes.ended[k].push((r, start, time - 1));
                 }
                 life.ended = true;
             }
@@ -234,6 +274,13 @@ impl AgentCore {
         }
         enc.adds.clear();
         store.time = time + 1;
+        if let Some(disk) = self.epmem.disk.as_mut() {
+            if let Err(e) = disk.record(store, time, &changes) {
+                self.fresh_line();
+                self.output.push_str(&e);
+                self.output.push('\n');
+            }
+        }
         self.epmem_move_present();
     }
 

@@ -1,13 +1,17 @@
 //! Episodic memory (Soar manual, ch. 7, "Episodic Memory"): snapshots of the top state's
 //! working memory, stored as they change (`store.rs`, `encode.rs`), rebuilt on request
 //! (`retrieve.rs`) and searched by cue (`query.rs`) through each state's `^epmem` link
-//! (`wmi.rs`). The store lives in memory for the agent's lifetime.
+//! (`wmi.rs`). The store lives in memory; with `database file` it is also written to a
+//! SQLite file with 9.6's tables (`disk.rs`), which a later agent can open and go on with.
 
+mod disk;
 mod encode;
 pub mod params;
 pub mod print;
 mod query;
 mod retrieve;
+mod rit;
+mod schema;
 pub mod store;
 mod wmi;
 
@@ -75,6 +79,8 @@ pub struct Epmem {
     pub stats: EpmemStats,
     /// The store, made at the first episode or command after learning is on.
     pub(crate) store: Option<store::Store>,
+    /// The file the store is written to, with `database file`.
+    pub(crate) disk: Option<disk::Disk>,
     pub(crate) encoder: Encoder,
     pub(crate) links: FxHashMap<Sym, LinkState>,
     /// The newest output-link timetag an episode was triggered by (`trigger output`).
@@ -98,6 +104,22 @@ impl Epmem {
     /// Whether episodic memory's results hold this WME.
     pub(crate) fn made(&self, w: WmeId) -> bool {
         !self.links.is_empty() && self.links.values().any(|l| l.results.contains(&w))
+    }
+
+    /// `epmem --backup FILE`: the store as 9.6's database file.
+    pub fn backup(&mut self, to: &str) -> Result<(), String> {
+        if let Some(d) = self.disk.as_mut() {
+            return d.backup(to);
+        }
+        match &self.store {
+            Some(s) => disk::snapshot(s, to),
+            None => disk::snapshot(&store::Store::default(), to),
+        }
+    }
+
+    /// Writes what lazy-commit holds back to the file, if there is one.
+    pub fn commit(&mut self) -> Result<(), String> {
+        self.disk.as_mut().map_or(Ok(()), |d| d.commit())
     }
 
     /// The store, for printing.

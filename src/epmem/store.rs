@@ -12,8 +12,8 @@ use rustc_hash::FxHashMap;
 pub const ROOT: i64 = 0;
 
 /// The attribute an acceptable-preference WME is stored under (9.6 prints it
-/// `operator*`).
-pub const ACCEPTABLE: i64 = 0;
+/// `operator*`); constant 0 is the root's name, `root`.
+pub const ACCEPTABLE: i64 = 1;
 
 /// A constant as the store keeps it.
 #[derive(Debug, Clone, PartialEq, Eq, Hash)]
@@ -95,6 +95,20 @@ impl Rows {
         id
     }
 
+    /// Adds the row a file numbers `id`; rows the file skipped are kept as rows that
+    /// nothing matches, so that the numbers stay the file's.
+    pub fn load(&mut self, id: i64, t: Triple) {
+        while (self.triples.len() as i64) < id - 1 {
+            self.add((-1, -1, -1));
+        }
+        self.add(t);
+    }
+
+    /// How many rows there are.
+    pub fn len(&self) -> usize {
+        self.triples.len()
+    }
+
     /// The first row with this triple.
     pub fn find(&self, t: &Triple) -> Option<i64> {
         self.index.get(t).copied()
@@ -137,7 +151,7 @@ impl Default for Store {
     fn default() -> Self {
         Store {
             hash: FxHashMap::default(),
-            constants: vec![Constant::Str("operator*".into())],
+            constants: vec![Constant::Str("root".into()), Constant::Str("operator*".into())],
             consts: Rows::default(),
             edges: Rows::default(),
             next_node: 1,
@@ -156,6 +170,22 @@ impl Store {
         self.constants.push(c.clone());
         self.hash.insert(c, h);
         h
+    }
+
+    /// Adds the constant a file numbers `id` (numbers it skipped stand for nothing).
+    pub fn load_constant(&mut self, id: i64, c: Constant) {
+        while (self.constants.len() as i64) < id {
+            self.constants.push(Constant::Str(String::new()));
+        }
+        if id as usize == self.constants.len() {
+            self.constants.push(c.clone());
+            self.hash.entry(c).or_insert(id);
+        }
+    }
+
+    /// How many constants there are (numbered from 0).
+    pub fn constant_count(&self) -> usize {
+        self.constants.len()
     }
 
     /// The number of a constant the store has seen.
@@ -177,14 +207,46 @@ impl Store {
         match self.constant(h) {
             Constant::Str(s) => s.clone(),
             Constant::Int(i) => i.to_string(),
-            Constant::Float(bits) => crate::printer::constants::float_text(f64::from_bits(*bits)),
+            Constant::Float(bits) => real_text(f64::from_bits(*bits)),
         }
+    }
+}
+
+/// A float as 9.6 prints it from its database: SQLite's text of a REAL, 15 significant
+/// digits in C's `%g` style, with a decimal point always (`2.5`, `1.0`, `1.0e+20`).
+pub fn real_text(f: f64) -> String {
+    if !f.is_finite() {
+        return if f.is_nan() { String::new() } else if f > 0.0 { "Inf".into() } else { "-Inf".into() };
+    }
+    let sci = format!("{f:.14e}");
+    let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let trim = |s: &str| -> String {
+        let t = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s };
+        if t.contains('.') { t.to_string() } else { format!("{t}.0") }
+    };
+    if (-4..15).contains(&exp) {
+        trim(&format!("{f:.*}", (14 - exp) as usize))
+    } else {
+        let sign = if exp < 0 { '-' } else { '+' };
+        format!("{}e{sign}{:02}", trim(mantissa), exp.abs())
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn floats_print_as_sqlite_writes_reals() {
+        assert_eq!(real_text(2.5), "2.5");
+        assert_eq!(real_text(1.0), "1.0");
+        assert_eq!(real_text(-0.125), "-0.125");
+        assert_eq!(real_text(1e20), "1.0e+20");
+        assert_eq!(real_text(1.5e-7), "1.5e-07");
+        assert_eq!(real_text(0.1 + 0.2), "0.3");
+        assert_eq!(real_text(123456.789), "123456.789");
+    }
 
     #[test]
     fn a_life_answers_for_each_episode() {

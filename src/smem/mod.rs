@@ -43,6 +43,15 @@ impl Smem {
         self.store.is_some()
     }
 
+    /// Writes what lazy-commit holds back to the file, if the store is open.
+    pub fn commit(&mut self) -> DbResult<()> {
+        let lazy = self.params.lazy_commit();
+        match self.store.as_mut() {
+            Some(s) => s.commit(lazy),
+            None => Ok(()),
+        }
+    }
+
     /// The store, opened on first use.
     pub fn store(&mut self) -> DbResult<&mut Store> {
         if self.store.is_none() {
