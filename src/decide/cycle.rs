@@ -456,6 +456,9 @@ impl AgentCore {
         // `rl -t init`, as 9.6 does at every init-soar: the RL trace starts from its roots.
         self.rl_trace_init(None);
         self.smem_reinitialize();
+        // A file stays with the agent: 9.6 opens it again at once (an empty store in memory
+        // is opened at the next episode, with the same effect).
+        let reopen = self.epmem.is_open() && self.epmem.params.get("database").as_deref() == Some("file");
         self.epmem_close();
         self.epmem.present_trace.clear();
         self.wma.reinitialize();
@@ -469,5 +472,8 @@ impl AgentCore {
             &mut self.matches,
             Some(old),
         );
+        if reopen {
+            self.epmem_attach();
+        }
     }
 }

@@ -79,6 +79,8 @@ impl Disk {
         }
         let fail = |e: rusqlite::Error| format!("Episodic memory database error in {path}: {e}");
         let conn = Connection::open(&path).map_err(fail)?;
+        // A file another program holds is refused at once, as 9.6 does, not waited for.
+        conn.busy_timeout(std::time::Duration::ZERO).map_err(fail)?;
         let mut pragmas = format!(
             "PRAGMA page_size = {}; PRAGMA cache_size = {};",
             page_bytes(&p.get("page-size").unwrap_or_default()),
