@@ -330,6 +330,10 @@ pub fn run(agent: &mut Agent) -> bool {
                     continue;
                 }
                 let _ = editor.add_history_entry(line.as_str());
+                // Written at once, so that a REPL killed by a signal keeps its history.
+                if let Some(h) = &history {
+                    let _ = editor.append_history(h);
+                }
                 interrupt.store(false, Ordering::SeqCst);
                 // A bug in rusoar must not end the session: the panic is reported (by the
                 // panic hook, then here) and the REPL goes on.

@@ -115,3 +115,23 @@ fn a_session_in_a_pseudo_terminal() {
     assert!(saved.contains("echo after ctrl-c"), "history: {saved}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_repl_killed_by_a_signal_keeps_its_history() {
+    let dir = std::env::temp_dir().join(format!("rusoar-pty-kill-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let history = dir.join("history");
+    let Some(mut p) = start(&history) else {
+        return;
+    };
+    p.exp_string("soar 0> ").unwrap();
+    p.send_line("echo before the signal").unwrap();
+    p.exp_string("before the signal\r\n").unwrap();
+    p.exp_string("soar 0> ").unwrap();
+    p.process_mut()
+        .kill(rexpect::process::Signal::SIGKILL)
+        .unwrap();
+    let saved = std::fs::read_to_string(&history).unwrap_or_default();
+    assert!(saved.contains("echo before the signal"), "history: {saved}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -33,6 +33,7 @@ pub mod geom;
 pub mod io_log;
 pub mod method;
 pub mod odometry;
+pub mod output_file;
 pub mod pioneer;
 pub mod pipeline;
 pub mod plan;

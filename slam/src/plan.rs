@@ -359,7 +359,7 @@ pub fn tum(poses: impl Iterator<Item = (f64, super::geom::Pose)>) -> String {
 pub fn write_files(dir: &Path, files: &[(String, String)]) -> Result<(), String> {
     for (name, text) in files {
         let p = dir.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+        crate::output_file::write(&p, text)?;
     }
     Ok(())
 }
@@ -530,8 +530,7 @@ fn experiment(
         ekf_runs: Vec::new(),
     };
     let write = |name: &str, text: String| -> Result<(), String> {
-        let p = opts.out.join(name);
-        std::fs::write(&p, text).map_err(|e| format!("cannot write {}: {e}", p.display()))
+        crate::output_file::write(&opts.out.join(name), text)
     };
     if opts.reports {
         write("runs.csv", exp.runs_csv())?;
@@ -634,8 +633,7 @@ fn comparison(opts: &Options, experiments: &[(PartKind, Experiment)]) -> Result<
     std::fs::create_dir_all(&opts.out)
         .map_err(|e| format!("cannot create {}: {e}", opts.out.display()))?;
     let write = |name: &str, body: String| -> Result<(), String> {
-        let p = opts.out.join(name);
-        std::fs::write(&p, body).map_err(|e| format!("cannot write {}: {e}", p.display()))
+        crate::output_file::write(&opts.out.join(name), body)
     };
     write("comparison.md", text.clone())?;
     write("comparison.csv", compare::csv(&series))?;

@@ -60,7 +60,7 @@ pub fn save(fig: &impl Figure, dir: &Path, stem: &str) -> Result<[String; 2], St
         root.present().map_err(err)?;
     }
     let path = dir.join(&svg_name);
-    std::fs::write(&path, svg).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    crate::output_file::write(&path, svg)?;
     let mut rgb = vec![255u8; size.0 as usize * size.1 as usize * 3];
     {
         let root = PixelTextBackend::with_buffer(&mut rgb, size).into_drawing_area();

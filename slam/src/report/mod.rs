@@ -1379,8 +1379,7 @@ pub fn report_md(exp: &Experiment, opts: &Options, figs: &[FigureFile]) -> Strin
 pub fn write_report(exp: &Experiment, opts: &Options) -> Result<Vec<FigureFile>, String> {
     let figs = write_figures(exp, &opts.out)?;
     let path = opts.out.join("report.md");
-    std::fs::write(&path, report_md(exp, opts, &figs))
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    crate::output_file::write(&path, report_md(exp, opts, &figs))?;
     Ok(figs)
 }
 

@@ -322,8 +322,8 @@ pub fn write_png(path: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Stri
     if rgb.len() != (w as usize) * (h as usize) * 3 {
         return Err(err(&"the pixel buffer does not match the image size"));
     }
-    let file = std::fs::File::create(path).map_err(|e| err(&e))?;
-    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
+    let mut bytes = Vec::new();
+    let mut enc = png::Encoder::new(&mut bytes, w, h);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
     // Flat-coloured plots compress well with the fast encoder; the default one took a fifth
@@ -331,7 +331,8 @@ pub fn write_png(path: &Path, rgb: &[u8], (w, h): (u32, u32)) -> Result<(), Stri
     enc.set_compression(png::Compression::Fast);
     let mut writer = enc.write_header().map_err(|e| err(&e))?;
     writer.write_image_data(rgb).map_err(|e| err(&e))?;
-    writer.finish().map_err(|e| err(&e))
+    writer.finish().map_err(|e| err(&e))?;
+    crate::output_file::write(path, bytes)
 }
 
 #[cfg(test)]
