@@ -3,7 +3,7 @@
 
 Each target starts from seeds made from the project's own inputs: the test agents and
 command scripts of tests/, the thesis rules of rules/, and a world file. The structure-aware
-targets (random_agent, api_calls, smem), whose bytes are choices rather than text, start
+targets (random_agent, api_calls, smem, epmem), whose bytes are choices rather than text, start
 from pseudo-random bytes of a fixed seed; smem also from the knowledge bases of the smem
 test agents. The seeds go in
 fuzz/corpus/TARGET (kept between runs, not committed); libFuzzer adds what it finds there.
@@ -26,7 +26,7 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FUZZ = os.path.join(ROOT, "fuzz")
 TARGETS = ["command_line", "production_parser", "source_files", "world_file",
-           "random_agent", "api_calls", "smem"]
+           "random_agent", "api_calls", "smem", "epmem"]
 
 WORLD_SEED = """name = "seed-room"
 
@@ -123,7 +123,7 @@ def seeds(target):
             out.append((os.path.basename(f), read(f) + "\n#file\n" + read(other)))
     elif target == "world_file":
         out.append(("seed-room.toml", WORLD_SEED))
-    if target in ("random_agent", "api_calls", "smem"):
+    if target in ("random_agent", "api_calls", "smem", "epmem"):
         rng = random.Random(target)
         for i in range(16):
             data = bytes(rng.randrange(256) for _ in range(rng.choice((64, 512, 1500))))

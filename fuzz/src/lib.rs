@@ -2,6 +2,7 @@
 //! and the filter that keeps fuzzed commands from reaching files outside that folder.
 
 pub mod api_calls;
+pub mod epmem_agent;
 pub mod random_agent;
 pub mod smem_agent;
 
