@@ -339,11 +339,13 @@ impl AgentCore {
                 // Semantic memory's commands are processed at the end of the output phase
                 // (observed on soar-sml 9.6.5: their results are traced in it).
                 self.smem_output_phase();
-                self.epmem_output_phase();
-                // Activation histories, then forgetting, before apoptosis (9.6's order).
+                // Activation histories, then forgetting, then episodic memory, before
+                // apoptosis (9.6's order: a query's cue weighs the activations this
+                // decision's references have made, and forgotten WMEs are not stored).
                 if self.wma.on() {
                     self.wma_end_decision();
                 }
+                self.epmem_output_phase();
                 self.apoptosis_end_decision();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Output));
                 self.decider.d_cycle_count += 1;

@@ -179,6 +179,11 @@ impl EpmemParams {
         self.word("graph-match") == "on"
     }
 
+    /// `balance`: below 1, each cue WME weighs its working-memory activation.
+    pub fn balance(&self) -> f64 {
+        self.word("balance").parse().unwrap_or(1.0)
+    }
+
 
 
     /// `epmem` and `epmem ?`: the settings in 9.6's layout.

@@ -147,6 +147,14 @@ impl AgentCore {
                 *cue.incoming.entry(w.value).or_insert(0) += 1;
             }
         }
+        // Below `balance` 1 a cue WME weighs its activation (1 without one), 9.6's way of
+        // preferring episodes that match what the agent attends to.
+        let weight = if self.epmem.params.balance() >= 1.0 - 1.0e-8 {
+            1.0
+        } else {
+            let d = self.decider.d_cycle_count;
+            self.wma.activation(w.timetag, self.wma.clock(d))
+        };
         let store = self.epmem.store.as_ref();
         let attr = if w.acceptable {
             Some(ACCEPTABLE)
@@ -169,7 +177,7 @@ impl AgentCore {
         l.attr = attr;
         l.constant = constant;
         l.is_leaf = is_leaf;
-        l.weight = if neg { -1.0 } else { 1.0 };
+        l.weight = if neg { -1.0 } else { 1.0 } * weight;
         l.children = children;
         cache.insert(w.timetag, i);
         Some(i)

@@ -77,9 +77,22 @@ pub struct Wma {
     /// Elements of WMEs that left working memory in this decision: kept until it ends, so
     /// that the `<=WM:` lines still show their activation.
     removed: Vec<u64>,
+    /// The last decision whose references are in the histories: from then on the clock
+    /// activations are read at is the next decision (9.6 moves its own clock there).
+    recorded: Option<u64>,
 }
 
 impl Wma {
+    /// The decision activations are read at during decision `d`: `d`, or `d + 1` once the
+    /// decision's references are recorded.
+    pub(crate) fn clock(&self, d: u64) -> u64 {
+        if self.recorded == Some(d) {
+            d + 1
+        } else {
+            d
+        }
+    }
+
     /// Whether activation is on: the one check every hook makes first.
     #[inline]
     pub fn on(&self) -> bool {
@@ -120,6 +133,7 @@ impl Wma {
         self.o_sets.clear();
         self.removed.clear();
         self.forgotten = 0;
+        self.recorded = None;
     }
 
     pub(crate) fn element(&self, timetag: u64) -> Option<&Element> {
@@ -245,6 +259,7 @@ impl Wma {
     /// and, with queued forgetting, predicts each referenced element's decision.
     pub(crate) fn record_decision(&mut self, now: u64) {
         let queued = self.params.forgetting.queued();
+        self.recorded = Some(now);
         for tt in std::mem::take(&mut self.touched) {
             let Some(el) = self.elements.get_mut(&tt) else {
                 continue;
