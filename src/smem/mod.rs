@@ -4,6 +4,7 @@
 //! interface (`wmi.rs`) do with it: adding and removing knowledge, cue-based queries with
 //! the activation that breaks their ties, and printing.
 
+mod memo;
 pub mod params;
 mod print;
 pub mod query;
@@ -116,18 +117,20 @@ impl Smem {
         let now = now.max(1);
         let clock = store.var(schema::var::MAX_CYCLE)?;
         store.set_var(schema::var::MAX_CYCLE, clock.max(now + 1))?;
-        let (total, _, first) = store.record(lti)?;
-        let total = total + 1.0;
-        let first = if first == 0 { now } else { first };
-        let mut history = store.history(lti)?;
-        history.insert(0, now);
-        history.truncate(10);
+        let mut record = store.record(lti)?;
+        record.total += 1.0;
+        record.last = now;
+        if record.first == 0 {
+            record.first = now;
+        }
+        record.history.insert(0, now);
+        record.history.truncate(10);
         let value = match mode {
             Mode::Recency => now as f64,
-            Mode::Frequency => total,
-            Mode::BaseLevel => base_level(&history, now, decay, total),
+            Mode::Frequency => record.total,
+            Mode::BaseLevel => base_level(&record.history, now, decay, record.total),
         };
-        store.write_activation(lti, (total, now, first), &history, value)?;
+        store.write_activation(lti, record, value)?;
         self.stats.act_updates += 1;
         Ok(())
     }

@@ -4,6 +4,7 @@
 //! `smem_augmentations`, and constants are kept once in the symbol tables. Every method
 //! answers with a plain error text on a database failure, never a panic.
 
+use super::memo::{AugRow, Memo, Record};
 use super::params::SmemParams;
 use super::schema::{self, kind, var};
 use rusqlite::{params, Connection, OptionalExtension};
@@ -59,6 +60,8 @@ pub struct Store {
     /// retrieval needs them, and a map lookup is far cheaper than a statement.
     sym_ids: RefCell<FxHashMap<SymKey, i64>>,
     sym_vals: RefCell<FxHashMap<i64, Val>>,
+    /// Copies of the rows a retrieval reads, kept beside the database (`memo.rs`).
+    memo: RefCell<Memo>,
 }
 
 /// A constant as a map key (floats by their bits, as the symbol table's unique index
@@ -113,6 +116,7 @@ impl Store {
             next_lti: 1,
             sym_ids: RefCell::default(),
             sym_vals: RefCell::default(),
+            memo: RefCell::default(),
         };
         let tables: i64 = store
             .conn
@@ -191,11 +195,12 @@ impl Store {
         ] {
             self.set_var(k, v)?;
         }
-        Ok(())
+        self.write_vars()
     }
 
     /// Commits what a lazy-commit store holds back, and starts holding back again.
     pub fn commit(&mut self, lazy: bool) -> DbResult<()> {
+        self.write_vars()?;
         if !self.conn.is_autocommit() {
             db(self.conn.execute_batch("COMMIT"))?;
         }
@@ -229,24 +234,49 @@ impl Store {
         self.next_lti = 1;
         self.sym_ids.borrow_mut().clear();
         self.sym_vals.borrow_mut().clear();
+        self.memo.borrow_mut().clear();
         Ok(())
     }
 
+    /// A persistent variable (0 when the store has none).
     pub fn var(&self, key: i64) -> DbResult<i64> {
-        Ok(db(row(&self.conn, 
-                "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
-                [key],
-                |r| r.get(0),
-            )
-            .optional())?
-        .unwrap_or(0))
+        if let Some(&v) = self.memo.borrow().vars.get(&key) {
+            return Ok(v);
+        }
+        let v: Option<i64> = db(row(
+            &self.conn,
+            "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
+            [key],
+            |r| r.get(0),
+        )
+        .optional())?;
+        // Only a row is remembered, so that setting a missing variable to 0 writes it.
+        if let Some(v) = v {
+            self.memo.borrow_mut().vars.insert(key, v);
+        }
+        Ok(v.unwrap_or(0))
     }
 
+    /// Sets a persistent variable; the database has it at the next commit (`write_vars`).
     pub fn set_var(&self, key: i64, value: i64) -> DbResult<()> {
-        db(exec(&self.conn, 
-            "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
-            [key, value],
-        ))?;
+        let mut memo = self.memo.borrow_mut();
+        if memo.vars.insert(key, value) != Some(value) && !memo.dirty_vars.contains(&key) {
+            memo.dirty_vars.push(key);
+        }
+        Ok(())
+    }
+
+    /// Writes the variables set since the last time.
+    fn write_vars(&self) -> DbResult<()> {
+        let dirty = std::mem::take(&mut self.memo.borrow_mut().dirty_vars);
+        for key in dirty {
+            let value = self.memo.borrow().vars.get(&key).copied().unwrap_or(0);
+            db(exec(
+                &self.conn,
+                "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
+                [key, value],
+            ))?;
+        }
         Ok(())
     }
 
@@ -379,12 +409,7 @@ impl Store {
     /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
     /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
-        let mut st = db(self.conn.prepare_cached(
-            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
-        ))?;
-        let rows: Vec<(i64, i64, i64)> = db(st
-            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
-            .and_then(Iterator::collect))?;
+        let rows = self.with_aug_rows(lti, <[AugRow]>::to_vec)?;
         rows.into_iter()
             .map(|(a, c, l)| {
                 let attr = self.constant(a)?;
@@ -396,6 +421,23 @@ impl Store {
                 Ok((attr, value))
             })
             .collect()
+    }
+
+    /// `f` of an LTI's augmentations by symbol numbers, in the order of `augs`; read from
+    /// the database once, then from the memo until they change.
+    fn with_aug_rows<T>(&self, lti: i64, f: impl FnOnce(&[AugRow]) -> T) -> DbResult<T> {
+        if let Some(rows) = self.memo.borrow().augs.get(&lti) {
+            return Ok(f(rows));
+        }
+        let mut st = db(self.conn.prepare_cached(
+            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
+        ))?;
+        let rows: Vec<AugRow> = db(st
+            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+            .and_then(Iterator::collect))?;
+        let out = f(&rows);
+        self.memo.borrow_mut().augs.insert(lti, rows);
+        Ok(out)
     }
 
     /// Adds an augmentation unless the LTI has it; true if it was added.
@@ -436,6 +478,7 @@ impl Store {
     /// Keeps the counts 9.6 keeps beside an augmentation (the LTI's, the attribute's and
     /// the WME's frequencies, the edge count) as one is added (`by` 1) or removed (-1).
     fn count_aug(&self, lti: i64, a: i64, c: i64, l: i64, by: i64) -> DbResult<()> {
+        self.memo.borrow_mut().augs_changed(lti, (a, c, l));
         let lti_aug = i64::from(l != 0) * by;
         db(exec(&self.conn, 
             "UPDATE smem_lti SET total_augmentations = total_augmentations + ?2, lti_augmentations = lti_augmentations + ?3 WHERE lti_id=?1",
@@ -536,6 +579,24 @@ impl Store {
         let Some(a) = self.symbol(attr, false)? else {
             return Ok(0);
         };
+        let key = match value {
+            None => (a, None),
+            Some(Val::Lti(l)) => (a, Some((0, *l))),
+            Some(v) => match self.symbol(v, false)? {
+                None => return Ok(0),
+                Some(c) => (a, Some((c, 0))),
+            },
+        };
+        if let Some(&n) = self.memo.borrow().counts.get(&key) {
+            return Ok(n);
+        }
+        let n = self.aug_count_row(a, value)?;
+        self.memo.borrow_mut().counts.insert(key, n);
+        Ok(n)
+    }
+
+    /// `aug_count` from the frequency tables.
+    fn aug_count_row(&self, a: i64, value: Option<&Val>) -> DbResult<i64> {
         let n: Option<i64> = match value {
             None => db(row(
                 &self.conn,
@@ -619,27 +680,7 @@ impl Store {
     /// Whether `lti` has an augmentation `attr` (with `value` when given). Symbols are
     /// looked up by the caller once per cue element, as `attr`'s and `value`'s numbers.
     pub fn has_aug(&self, lti: i64, a: i64, value: AugValue) -> DbResult<bool> {
-        let found = match value {
-            AugValue::Any => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 LIMIT 1",
-                [lti, a],
-                |_| Ok(()),
-            ),
-            AugValue::Lti(v) => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_lti_id=?3 LIMIT 1",
-                [lti, a, v],
-                |_| Ok(()),
-            ),
-            AugValue::Const(c) => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_constant_s_id=?3 AND value_lti_id=0 LIMIT 1",
-                [lti, a, c],
-                |_| Ok(()),
-            ),
-        };
-        Ok(db(found.optional())?.is_some())
+        self.with_aug_rows(lti, |rows| Memo::has(rows, a, value))
     }
 
     /// An LTI's activation as retrieval compares it (the lowest for one never activated).
@@ -659,38 +700,49 @@ impl Store {
         Ok(if a == schema::ACT_LOW { 0.0 } else { a })
     }
 
-    /// The activation record of an LTI: (activations, last, first).
-    pub fn record(&self, lti: i64) -> DbResult<(f64, i64, i64)> {
-        db(row(&self.conn, 
+    /// The activation record of an LTI: its activations, the last and first times, and the
+    /// times of the last ten (read from the database once, then kept up to date by
+    /// `write_activation`).
+    pub fn record(&self, lti: i64) -> DbResult<Record> {
+        if let Some(r) = self.memo.borrow().records.get(&lti) {
+            return Ok(r.clone());
+        }
+        let (total, last, first) = db(row(
+            &self.conn,
             "SELECT activations_total, activations_last, activations_first FROM smem_lti WHERE lti_id=?1",
             [lti],
             |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
-        ))
-    }
-
-    /// The times of an LTI's last activations (most recent first), for base-level.
-    pub fn history(&self, lti: i64) -> DbResult<Vec<i64>> {
-        let row: Option<Vec<Option<i64>>> = db(row(&self.conn, 
-                "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
-                [lti],
-                |r| (0..10).map(|i| r.get(i)).collect(),
-            )
-            .optional())?;
-        Ok(row.unwrap_or_default().into_iter().flatten().filter(|&t| t > 0).collect())
+        ))?;
+        let times: Option<Vec<Option<i64>>> = db(row(
+            &self.conn,
+            "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
+            [lti],
+            |r| (0..10).map(|i| r.get(i)).collect(),
+        )
+        .optional())?;
+        let history = times
+            .unwrap_or_default()
+            .into_iter()
+            .flatten()
+            .filter(|&t| t > 0)
+            .collect();
+        let record = Record {
+            total,
+            last,
+            first,
+            history,
+        };
+        self.memo.borrow_mut().records.insert(lti, record.clone());
+        Ok(record)
     }
 
     /// Writes an activation: the LTI's record, its history, and its augmentations' copy
     /// of the value (which the retrieval's order reads).
-    pub fn write_activation(
-        &self,
-        lti: i64,
-        record: (f64, i64, i64),
-        history: &[i64],
-        value: f64,
-    ) -> DbResult<()> {
+    pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
+        let history = &record.history;
         db(exec(&self.conn, 
             "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
-            params![lti, record.0, record.1, record.2, value],
+            params![lti, record.total, record.last, record.first, value],
         ))?;
         db(exec(&self.conn, 
             "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
@@ -704,6 +756,7 @@ impl Store {
             "INSERT OR REPLACE INTO smem_activation_history (lti_id,t1,t2,t3,t4,t5,t6,t7,t8,t9,t10,touch1,touch2,touch3,touch4,touch5,touch6,touch7,touch8,touch9,touch10) VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,1,1,1,1,1,1,1,1,1,1)",
             params![lti, t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9]],
         ))?;
+        self.memo.borrow_mut().records.insert(lti, record);
         Ok(())
     }
 
@@ -731,9 +784,10 @@ impl Store {
 }
 
 /// What lazy-commit held back is written when the store closes (Soar manual, ch. 9,
-/// `smem`: `lazy-commit` delays writing until exit).
+/// `smem`: `lazy-commit` delays writing until exit), and so are the persistent variables.
 impl Drop for Store {
     fn drop(&mut self) {
+        let _ = self.write_vars();
         if !self.conn.is_autocommit() {
             // Nothing can be reported from here; a failing commit leaves the file as it
             // was at the last commit.
