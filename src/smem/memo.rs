@@ -1,7 +1,8 @@
-//! What the store remembers beside its database, so that a retrieval reads SQLite only for
-//! the walk over its candidates: each LTI's augmentations (the checks on a candidate and
-//! the installing of the winner read them), its activation record, the frequency counts a
-//! cue's elements are weighed by, and the persistent variables.
+//! What the store remembers beside its database, so that a retrieval reads little of
+//! SQLite: each LTI's augmentations (the checks on a candidate and the installing of the
+//! winner read them), its activation record, the frequency counts a cue's elements are
+//! weighed by, the persistent variables, and the candidates of each cue element whose walk
+//! once went to its end (a cue that fails is walked again and again).
 //!
 //! Each entry is a copy of rows the store writes only through its own methods, so an entry
 //! is dropped (or updated) wherever those rows change; the variables are written back at
@@ -9,9 +10,43 @@
 
 use super::store::AugValue;
 use rustc_hash::FxHashMap;
+use std::collections::BTreeMap;
 
 /// An augmentation by symbol numbers: (attribute, constant value or 0, LTI value or 0).
 pub type AugRow = (i64, i64, i64);
+
+/// An augmentation row as a walk needs it: its symbols, its row number and its copy of the
+/// LTI's activation.
+#[derive(Debug, Clone, Copy)]
+pub struct AugEntry {
+    pub row: AugRow,
+    pub rowid: i64,
+    pub act: Option<f64>,
+}
+
+/// Where a row comes in a walk, which reads ranks from the highest down: its activation,
+/// then its row number (the order of 9.6's index read backwards; SQLite sorts a missing
+/// activation below every number).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub struct Rank(u64, i64);
+
+impl Rank {
+    pub fn new(act: Option<f64>, rowid: i64) -> Rank {
+        // The bits of a float, turned so that their order as integers is the numbers'.
+        let key = act.map_or(0, |a| {
+            let bits = a.to_bits();
+            if bits >> 63 == 1 {
+                !bits
+            } else {
+                bits | 1 << 63
+            }
+        });
+        Rank(key, rowid)
+    }
+}
+
+/// The most rows a remembered walk holds; longer ones are read from SQLite each time.
+pub const WALK_ROWS: usize = 1 << 16;
 
 /// The activation record of an LTI: (activations, last, first) and the times of the last
 /// ten activations, most recent first.
@@ -29,7 +64,9 @@ pub type CountKey = (i64, Option<(i64, i64)>);
 #[derive(Debug, Default)]
 pub struct Memo {
     /// Each LTI's augmentations, in 9.6's order (by attribute, then value).
-    pub augs: FxHashMap<i64, Vec<AugRow>>,
+    pub augs: FxHashMap<i64, Vec<AugEntry>>,
+    /// The rows of the cue elements whose walk went to its end, by rank, with their LTI.
+    pub walks: FxHashMap<CountKey, BTreeMap<Rank, i64>>,
     pub records: FxHashMap<i64, Record>,
     pub counts: FxHashMap<CountKey, i64>,
     /// The persistent variables, and which of them the database has not yet seen.
@@ -42,8 +79,34 @@ impl Memo {
     pub fn augs_changed(&mut self, lti: i64, row: AugRow) {
         self.augs.remove(&lti);
         let (a, c, l) = row;
-        self.counts.remove(&(a, None));
-        self.counts.remove(&(a, Some((c, l))));
+        for key in [(a, None), (a, Some((c, l)))] {
+            self.counts.remove(&key);
+            self.walks.remove(&key);
+        }
+    }
+
+    /// Moves an LTI's rows in the remembered walks to their new activation (`rows` as they
+    /// were before).
+    pub fn activation_changed(&mut self, lti: i64, rows: &[AugEntry], value: f64) {
+        for e in rows {
+            let (a, c, l) = e.row;
+            for key in [(a, None), (a, Some((c, l)))] {
+                let Some(walk) = self.walks.get_mut(&key) else {
+                    continue;
+                };
+                if walk.remove(&Rank::new(e.act, e.rowid)).is_some() {
+                    walk.insert(Rank::new(Some(value), e.rowid), lti);
+                } else {
+                    // Not where it should be: this walk is read from SQLite again.
+                    self.walks.remove(&key);
+                }
+            }
+        }
+        if let Some(entries) = self.augs.get_mut(&lti) {
+            for e in entries {
+                e.act = Some(value);
+            }
+        }
     }
 
     /// Everything but the variables (`smem --clear` resets those itself).
@@ -51,11 +114,13 @@ impl Memo {
         self.augs.clear();
         self.records.clear();
         self.counts.clear();
+        self.walks.clear();
     }
 
     /// Whether an LTI with augmentations `rows` has one with attribute `a` and `value`.
-    pub fn has(rows: &[AugRow], a: i64, value: AugValue) -> bool {
-        rows.iter().any(|&(ra, rc, rl)| {
+    pub fn has(rows: &[AugEntry], a: i64, value: AugValue) -> bool {
+        rows.iter().any(|e| {
+            let (ra, rc, rl) = e.row;
             ra == a
                 && match value {
                     AugValue::Any => true,

@@ -4,12 +4,13 @@
 //! `smem_augmentations`, and constants are kept once in the symbol tables. Every method
 //! answers with a plain error text on a database failure, never a panic.
 
-use super::memo::{AugRow, Memo, Record};
+use super::memo::{AugEntry, CountKey, Memo, Rank, Record, WALK_ROWS};
 use super::params::SmemParams;
 use super::schema::{self, kind, var};
 use rusqlite::{params, Connection, OptionalExtension};
 use rustc_hash::FxHashMap;
 use std::cell::RefCell;
+use std::collections::BTreeMap;
 
 /// A value in semantic memory: a constant or an LTI.
 #[derive(Debug, Clone, PartialEq)]
@@ -409,9 +410,10 @@ impl Store {
     /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
     /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
-        let rows = self.with_aug_rows(lti, <[AugRow]>::to_vec)?;
+        let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
         rows.into_iter()
-            .map(|(a, c, l)| {
+            .map(|e| {
+                let (a, c, l) = e.row;
                 let attr = self.constant(a)?;
                 let value = if l != 0 {
                     Val::Lti(l)
@@ -425,15 +427,21 @@ impl Store {
 
     /// `f` of an LTI's augmentations by symbol numbers, in the order of `augs`; read from
     /// the database once, then from the memo until they change.
-    fn with_aug_rows<T>(&self, lti: i64, f: impl FnOnce(&[AugRow]) -> T) -> DbResult<T> {
+    fn with_aug_rows<T>(&self, lti: i64, f: impl FnOnce(&[AugEntry]) -> T) -> DbResult<T> {
         if let Some(rows) = self.memo.borrow().augs.get(&lti) {
             return Ok(f(rows));
         }
         let mut st = db(self.conn.prepare_cached(
-            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
+            "SELECT attribute_s_id, value_constant_s_id, value_lti_id, rowid, activation_value FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
         ))?;
-        let rows: Vec<AugRow> = db(st
-            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
+        let rows: Vec<AugEntry> = db(st
+            .query_map([lti], |r| {
+                Ok(AugEntry {
+                    row: (r.get(0)?, r.get(1)?, r.get(2)?),
+                    rowid: r.get(3)?,
+                    act: r.get(4)?,
+                })
+            })
             .and_then(Iterator::collect))?;
         let out = f(&rows);
         self.memo.borrow_mut().augs.insert(lti, rows);
@@ -641,40 +649,90 @@ impl Store {
         let Some(a) = self.symbol(attr, false)? else {
             return Ok(());
         };
-        let (sql, b) = match value {
+        let (sql, b, key): (&str, Option<i64>, CountKey) = match value {
             None => (
-                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 ORDER BY activation_value DESC",
+                "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 ORDER BY activation_value DESC",
                 None,
+                (a, None),
             ),
             Some(Val::Lti(l)) => (
-                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=0 AND value_lti_id=?2 ORDER BY activation_value DESC",
+                "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=0 AND value_lti_id=?2 ORDER BY activation_value DESC",
                 Some(*l),
+                (a, Some((0, *l))),
             ),
             Some(v) => match self.symbol(v, false)? {
                 None => return Ok(()),
                 Some(c) => (
-                    "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0 ORDER BY activation_value DESC",
+                    "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0 ORDER BY activation_value DESC",
                     Some(c),
+                    (a, Some((c, 0))),
                 ),
             },
         };
+        // An attribute alone can come with several values per LTI: each LTI once.
+        let mut seen = FxHashMap::default();
+        let mut visit = |lti: i64| -> DbResult<bool> {
+            if b.is_none() && seen.insert(lti, ()).is_some() {
+                return Ok(false);
+            }
+            visit(lti)
+        };
+        if self.memo.borrow().walks.contains_key(&key) {
+            return self.walk_remembered(key, visit);
+        }
         let mut st = db(self.conn.prepare_cached(sql))?;
         let mut rows = match b {
             Some(b) => db(st.query([a, b]))?,
             None => db(st.query([a]))?,
         };
-        // An attribute alone can come with several values per LTI: each LTI once.
-        let mut seen = FxHashMap::default();
+        // The rows read, kept when the walk reaches the end.
+        let mut read = Some(BTreeMap::new());
         while let Some(r) = db(rows.next())? {
             let lti: i64 = db(r.get(0))?;
-            if b.is_none() && seen.insert(lti, ()).is_some() {
-                continue;
+            if let Some(m) = read.as_mut() {
+                m.insert(Rank::new(db(r.get(2))?, db(r.get(1))?), lti);
+                if m.len() > WALK_ROWS {
+                    read = None;
+                }
             }
             if visit(lti)? {
-                break;
+                return Ok(());
             }
         }
+        if let Some(m) = read {
+            self.memo.borrow_mut().walks.insert(key, m);
+        }
         Ok(())
+    }
+
+    /// `walk_ranked` over a remembered walk, from the highest rank down. Each step looks
+    /// the next rank up again, as `visit` may read what the memo holds.
+    fn walk_remembered(
+        &self,
+        key: CountKey,
+        mut visit: impl FnMut(i64) -> DbResult<bool>,
+    ) -> DbResult<()> {
+        let mut below: Option<Rank> = None;
+        loop {
+            let next = {
+                let memo = self.memo.borrow();
+                let Some(walk) = memo.walks.get(&key) else {
+                    return Ok(());
+                };
+                match below {
+                    None => walk.iter().next_back(),
+                    Some(r) => walk.range(..r).next_back(),
+                }
+                .map(|(&r, &l)| (r, l))
+            };
+            let Some((rank, lti)) = next else {
+                return Ok(());
+            };
+            if visit(lti)? {
+                return Ok(());
+            }
+            below = Some(rank);
+        }
     }
 
     /// Whether `lti` has an augmentation `attr` (with `value` when given). Symbols are
@@ -740,6 +798,12 @@ impl Store {
     /// of the value (which the retrieval's order reads).
     pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
         let history = &record.history;
+        if !self.memo.borrow().walks.is_empty() {
+            let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
+            self.memo.borrow_mut().activation_changed(lti, &rows, value);
+        } else {
+            self.memo.borrow_mut().activation_changed(lti, &[], value);
+        }
         db(exec(&self.conn, 
             "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
             params![lti, record.total, record.last, record.first, value],
