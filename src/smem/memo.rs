@@ -5,8 +5,11 @@
 //! once went to its end (a cue that fails is walked again and again).
 //!
 //! Each entry is a copy of rows the store writes only through its own methods, so an entry
-//! is dropped (or updated) wherever those rows change; the variables are written back at
-//! each commit and when the store closes, which is when 9.6 writes them.
+//! is dropped (or updated) wherever those rows change. Two things are written back later:
+//! the variables, and the copy of an LTI's new activation on its augmentation rows (which
+//! costs an update of two indexes per row); both at each commit, before the augmentations
+//! change, and when the store closes (9.6 writes the variables then too). Until then a walk
+//! takes the rows of the LTIs activated since from `overlay`, at their new rank.
 
 use super::store::AugValue;
 use rustc_hash::FxHashMap;
@@ -67,6 +70,10 @@ pub struct Memo {
     pub augs: FxHashMap<i64, Vec<AugEntry>>,
     /// The rows of the cue elements whose walk went to its end, by rank, with their LTI.
     pub walks: FxHashMap<CountKey, BTreeMap<Rank, i64>>,
+    /// The activations not yet copied to their LTI's augmentation rows, by LTI.
+    pub pending: FxHashMap<i64, f64>,
+    /// The augmentation rows of the LTIs in `pending`, by cue element, at their new rank.
+    pub overlay: FxHashMap<CountKey, BTreeMap<Rank, i64>>,
     pub records: FxHashMap<i64, Record>,
     pub counts: FxHashMap<CountKey, i64>,
     /// The persistent variables, and which of them the database has not yet seen.
@@ -85,12 +92,18 @@ impl Memo {
         }
     }
 
-    /// Moves an LTI's rows in the remembered walks to their new activation (`rows` as they
-    /// were before).
+    /// Moves an LTI's rows in the remembered walks and the overlay to their new activation
+    /// (`rows` as they were before), which its augmentation rows are yet to be given.
     pub fn activation_changed(&mut self, lti: i64, rows: &[AugEntry], value: f64) {
+        let was_pending = self.pending.insert(lti, value).is_some();
         for e in rows {
             let (a, c, l) = e.row;
             for key in [(a, None), (a, Some((c, l)))] {
+                let over = self.overlay.entry(key).or_default();
+                if was_pending {
+                    over.remove(&Rank::new(e.act, e.rowid));
+                }
+                over.insert(Rank::new(Some(value), e.rowid), lti);
                 let Some(walk) = self.walks.get_mut(&key) else {
                     continue;
                 };
@@ -115,6 +128,8 @@ impl Memo {
         self.records.clear();
         self.counts.clear();
         self.walks.clear();
+        self.pending.clear();
+        self.overlay.clear();
     }
 
     /// Whether an LTI with augmentations `rows` has one with attribute `a` and `value`.

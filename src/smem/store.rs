@@ -196,12 +196,12 @@ impl Store {
         ] {
             self.set_var(k, v)?;
         }
-        self.write_vars()
+        self.write_pending()
     }
 
     /// Commits what a lazy-commit store holds back, and starts holding back again.
     pub fn commit(&mut self, lazy: bool) -> DbResult<()> {
-        self.write_vars()?;
+        self.write_pending()?;
         if !self.conn.is_autocommit() {
             db(self.conn.execute_batch("COMMIT"))?;
         }
@@ -265,6 +265,25 @@ impl Store {
             memo.dirty_vars.push(key);
         }
         Ok(())
+    }
+
+    /// Writes what the memo holds back: the activations' copies on the augmentation rows
+    /// and the variables.
+    fn write_pending(&self) -> DbResult<()> {
+        let mut pending: Vec<(i64, f64)> = {
+            let mut memo = self.memo.borrow_mut();
+            memo.overlay.clear();
+            memo.pending.drain().collect()
+        };
+        pending.sort_by_key(|&(lti, _)| lti);
+        for (lti, value) in pending {
+            db(exec(
+                &self.conn,
+                "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
+                params![lti, value],
+            ))?;
+        }
+        self.write_vars()
     }
 
     /// Writes the variables set since the last time.
@@ -443,6 +462,12 @@ impl Store {
                 })
             })
             .and_then(Iterator::collect))?;
+        let mut rows = rows;
+        if let Some(&v) = self.memo.borrow().pending.get(&lti) {
+            for e in &mut rows {
+                e.act = Some(v);
+            }
+        }
         let out = f(&rows);
         self.memo.borrow_mut().augs.insert(lti, rows);
         Ok(out)
@@ -450,6 +475,8 @@ impl Store {
 
     /// Adds an augmentation unless the LTI has it; true if it was added.
     pub fn add_aug(&mut self, lti: i64, attr: &Val, value: &Val) -> DbResult<bool> {
+        // The walks' overlay holds an LTI's rows as they are; rows change only after it.
+        self.write_pending()?;
         let Some(a) = self.symbol(attr, true)? else {
             return Ok(false);
         };
@@ -548,6 +575,7 @@ impl Store {
     /// Removes the augmentations of `lti` with attribute `attr` (all when `None`) and, when
     /// given, value `value`; how many went.
     pub fn remove_augs(&mut self, lti: i64, attr: Option<&Val>, value: Option<&Val>) -> DbResult<usize> {
+        self.write_pending()?;
         let mut st = db(self.conn.prepare_cached(
             "SELECT rowid, attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1",
         ))?;
@@ -685,17 +713,49 @@ impl Store {
             Some(b) => db(st.query([a, b]))?,
             None => db(st.query([a]))?,
         };
+        // The rows of the LTIs activated since the last commit come from the overlay, at
+        // their new rank, between the database's rows; their rows there are out of date.
+        let (mut overlay, pending) = {
+            let memo = self.memo.borrow();
+            let over: Vec<(Rank, i64)> = memo
+                .overlay
+                .get(&key)
+                .map(|m| m.iter().rev().map(|(&r, &l)| (r, l)).collect())
+                .unwrap_or_default();
+            (over.into_iter().peekable(), !memo.pending.is_empty())
+        };
         // The rows read, kept when the walk reaches the end.
         let mut read = Some(BTreeMap::new());
-        while let Some(r) = db(rows.next())? {
-            let lti: i64 = db(r.get(0))?;
+        let mut step = |rank: Rank, lti: i64, read: &mut Option<BTreeMap<Rank, i64>>| {
             if let Some(m) = read.as_mut() {
-                m.insert(Rank::new(db(r.get(2))?, db(r.get(1))?), lti);
+                m.insert(rank, lti);
                 if m.len() > WALK_ROWS {
-                    read = None;
+                    *read = None;
                 }
             }
-            if visit(lti)? {
+            visit(lti)
+        };
+        while let Some(r) = db(rows.next())? {
+            let lti: i64 = db(r.get(0))?;
+            if pending && self.memo.borrow().pending.contains_key(&lti) {
+                continue;
+            }
+            let rank = Rank::new(db(r.get(2))?, db(r.get(1))?);
+            while let Some(&(over, o_lti)) = overlay.peek() {
+                if over < rank {
+                    break;
+                }
+                overlay.next();
+                if step(over, o_lti, &mut read)? {
+                    return Ok(());
+                }
+            }
+            if step(rank, lti, &mut read)? {
+                return Ok(());
+            }
+        }
+        for (over, o_lti) in overlay {
+            if step(over, o_lti, &mut read)? {
                 return Ok(());
             }
         }
@@ -794,23 +854,16 @@ impl Store {
         Ok(record)
     }
 
-    /// Writes an activation: the LTI's record, its history, and its augmentations' copy
-    /// of the value (which the retrieval's order reads).
+    /// Writes an activation: the LTI's record and its history; its augmentations' copy of
+    /// the value (which the retrieval's order reads) waits in the memo until the next
+    /// commit (`write_pending`).
     pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
         let history = &record.history;
-        if !self.memo.borrow().walks.is_empty() {
-            let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
-            self.memo.borrow_mut().activation_changed(lti, &rows, value);
-        } else {
-            self.memo.borrow_mut().activation_changed(lti, &[], value);
-        }
+        let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
+        self.memo.borrow_mut().activation_changed(lti, &rows, value);
         db(exec(&self.conn, 
             "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
             params![lti, record.total, record.last, record.first, value],
-        ))?;
-        db(exec(&self.conn, 
-            "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
-            params![lti, value],
         ))?;
         let mut t = [0i64; 10];
         for (slot, h) in t.iter_mut().zip(history) {
@@ -851,7 +904,7 @@ impl Store {
 /// `smem`: `lazy-commit` delays writing until exit), and so are the persistent variables.
 impl Drop for Store {
     fn drop(&mut self) {
-        let _ = self.write_vars();
+        let _ = self.write_pending();
         if !self.conn.is_autocommit() {
             // Nothing can be reported from here; a failing commit leaves the file as it
             // was at the last commit.
