@@ -113,6 +113,7 @@ impl Smem {
     pub fn activate(&mut self, lti: i64, now: i64) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
+        let autocommit = !self.params.lazy_commit() && self.params.in_file();
         let store = self.store()?;
         let now = now.max(1);
         let clock = store.var(schema::var::MAX_CYCLE)?;
@@ -131,6 +132,11 @@ impl Smem {
             Mode::BaseLevel => base_level(&record.history, now, decay, record.total),
         };
         store.write_activation(lti, record, value)?;
+        // Without lazy-commit a file has each change as soon as it is made, as with 9.6;
+        // the store otherwise holds part of an activation back until the next commit.
+        if autocommit {
+            store.commit(false)?;
+        }
         self.stats.act_updates += 1;
         Ok(())
     }
