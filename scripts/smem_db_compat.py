@@ -12,7 +12,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RUSOAR = os.path.join(ROOT, "target", "release", "rusoar")
+RUSOAR = os.path.join(os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target")), "release", "rusoar")
 KNOWLEDGE = ("smem --add {(@1 ^name alice ^age 30 ^friend @2) (@2 ^name bob ^friend @1) "
              "(@3 ^name |carol c| ^age 41 ^tags a b)}")
 

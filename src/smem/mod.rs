@@ -4,6 +4,7 @@
 //! interface (`wmi.rs`) do with it: adding and removing knowledge, cue-based queries with
 //! the activation that breaks their ties, and printing.
 
+mod memo;
 pub mod params;
 mod print;
 pub mod query;
@@ -121,22 +122,30 @@ impl Smem {
     pub fn activate(&mut self, lti: i64, now: i64) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
+        let autocommit = !self.params.lazy_commit() && self.params.in_file();
         let store = self.store()?;
         let now = now.max(1);
         let clock = store.var(schema::var::MAX_CYCLE)?;
         store.set_var(schema::var::MAX_CYCLE, clock.max(now + 1))?;
-        let (total, _, first) = store.record(lti)?;
-        let total = total + 1.0;
-        let first = if first == 0 { now } else { first };
-        let mut history = store.history(lti)?;
-        history.insert(0, now);
-        history.truncate(10);
+        let mut record = store.record(lti)?;
+        record.total += 1.0;
+        record.last = now;
+        if record.first == 0 {
+            record.first = now;
+        }
+        record.history.insert(0, now);
+        record.history.truncate(10);
         let value = match mode {
             Mode::Recency => now as f64,
-            Mode::Frequency => total,
-            Mode::BaseLevel => base_level(&history, now, decay, total),
+            Mode::Frequency => record.total,
+            Mode::BaseLevel => base_level(&record.history, now, decay, record.total),
         };
-        store.write_activation(lti, (total, now, first), &history, value)?;
+        store.write_activation(lti, record, value)?;
+        // Without lazy-commit a file has each change as soon as it is made, as with 9.6;
+        // the store otherwise holds part of an activation back until the next commit.
+        if autocommit {
+            store.commit(false)?;
+        }
         self.stats.act_updates += 1;
         Ok(())
     }

@@ -1,7 +1,8 @@
 //! Cue-based retrieval (Soar manual, Semantic Memory, "Cue-Based Retrieval"): the LTIs that
 //! have every positive element of the cue, none of the negative ones (`neg-query`), whose
 //! numbers meet the math elements (`math-query`) and that are not prohibited; the most
-//! activated first, the higher number first among equals (as 9.6 orders them).
+//! activated first, among equals the one whose augmentation was written last (as 9.6 orders
+//! them).
 
 use super::store::{AugValue, DbResult, Store, Val};
 use super::Smem;

@@ -4,11 +4,13 @@
 //! `smem_augmentations`, and constants are kept once in the symbol tables. Every method
 //! answers with a plain error text on a database failure, never a panic.
 
+use super::memo::{AugEntry, CountKey, Memo, Rank, Record, WALK_ROWS};
 use super::params::SmemParams;
 use super::schema::{self, kind, var};
 use rusqlite::{params, Connection, OptionalExtension};
 use rustc_hash::FxHashMap;
 use std::cell::RefCell;
+use std::collections::BTreeMap;
 
 /// A value in semantic memory: a constant or an LTI.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,6 +61,8 @@ pub struct Store {
     /// retrieval needs them, and a map lookup is far cheaper than a statement.
     sym_ids: RefCell<FxHashMap<SymKey, i64>>,
     sym_vals: RefCell<FxHashMap<i64, Val>>,
+    /// Copies of the rows a retrieval reads, kept beside the database (`memo.rs`).
+    memo: RefCell<Memo>,
 }
 
 /// A constant as a map key (floats by their bits, as the symbol table's unique index
@@ -91,9 +95,15 @@ impl Store {
         };
         let page = p.page_size();
         let cache = p.cache_size();
-        let sync = if p.safety() { "FULL" } else { "OFF" };
+        // 9.6's `optimization performance` writes without syncing and without a rollback
+        // journal; `safety` keeps SQLite's defaults. Neither changes what the file holds.
+        let (sync, journal) = if p.safety() {
+            ("FULL", "DELETE")
+        } else {
+            ("OFF", "OFF")
+        };
         let setup = format!(
-            "PRAGMA page_size = {page}; PRAGMA cache_size = {cache}; PRAGMA synchronous = {sync};"
+            "PRAGMA page_size = {page}; PRAGMA cache_size = {cache}; PRAGMA synchronous = {sync}; PRAGMA journal_mode = {journal};"
         );
         conn.execute_batch(&setup).map_err(|e| not_a_database(p, &e))?;
         conn.set_prepared_statement_cache_capacity(64);
@@ -107,6 +117,7 @@ impl Store {
             next_lti: 1,
             sym_ids: RefCell::default(),
             sym_vals: RefCell::default(),
+            memo: RefCell::default(),
         };
         let tables: i64 = store
             .conn
@@ -185,11 +196,12 @@ impl Store {
         ] {
             self.set_var(k, v)?;
         }
-        Ok(())
+        self.write_pending()
     }
 
     /// Commits what a lazy-commit store holds back, and starts holding back again.
     pub fn commit(&mut self, lazy: bool) -> DbResult<()> {
+        self.write_pending()?;
         if !self.conn.is_autocommit() {
             db(self.conn.execute_batch("COMMIT"))?;
         }
@@ -223,24 +235,68 @@ impl Store {
         self.next_lti = 1;
         self.sym_ids.borrow_mut().clear();
         self.sym_vals.borrow_mut().clear();
+        self.memo.borrow_mut().clear();
         Ok(())
     }
 
+    /// A persistent variable (0 when the store has none).
     pub fn var(&self, key: i64) -> DbResult<i64> {
-        Ok(db(row(&self.conn, 
-                "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
-                [key],
-                |r| r.get(0),
-            )
-            .optional())?
-        .unwrap_or(0))
+        if let Some(&v) = self.memo.borrow().vars.get(&key) {
+            return Ok(v);
+        }
+        let v: Option<i64> = db(row(
+            &self.conn,
+            "SELECT variable_value FROM smem_persistent_variables WHERE variable_id=?1",
+            [key],
+            |r| r.get(0),
+        )
+        .optional())?;
+        // Only a row is remembered, so that setting a missing variable to 0 writes it.
+        if let Some(v) = v {
+            self.memo.borrow_mut().vars.insert(key, v);
+        }
+        Ok(v.unwrap_or(0))
     }
 
+    /// Sets a persistent variable; the database has it at the next commit (`write_vars`).
     pub fn set_var(&self, key: i64, value: i64) -> DbResult<()> {
-        db(exec(&self.conn, 
-            "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
-            [key, value],
-        ))?;
+        let mut memo = self.memo.borrow_mut();
+        if memo.vars.insert(key, value) != Some(value) && !memo.dirty_vars.contains(&key) {
+            memo.dirty_vars.push(key);
+        }
+        Ok(())
+    }
+
+    /// Writes what the memo holds back: the activations' copies on the augmentation rows
+    /// and the variables.
+    fn write_pending(&self) -> DbResult<()> {
+        let mut pending: Vec<(i64, f64)> = {
+            let mut memo = self.memo.borrow_mut();
+            memo.overlay.clear();
+            memo.pending.drain().collect()
+        };
+        pending.sort_by_key(|&(lti, _)| lti);
+        for (lti, value) in pending {
+            db(exec(
+                &self.conn,
+                "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
+                params![lti, value],
+            ))?;
+        }
+        self.write_vars()
+    }
+
+    /// Writes the variables set since the last time.
+    fn write_vars(&self) -> DbResult<()> {
+        let dirty = std::mem::take(&mut self.memo.borrow_mut().dirty_vars);
+        for key in dirty {
+            let value = self.memo.borrow().vars.get(&key).copied().unwrap_or(0);
+            db(exec(
+                &self.conn,
+                "INSERT OR REPLACE INTO smem_persistent_variables (variable_id, variable_value) VALUES (?1, ?2)",
+                [key, value],
+            ))?;
+        }
         Ok(())
     }
 
@@ -373,14 +429,10 @@ impl Store {
     /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
     /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
-        let mut st = db(self.conn.prepare_cached(
-            "SELECT attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
-        ))?;
-        let rows: Vec<(i64, i64, i64)> = db(st
-            .query_map([lti], |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)))
-            .and_then(Iterator::collect))?;
+        let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
         rows.into_iter()
-            .map(|(a, c, l)| {
+            .map(|e| {
+                let (a, c, l) = e.row;
                 let attr = self.constant(a)?;
                 let value = if l != 0 {
                     Val::Lti(l)
@@ -392,8 +444,39 @@ impl Store {
             .collect()
     }
 
+    /// `f` of an LTI's augmentations by symbol numbers, in the order of `augs`; read from
+    /// the database once, then from the memo until they change.
+    fn with_aug_rows<T>(&self, lti: i64, f: impl FnOnce(&[AugEntry]) -> T) -> DbResult<T> {
+        if let Some(rows) = self.memo.borrow().augs.get(&lti) {
+            return Ok(f(rows));
+        }
+        let mut st = db(self.conn.prepare_cached(
+            "SELECT attribute_s_id, value_constant_s_id, value_lti_id, rowid, activation_value FROM smem_augmentations WHERE lti_id=?1 ORDER BY attribute_s_id, value_constant_s_id, value_lti_id",
+        ))?;
+        let rows: Vec<AugEntry> = db(st
+            .query_map([lti], |r| {
+                Ok(AugEntry {
+                    row: (r.get(0)?, r.get(1)?, r.get(2)?),
+                    rowid: r.get(3)?,
+                    act: r.get(4)?,
+                })
+            })
+            .and_then(Iterator::collect))?;
+        let mut rows = rows;
+        if let Some(&v) = self.memo.borrow().pending.get(&lti) {
+            for e in &mut rows {
+                e.act = Some(v);
+            }
+        }
+        let out = f(&rows);
+        self.memo.borrow_mut().augs.insert(lti, rows);
+        Ok(out)
+    }
+
     /// Adds an augmentation unless the LTI has it; true if it was added.
     pub fn add_aug(&mut self, lti: i64, attr: &Val, value: &Val) -> DbResult<bool> {
+        // The walks' overlay holds an LTI's rows as they are; rows change only after it.
+        self.write_pending()?;
         let Some(a) = self.symbol(attr, true)? else {
             return Ok(false);
         };
@@ -430,6 +513,7 @@ impl Store {
     /// Keeps the counts 9.6 keeps beside an augmentation (the LTI's, the attribute's and
     /// the WME's frequencies, the edge count) as one is added (`by` 1) or removed (-1).
     fn count_aug(&self, lti: i64, a: i64, c: i64, l: i64, by: i64) -> DbResult<()> {
+        self.memo.borrow_mut().augs_changed(lti, (a, c, l));
         let lti_aug = i64::from(l != 0) * by;
         db(exec(&self.conn, 
             "UPDATE smem_lti SET total_augmentations = total_augmentations + ?2, lti_augmentations = lti_augmentations + ?3 WHERE lti_id=?1",
@@ -491,6 +575,7 @@ impl Store {
     /// Removes the augmentations of `lti` with attribute `attr` (all when `None`) and, when
     /// given, value `value`; how many went.
     pub fn remove_augs(&mut self, lti: i64, attr: Option<&Val>, value: Option<&Val>) -> DbResult<usize> {
+        self.write_pending()?;
         let mut st = db(self.conn.prepare_cached(
             "SELECT rowid, attribute_s_id, value_constant_s_id, value_lti_id FROM smem_augmentations WHERE lti_id=?1",
         ))?;
@@ -530,6 +615,24 @@ impl Store {
         let Some(a) = self.symbol(attr, false)? else {
             return Ok(0);
         };
+        let key = match value {
+            None => (a, None),
+            Some(Val::Lti(l)) => (a, Some((0, *l))),
+            Some(v) => match self.symbol(v, false)? {
+                None => return Ok(0),
+                Some(c) => (a, Some((c, 0))),
+            },
+        };
+        if let Some(&n) = self.memo.borrow().counts.get(&key) {
+            return Ok(n);
+        }
+        let n = self.aug_count_row(a, value)?;
+        self.memo.borrow_mut().counts.insert(key, n);
+        Ok(n)
+    }
+
+    /// `aug_count` from the frequency tables.
+    fn aug_count_row(&self, a: i64, value: Option<&Val>) -> DbResult<i64> {
         let n: Option<i64> = match value {
             None => db(row(
                 &self.conn,
@@ -560,9 +663,11 @@ impl Store {
     }
 
     /// Walks the LTIs with an augmentation `attr` (and `value` when given), most activated
-    /// first and the higher number first among equals (the order retrieval answers in),
-    /// until `visit` says stop. The order comes from the index on the augmentations' copy
-    /// of their LTI's activation, so the first answers cost no sort of the rest.
+    /// first and, among equals, the one whose augmentation was written last (the order
+    /// retrieval answers in: 9.6 reads the index on the augmentations' copy of their LTI's
+    /// activation backwards, and SQLite breaks the index's ties by row number), until
+    /// `visit` says stop. Reading the index in its own order costs no sort, so the first
+    /// answers cost no look at the rest.
     pub fn walk_ranked(
         &self,
         attr: &Val,
@@ -572,66 +677,128 @@ impl Store {
         let Some(a) = self.symbol(attr, false)? else {
             return Ok(());
         };
-        let (sql, b) = match value {
+        let (sql, b, key): (&str, Option<i64>, CountKey) = match value {
             None => (
-                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 ORDER BY activation_value DESC, lti_id DESC",
+                "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 ORDER BY activation_value DESC",
                 None,
+                (a, None),
             ),
             Some(Val::Lti(l)) => (
-                "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=0 AND value_lti_id=?2 ORDER BY activation_value DESC, lti_id DESC",
+                "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=0 AND value_lti_id=?2 ORDER BY activation_value DESC",
                 Some(*l),
+                (a, Some((0, *l))),
             ),
             Some(v) => match self.symbol(v, false)? {
                 None => return Ok(()),
                 Some(c) => (
-                    "SELECT lti_id FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0 ORDER BY activation_value DESC, lti_id DESC",
+                    "SELECT lti_id, rowid, activation_value FROM smem_augmentations WHERE attribute_s_id=?1 AND value_constant_s_id=?2 AND value_lti_id=0 ORDER BY activation_value DESC",
                     Some(c),
+                    (a, Some((c, 0))),
                 ),
             },
         };
+        // An attribute alone can come with several values per LTI: each LTI once.
+        let mut seen = FxHashMap::default();
+        let mut visit = |lti: i64| -> DbResult<bool> {
+            if b.is_none() && seen.insert(lti, ()).is_some() {
+                return Ok(false);
+            }
+            visit(lti)
+        };
+        if self.memo.borrow().walks.contains_key(&key) {
+            return self.walk_remembered(key, visit);
+        }
         let mut st = db(self.conn.prepare_cached(sql))?;
         let mut rows = match b {
             Some(b) => db(st.query([a, b]))?,
             None => db(st.query([a]))?,
         };
-        // An attribute alone can come with several values per LTI: each LTI once.
-        let mut seen = FxHashMap::default();
+        // The rows of the LTIs activated since the last commit come from the overlay, at
+        // their new rank, between the database's rows; their rows there are out of date.
+        let (mut overlay, pending) = {
+            let memo = self.memo.borrow();
+            let over: Vec<(Rank, i64)> = memo
+                .overlay
+                .get(&key)
+                .map(|m| m.iter().rev().map(|(&r, &l)| (r, l)).collect())
+                .unwrap_or_default();
+            (over.into_iter().peekable(), !memo.pending.is_empty())
+        };
+        // The rows read, kept when the walk reaches the end.
+        let mut read = Some(BTreeMap::new());
+        let mut step = |rank: Rank, lti: i64, read: &mut Option<BTreeMap<Rank, i64>>| {
+            if let Some(m) = read.as_mut() {
+                m.insert(rank, lti);
+                if m.len() > WALK_ROWS {
+                    *read = None;
+                }
+            }
+            visit(lti)
+        };
         while let Some(r) = db(rows.next())? {
             let lti: i64 = db(r.get(0))?;
-            if b.is_none() && seen.insert(lti, ()).is_some() {
+            if pending && self.memo.borrow().pending.contains_key(&lti) {
                 continue;
             }
-            if visit(lti)? {
-                break;
+            let rank = Rank::new(db(r.get(2))?, db(r.get(1))?);
+            while let Some(&(over, o_lti)) = overlay.peek() {
+                if over < rank {
+                    break;
+                }
+                overlay.next();
+                if step(over, o_lti, &mut read)? {
+                    return Ok(());
+                }
+            }
+            if step(rank, lti, &mut read)? {
+                return Ok(());
             }
         }
+        for (over, o_lti) in overlay {
+            if step(over, o_lti, &mut read)? {
+                return Ok(());
+            }
+        }
+        if let Some(m) = read {
+            self.memo.borrow_mut().walks.insert(key, m);
+        }
         Ok(())
+    }
+
+    /// `walk_ranked` over a remembered walk, from the highest rank down. Each step looks
+    /// the next rank up again, as `visit` may read what the memo holds.
+    fn walk_remembered(
+        &self,
+        key: CountKey,
+        mut visit: impl FnMut(i64) -> DbResult<bool>,
+    ) -> DbResult<()> {
+        let mut below: Option<Rank> = None;
+        loop {
+            let next = {
+                let memo = self.memo.borrow();
+                let Some(walk) = memo.walks.get(&key) else {
+                    return Ok(());
+                };
+                match below {
+                    None => walk.iter().next_back(),
+                    Some(r) => walk.range(..r).next_back(),
+                }
+                .map(|(&r, &l)| (r, l))
+            };
+            let Some((rank, lti)) = next else {
+                return Ok(());
+            };
+            if visit(lti)? {
+                return Ok(());
+            }
+            below = Some(rank);
+        }
     }
 
     /// Whether `lti` has an augmentation `attr` (with `value` when given). Symbols are
     /// looked up by the caller once per cue element, as `attr`'s and `value`'s numbers.
     pub fn has_aug(&self, lti: i64, a: i64, value: AugValue) -> DbResult<bool> {
-        let found = match value {
-            AugValue::Any => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 LIMIT 1",
-                [lti, a],
-                |_| Ok(()),
-            ),
-            AugValue::Lti(v) => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_lti_id=?3 LIMIT 1",
-                [lti, a, v],
-                |_| Ok(()),
-            ),
-            AugValue::Const(c) => row(
-                &self.conn,
-                "SELECT 1 FROM smem_augmentations WHERE lti_id=?1 AND attribute_s_id=?2 AND value_constant_s_id=?3 AND value_lti_id=0 LIMIT 1",
-                [lti, a, c],
-                |_| Ok(()),
-            ),
-        };
-        Ok(db(found.optional())?.is_some())
+        self.with_aug_rows(lti, |rows| Memo::has(rows, a, value))
     }
 
     /// An LTI's activation as retrieval compares it (the lowest for one never activated).
@@ -651,42 +818,52 @@ impl Store {
         Ok(if a == schema::ACT_LOW { 0.0 } else { a })
     }
 
-    /// The activation record of an LTI: (activations, last, first).
-    pub fn record(&self, lti: i64) -> DbResult<(f64, i64, i64)> {
-        db(row(&self.conn, 
+    /// The activation record of an LTI: its activations, the last and first times, and the
+    /// times of the last ten (read from the database once, then kept up to date by
+    /// `write_activation`).
+    pub fn record(&self, lti: i64) -> DbResult<Record> {
+        if let Some(r) = self.memo.borrow().records.get(&lti) {
+            return Ok(r.clone());
+        }
+        let (total, last, first) = db(row(
+            &self.conn,
             "SELECT activations_total, activations_last, activations_first FROM smem_lti WHERE lti_id=?1",
             [lti],
             |r| Ok((r.get(0)?, r.get(1)?, r.get(2)?)),
-        ))
+        ))?;
+        let times: Option<Vec<Option<i64>>> = db(row(
+            &self.conn,
+            "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
+            [lti],
+            |r| (0..10).map(|i| r.get(i)).collect(),
+        )
+        .optional())?;
+        let history = times
+            .unwrap_or_default()
+            .into_iter()
+            .flatten()
+            .filter(|&t| t > 0)
+            .collect();
+        let record = Record {
+            total,
+            last,
+            first,
+            history,
+        };
+        self.memo.borrow_mut().records.insert(lti, record.clone());
+        Ok(record)
     }
 
-    /// The times of an LTI's last activations (most recent first), for base-level.
-    pub fn history(&self, lti: i64) -> DbResult<Vec<i64>> {
-        let row: Option<Vec<Option<i64>>> = db(row(&self.conn, 
-                "SELECT t1,t2,t3,t4,t5,t6,t7,t8,t9,t10 FROM smem_activation_history WHERE lti_id=?1",
-                [lti],
-                |r| (0..10).map(|i| r.get(i)).collect(),
-            )
-            .optional())?;
-        Ok(row.unwrap_or_default().into_iter().flatten().filter(|&t| t > 0).collect())
-    }
-
-    /// Writes an activation: the LTI's record, its history, and its augmentations' copy
-    /// of the value (which the retrieval's order reads).
-    pub fn write_activation(
-        &self,
-        lti: i64,
-        record: (f64, i64, i64),
-        history: &[i64],
-        value: f64,
-    ) -> DbResult<()> {
+    /// Writes an activation: the LTI's record and its history; its augmentations' copy of
+    /// the value (which the retrieval's order reads) waits in the memo until the next
+    /// commit (`write_pending`).
+    pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
+        let history = &record.history;
+        let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
+        self.memo.borrow_mut().activation_changed(lti, &rows, value);
         db(exec(&self.conn, 
             "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
-            params![lti, record.0, record.1, record.2, value],
-        ))?;
-        db(exec(&self.conn, 
-            "UPDATE smem_augmentations SET activation_value=?2 WHERE lti_id=?1",
-            params![lti, value],
+            params![lti, record.total, record.last, record.first, value],
         ))?;
         let mut t = [0i64; 10];
         for (slot, h) in t.iter_mut().zip(history) {
@@ -696,6 +873,7 @@ impl Store {
             "INSERT OR REPLACE INTO smem_activation_history (lti_id,t1,t2,t3,t4,t5,t6,t7,t8,t9,t10,touch1,touch2,touch3,touch4,touch5,touch6,touch7,touch8,touch9,touch10) VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,1,1,1,1,1,1,1,1,1,1)",
             params![lti, t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9]],
         ))?;
+        self.memo.borrow_mut().records.insert(lti, record);
         Ok(())
     }
 
@@ -723,9 +901,10 @@ impl Store {
 }
 
 /// What lazy-commit held back is written when the store closes (Soar manual, ch. 9,
-/// `smem`: `lazy-commit` delays writing until exit).
+/// `smem`: `lazy-commit` delays writing until exit), and so are the persistent variables.
 impl Drop for Store {
     fn drop(&mut self) {
+        let _ = self.write_pending();
         if !self.conn.is_autocommit() {
             // Nothing can be reported from here; a failing commit leaves the file as it
             // was at the last commit.

@@ -183,18 +183,21 @@ impl AgentCore {
                 };
                 (rank, self.wm.get(w).map_or(0, |x| x.timetag))
             });
-            let linked_elsewhere = |agent: &AgentCore, id: Sym| {
-                agent.wm.all().into_iter().any(|w| {
-                    !on_result.contains(&w) && agent.wm.get(w).is_some_and(|x| x.value == id)
-                })
+            // The identifiers something off the result link links, found in one pass over
+            // working memory.
+            let linked: rustc_hash::FxHashSet<Sym> = if below.is_empty() {
+                Default::default()
+            } else {
+                self.wm
+                    .all()
+                    .into_iter()
+                    .filter(|w| !on_result.contains(w))
+                    .filter_map(|w| self.wm.get(w).map(|x| x.value))
+                    .collect()
             };
             let below: Vec<WmeId> = below
                 .into_iter()
-                .filter(|&w| {
-                    self.wm
-                        .get(w)
-                        .is_some_and(|x| !linked_elsewhere(self, x.id))
-                })
+                .filter(|&w| self.wm.get(w).is_some_and(|x| !linked.contains(&x.id)))
                 .collect();
             for w in below.into_iter().rev().chain(on_result) {
                 if let Some(wme) = self.wm.get(w).copied() {
