@@ -9,6 +9,8 @@ pub mod print;
 mod query;
 mod retrieve;
 pub mod store;
+mod timeline;
+mod walk;
 mod wmi;
 
 use crate::symbols::Sym;

@@ -9,6 +9,7 @@
 //! bound to one node each at once): the first that passes ends the search.
 
 use super::store::{Store, ACCEPTABLE, ROOT};
+use super::walk::{Matches, Moments};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
@@ -21,12 +22,12 @@ pub(crate) struct Literal {
     pub id_sym: Option<Sym>,
     pub value_sym: Sym,
     /// The attribute's number (`None`: never stored, so never matched).
-    attr: Option<i64>,
+    pub(super) attr: Option<i64>,
     /// A constant value's number (`Some(None)`: never stored); `None` for an identifier.
-    constant: Option<Option<i64>>,
+    pub(super) constant: Option<Option<i64>>,
     pub is_leaf: bool,
     pub neg: bool,
-    weight: f64,
+    pub(super) weight: f64,
     children: Vec<usize>,
     parents: Vec<usize>,
 }
@@ -36,7 +37,7 @@ pub(crate) struct Literal {
 pub(crate) struct Cue {
     pub lits: Vec<Literal>,
     /// How many inner literals have each cue identifier as value.
-    incoming: FxHashMap<Sym, usize>,
+    pub(super) incoming: FxHashMap<Sym, usize>,
     pub leaves: usize,
     pub pos_literals: u64,
     pub neg_literals: u64,
@@ -194,33 +195,41 @@ impl AgentCore {
         let top = before.map_or(store.time - 1, |b| b - 1);
         let after = after.unwrap_or(0);
         let rows = relevant_rows(store, cue);
-        // The tops of the stretches in which no relevant row comes or goes.
-        let mut tops: BTreeSet<i64> = BTreeSet::new();
-        tops.insert(top);
-        let mut bounds = Vec::new();
-        for &(is_edge, r) in &rows {
-            let rows = if is_edge { &store.edges } else { &store.consts };
-            rows.life(r).bounds(top, &mut bounds);
-        }
-        for (t, is_end) in bounds {
-            let t = if is_end { t } else { t - 1 };
-            if t > after && t <= top {
-                tops.insert(t);
-            }
-        }
-        let tops: Vec<i64> = tops.into_iter().rev().collect();
+        let mut moments = Moments::new(store, &rows, top);
+        let mut matches = Matches::new(store, cue);
+        let leaves: Vec<usize> = (0..cue.lits.len()).filter(|&i| cue.lits[i].is_leaf).collect();
         let mut prohibit: Vec<i64> = prohibit.to_vec();
         prohibit.sort_unstable();
         let mut best: Option<Found> = None;
-        let mut previous: Vec<bool> = vec![false; cue.lits.len()];
-        for (k, &hi) in tops.iter().enumerate() {
-            if hi <= after {
-                break;
+        // Which leaves the stretch after this one satisfied: a stretch that satisfies the
+        // same ones is not looked at (its newer twin already was).
+        let mut previous: Vec<bool> = vec![false; leaves.len()];
+        // Each stretch of episodes `lo + 1 ..= hi` has the same rows throughout.
+        let mut next = top;
+        while next > after {
+            let hi = next;
+            moments.pass(hi, &mut matches);
+            let lo = moments.peek().unwrap_or(after).max(after);
+            next = lo;
+            let mut changed = false;
+            let (mut score, mut cardinality) = (0.0, 0);
+            for (k, &i) in leaves.iter().enumerate() {
+                let sat = matches.satisfied(i);
+                changed |= sat != previous[k];
+                previous[k] = sat;
+                if sat {
+                    score += cue.lits[i].weight;
+                    cardinality += if cue.lits[i].neg { -1 } else { 1 };
+                }
             }
-            let lo = tops.get(k + 1).copied().unwrap_or(after).max(after);
-            let eval = evaluate(store, cue, hi);
-            let changed = eval.satisfied != previous;
-            previous = eval.satisfied.clone();
+            if std::env::var_os("EPQ_CHECK").is_some() {
+                let e = evaluate(store, cue, hi);
+                for i in 0..cue.lits.len() {
+                    let got: BTreeSet<(i64, i64)> = matches.matches[i].keys().copied().collect();
+                    assert_eq!(got, e.matches[i], "literal {i} at {hi}");
+                }
+                assert_eq!((e.score, e.cardinality), (score, cardinality));
+            }
             let mut ep = hi;
             while ep > lo && prohibit.binary_search(&ep).is_ok() {
                 ep -= 1;
@@ -231,26 +240,26 @@ impl AgentCore {
             let better = match &best {
                 None => true,
                 Some(b) => {
-                    eval.score > b.score
-                        || (graph_match && eval.score == b.score && !b.graph_matched)
+                    score > b.score
+                        || (graph_match && score == b.score && !b.graph_matched)
                 }
             };
             if !better {
                 continue;
             }
-            if best.as_ref().is_none_or(|b| eval.score > b.score) {
+            if best.as_ref().is_none_or(|b| score > b.score) {
                 best = Some(Found {
                     episode: ep,
-                    score: eval.score,
-                    cardinality: eval.cardinality,
+                    score: score,
+                    cardinality: cardinality,
                     graph_matched: false,
                     bindings: Vec::new(),
                     perfect_score,
                 });
             }
-            if eval.cardinality == perfect_card {
+            if cardinality == perfect_card {
                 let bindings = if graph_match {
-                    graph_match_bindings(cue, &eval)
+                    graph_match_bindings(cue, &matches.matches)
                 } else {
                     Some(Vec::new())
                 };
@@ -399,11 +408,11 @@ fn evaluate(store: &Store, cue: &Cue, t: i64) -> Eval {
 
 /// Binds every positive literal to one of its matches so that each cue identifier is one
 /// node (9.6's `epmem_graph_match`, literals in the order they were made).
-fn graph_match_bindings(cue: &Cue, eval: &Eval) -> Option<Vec<(Sym, i64)>> {
+fn graph_match_bindings(cue: &Cue, matches: &[BTreeMap<(i64, i64), u32>]) -> Option<Vec<(Sym, i64)>> {
     let order: Vec<usize> = (1..cue.lits.len()).filter(|&i| !cue.lits[i].neg).collect();
     let mut bindings: BTreeMap<usize, (i64, i64)> = BTreeMap::new();
     let mut bound: [FxHashMap<i64, Sym>; 2] = [FxHashMap::default(), FxHashMap::default()];
-    if !bind(cue, eval, &order, 0, &mut bindings, &mut bound) {
+    if !bind(cue, matches, &order, 0, &mut bindings, &mut bound) {
         return None;
     }
     Some(
@@ -417,7 +426,7 @@ fn graph_match_bindings(cue: &Cue, eval: &Eval) -> Option<Vec<(Sym, i64)>> {
 
 fn bind(
     cue: &Cue,
-    eval: &Eval,
+    matches: &[BTreeMap<(i64, i64), u32>],
     order: &[usize],
     at: usize,
     bindings: &mut BTreeMap<usize, (i64, i64)>,
@@ -429,7 +438,7 @@ fn bind(
     let l = &cue.lits[i];
     let kind = usize::from(l.constant.is_none());
     let mut failed_parents: FxHashSet<i64> = FxHashSet::default();
-    for &(p, c) in &eval.matches[i] {
+    for &(p, c) in matches[i].keys() {
         if failed_parents.contains(&p) {
             continue;
         }
@@ -453,7 +462,7 @@ fn bind(
         }
         bindings.insert(i, (p, c));
         let before = bound[kind].insert(c, l.value_sym);
-        if bind(cue, eval, order, at + 1, bindings, bound) {
+        if bind(cue, matches, order, at + 1, bindings, bound) {
             return true;
         }
         bindings.remove(&i);

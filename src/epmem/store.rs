@@ -6,6 +6,7 @@
 //! closed ranges plus the open one it is in now. Rows are numbered as 9.6 numbers them,
 //! which fixes the order in which episodes are printed and rebuilt.
 
+use super::timeline::Timeline;
 use rustc_hash::FxHashMap;
 
 /// The node of the top state: every episode hangs from it.
@@ -80,6 +81,8 @@ pub struct Rows {
     pub by_attr: FxHashMap<i64, Vec<i64>>,
     /// Constants only: the row of a triple (edges may repeat a triple).
     index: FxHashMap<Triple, i64>,
+    /// The rows of each episode, kept beside `lives` as ranges open and close.
+    timeline: Timeline,
 }
 
 impl Rows {
@@ -112,11 +115,27 @@ impl Rows {
         &mut self.lives[(id - 1) as usize]
     }
 
+    /// Row `id` enters working memory at episode `start`: its open range begins.
+    pub fn open(&mut self, id: i64, start: i64) {
+        self.life_mut(id).now = Some(start);
+        self.timeline.open(id, start);
+    }
+
+    /// Row `id` left working memory after episode `end`: its open range, if any, closes.
+    pub fn close(&mut self, id: i64, end: i64) {
+        let life = self.life_mut(id);
+        if let Some(start) = life.now.take() {
+            life.ranges.push((start, end));
+            self.timeline.close(id, end);
+        }
+    }
+
     /// The rows in episode `t`, by number.
     pub fn at(&self, t: i64) -> Vec<i64> {
-        (1..=self.triples.len() as i64)
-            .filter(|&id| self.life(id).at(t))
-            .collect()
+        let mut rows = Vec::new();
+        self.timeline.at(t, &mut rows);
+        rows.sort_unstable();
+        rows
     }
 }
 
