@@ -8,12 +8,12 @@
 //! tie, and a stretch matching every positive leaf is graph-matched (all cue identifiers
 //! bound to one node each at once): the first that passes ends the search.
 
-use super::store::{Store, ACCEPTABLE, ROOT};
+use super::store::{Store, ACCEPTABLE};
 use super::walk::{Matches, Moments};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// A cue WME as the search sees it.
 #[derive(Debug, Clone)]
@@ -41,16 +41,6 @@ pub(crate) struct Cue {
     pub leaves: usize,
     pub pos_literals: u64,
     pub neg_literals: u64,
-}
-
-/// What one episode makes of the cue.
-struct Eval {
-    /// Each literal's matches: (parent node, child node or value).
-    matches: Vec<BTreeSet<(i64, i64)>>,
-    score: f64,
-    cardinality: i64,
-    /// Which leaves are satisfied.
-    satisfied: Vec<bool>,
 }
 
 /// The answer to a query.
@@ -222,14 +212,6 @@ impl AgentCore {
                     cardinality += if cue.lits[i].neg { -1 } else { 1 };
                 }
             }
-            if std::env::var_os("EPQ_CHECK").is_some() {
-                let e = evaluate(store, cue, hi);
-                for i in 0..cue.lits.len() {
-                    let got: BTreeSet<(i64, i64)> = matches.matches[i].keys().copied().collect();
-                    assert_eq!(got, e.matches[i], "literal {i} at {hi}");
-                }
-                assert_eq!((e.score, e.cardinality), (score, cardinality));
-            }
             let mut ep = hi;
             while ep > lo && prohibit.binary_search(&ep).is_ok() {
                 ep -= 1;
@@ -313,97 +295,6 @@ fn relevant_rows(store: &Store, cue: &Cue) -> Vec<(bool, i64)> {
         }
     }
     out
-}
-
-/// The literals' matches in episode `t`, parents before children.
-fn evaluate(store: &Store, cue: &Cue, t: i64) -> Eval {
-    let n = cue.lits.len();
-    let mut matches: Vec<BTreeSet<(i64, i64)>> = vec![BTreeSet::new(); n];
-    let mut done = vec![false; n];
-    // How many inner literals with this value matched each node.
-    let mut node_count: FxHashMap<(Sym, i64), usize> = FxHashMap::default();
-    matches[0].insert((ROOT, ROOT));
-    done[0] = true;
-    node_count.insert((cue.lits[0].value_sym, ROOT), 1);
-    let mut pending: Vec<usize> = (1..n).collect();
-    while !pending.is_empty() {
-        let before = pending.len();
-        let mut waiting = Vec::new();
-        for i in pending {
-            let l = &cue.lits[i];
-            let id_sym = l.id_sym.unwrap_or(l.value_sym);
-            // Every inner literal reaching this literal's identifier must be done.
-            let ready = cue
-                .lits
-                .iter()
-                .enumerate()
-                .all(|(j, x)| x.is_leaf || x.value_sym != id_sym || done[j]);
-            if !ready {
-                waiting.push(i);
-                continue;
-            }
-            let need = cue.incoming.get(&id_sym).copied().unwrap_or(0);
-            let parents: Vec<i64> = node_count
-                .iter()
-                .filter(|(&(s, _), &c)| s == id_sym && c == need && need > 0)
-                .map(|(&(_, node), _)| node)
-                .collect();
-            let mut found = BTreeSet::new();
-            if let Some(a) = l.attr {
-                for p in parents {
-                    match l.constant {
-                        Some(Some(v)) => {
-                            // A constant's triple has one row.
-                            if let Some(r) = store.consts.find(&(p, a, v)) {
-                                if store.consts.life(r).at(t) {
-                                    found.insert((p, v));
-                                }
-                            }
-                        }
-                        Some(None) => {}
-                        None => {
-                            if let Some(rows) = store.edges.by_parent.get(&(p, a)) {
-                                for &r in rows {
-                                    if store.edges.life(r).at(t) {
-                                        found.insert((p, store.edges.triple(r).2));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            if !l.is_leaf {
-                let values: BTreeSet<i64> = found.iter().map(|&(_, c)| c).collect();
-                for c in values {
-                    *node_count.entry((l.value_sym, c)).or_insert(0) += 1;
-                }
-            }
-            matches[i] = found;
-            done[i] = true;
-        }
-        if waiting.len() == before {
-            break;
-        }
-        pending = waiting;
-    }
-    let mut score = 0.0;
-    let mut cardinality = 0;
-    let mut satisfied = vec![false; n];
-    for (i, l) in cue.lits.iter().enumerate() {
-        // Only leaves score, so only their satisfaction counts as a change.
-        satisfied[i] = l.is_leaf && !matches[i].is_empty();
-        if satisfied[i] {
-            score += l.weight;
-            cardinality += if l.neg { -1 } else { 1 };
-        }
-    }
-    Eval {
-        matches,
-        score,
-        cardinality,
-        satisfied,
-    }
 }
 
 /// Binds every positive literal to one of its matches so that each cue identifier is one

@@ -37,33 +37,6 @@ pub struct Life {
     pub ended: bool,
 }
 
-impl Life {
-    /// Whether the row was in episode `t`.
-    pub fn at(&self, t: i64) -> bool {
-        if self.now.is_some_and(|s| s <= t) {
-            return true;
-        }
-        let i = self.ranges.partition_point(|&(_, end)| end < t);
-        self.ranges.get(i).is_some_and(|&(start, _)| start <= t)
-    }
-
-    /// Every start and end of its ranges up to `limit`, as (episode, is the end).
-    pub fn bounds(&self, limit: i64, out: &mut Vec<(i64, bool)>) {
-        for &(s, e) in &self.ranges {
-            if s <= limit {
-                out.push((s, false));
-                out.push((e.min(limit), true));
-            }
-        }
-        if let Some(s) = self.now {
-            if s <= limit {
-                out.push((s, false));
-                out.push((limit, true));
-            }
-        }
-    }
-}
-
 /// One row: `(parent node, attribute, value or child node)`.
 pub type Triple = (i64, i64, i64);
 
@@ -198,24 +171,5 @@ impl Store {
             Constant::Int(i) => i.to_string(),
             Constant::Float(bits) => crate::printer::constants::float_text(f64::from_bits(*bits)),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn a_life_answers_for_each_episode() {
-        let l = Life {
-            ranges: vec![(1, 2), (5, 5)],
-            now: Some(8),
-            ended: false,
-        };
-        let inside: Vec<i64> = (1..10).filter(|&t| l.at(t)).collect();
-        assert_eq!(inside, [1, 2, 5, 8, 9]);
-        let mut b = Vec::new();
-        l.bounds(8, &mut b);
-        assert_eq!(b, [(1, false), (2, true), (5, false), (5, true), (8, false), (8, true)]);
     }
 }

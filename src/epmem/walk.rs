@@ -42,6 +42,8 @@ pub(super) struct Matches<'a> {
     reach: Vec<FxHashMap<i64, u32>>,
     /// How many inner literals with this cue identifier as value reach each node.
     node_count: FxHashMap<(Sym, i64), usize>,
+    /// A list reused from row to row.
+    scratch: Vec<usize>,
 }
 
 impl<'a> Matches<'a> {
@@ -72,6 +74,7 @@ impl<'a> Matches<'a> {
             matches,
             reach: vec![FxHashMap::default(); cue.lits.len()],
             node_count: FxHashMap::from_iter([((root, ROOT), 1)]),
+            scratch: Vec::new(),
         }
     }
 
@@ -110,21 +113,20 @@ impl<'a> Matches<'a> {
         // The literals bound at the row's parent before any change: binding a node on the
         // way can reach this very row again (an edge from a node to itself), and must not
         // count it twice.
-        let bound: Vec<usize> = lits
-            .iter()
-            .copied()
-            .filter(|&i| {
-                let l = &self.cue.lits[i];
-                self.bound(l.id_sym.unwrap_or(l.value_sym), p)
-            })
-            .collect();
-        for i in bound {
+        let mut bound = std::mem::take(&mut self.scratch);
+        bound.clear();
+        bound.extend(lits.iter().copied().filter(|&i| {
+            let l = &self.cue.lits[i];
+            self.bound(l.id_sym.unwrap_or(l.value_sym), p)
+        }));
+        for &i in &bound {
             if present {
                 self.add(i, p, c);
             } else {
                 self.remove(i, p, c, false);
             }
         }
+        self.scratch = bound;
     }
 
     /// One more row gives literal `i` the match `(p, c)`.
@@ -310,7 +312,7 @@ impl<'a> Moments<'a> {
         self.heap.peek().map(|&(t, _)| t)
     }
 
-    /// Passes every moment at or after episode `t`, telling `m` each row's presence in `t`.
+    /// Passes every moment at or after episode `t`, telling `m` which rows come and go.
     pub fn pass(&mut self, t: i64, m: &mut Matches) {
         while let Some(&(at, k)) = self.heap.peek() {
             if at < t {
@@ -318,13 +320,17 @@ impl<'a> Moments<'a> {
             }
             self.heap.pop();
             let c = &mut self.rows[k];
+            // A row's moments alternate: a range's end (walking back, the row comes), then
+            // the episode before its start (it goes). Two ranges that touch give a going and
+            // a coming at one moment, passed in that order.
+            let comes = c.next % 2 == 0;
             c.next += 1;
             let (is_edge, row) = (c.is_edge, c.row);
             let life = self.life(is_edge, row);
             if let Some(next) = self.rows[k].moment(life, self.top) {
                 self.heap.push((next, k));
             }
-            m.set_row(is_edge, row, life.at(t));
+            m.set_row(is_edge, row, comes);
         }
     }
 }
