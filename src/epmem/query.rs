@@ -232,8 +232,8 @@ impl AgentCore {
             if best.as_ref().is_none_or(|b| score > b.score) {
                 best = Some(Found {
                     episode: ep,
-                    score: score,
-                    cardinality: cardinality,
+                    score,
+                    cardinality,
                     graph_matched: false,
                     bindings: Vec::new(),
                     perfect_score,

@@ -269,7 +269,7 @@ impl Cursor {
         }
         let i = self.closed.checked_sub(1 + k / 2)?;
         let (s, e) = life.ranges[i];
-        Some(if k % 2 == 0 { e.min(top) } else { s - 1 })
+        Some(if k.is_multiple_of(2) { e.min(top) } else { s - 1 })
     }
 }
 
@@ -323,7 +323,7 @@ impl<'a> Moments<'a> {
             // A row's moments alternate: a range's end (walking back, the row comes), then
             // the episode before its start (it goes). Two ranges that touch give a going and
             // a coming at one moment, passed in that order.
-            let comes = c.next % 2 == 0;
+            let comes = c.next.is_multiple_of(2);
             c.next += 1;
             let (is_edge, row) = (c.is_edge, c.row);
             let life = self.life(is_edge, row);
