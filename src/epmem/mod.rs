@@ -1,7 +1,7 @@
 //! Episodic memory (Soar manual, ch. 7, "Episodic Memory"): snapshots of the top state's
-//! working memory, stored as they change (`store.rs`, `encode.rs`), rebuilt on request
-//! (`retrieve.rs`) and searched by cue (`query.rs`) through each state's `^epmem` link
-//! (`wmi.rs`). The store lives in memory for the agent's lifetime.
+//! working memory, stored as they change (`store.rs`, `encode.rs`, `timeline.rs`), rebuilt
+//! on request (`retrieve.rs`) and searched by cue (`query.rs`, `walk.rs`) through each
+//! state's `^epmem` link (`wmi.rs`). The store lives in memory for the agent's lifetime.
 
 mod encode;
 pub mod params;

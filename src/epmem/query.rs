@@ -4,9 +4,10 @@
 //! episode reaches it; an inner literal only links its children, which must hang from the
 //! node it matched (and an identifier reached by several cue WMEs must be the same node
 //! from all of them). Episodes are walked from the newest back, one stretch at a time
-//! between the moments a relevant row came or went; the best score wins, the newest on a
-//! tie, and a stretch matching every positive leaf is graph-matched (all cue identifiers
-//! bound to one node each at once): the first that passes ends the search.
+//! between the moments a relevant row came or went (`walk.rs` keeps the literals' matches
+//! up to date from one moment to the next); the best score wins, the newest on a tie, and a
+//! stretch matching every positive leaf is graph-matched (all cue identifiers bound to one
+//! node each at once): the first that passes ends the search.
 
 use super::store::{Store, ACCEPTABLE};
 use super::walk::{Matches, Moments};

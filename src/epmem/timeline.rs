@@ -5,7 +5,6 @@
 //! so its rows are those of its blocks plus the open ranges that started at or before it.
 
 use rustc_hash::FxHashMap;
-use std::collections::BTreeMap;
 
 /// The rows of each episode, by range.
 #[derive(Debug, Default)]
@@ -15,7 +14,7 @@ pub struct Timeline {
     /// The largest exponent filed, so that a lookup tries only the sizes in use.
     top_exponent: u32,
     /// Rows in working memory, with the start of their open range.
-    open: BTreeMap<i64, i64>,
+    open: FxHashMap<i64, i64>,
 }
 
 impl Timeline {
@@ -50,7 +49,7 @@ impl Timeline {
         }
     }
 
-    /// The rows in episode `t`, unordered.
+    /// The rows in episode `t`, in no particular order.
     pub fn at(&self, t: i64, out: &mut Vec<i64>) {
         if t < 0 {
             return;
