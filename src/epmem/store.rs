@@ -84,8 +84,28 @@ impl Rows {
         &self.lives[(id - 1) as usize]
     }
 
+    /// A row's life to change. Ranges changed here, not through [`Rows::open`] and
+    /// [`Rows::close`], are not in the episodes' index until [`Rows::reindex`].
     pub fn life_mut(&mut self, id: i64) -> &mut Life {
         &mut self.lives[(id - 1) as usize]
+    }
+
+    /// Files every row's ranges in the episodes' index again, for lives set directly
+    /// (a store read back from elsewhere).
+    #[allow(dead_code, reason = "for code that sets lives directly, such as a loader")]
+    pub fn reindex(&mut self) {
+        let mut timeline = Timeline::default();
+        for (k, life) in self.lives.iter().enumerate() {
+            let id = k as i64 + 1;
+            for &(start, end) in &life.ranges {
+                timeline.open(id, start);
+                timeline.close(id, end);
+            }
+            if let Some(start) = life.now {
+                timeline.open(id, start);
+            }
+        }
+        self.timeline = timeline;
     }
 
     /// Row `id` enters working memory at episode `start`: its open range begins.
@@ -171,5 +191,27 @@ impl Store {
             Constant::Int(i) => i.to_string(),
             Constant::Float(bits) => crate::printer::constants::float_text(f64::from_bits(*bits)),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lives_set_directly_are_found_after_a_reindex() {
+        let mut rows = Rows::default();
+        for v in 0..4 {
+            rows.add((0, 1, v));
+        }
+        rows.open(1, 1);
+        rows.close(1, 3);
+        rows.life_mut(2).ranges.push((2, 2));
+        rows.life_mut(3).now = Some(3);
+        assert_eq!(rows.at(2), [1]);
+        rows.reindex();
+        assert_eq!(rows.at(2), [1, 2]);
+        assert_eq!(rows.at(3), [1, 3]);
+        assert_eq!(rows.at(9), [3]);
     }
 }
