@@ -285,8 +285,8 @@ def main():
                     help="leave out the 1M-LTI and 100k-episode rows")
     ap.add_argument("--write-doc", action="store_true")
     opts = ap.parse_args()
-    # Fewer episodic queries in full runs: rusoar's episodic search at 100k episodes takes
-    # long enough that 400 of them would keep the machine for an hour.
+    # Fewer episodic queries than semantic ones: each walks back through the store, which
+    # at 100k episodes takes the official kernel milliseconds a query.
     ks = {"smem": 400, "epmem": 150, "store": 0} if not opts.quick else {"smem": 100, "epmem": 100, "store": 0}
     if opts.queries:
         ks = {kind: opts.queries for kind in ks}

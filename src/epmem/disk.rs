@@ -136,6 +136,8 @@ impl Disk {
         let mut store = Store::default();
         disk.load(&mut store).map_err(fail)?;
         disk.close_open_ranges(&mut store).map_err(fail)?;
+        store.consts.reindex();
+        store.edges.reindex();
         if lazy {
             // 9.6 holds the agent's whole life in one transaction, committed on close.
             disk.conn.execute_batch("BEGIN").map_err(fail)?;

@@ -242,10 +242,10 @@ impl AgentCore {
             return;
         };
         for &c in &new_consts {
-            store.consts.life_mut(c).now = Some(time);
+            store.consts.open(c, time);
         }
         for &e in &new_edges {
-            store.edges.life_mut(e).now = Some(time);
+            store.edges.open(e, time);
         }
         let mut changes = Changes {
             started: [new_consts, new_edges],
@@ -263,12 +263,11 @@ impl AgentCore {
                 if !ended {
                     continue;
                 }
-                let life = rows.life_mut(r);
-                if let Some(start) = life.now.take() {
-                    life.ranges.push((start, time - 1));
+                if let Some(start) = rows.life(r).now {
                     changes.ended[k].push((r, start, time - 1));
                 }
-                life.ended = true;
+                rows.close(r, time - 1);
+                rows.life_mut(r).ended = true;
             }
             removals.clear();
         }

@@ -1,8 +1,9 @@
 //! Episodic memory (Soar manual, ch. 7, "Episodic Memory"): snapshots of the top state's
-//! working memory, stored as they change (`store.rs`, `encode.rs`), rebuilt on request
-//! (`retrieve.rs`) and searched by cue (`query.rs`) through each state's `^epmem` link
-//! (`wmi.rs`). The store lives in memory; with `database file` it is also written to a
-//! SQLite file with 9.6's tables (`disk.rs`), which a later agent can open and go on with.
+//! working memory, stored as they change (`store.rs`, `encode.rs`, `timeline.rs`), rebuilt
+//! on request (`retrieve.rs`) and searched by cue (`query.rs`, `walk.rs`) through each
+//! state's `^epmem` link (`wmi.rs`). The store lives in memory; with `database file` it is
+//! also written to a SQLite file with 9.6's tables (`disk.rs`), which a later agent can
+//! open and go on with.
 
 mod disk;
 mod encode;
@@ -13,6 +14,8 @@ mod retrieve;
 mod rit;
 mod schema;
 pub mod store;
+mod timeline;
+mod walk;
 mod wmi;
 
 use crate::symbols::Sym;

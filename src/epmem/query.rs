@@ -4,15 +4,17 @@
 //! episode reaches it; an inner literal only links its children, which must hang from the
 //! node it matched (and an identifier reached by several cue WMEs must be the same node
 //! from all of them). Episodes are walked from the newest back, one stretch at a time
-//! between the moments a relevant row came or went; the best score wins, the newest on a
-//! tie, and a stretch matching every positive leaf is graph-matched (all cue identifiers
-//! bound to one node each at once): the first that passes ends the search.
+//! between the moments a relevant row came or went (`walk.rs` keeps the literals' matches
+//! up to date from one moment to the next); the best score wins, the newest on a tie, and a
+//! stretch matching every positive leaf is graph-matched (all cue identifiers bound to one
+//! node each at once): the first that passes ends the search.
 
-use super::store::{Store, ACCEPTABLE, ROOT};
+use super::store::{Store, ACCEPTABLE};
+use super::walk::{Matches, Moments};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeMap;
 
 /// A cue WME as the search sees it.
 #[derive(Debug, Clone)]
@@ -21,12 +23,12 @@ pub(crate) struct Literal {
     pub id_sym: Option<Sym>,
     pub value_sym: Sym,
     /// The attribute's number (`None`: never stored, so never matched).
-    attr: Option<i64>,
+    pub(super) attr: Option<i64>,
     /// A constant value's number (`Some(None)`: never stored); `None` for an identifier.
-    constant: Option<Option<i64>>,
+    pub(super) constant: Option<Option<i64>>,
     pub is_leaf: bool,
     pub neg: bool,
-    weight: f64,
+    pub(super) weight: f64,
     children: Vec<usize>,
     parents: Vec<usize>,
 }
@@ -36,20 +38,10 @@ pub(crate) struct Literal {
 pub(crate) struct Cue {
     pub lits: Vec<Literal>,
     /// How many inner literals have each cue identifier as value.
-    incoming: FxHashMap<Sym, usize>,
+    pub(super) incoming: FxHashMap<Sym, usize>,
     pub leaves: usize,
     pub pos_literals: u64,
     pub neg_literals: u64,
-}
-
-/// What one episode makes of the cue.
-struct Eval {
-    /// Each literal's matches: (parent node, child node or value).
-    matches: Vec<BTreeSet<(i64, i64)>>,
-    score: f64,
-    cardinality: i64,
-    /// Which leaves are satisfied.
-    satisfied: Vec<bool>,
 }
 
 /// The answer to a query.
@@ -202,33 +194,33 @@ impl AgentCore {
         let top = before.map_or(store.time - 1, |b| b - 1);
         let after = after.unwrap_or(0);
         let rows = relevant_rows(store, cue);
-        // The tops of the stretches in which no relevant row comes or goes.
-        let mut tops: BTreeSet<i64> = BTreeSet::new();
-        tops.insert(top);
-        let mut bounds = Vec::new();
-        for &(is_edge, r) in &rows {
-            let rows = if is_edge { &store.edges } else { &store.consts };
-            rows.life(r).bounds(top, &mut bounds);
-        }
-        for (t, is_end) in bounds {
-            let t = if is_end { t } else { t - 1 };
-            if t > after && t <= top {
-                tops.insert(t);
-            }
-        }
-        let tops: Vec<i64> = tops.into_iter().rev().collect();
+        let mut moments = Moments::new(store, &rows, top);
+        let mut matches = Matches::new(store, cue);
+        let leaves: Vec<usize> = (0..cue.lits.len()).filter(|&i| cue.lits[i].is_leaf).collect();
         let mut prohibit: Vec<i64> = prohibit.to_vec();
         prohibit.sort_unstable();
         let mut best: Option<Found> = None;
-        let mut previous: Vec<bool> = vec![false; cue.lits.len()];
-        for (k, &hi) in tops.iter().enumerate() {
-            if hi <= after {
-                break;
+        // Which leaves the stretch after this one satisfied: a stretch that satisfies the
+        // same ones is not looked at (its newer twin already was).
+        let mut previous: Vec<bool> = vec![false; leaves.len()];
+        // Each stretch of episodes `lo + 1 ..= hi` has the same rows throughout.
+        let mut next = top;
+        while next > after {
+            let hi = next;
+            moments.pass(hi, &mut matches);
+            let lo = moments.peek().unwrap_or(after).max(after);
+            next = lo;
+            let mut changed = false;
+            let (mut score, mut cardinality) = (0.0, 0);
+            for (k, &i) in leaves.iter().enumerate() {
+                let sat = matches.satisfied(i);
+                changed |= sat != previous[k];
+                previous[k] = sat;
+                if sat {
+                    score += cue.lits[i].weight;
+                    cardinality += if cue.lits[i].neg { -1 } else { 1 };
+                }
             }
-            let lo = tops.get(k + 1).copied().unwrap_or(after).max(after);
-            let eval = evaluate(store, cue, hi);
-            let changed = eval.satisfied != previous;
-            previous = eval.satisfied.clone();
             let mut ep = hi;
             while ep > lo && prohibit.binary_search(&ep).is_ok() {
                 ep -= 1;
@@ -239,26 +231,26 @@ impl AgentCore {
             let better = match &best {
                 None => true,
                 Some(b) => {
-                    eval.score > b.score
-                        || (graph_match && eval.score == b.score && !b.graph_matched)
+                    score > b.score
+                        || (graph_match && score == b.score && !b.graph_matched)
                 }
             };
             if !better {
                 continue;
             }
-            if best.as_ref().is_none_or(|b| eval.score > b.score) {
+            if best.as_ref().is_none_or(|b| score > b.score) {
                 best = Some(Found {
                     episode: ep,
-                    score: eval.score,
-                    cardinality: eval.cardinality,
+                    score,
+                    cardinality,
                     graph_matched: false,
                     bindings: Vec::new(),
                     perfect_score,
                 });
             }
-            if eval.cardinality == perfect_card {
+            if cardinality == perfect_card {
                 let bindings = if graph_match {
-                    graph_match_bindings(cue, &eval)
+                    graph_match_bindings(cue, &matches.matches)
                 } else {
                     Some(Vec::new())
                 };
@@ -314,104 +306,13 @@ fn relevant_rows(store: &Store, cue: &Cue) -> Vec<(bool, i64)> {
     out
 }
 
-/// The literals' matches in episode `t`, parents before children.
-fn evaluate(store: &Store, cue: &Cue, t: i64) -> Eval {
-    let n = cue.lits.len();
-    let mut matches: Vec<BTreeSet<(i64, i64)>> = vec![BTreeSet::new(); n];
-    let mut done = vec![false; n];
-    // How many inner literals with this value matched each node.
-    let mut node_count: FxHashMap<(Sym, i64), usize> = FxHashMap::default();
-    matches[0].insert((ROOT, ROOT));
-    done[0] = true;
-    node_count.insert((cue.lits[0].value_sym, ROOT), 1);
-    let mut pending: Vec<usize> = (1..n).collect();
-    while !pending.is_empty() {
-        let before = pending.len();
-        let mut waiting = Vec::new();
-        for i in pending {
-            let l = &cue.lits[i];
-            let id_sym = l.id_sym.unwrap_or(l.value_sym);
-            // Every inner literal reaching this literal's identifier must be done.
-            let ready = cue
-                .lits
-                .iter()
-                .enumerate()
-                .all(|(j, x)| x.is_leaf || x.value_sym != id_sym || done[j]);
-            if !ready {
-                waiting.push(i);
-                continue;
-            }
-            let need = cue.incoming.get(&id_sym).copied().unwrap_or(0);
-            let parents: Vec<i64> = node_count
-                .iter()
-                .filter(|(&(s, _), &c)| s == id_sym && c == need && need > 0)
-                .map(|(&(_, node), _)| node)
-                .collect();
-            let mut found = BTreeSet::new();
-            if let Some(a) = l.attr {
-                for p in parents {
-                    match l.constant {
-                        Some(Some(v)) => {
-                            // A constant's triple has one row.
-                            if let Some(r) = store.consts.find(&(p, a, v)) {
-                                if store.consts.life(r).at(t) {
-                                    found.insert((p, v));
-                                }
-                            }
-                        }
-                        Some(None) => {}
-                        None => {
-                            if let Some(rows) = store.edges.by_parent.get(&(p, a)) {
-                                for &r in rows {
-                                    if store.edges.life(r).at(t) {
-                                        found.insert((p, store.edges.triple(r).2));
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-            }
-            if !l.is_leaf {
-                let values: BTreeSet<i64> = found.iter().map(|&(_, c)| c).collect();
-                for c in values {
-                    *node_count.entry((l.value_sym, c)).or_insert(0) += 1;
-                }
-            }
-            matches[i] = found;
-            done[i] = true;
-        }
-        if waiting.len() == before {
-            break;
-        }
-        pending = waiting;
-    }
-    let mut score = 0.0;
-    let mut cardinality = 0;
-    let mut satisfied = vec![false; n];
-    for (i, l) in cue.lits.iter().enumerate() {
-        // Only leaves score, so only their satisfaction counts as a change.
-        satisfied[i] = l.is_leaf && !matches[i].is_empty();
-        if satisfied[i] {
-            score += l.weight;
-            cardinality += if l.neg { -1 } else { 1 };
-        }
-    }
-    Eval {
-        matches,
-        score,
-        cardinality,
-        satisfied,
-    }
-}
-
 /// Binds every positive literal to one of its matches so that each cue identifier is one
 /// node (9.6's `epmem_graph_match`, literals in the order they were made).
-fn graph_match_bindings(cue: &Cue, eval: &Eval) -> Option<Vec<(Sym, i64)>> {
+fn graph_match_bindings(cue: &Cue, matches: &[BTreeMap<(i64, i64), u32>]) -> Option<Vec<(Sym, i64)>> {
     let order: Vec<usize> = (1..cue.lits.len()).filter(|&i| !cue.lits[i].neg).collect();
     let mut bindings: BTreeMap<usize, (i64, i64)> = BTreeMap::new();
     let mut bound: [FxHashMap<i64, Sym>; 2] = [FxHashMap::default(), FxHashMap::default()];
-    if !bind(cue, eval, &order, 0, &mut bindings, &mut bound) {
+    if !bind(cue, matches, &order, 0, &mut bindings, &mut bound) {
         return None;
     }
     Some(
@@ -425,7 +326,7 @@ fn graph_match_bindings(cue: &Cue, eval: &Eval) -> Option<Vec<(Sym, i64)>> {
 
 fn bind(
     cue: &Cue,
-    eval: &Eval,
+    matches: &[BTreeMap<(i64, i64), u32>],
     order: &[usize],
     at: usize,
     bindings: &mut BTreeMap<usize, (i64, i64)>,
@@ -437,7 +338,7 @@ fn bind(
     let l = &cue.lits[i];
     let kind = usize::from(l.constant.is_none());
     let mut failed_parents: FxHashSet<i64> = FxHashSet::default();
-    for &(p, c) in &eval.matches[i] {
+    for &(p, c) in matches[i].keys() {
         if failed_parents.contains(&p) {
             continue;
         }
@@ -461,7 +362,7 @@ fn bind(
         }
         bindings.insert(i, (p, c));
         let before = bound[kind].insert(c, l.value_sym);
-        if bind(cue, eval, order, at + 1, bindings, bound) {
+        if bind(cue, matches, order, at + 1, bindings, bound) {
             return true;
         }
         bindings.remove(&i);

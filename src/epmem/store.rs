@@ -6,6 +6,7 @@
 //! closed ranges plus the open one it is in now. Rows are numbered as 9.6 numbers them,
 //! which fixes the order in which episodes are printed and rebuilt.
 
+use super::timeline::Timeline;
 use rustc_hash::FxHashMap;
 
 /// The node of the top state: every episode hangs from it.
@@ -36,33 +37,6 @@ pub struct Life {
     pub ended: bool,
 }
 
-impl Life {
-    /// Whether the row was in episode `t`.
-    pub fn at(&self, t: i64) -> bool {
-        if self.now.is_some_and(|s| s <= t) {
-            return true;
-        }
-        let i = self.ranges.partition_point(|&(_, end)| end < t);
-        self.ranges.get(i).is_some_and(|&(start, _)| start <= t)
-    }
-
-    /// Every start and end of its ranges up to `limit`, as (episode, is the end).
-    pub fn bounds(&self, limit: i64, out: &mut Vec<(i64, bool)>) {
-        for &(s, e) in &self.ranges {
-            if s <= limit {
-                out.push((s, false));
-                out.push((e.min(limit), true));
-            }
-        }
-        if let Some(s) = self.now {
-            if s <= limit {
-                out.push((s, false));
-                out.push((limit, true));
-            }
-        }
-    }
-}
-
 /// One row: `(parent node, attribute, value or child node)`.
 pub type Triple = (i64, i64, i64);
 
@@ -80,6 +54,8 @@ pub struct Rows {
     pub by_attr: FxHashMap<i64, Vec<i64>>,
     /// Constants only: the row of a triple (edges may repeat a triple).
     index: FxHashMap<Triple, i64>,
+    /// The rows of each episode, kept beside `lives` as ranges open and close.
+    timeline: Timeline,
 }
 
 impl Rows {
@@ -122,15 +98,50 @@ impl Rows {
         &self.lives[(id - 1) as usize]
     }
 
+    /// A row's life to change. Ranges changed here, not through [`Rows::open`] and
+    /// [`Rows::close`], are not in the episodes' index until [`Rows::reindex`].
     pub fn life_mut(&mut self, id: i64) -> &mut Life {
         &mut self.lives[(id - 1) as usize]
     }
 
+    /// Files every row's ranges in the episodes' index again, for lives set directly
+    /// (a store read back from elsewhere).
+    pub fn reindex(&mut self) {
+        let mut timeline = Timeline::default();
+        for (k, life) in self.lives.iter().enumerate() {
+            let id = k as i64 + 1;
+            for &(start, end) in &life.ranges {
+                timeline.open(id, start);
+                timeline.close(id, end);
+            }
+            if let Some(start) = life.now {
+                timeline.open(id, start);
+            }
+        }
+        self.timeline = timeline;
+    }
+
+    /// Row `id` enters working memory at episode `start`: its open range begins.
+    pub fn open(&mut self, id: i64, start: i64) {
+        self.life_mut(id).now = Some(start);
+        self.timeline.open(id, start);
+    }
+
+    /// Row `id` left working memory after episode `end`: its open range, if any, closes.
+    pub fn close(&mut self, id: i64, end: i64) {
+        let life = self.life_mut(id);
+        if let Some(start) = life.now.take() {
+            life.ranges.push((start, end));
+            self.timeline.close(id, end);
+        }
+    }
+
     /// The rows in episode `t`, by number.
     pub fn at(&self, t: i64) -> Vec<i64> {
-        (1..=self.triples.len() as i64)
-            .filter(|&id| self.life(id).at(t))
-            .collect()
+        let mut rows = Vec::new();
+        self.timeline.at(t, &mut rows);
+        rows.sort_unstable();
+        rows
     }
 }
 
@@ -249,16 +260,19 @@ mod tests {
     }
 
     #[test]
-    fn a_life_answers_for_each_episode() {
-        let l = Life {
-            ranges: vec![(1, 2), (5, 5)],
-            now: Some(8),
-            ended: false,
-        };
-        let inside: Vec<i64> = (1..10).filter(|&t| l.at(t)).collect();
-        assert_eq!(inside, [1, 2, 5, 8, 9]);
-        let mut b = Vec::new();
-        l.bounds(8, &mut b);
-        assert_eq!(b, [(1, false), (2, true), (5, false), (5, true), (8, false), (8, true)]);
+    fn lives_set_directly_are_found_after_a_reindex() {
+        let mut rows = Rows::default();
+        for v in 0..4 {
+            rows.add((0, 1, v));
+        }
+        rows.open(1, 1);
+        rows.close(1, 3);
+        rows.life_mut(2).ranges.push((2, 2));
+        rows.life_mut(3).now = Some(3);
+        assert_eq!(rows.at(2), [1]);
+        rows.reindex();
+        assert_eq!(rows.at(2), [1, 2]);
+        assert_eq!(rows.at(3), [1, 3]);
+        assert_eq!(rows.at(9), [3]);
     }
 }
