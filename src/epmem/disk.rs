@@ -229,7 +229,7 @@ impl Disk {
             while let Some(r) = rows.next()? {
                 rows_of.load(r.get(0)?, (r.get(1)?, r.get(2)?, r.get(3)?));
             }
-            self.rows[k] = rows_of.len();
+            self.rows[k] = rows_of.count();
             let t = &TABLES[k];
             let mut ranges: Vec<(i64, i64, i64)> = Vec::new();
             for sql in [
@@ -244,11 +244,11 @@ impl Disk {
             }
             ranges.sort_unstable();
             for (row, start, end) in ranges {
-                if row >= 1 && row as usize <= rows_of.len() {
+                if row >= 1 && row as usize <= rows_of.count() {
                     rows_of.life_mut(row).ranges.push((start, end));
                 }
             }
-            for row in 1..=rows_of.len() as i64 {
+            for row in 1..=rows_of.count() as i64 {
                 rows_of.life_mut(row).ended = true;
             }
         }
@@ -285,7 +285,7 @@ impl Disk {
             let rows_of = if k == CONST { &mut store.consts } else { &mut store.edges };
             for (row, start) in open {
                 Self::end_range(&tx, &mut self.trees[k], k, row, start.min(last), last)?;
-                if row >= 1 && row as usize <= rows_of.len() {
+                if row >= 1 && row as usize <= rows_of.count() {
                     let life = rows_of.life_mut(row);
                     life.ranges.push((start.min(last), last));
                     life.ranges.sort_unstable();
@@ -443,7 +443,7 @@ impl Disk {
     }
 
     fn write_rows(&mut self, rows: &Rows, k: usize) -> rusqlite::Result<()> {
-        for id in self.rows[k] + 1..=rows.len() {
+        for id in self.rows[k] + 1..=rows.count() {
             let (parent, attr, value) = rows.triple(id as i64);
             if k == CONST {
                 self.conn
@@ -459,7 +459,7 @@ impl Disk {
                     .execute(params![id as i64, parent, attr, value, OPEN])?;
             }
         }
-        self.rows[k] = rows.len();
+        self.rows[k] = rows.count();
         Ok(())
     }
 
@@ -516,7 +516,7 @@ impl Disk {
         let mut ch = Changes::default();
         let mut opened: [Vec<(i64, i64)>; 2] = [Vec::new(), Vec::new()];
         for (k, rows) in [(CONST, &store.consts), (EDGE, &store.edges)] {
-            for row in 1..=rows.len() as i64 {
+            for row in 1..=rows.count() as i64 {
                 let life = rows.life(row);
                 ch.ended[k].extend(life.ranges.iter().map(|&(s, e)| (row, s, e)));
                 if let Some(s) = life.now {

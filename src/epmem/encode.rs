@@ -32,7 +32,7 @@ impl AgentCore {
         // Edges the file already holds are free for the identifiers stored afresh, each
         // `(parent, attribute)` pool newest first.
         let enc = &mut self.epmem.encoder;
-        for id in 1..=store.edges.len() as i64 {
+        for id in 1..=store.edges.count() as i64 {
             let (parent, attr, child) = store.edges.triple(id);
             enc.pools.entry((parent, attr)).or_default().push_front((child, id));
         }

@@ -5,6 +5,7 @@
 //! also written to a SQLite file with 9.6's tables (`disk.rs`), which a later agent can
 //! open and go on with.
 
+mod cue;
 mod disk;
 mod encode;
 pub mod params;

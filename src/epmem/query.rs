@@ -9,40 +9,13 @@
 //! stretch matching every positive leaf is graph-matched (all cue identifiers bound to one
 //! node each at once): the first that passes ends the search.
 
+use super::cue::{Cue, Literal};
 use super::store::{Store, ACCEPTABLE};
 use super::walk::{Matches, Moments};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::BTreeMap;
-
-/// A cue WME as the search sees it.
-#[derive(Debug, Clone)]
-pub(crate) struct Literal {
-    /// The cue identifier it hangs from (`None` for the root).
-    pub id_sym: Option<Sym>,
-    pub value_sym: Sym,
-    /// The attribute's number (`None`: never stored, so never matched).
-    pub(super) attr: Option<i64>,
-    /// A constant value's number (`Some(None)`: never stored); `None` for an identifier.
-    pub(super) constant: Option<Option<i64>>,
-    pub is_leaf: bool,
-    pub neg: bool,
-    pub(super) weight: f64,
-    children: Vec<usize>,
-    parents: Vec<usize>,
-}
-
-/// The literals of a query, root first.
-#[derive(Debug, Default)]
-pub(crate) struct Cue {
-    pub lits: Vec<Literal>,
-    /// How many inner literals have each cue identifier as value.
-    pub(super) incoming: FxHashMap<Sym, usize>,
-    pub leaves: usize,
-    pub pos_literals: u64,
-    pub neg_literals: u64,
-}
 
 /// The answer to a query.
 pub(crate) struct Found {

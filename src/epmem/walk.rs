@@ -13,7 +13,7 @@
 //! identifiers that can only reach each other binds nothing, as in the evaluation from
 //! scratch, where such literals never become ready.
 
-use super::query::Cue;
+use super::cue::Cue;
 use super::store::{Life, Store, ROOT};
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};

@@ -11,9 +11,16 @@
 //! change, and when the store closes (9.6 writes the variables then too). Until then a walk
 //! takes the rows of the LTIs activated since from `overlay`, at their new rank.
 
-use super::store::AugValue;
 use rustc_hash::FxHashMap;
 use std::collections::BTreeMap;
+
+/// An augmentation's value by symbol numbers, for `Store::has_aug`.
+#[derive(Debug, Clone, Copy)]
+pub enum AugValue {
+    Const(i64),
+    Lti(i64),
+    Any,
+}
 
 /// An augmentation by symbol numbers: (attribute, constant value or 0, LTI value or 0).
 pub type AugRow = (i64, i64, i64);

@@ -4,6 +4,7 @@
 //! `smem_augmentations`, and constants are kept once in the symbol tables. Every method
 //! answers with a plain error text on a database failure, never a panic.
 
+pub use super::memo::AugValue;
 use super::memo::{AugEntry, CountKey, Memo, Rank, Record, WALK_ROWS};
 use super::params::SmemParams;
 use super::schema::{self, kind, var};
@@ -34,14 +35,6 @@ where
     F: FnOnce(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
 {
     conn.prepare_cached(sql)?.query_row(p, f)
-}
-
-/// An augmentation's value by symbol numbers, for `Store::has_aug`.
-#[derive(Debug, Clone, Copy)]
-pub enum AugValue {
-    Const(i64),
-    Lti(i64),
-    Any,
 }
 
 /// A database failure, as text for the command's error.
