@@ -9,12 +9,11 @@ usage: python3 scripts/epmem_db_compat.py   (after cargo build --release)
 """
 import os
 import sqlite3
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RUSOAR = os.path.join(ROOT, "target", "release", "rusoar")
+from command_runs import KERNELS, ROOT
+
 AGENT = os.path.join(ROOT, "tests", "data", "epmem-file-agent.soar")
 TABLES = [
     "versions", "epmem_persistent_variables", "epmem_rit_left_nodes", "epmem_rit_right_nodes",
@@ -40,33 +39,6 @@ def second(path):
 def backup(path):
     return ["epmem --set learning on", f"source {{{AGENT}}}", "run 16",
             f"epmem --backup {path}"]
-
-
-def official(commands):
-    """Each command's result text in a fresh official kernel (a process of its own)."""
-    script = (
-        "import soar_sml as sml, sys\n"
-        "k = sml.Kernel.CreateKernelInCurrentThread(True, 0)\n"
-        "a = k.CreateAgent('soar')\n"
-        "for c in sys.argv[1:]:\n"
-        "    print(a.ExecuteCommandLine(c))\n"
-        "k.DestroyAgent(a)\n"
-        "k.Shutdown()\n"
-    )
-    out = subprocess.run([sys.executable, "-c", script, *commands],
-                         capture_output=True, text=True, check=True)
-    return out.stdout
-
-
-def rusoar(commands):
-    args = [RUSOAR]
-    for c in commands:
-        args += ["-c", c]
-    out = subprocess.run(args, capture_output=True, text=True)
-    return out.stdout + out.stderr
-
-
-KERNELS = {"official": official, "rusoar": rusoar}
 
 
 def dump(path):

@@ -5,6 +5,8 @@
 #[path = "../fuzz/src/epmem_agent.rs"]
 mod epmem_agent;
 mod seeded;
+#[path = "../fuzz/src/steps.rs"]
+mod steps;
 
 use arbitrary::Unstructured;
 use epmem_agent::{epmem_agent, run_epmem_agent};

@@ -5,6 +5,8 @@
 mod seeded;
 #[path = "../fuzz/src/smem_agent.rs"]
 mod smem_agent;
+#[path = "../fuzz/src/steps.rs"]
+mod steps;
 
 use arbitrary::Unstructured;
 use rusoar::Agent;

@@ -10,8 +10,8 @@
 //! The `epmem` fuzz target feeds it libFuzzer's bytes; `tests/epmem_sequences.rs` includes
 //! this same file and feeds it seeded pseudo-random bytes.
 
+use crate::steps::{Step, Steps};
 use arbitrary::{Result, Unstructured};
-use rusoar::{Agent, RunUnit};
 use std::fmt::Write;
 
 const ATTRS: &[&str] = &["color", "size", "next", "on", "kind"];
@@ -168,38 +168,8 @@ fn rule(u: &mut Unstructured, name: &str) -> Result<String> {
     Ok(format!("sp {{{name}\n    {lhs}\n-->\n    {rhs}\n}}\n"))
 }
 
-/// What a step between invariant checks does.
-#[derive(Debug, Clone, PartialEq)]
-pub enum EpmemStep {
-    Phase,
-    Decision,
-    /// A command that may fail.
-    Command(String),
-}
-
-/// An episodic-memory agent: the text to source and the steps to run it by.
-#[derive(Debug, Clone)]
-pub struct EpmemAgent {
-    pub source: String,
-    pub steps: Vec<EpmemStep>,
-}
-
-impl std::fmt::Display for EpmemAgent {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "{}", self.source)?;
-        for step in &self.steps {
-            match step {
-                EpmemStep::Phase => writeln!(f, "run 1 -p")?,
-                EpmemStep::Decision => writeln!(f, "run 1")?,
-                EpmemStep::Command(c) => writeln!(f, "{c}")?,
-            }
-        }
-        Ok(())
-    }
-}
-
 /// Draws an episodic-memory agent from `u`.
-pub fn epmem_agent(u: &mut Unstructured) -> Result<EpmemAgent> {
+pub fn epmem_agent(u: &mut Unstructured) -> Result<Steps> {
     let mut source = String::from("watch 0\nepmem --set learning on\n");
     for (setting, values) in [
         ("trigger", &["dc", "dc", "output", "none"][..]),
@@ -219,11 +189,11 @@ pub fn epmem_agent(u: &mut Unstructured) -> Result<EpmemAgent> {
     for _ in 0..u.int_in_range(1..=MAX_STEPS)? {
         let episode = u.int_in_range(0..=14)?;
         steps.push(match u.int_in_range(0..=30)? {
-            0..=12 => EpmemStep::Phase,
-            13..=21 => EpmemStep::Decision,
-            22 => EpmemStep::Command(format!("epmem --print {episode}")),
-            23 => EpmemStep::Command(format!("epmem --viz {episode}")),
-            24 => EpmemStep::Command(
+            0..=12 => Step::Phase,
+            13..=21 => Step::Decision,
+            22 => Step::Command(format!("epmem --print {episode}")),
+            23 => Step::Command(format!("epmem --viz {episode}")),
+            24 => Step::Command(
                 pick(
                     u,
                     &[
@@ -235,56 +205,28 @@ pub fn epmem_agent(u: &mut Unstructured) -> Result<EpmemAgent> {
                 )?
                 .into(),
             ),
-            25 => EpmemStep::Command(format!(
+            25 => Step::Command(format!(
                 "epmem --set exclusions {}",
                 pick(u, &["thing", "flag", "count", "epmem"])?
             )),
-            26 => EpmemStep::Command(format!(
+            26 => Step::Command(format!(
                 "epmem --set force {}",
                 pick(u, &["remember", "ignore", "off"])?
             )),
-            27 => EpmemStep::Command(format!(
+            27 => Step::Command(format!(
                 "epmem --set trigger {}",
                 pick(u, &["dc", "output", "none"])?
             )),
-            28 => EpmemStep::Command("epmem --disable".into()),
-            29 => EpmemStep::Command("epmem --enable".into()),
-            _ => EpmemStep::Command(format!("run {}", u.int_in_range(2..=20)?)),
+            28 => Step::Command("epmem --disable".into()),
+            29 => Step::Command("epmem --enable".into()),
+            _ => Step::Command(format!("run {}", u.int_in_range(2..=20)?)),
         });
     }
-    Ok(EpmemAgent { source, steps })
+    Ok(Steps { source, steps })
 }
 
 /// Sources `spec` into `agent` and runs its steps, checking the kernel's invariants after
-/// each; the first failure is described, with the step it followed.
-pub fn run_epmem_agent(agent: &mut Agent, spec: &EpmemAgent) -> std::result::Result<(), String> {
-    if let Err(e) = agent.source_text("epmem-agent", &spec.source) {
-        if !e.is_warning() {
-            return Err(format!("the agent does not load: {}", e.render()));
-        }
-    }
-    check(agent, "after loading")?;
-    for (i, step) in spec.steps.iter().enumerate() {
-        let done = match step {
-            EpmemStep::Phase => agent.run(1, RunUnit::Phases).map(|_| ()),
-            EpmemStep::Decision => agent.run(1, RunUnit::Decisions).map(|_| ()),
-            // An episode not stored, a setting refused while the store is open: errors.
-            EpmemStep::Command(c) => agent.execute(c).map(|_| ()).or(Ok(())),
-        };
-        if let Err(e) = done {
-            return Err(format!("step {} ({step:?}) failed: {}", i + 1, e.render()));
-        }
-        let _ = agent.take_output();
-        check(agent, &format!("after step {} ({step:?})", i + 1))?;
-    }
-    Ok(())
-}
-
-fn check(agent: &Agent, when: &str) -> std::result::Result<(), String> {
-    agent.check_invariants().map_err(|broken| {
-        format!(
-            "{when}, the kernel's invariants do not hold:\n{}",
-            broken.join("\n")
-        )
-    })
+/// each.
+pub fn run_epmem_agent(agent: &mut rusoar::Agent, spec: &Steps) -> std::result::Result<(), String> {
+    crate::steps::run_steps(agent, "epmem-agent", spec)
 }

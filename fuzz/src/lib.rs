@@ -5,6 +5,7 @@ pub mod api_calls;
 pub mod epmem_agent;
 pub mod random_agent;
 pub mod smem_agent;
+pub mod steps;
 
 use rusoar::{Agent, AgentEvent};
 use std::path::PathBuf;

@@ -8,8 +8,8 @@
 //! The `smem` fuzz target feeds it libFuzzer's bytes; `tests/smem_sequences.rs` includes
 //! this same file and feeds it seeded pseudo-random bytes.
 
+use crate::steps::{Step, Steps};
 use arbitrary::{Result, Unstructured};
-use rusoar::{Agent, RunUnit};
 use std::fmt::Write;
 
 const ATTRS: &[&str] = &["name", "age", "kind", "next", "w"];
@@ -158,38 +158,8 @@ const CLEAR: &str = "sp {smem*apply*clear
 }
 ";
 
-/// What a step between invariant checks does.
-#[derive(Debug, Clone, PartialEq)]
-pub enum SmemStep {
-    Phase,
-    Decision,
-    /// A command that may fail.
-    Command(String),
-}
-
-/// A semantic-memory agent: the text to source and the steps to run it by.
-#[derive(Debug, Clone)]
-pub struct SmemAgent {
-    pub source: String,
-    pub steps: Vec<SmemStep>,
-}
-
-impl std::fmt::Display for SmemAgent {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "{}", self.source)?;
-        for step in &self.steps {
-            match step {
-                SmemStep::Phase => writeln!(f, "run 1 -p")?,
-                SmemStep::Decision => writeln!(f, "run 1")?,
-                SmemStep::Command(c) => writeln!(f, "{c}")?,
-            }
-        }
-        Ok(())
-    }
-}
-
 /// Draws a semantic-memory agent from `u`.
-pub fn smem_agent(u: &mut Unstructured) -> Result<SmemAgent> {
+pub fn smem_agent(u: &mut Unstructured) -> Result<Steps> {
     let mut source = String::from("watch 0\nsmem --enable\n");
     let _ = writeln!(
         source,
@@ -212,73 +182,45 @@ pub fn smem_agent(u: &mut Unstructured) -> Result<SmemAgent> {
     for _ in 0..u.int_in_range(1..=MAX_STEPS)? {
         let lti = u.int_in_range(1..=MAX_LTIS + 1)?;
         steps.push(match u.int_in_range(0..=30)? {
-            0..=14 => SmemStep::Phase,
-            15..=19 => SmemStep::Decision,
-            20 => SmemStep::Command(format!(
+            0..=14 => Step::Phase,
+            15..=19 => Step::Decision,
+            20 => Step::Command(format!(
                 "smem --query {{(<q> ^{} {})}} {}",
                 pick(u, ATTRS)?,
                 pick(u, CONSTANTS)?,
                 u.int_in_range(1..=3)?
             )),
-            21 => SmemStep::Command(format!("smem --remove {{(@{lti} ^{})}}", pick(u, ATTRS)?)),
-            22 => SmemStep::Command(format!("smem --remove {{(@{lti})}}")),
+            21 => Step::Command(format!("smem --remove {{(@{lti} ^{})}}", pick(u, ATTRS)?)),
+            22 => Step::Command(format!("smem --remove {{(@{lti})}}")),
             23 => {
                 let first = u.int_in_range(1..=MAX_LTIS)?;
-                SmemStep::Command(knowledge_base(u, first)?)
+                Step::Command(knowledge_base(u, first)?)
             }
-            24 => SmemStep::Command(format!("smem --history @{lti}")),
-            25 => SmemStep::Command(format!("print @{lti}")),
-            26 => SmemStep::Command(
+            24 => Step::Command(format!("smem --history @{lti}")),
+            25 => Step::Command(format!("print @{lti}")),
+            26 => Step::Command(
                 pick(u, &["smem --init", "smem --clear", "init-soar", "print @"])?.into(),
             ),
-            27 => SmemStep::Command(
+            27 => Step::Command(
                 pick(
                     u,
                     &["smem --stats", "smem --stats nodes", "print --depth 4 s1"],
                 )?
                 .into(),
             ),
-            28 => SmemStep::Command(format!(
+            28 => Step::Command(format!(
                 "smem --set activation-mode {}",
                 pick(u, &["recency", "frequency", "base-level"])?
             )),
-            29 => SmemStep::Command("smem --disable".into()),
-            _ => SmemStep::Command("smem --enable".into()),
+            29 => Step::Command("smem --disable".into()),
+            _ => Step::Command("smem --enable".into()),
         });
     }
-    Ok(SmemAgent { source, steps })
+    Ok(Steps { source, steps })
 }
 
 /// Sources `spec` into `agent` and runs its steps, checking the kernel's invariants after
-/// each; the first failure is described, with the step it followed.
-pub fn run_smem_agent(agent: &mut Agent, spec: &SmemAgent) -> std::result::Result<(), String> {
-    if let Err(e) = agent.source_text("smem-agent", &spec.source) {
-        if !e.is_warning() {
-            return Err(format!("the agent does not load: {}", e.render()));
-        }
-    }
-    check(agent, "after loading")?;
-    for (i, step) in spec.steps.iter().enumerate() {
-        let done = match step {
-            SmemStep::Phase => agent.run(1, RunUnit::Phases).map(|_| ()),
-            SmemStep::Decision => agent.run(1, RunUnit::Decisions).map(|_| ()),
-            // A removal of what is not there, an addition while disabled: plain errors.
-            SmemStep::Command(c) => agent.execute(c).map(|_| ()).or(Ok(())),
-        };
-        if let Err(e) = done {
-            return Err(format!("step {} ({step:?}) failed: {}", i + 1, e.render()));
-        }
-        let _ = agent.take_output();
-        check(agent, &format!("after step {} ({step:?})", i + 1))?;
-    }
-    Ok(())
-}
-
-fn check(agent: &Agent, when: &str) -> std::result::Result<(), String> {
-    agent.check_invariants().map_err(|broken| {
-        format!(
-            "{when}, the kernel's invariants do not hold:\n{}",
-            broken.join("\n")
-        )
-    })
+/// each.
+pub fn run_smem_agent(agent: &mut rusoar::Agent, spec: &Steps) -> std::result::Result<(), String> {
+    crate::steps::run_steps(agent, "smem-agent", spec)
 }
