@@ -5,6 +5,8 @@
 #[path = "../fuzz/src/random_agent.rs"]
 mod random_agent;
 mod seeded;
+#[path = "../fuzz/src/steps.rs"]
+mod steps;
 
 use arbitrary::Unstructured;
 use random_agent::{random_agent, run_random_agent};

@@ -13,8 +13,9 @@
 //! bytes; `tests/random_agents.rs` includes this same file and feeds it seeded
 //! pseudo-random bytes, so the checks also run in `cargo test` on the stable toolchain.
 
+use crate::steps::{Step, Steps};
 use arbitrary::{Result, Unstructured};
-use rusoar::{Agent, RunUnit, StopReason};
+use rusoar::Agent;
 use std::fmt::Write;
 
 /// Attributes the rules share, so that one rule's actions meet another's conditions.
@@ -28,38 +29,6 @@ const RELATIONS: &[&str] = &["<", "<=", ">", ">=", "<>"];
 /// The most rules an agent has, and the most steps it runs.
 const MAX_RULES: u32 = 14;
 const MAX_STEPS: u32 = 80;
-
-/// What a step between invariant checks does.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Step {
-    /// `run 1 -p`.
-    Phase,
-    /// `run 1`.
-    Decision,
-    /// A command of the command language (`init-soar`, `excise NAME`, a setting).
-    Command(String),
-}
-
-/// A random agent: the text to source and the steps to run it by.
-#[derive(Debug, Clone)]
-pub struct RandomAgent {
-    pub source: String,
-    pub steps: Vec<Step>,
-}
-
-impl std::fmt::Display for RandomAgent {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        writeln!(f, "{}", self.source)?;
-        for step in &self.steps {
-            match step {
-                Step::Phase => writeln!(f, "run 1 -p")?,
-                Step::Decision => writeln!(f, "run 1")?,
-                Step::Command(c) => writeln!(f, "{c}")?,
-            }
-        }
-        Ok(())
-    }
-}
 
 /// Which states a rule matches.
 #[derive(Clone, Copy, PartialEq)]
@@ -366,7 +335,7 @@ fn rule_text(u: &mut Unstructured, name: &str) -> Result<String> {
 }
 
 /// Draws an agent from `u`.
-pub fn random_agent(u: &mut Unstructured) -> Result<RandomAgent> {
+pub fn random_agent(u: &mut Unstructured) -> Result<Steps> {
     let mut source = String::from("watch 0\n");
     let _ = writeln!(source, "srand {}", u.int_in_range(0..=9)?);
     if u.ratio(1, 2)? {
@@ -402,54 +371,11 @@ pub fn random_agent(u: &mut Unstructured) -> Result<RandomAgent> {
             _ => Step::Command("chunk never".into()),
         });
     }
-    Ok(RandomAgent { source, steps })
+    Ok(Steps { source, steps })
 }
 
 /// Sources `spec` into `agent` and runs its steps, checking the kernel's invariants after
-/// each; the first failure is described, with the step it followed.
-pub fn run_random_agent(agent: &mut Agent, spec: &RandomAgent) -> std::result::Result<(), String> {
-    if let Err(e) = agent.source_text("random-agent", &spec.source) {
-        if !e.is_warning() {
-            return Err(format!("the agent does not load: {}", e.render()));
-        }
-    }
-    check(agent, "after loading")?;
-    for (i, step) in spec.steps.iter().enumerate() {
-        let mut interrupted = false;
-        let done = match step {
-            Step::Phase | Step::Decision => {
-                let unit = if *step == Step::Phase {
-                    RunUnit::Phases
-                } else {
-                    RunUnit::Decisions
-                };
-                agent.run(1, unit).map(|r| {
-                    interrupted = r.stop == StopReason::Interrupted;
-                })
-            }
-            Step::Command(c) => agent.execute(c).map(|_| ()),
-        };
-        if let Err(e) = done {
-            // A command may fail for a plain reason (a rule excised twice); a run may not.
-            if !e.is_warning() && !matches!(step, Step::Command(_)) {
-                return Err(format!("step {} ({step:?}) failed: {}", i + 1, e.render()));
-            }
-        }
-        let _ = agent.take_output();
-        check(agent, &format!("after step {} ({step:?})", i + 1))?;
-        // The embedder stopped it (a fuzz target's budget of events is spent).
-        if interrupted {
-            break;
-        }
-    }
-    Ok(())
-}
-
-fn check(agent: &Agent, when: &str) -> std::result::Result<(), String> {
-    agent.check_invariants().map_err(|broken| {
-        format!(
-            "{when}, the kernel's invariants do not hold:\n{}",
-            broken.join("\n")
-        )
-    })
+/// each.
+pub fn run_random_agent(agent: &mut Agent, spec: &Steps) -> std::result::Result<(), String> {
+    crate::steps::run_steps(agent, "random-agent", spec)
 }
