@@ -185,3 +185,37 @@ fn a_path_that_cannot_be_opened_is_named() {
     let err = agent.source_text("t", "epmem --backup /nonexistent-folder/x/copy.db");
     assert!(err.is_err());
 }
+
+#[test]
+fn a_damaged_file_with_numbers_past_its_rows_is_named() {
+    let file = TempFile::new("damaged");
+    {
+        let mut first = agent_on(&file.path(), false);
+        output(&mut first, "run 6");
+    }
+    for damage in [
+        "UPDATE epmem_wmes_constant SET wc_id = 4000000000000 WHERE wc_id = 1",
+        "UPDATE epmem_episodes SET episode_id = 9223372036854775807 WHERE episode_id = 2",
+        "UPDATE epmem_wmes_constant_point SET episode_id = 99 WHERE rowid = 1",
+    ] {
+        let copy = file.dir.join("copy.db");
+        std::fs::copy(file.path(), &copy).unwrap();
+        rusqlite::Connection::open(&copy)
+            .unwrap()
+            .execute_batch(damage)
+            .unwrap();
+        let mut agent = agent_on(&copy, true);
+        let said = output(&mut agent, "run 2");
+        assert!(
+            said.contains("which this kernel cannot read"),
+            "{damage}: {said}"
+        );
+        assert!(said.contains(&copy.display().to_string()), "{said}");
+        assert_eq!(
+            output(&mut agent, "epmem --get database"),
+            "database is memory\n"
+        );
+        drop(agent);
+        std::fs::remove_file(&copy).unwrap();
+    }
+}

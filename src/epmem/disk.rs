@@ -13,6 +13,12 @@ use rusqlite::{params, Connection, OptionalExtension};
 /// A database failure, as the text to print.
 pub type DbResult<T> = Result<T, String>;
 
+/// The most episodes a file may number (far beyond any run, and far from overflow).
+const MAX_EPISODE: i64 = 1 << 40;
+
+/// The most row numbers a table may skip (rows are kept by number, gaps included).
+const MAX_GAP: i64 = 1 << 20;
+
 /// The rows' two kinds, in the file's order: constants, then edges.
 const CONST: usize = 0;
 const EDGE: usize = 1;
@@ -69,6 +75,20 @@ impl std::fmt::Debug for Disk {
 }
 
 impl Disk {
+    /// A file that holds nothing of the store yet (the root and `operator*` come with the
+    /// tables).
+    fn new(conn: Connection, path: &str, lazy: bool) -> Disk {
+        Disk {
+            conn,
+            path: path.to_string(),
+            lazy,
+            constants: 2,
+            rows: [0, 0],
+            nodes: 1,
+            trees: [Tree::default(); 2],
+        }
+    }
+
     /// Opens the file the parameters name: emptied first unless `append` is on, its tables
     /// made if missing. A file that is not a database, is locked, or holds another schema
     /// version is refused with a message naming it.
@@ -123,16 +143,9 @@ impl Disk {
         }
         let append = p.get("append").as_deref() == Some("on");
         let lazy = p.get("lazy-commit").as_deref() != Some("off");
-        let mut disk = Disk {
-            conn,
-            path: path.clone(),
-            lazy,
-            constants: 2,
-            rows: [0, 0],
-            nodes: 1,
-            trees: [Tree::default(); 2],
-        };
+        let mut disk = Disk::new(conn, &path, lazy);
         disk.create(!append).map_err(fail)?;
+        disk.check_numbers()?;
         let mut store = Store::default();
         disk.load(&mut store).map_err(fail)?;
         disk.close_open_ranges(&mut store).map_err(fail)?;
@@ -191,6 +204,55 @@ impl Disk {
             [var::NEXT_NODE],
         )?;
         tx.commit()
+    }
+
+    /// Refuses a file whose numbers the store cannot hold: rows are kept by number, so a
+    /// number far past the rows there are, an episode out of any count, or a range outside
+    /// the stored episodes would make a damaged file cost memory without end.
+    fn check_numbers(&self) -> DbResult<()> {
+        let fail = |e: rusqlite::Error| format!("Episodic memory database error in {}: {e}", self.path);
+        let refuse = |what: String| {
+            format!(
+                "Episodic memory database error: {} holds {what}, which this kernel cannot read.",
+                self.path
+            )
+        };
+        let one = |sql: &str| -> DbResult<(i64, i64, i64)> {
+            self.conn
+                .query_row(sql, [], |r| {
+                    Ok((r.get(0)?, r.get::<_, Option<i64>>(1)?.unwrap_or(1), r.get::<_, Option<i64>>(2)?.unwrap_or(0)))
+                })
+                .map_err(fail)
+        };
+        let (_, first, last) = one("SELECT count(*), min(episode_id), max(episode_id) FROM epmem_episodes")?;
+        if first < 1 || last > MAX_EPISODE {
+            return Err(refuse(format!("episodes numbered {first} to {last}")));
+        }
+        for (table, id, least) in [
+            ("epmem_symbols_type", "s_id", 0),
+            ("epmem_wmes_constant", "wc_id", 1),
+            ("epmem_wmes_identifier", "wi_id", 1),
+        ] {
+            let (count, min, max) = one(&format!("SELECT count(*), min({id}), max({id}) FROM {table}"))?;
+            if min < least || max - count > MAX_GAP {
+                return Err(refuse(format!("{count} rows of {table} numbered {min} to {max}")));
+            }
+        }
+        for t in &TABLES {
+            let bad = format!(
+                "SELECT count(*), 0, 0 FROM {} WHERE start_episode_id < 1 OR end_episode_id < start_episode_id OR end_episode_id > {last}",
+                t.range
+            );
+            let points = format!("SELECT count(*), 0, 0 FROM {} WHERE episode_id < 1 OR episode_id > {last}", t.point);
+            let open = format!("SELECT count(*), 0, 0 FROM {} WHERE start_episode_id < 1 OR start_episode_id > {last}", t.now);
+            for (sql, table) in [(bad, t.range), (points, t.point), (open, t.now)] {
+                let (n, _, _) = one(&sql)?;
+                if n > 0 {
+                    return Err(refuse(format!("{n} rows of {table} outside its episodes 1 to {last}")));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Reads the file into `store`: its constants, rows, ranges, episodes and variables.
@@ -495,15 +557,7 @@ impl Disk {
 pub fn snapshot(store: &Store, to: &str) -> DbResult<()> {
     let fail = |e: rusqlite::Error| format!("Episodic memory database error: cannot back up to {to}: {e}");
     let conn = Connection::open_in_memory().map_err(fail)?;
-    let mut disk = Disk {
-        conn,
-        path: to.to_string(),
-        lazy: false,
-        constants: 2,
-        rows: [0, 0],
-        nodes: 1,
-        trees: [Tree::default(); 2],
-    };
+    let mut disk = Disk::new(conn, to, false);
     disk.write_all(store).map_err(fail)?;
     copy_to(&disk.conn, to).map_err(fail)
 }

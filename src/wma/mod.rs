@@ -114,24 +114,24 @@ impl Wma {
             }
         } else if self.model.is_some() {
             self.model = None;
-            self.elements.clear();
-            self.touched.clear();
-            self.queue.clear();
-            self.val_refs.clear();
-            self.o_sets.clear();
-            self.removed.clear();
+            self.clear_elements();
         }
     }
 
-    /// `init-soar`: working memory goes, and with it every element; the count of
-    /// forgotten WMEs starts again.
-    pub fn reinitialize(&mut self) {
+    /// Drops every element and what is kept about them.
+    fn clear_elements(&mut self) {
         self.elements.clear();
         self.touched.clear();
         self.queue.clear();
         self.val_refs.clear();
         self.o_sets.clear();
         self.removed.clear();
+    }
+
+    /// `init-soar`: working memory goes, and with it every element; the count of
+    /// forgotten WMEs starts again.
+    pub fn reinitialize(&mut self) {
+        self.clear_elements();
         self.forgotten = 0;
         self.recorded = None;
     }
