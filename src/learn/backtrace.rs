@@ -7,6 +7,7 @@
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
+use std::sync::atomic::Ordering::Relaxed;
 use std::sync::Arc;
 
 /// A superstate WME the result depended on, with the identities its tests had.
@@ -42,7 +43,10 @@ pub struct Backtrace {
     pub constraints: Vec<Constraint>,
     parent: FxHashMap<Ident, Ident>,
     pub literal: FxHashMap<Ident, Sym>,
-    visited: FxHashSet<*const InstTrace>,
+    /// This backtrace's number: a firing marked with it has been gone through.
+    number: u64,
+    /// Firings waiting to be gone through (kept for its room).
+    stack: Vec<Arc<InstTrace>>,
     /// Firings backtraced (for `chunk stats`), and the impasse items gone through (9.6
     /// backtraces each through an instantiation of its own).
     pub firings: usize,
@@ -72,7 +76,8 @@ impl Backtrace {
         self.constraints.clear();
         self.parent.clear();
         self.literal.clear();
-        self.visited.clear();
+        self.number += 1;
+        self.stack.clear();
         self.firings = 0;
         self.items.clear();
         self.identities = 0;
@@ -117,14 +122,15 @@ impl Backtrace {
     }
 
     fn firing(&mut self, trace: &Arc<InstTrace>, quiescence: Sym, t: Sym) {
-        let mut stack = vec![trace.clone()];
+        let mut stack = std::mem::take(&mut self.stack);
+        stack.push(trace.clone());
         while let Some(trace) = stack.pop() {
-            if !self.visited.insert(Arc::as_ptr(&trace)) {
+            if trace.backtraced.swap(self.number, Relaxed) == self.number {
                 continue;
             }
             self.firings += 1;
             self.identities += trace.vars.len();
-            let mut locals = Vec::new();
+            let locals_at = stack.len();
             for c in &trace.conds {
                 if c.via_item && self.items.insert(c.wme.timetag) {
                     self.firings += 1;
@@ -137,25 +143,14 @@ impl Backtrace {
                     self.tested_quiescence = true;
                 }
                 if let Some(origin) = &c.support {
-                    let fields = [c.wme.id, c.wme.attr, c.wme.value];
-                    for ((&tested, &made), field) in c.ids.iter().zip(&origin.ids).zip(fields) {
-                        match (tested, made) {
-                            (0, 0) => {}
-                            // A literal tested on what was made from a variable: the
-                            // chunk can only fire for that literal.
-                            (0, made) => {
-                                self.propagations_blocked += 1;
-                                let r = self.find(made);
-                                self.literal.entry(r).or_insert(field);
-                            }
-                            (tested, made) => {
-                                self.propagations += 1;
-                                self.join(tested, made)
-                            }
-                        }
+                    // Without identities (learning off) there is nothing to propagate.
+                    if c.ids != [0; 3] || origin.ids[..3] != [0; 3] {
+                        self.propagate(&trace, c, origin);
                     }
-                    self.local_constraints(&trace, c, origin);
-                    locals.push(origin.trace.clone());
+                    // A firing already gone through would be passed over when popped.
+                    if origin.trace.backtraced.load(Relaxed) != self.number {
+                        stack.push(origin.trace.clone());
+                    }
                 }
             }
             if let Some(prod) = &trace.prod {
@@ -169,8 +164,32 @@ impl Backtrace {
                 }
             }
             // Depth first, in condition order.
-            stack.extend(locals.into_iter().rev());
+            stack[locals_at..].reverse();
         }
+        self.stack = stack;
+    }
+
+    /// Where a local condition met the action that made its WME: identities on both
+    /// sides join, and a literal tested on what was made from a variable fixes it.
+    fn propagate(&mut self, trace: &Arc<InstTrace>, c: &TraceCond, origin: &PrefOrigin) {
+        let fields = [c.wme.id, c.wme.attr, c.wme.value];
+        for ((&tested, &made), field) in c.ids.iter().zip(&origin.ids).zip(fields) {
+            match (tested, made) {
+                (0, 0) => {}
+                // A literal tested on what was made from a variable: the chunk can only
+                // fire for that literal.
+                (0, made) => {
+                    self.propagations_blocked += 1;
+                    let r = self.find(made);
+                    self.literal.entry(r).or_insert(field);
+                }
+                (tested, made) => {
+                    self.propagations += 1;
+                    self.join(tested, made)
+                }
+            }
+        }
+        self.local_constraints(trace, c, origin);
     }
 
     /// The relational tests of a local condition, on fields made from an identity.

@@ -349,6 +349,7 @@ impl AgentCore {
                 level: self.decider.insts[inst_id]
                     .goal
                     .map_or(0, |g| self.sym_level(g)),
+                backtraced: Default::default(),
             }),
         };
         let mut clones = Vec::with_capacity(results.len());

@@ -58,6 +58,9 @@ pub struct InstTrace {
     pub generation: u32,
     /// The level of the instantiation's match goal (traced with its preferences).
     pub level: u32,
+    /// The number of the last backtrace that went through this firing: each is gone
+    /// through once per learning episode (an atomic, as traces are shared by `Arc`).
+    pub backtraced: std::sync::atomic::AtomicU64,
 }
 
 /// A firing's variables in name order, each with its identity and symbol: a small sorted

@@ -38,23 +38,29 @@ impl AgentCore {
         // Each binding's identity (0 when unbound), by binding index.
         let mut binding_idents = std::mem::take(&mut self.learn.binding_idents);
         binding_idents.clear();
+        // With learning off, firings get no identities, as in 9.6 (its instantiations
+        // carry none then): a justification's conditions are literal, and backtracing
+        // has nothing to unify.
+        let learning = self.settings.learn != crate::agent::LearnMode::Never;
         if let Some(info) = self.rete.production(p) {
             // The bindings are in name order, as the identities are numbered.
-            let first = self.learn.new_idents(info.bindings.len() + new_ids.len());
-            vars.reserve(info.bindings.len() + new_ids.len());
+            let n = info.bindings.len() + new_ids.len();
+            let first = if learning { self.learn.new_idents(n) } else { 0 };
+            let ident = |k: usize| if learning { first + k as u64 } else { 0 };
+            vars.reserve(n);
             for (k, (v, (depth, field))) in info.bindings.iter().enumerate() {
                 if let Some(s) = self.rete.bound_value(t, depth, field) {
-                    vars.push((v.clone(), (first + k as u64, s)));
-                    binding_idents.push(first + k as u64);
+                    vars.push((v.clone(), (ident(k), s)));
+                    binding_idents.push(ident(k));
                 } else {
                     binding_idents.push(0);
                 }
             }
             let mut made_ids: Vec<(&String, &Sym)> = new_ids.iter().collect();
             made_ids.sort();
-            let base = first + vars.len() as u64;
+            let base = vars.len();
             for (k, (v, s)) in made_ids.into_iter().enumerate() {
-                vars.push((v.as_str().into(), (base + k as u64, *s)));
+                vars.push((v.as_str().into(), (ident(base + k), *s)));
             }
         }
         let vars = TraceVars::new(vars);
@@ -118,6 +124,7 @@ impl AgentCore {
             prod: Some(prod.clone()),
             conds,
             vars,
+            backtraced: Default::default(),
         });
         for &(pid, ai) in made {
             let Some(Action::Make(m)) = prod.actions.get(ai) else {
