@@ -10,7 +10,6 @@ use crate::agent::AgentCore;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
 use crate::wm::WmeId;
-use rustc_hash::FxHashMap;
 use std::rc::Rc;
 
 impl AgentCore {
@@ -195,12 +194,6 @@ impl AgentCore {
             self.note_state_not_learning(level, &rule);
         }
         if level >= 2 {
-            let new_ids: FxHashMap<String, Sym> = rule
-                .new_vars
-                .iter()
-                .zip(&new_ids)
-                .filter_map(|((name, _), s)| Some((name.clone(), (*s)?)))
-                .collect();
             let recorded = match self.production_by_id(p) {
                 Some(prod) => self.record_firing(p, t, &prod, &new_ids, &made),
                 None => None,

@@ -318,7 +318,7 @@ impl AgentCore {
         // tests carry on to a learning episode one level up); a justification keeps the
         // grounds, a literalized identity becoming a literal.
         let recorded = chunk_match.and_then(|(pid, tok, prod)| {
-            let trace = self.record_firing(pid, tok, &prod, &Default::default(), &[])?;
+            let trace = self.record_firing(pid, tok, &prod, &[], &[])?;
             Some((trace, prod))
         });
         let trace = match &recorded {

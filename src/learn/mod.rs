@@ -63,48 +63,70 @@ pub struct InstTrace {
     pub backtraced: std::sync::atomic::AtomicU64,
 }
 
-/// A firing's variables in name order, each with its identity and symbol: a small sorted
-/// list, as a rule has a few variables and every substate firing records them.
+/// A rule's variables as its recorded firings list them, made once per rule: the names in
+/// name order, and where each binding, each variable an action makes and each field of a
+/// make action sits among them.
 #[derive(Debug, Default)]
-pub struct TraceVars(Vec<(Arc<str>, (Ident, Sym))>);
+pub struct VarTable {
+    pub names: Box<[Arc<str>]>,
+    /// For binding `k` of the rule's network: its position in `names`.
+    pub binding_pos: Box<[u32]>,
+    /// The variables the actions make (indexes into the compiled rule's list), in name
+    /// order, each with its position in `names`.
+    pub new_in_order: Box<[(u32, u32)]>,
+    /// For each action: the position in `names` of the variable in its id, attribute,
+    /// value and referent (`u32::MAX`: not a variable, or not a make action).
+    pub action_pos: Box<[[u32; 4]]>,
+}
+
+/// A firing's variables, each with its identity and what it was bound to (or made): slots
+/// beside the rule's shared [`VarTable`], `None` for a variable left unbound.
+#[derive(Debug, Default)]
+pub struct TraceVars {
+    table: Arc<VarTable>,
+    slots: Box<[Option<(Ident, Sym)>]>,
+}
 
 impl TraceVars {
-    /// The variables, sorted here by name.
-    pub fn new(mut vars: Vec<(Arc<str>, (Ident, Sym))>) -> Self {
-        vars.sort_unstable_by(|a, b| a.0.cmp(&b.0));
-        TraceVars(vars)
+    pub fn new(table: Arc<VarTable>, slots: Box<[Option<(Ident, Sym)>]>) -> Self {
+        TraceVars { table, slots }
     }
 
     pub fn get(&self, var: &str) -> Option<&(Ident, Sym)> {
-        self.0
-            .binary_search_by(|(k, _)| (**k).cmp(var))
-            .ok()
-            .map(|i| &self.0[i].1)
+        let i = self.table.names.binary_search_by(|k| (**k).cmp(var)).ok()?;
+        self.slots.get(i)?.as_ref()
+    }
+
+    /// The variable at a position of the rule's table.
+    pub fn at(&self, pos: u32) -> Option<&(Ident, Sym)> {
+        self.slots.get(pos as usize)?.as_ref()
     }
 
     pub fn contains_key(&self, var: &str) -> bool {
         self.get(var).is_some()
     }
 
+    /// How many variables are bound.
     pub fn len(&self) -> usize {
-        self.0.len()
+        self.slots.iter().filter(|s| s.is_some()).count()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
+        self.len() == 0
     }
 }
 
 /// A rule's name and the names of the chunks learned from its firings, shared by every
 /// recorded firing of it.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct TraceNames {
     pub name: Arc<str>,
     pub base: Arc<str>,
     pub generation: u32,
     /// For each positive condition, the binding index (in the rule's bindings) of the
     /// variable each field tests for equality; `u32::MAX` for none.
-    pub cond_bindings: Arc<[[u32; 3]]>,
+    pub cond_bindings: Box<[[u32; 3]]>,
+    pub vars: Arc<VarTable>,
 }
 
 /// Where a preference came from: the firing and the identities of its fields.
@@ -153,7 +175,7 @@ pub struct LearnState {
     /// result (max-dupes is per rule, per phase in 9.6).
     pub dupes_this_phase: FxHashMap<Arc<str>, i64>,
     /// The names each fired rule's recorded firings share, by rule.
-    pub trace_names: FxHashMap<crate::rete::ProdId, TraceNames>,
+    pub trace_names: FxHashMap<crate::rete::ProdId, Arc<TraceNames>>,
     /// Scratch for recording a firing: each binding's identity.
     pub binding_idents: Vec<Ident>,
     /// The backtrace tables, emptied between learning episodes (they keep their room).

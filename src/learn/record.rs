@@ -3,14 +3,13 @@
 //! for each local WME, the preference that made it. Top-state firings are never backtraced
 //! and record nothing (speed).
 
-use super::{Ident, InstTrace, PrefOrigin, TraceCond, TraceNames, TraceVars};
+use super::{Ident, InstTrace, PrefOrigin, TraceCond, TraceNames, TraceVars, VarTable};
 use crate::agent::AgentCore;
 use crate::decide::procedure::PrefType;
 use crate::decide::state::PrefId;
 use crate::production::{Action, Condition, Production, RhsTerm, Term, Test};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
-use rustc_hash::FxHashMap;
 use std::sync::Arc;
 
 /// The variable a test binds by equality, if any.
@@ -24,46 +23,49 @@ pub(crate) fn equality_var(t: &Test) -> Option<&str> {
 
 impl AgentCore {
     /// Records a firing in a substate and gives each preference it made (with the index of
-    /// its make action) an origin.
+    /// its make action) an origin. `new_ids` holds what each variable the actions make was
+    /// bound to, in the order of the compiled rule's list.
     pub(crate) fn record_firing(
         &mut self,
         p: ProdId,
         t: TokId,
         prod: &Arc<Production>,
-        new_ids: &FxHashMap<String, Sym>,
+        new_ids: &[Option<Sym>],
         made: &[(PrefId, usize)],
     ) -> Option<Arc<InstTrace>> {
         let names = self.trace_names(p, prod);
-        let mut vars: Vec<(Arc<str>, (Ident, Sym))> = Vec::new();
-        // Each binding's identity (0 when unbound), by binding index.
-        let mut binding_idents = std::mem::take(&mut self.learn.binding_idents);
-        binding_idents.clear();
+        let table = &names.vars;
         // With learning off, firings get no identities, as in 9.6 (its instantiations
         // carry none then): a justification's conditions are literal, and backtracing
         // has nothing to unify.
         let learning = self.settings.learn != crate::agent::LearnMode::Never;
+        let mut slots: Box<[Option<(Ident, Sym)>]> = vec![None; table.names.len()].into();
+        // Each binding's identity (0 when unbound), by binding index.
+        let mut binding_idents = std::mem::take(&mut self.learn.binding_idents);
+        binding_idents.clear();
         if let Some(info) = self.rete.production(p) {
-            // The bindings are in name order, as the identities are numbered.
-            let n = info.bindings.len() + new_ids.len();
+            // Identities are numbered by binding index, then the made variables in name
+            // order after the bound ones.
+            let n = info.bindings.len() + table.new_in_order.len();
             let first = if learning { self.learn.new_idents(n) } else { 0 };
             let ident = |k: usize| if learning { first + k as u64 } else { 0 };
-            vars.reserve(n);
-            for (k, (v, (depth, field))) in info.bindings.iter().enumerate() {
+            let mut bound = 0;
+            for (k, (_, (depth, field))) in info.bindings.iter().enumerate() {
                 if let Some(s) = self.rete.bound_value(t, depth, field) {
-                    vars.push((v.clone(), (ident(k), s)));
+                    slots[table.binding_pos[k] as usize] = Some((ident(k), s));
                     binding_idents.push(ident(k));
+                    bound += 1;
                 } else {
                     binding_idents.push(0);
                 }
             }
-            let mut made_ids: Vec<(&String, &Sym)> = new_ids.iter().collect();
-            made_ids.sort();
-            let base = vars.len();
-            for (k, (v, s)) in made_ids.into_iter().enumerate() {
-                vars.push((v.as_str().into(), (ident(base + k), *s)));
+            let made_vars = table.new_in_order.iter();
+            let present = made_vars.filter_map(|&(j, pos)| Some((new_ids.get(j as usize).copied()??, pos)));
+            for (k, (s, pos)) in present.enumerate() {
+                slots[pos as usize] = Some((ident(bound + k), s));
             }
         }
-        let vars = TraceVars::new(vars);
+        let vars = TraceVars::new(table.clone(), slots);
         let wmes = self.rete.match_wmes(p, t);
         let positives = prod
             .conditions
@@ -117,29 +119,20 @@ impl AgentCore {
             .and_then(|&i| self.decider.insts[i].goal)
             .map_or(0, |g| self.sym_level(g));
         let trace = Arc::new(InstTrace {
-            base: names.base,
+            base: names.base.clone(),
             generation: names.generation,
             level,
-            name: names.name,
+            name: names.name.clone(),
             prod: Some(prod.clone()),
             conds,
             vars,
             backtraced: Default::default(),
         });
         for &(pid, ai) in made {
-            let Some(Action::Make(m)) = prod.actions.get(ai) else {
+            let Some(pos) = names.vars.action_pos.get(ai) else {
                 continue;
             };
-            let ident = |t: &RhsTerm| match t {
-                RhsTerm::Var(v) => trace.vars.get(v).map_or(0, |x| x.0),
-                _ => 0,
-            };
-            let ids = [
-                ident(&m.id),
-                ident(&m.attr),
-                ident(&m.value),
-                m.referent.as_ref().map_or(0, ident),
-            ];
+            let ids = pos.map(|pos| trace.vars.at(pos).map_or(0, |x| x.0));
             self.decider.prefs[pid].origin = Some(Arc::new(PrefOrigin {
                 trace: trace.clone(),
                 ids,
@@ -150,18 +143,22 @@ impl AgentCore {
         Some(trace)
     }
 
-    /// The names a rule's recorded firings share, made once per rule (a cached entry
-    /// stands only while the rule it was made for holds the id).
-    fn trace_names(&mut self, p: ProdId, prod: &Production) -> TraceNames {
+    /// The names and variables a rule's recorded firings share, made once per rule (a
+    /// cached entry stands only while the rule it was made for holds the id).
+    fn trace_names(&mut self, p: ProdId, prod: &Production) -> Arc<TraceNames> {
         if let Some(n) = self.learn.trace_names.get(&p) {
             if *n.name == *prod.name {
                 return n.clone();
             }
         }
         let (base, generation) = super::episode::chunk_base(&prod.name, prod.flags.chunk);
+        let new_vars: Vec<String> = self
+            .compiled_rule(p)
+            .map(|r| r.new_vars.iter().map(|(v, _)| v.clone()).collect())
+            .unwrap_or_default();
+        let bindings = self.rete.production(p).map(|info| &info.bindings);
         // For each positive condition, the binding index of the variable each field tests
         // for equality (`u32::MAX`: none).
-        let bindings = self.rete.production(p).map(|info| &info.bindings);
         let index = |t: &Test| {
             equality_var(t)
                 .and_then(|v| bindings?.index_of(v))
@@ -175,12 +172,17 @@ impl AgentCore {
                 _ => None,
             })
             .collect();
-        let names = TraceNames {
+        let binding_names: Vec<Arc<str>> = bindings
+            .map(|b| b.iter().map(|(v, _)| v.clone()).collect())
+            .unwrap_or_default();
+        let vars = Arc::new(var_table(&binding_names, &new_vars, prod));
+        let names = Arc::new(TraceNames {
             name: prod.name.as_str().into(),
             base: base.into(),
             generation,
             cond_bindings,
-        };
+            vars,
+        });
         self.learn.trace_names.insert(p, names.clone());
         names
     }
@@ -215,5 +217,47 @@ impl AgentCore {
                 None
             }
         })
+    }
+}
+
+/// A rule's [`VarTable`]: its bindings' names and the variables its actions make, in name
+/// order, with where each binding, made variable and make action's field sits.
+fn var_table(bindings: &[Arc<str>], new_vars: &[String], prod: &Production) -> VarTable {
+    let mut names: Vec<Arc<str>> = bindings.to_vec();
+    names.extend(new_vars.iter().map(|v| Arc::from(v.as_str())));
+    names.sort_unstable();
+    names.dedup();
+    let pos = |v: &str| {
+        names
+            .binary_search_by(|k| (**k).cmp(v))
+            .map_or(u32::MAX, |i| i as u32)
+    };
+    let binding_pos = bindings.iter().map(|v| pos(v)).collect();
+    let mut new_in_order: Vec<(u32, u32)> = (0..new_vars.len() as u32)
+        .map(|j| (j, pos(&new_vars[j as usize])))
+        .collect();
+    new_in_order.sort_by(|a, b| new_vars[a.0 as usize].cmp(&new_vars[b.0 as usize]));
+    let term = |t: &RhsTerm| match t {
+        RhsTerm::Var(v) => pos(v),
+        _ => u32::MAX,
+    };
+    let action_pos = prod
+        .actions
+        .iter()
+        .map(|a| match a {
+            Action::Make(m) => [
+                term(&m.id),
+                term(&m.attr),
+                term(&m.value),
+                m.referent.as_ref().map_or(u32::MAX, term),
+            ],
+            _ => [u32::MAX; 4],
+        })
+        .collect();
+    VarTable {
+        names: names.into(),
+        binding_pos,
+        new_in_order: new_in_order.into(),
+        action_pos,
     }
 }
