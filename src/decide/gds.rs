@@ -10,7 +10,6 @@ use super::state::InstId;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
-use rustc_hash::FxHashSet;
 
 impl AgentCore {
     pub(crate) fn sym_level(&self, s: Sym) -> u32 {
@@ -95,14 +94,21 @@ impl AgentCore {
         if level <= 1 {
             return;
         }
-        let mut seen: FxHashSet<InstId> = FxHashSet::default();
-        let mut stack = vec![inst];
-        let mut found: Vec<WmeId> = Vec::new();
+        // The firings gone through, the ones waiting, and the superstate WMEs found: few
+        // in each walk, kept for their room.
+        let mut seen = std::mem::take(&mut self.decider.gds_scratch.seen);
+        let mut stack = std::mem::take(&mut self.decider.gds_scratch.stack);
+        let mut found = std::mem::take(&mut self.decider.gds_scratch.found);
+        stack.push(inst);
         while let Some(i) = stack.pop() {
             if !seen.insert(i) {
                 continue;
             }
-            for w in self.live_match_wmes(i) {
+            let x = &self.decider.insts[i];
+            if !x.alive {
+                continue;
+            }
+            for w in self.rete.match_row(x.prod, x.token) {
                 let Some(wme) = self.wm.get(w) else { continue };
                 let l = self.sym_level(wme.id);
                 if l < level {
@@ -112,7 +118,7 @@ impl AgentCore {
                 }
             }
         }
-        for w in found {
+        for &w in &found {
             // A WME is charged to the highest goal that depends on it: removing that goal
             // removes the lower ones too.
             let keep = self
@@ -124,6 +130,9 @@ impl AgentCore {
                 self.decider.gds.insert(w, goal);
             }
         }
+        seen.clear();
+        found.clear();
+        self.decider.gds_scratch = super::state::GdsScratch { seen, stack, found };
     }
 
     /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with

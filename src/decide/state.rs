@@ -226,6 +226,8 @@ pub struct DecideState {
     pub rhs_new_ids: Vec<Option<Sym>>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
+    /// Room for the walks that grow a goal dependency set.
+    pub gds_scratch: GdsScratch,
     /// `trace --gds-wmes`: the WMEs (by timetag) listed as joining a goal's GDS, with that
     /// goal (`gds_trace.rs`).
     pub gds_listed: FxHashMap<u64, Sym>,
@@ -336,4 +338,12 @@ impl DecideState {
         }
         self.free_prefs.push(pid);
     }
+}
+
+/// The tables a walk that grows a goal dependency set uses, kept between walks.
+#[derive(Debug, Default, Clone)]
+pub struct GdsScratch {
+    pub seen: rustc_hash::FxHashSet<InstId>,
+    pub stack: Vec<InstId>,
+    pub found: Vec<WmeId>,
 }

@@ -1195,6 +1195,18 @@ impl Rete {
         out
     }
 
+    /// The WMEs of a complete match as [`Rete::match_wmes`] lists them, without the
+    /// padding for conditions it lacks, and without allocating.
+    pub(crate) fn match_row(&self, p: ProdId, token: TokId) -> impl Iterator<Item = WmeId> + '_ {
+        let n = self.production(p).map_or(0, |info| info.positives as usize);
+        let row: &[WmeId] = if token == TokId::NONE || n == 0 {
+            &[]
+        } else {
+            self.token_row(token)
+        };
+        row.iter().copied().filter(|&w| w != NIL_WME).take(n)
+    }
+
     /// The WMEs of a token and its ancestors, by token depth (`NIL_WME` where a depth has
     /// none), for reading many bindings of one match.
     pub(crate) fn token_wmes(&self, token: TokId, out: &mut Vec<WmeId>) {
