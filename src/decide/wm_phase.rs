@@ -99,6 +99,8 @@ impl AgentCore {
         let mut removes = std::mem::take(&mut sc.removes);
         let mut context = std::mem::take(&mut sc.context);
         let mut want = std::mem::take(&mut sc.want);
+        // The non-context slots decided, for working-memory activation.
+        let mut decided = Vec::new();
         for &(id, generation) in &changed {
             if self.decider.slots.generation(id) != generation {
                 continue; // The slot went after it changed.
@@ -114,6 +116,9 @@ impl AgentCore {
                 self.decider.slots.slot_mut(id).touched = touched;
                 context.push(key);
                 continue;
+            }
+            if self.wma.on() {
+                decided.push(key);
             }
             if incremental {
                 let slot = self.decider.slots.slot(id);
@@ -238,6 +243,9 @@ impl AgentCore {
             if self.wm.get(w).is_some_and(|x| x.timetag == tt) {
                 self.remove_slot_wme(w);
             }
+        }
+        if !decided.is_empty() {
+            self.wma_slots_decided(&decided);
         }
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();

@@ -88,6 +88,7 @@ impl AgentCore {
 
     /// A WME left working memory.
     pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
+        self.wma.decided.remove(&wme.timetag);
         self.wma.remove(wme.timetag);
     }
 
@@ -119,14 +120,29 @@ impl AgentCore {
         attr == self.operator_sym() && self.symbols.is_goal(id)
     }
 
-    /// The WME's support: its slot's newest acceptable preference for its value (9.6
-    /// keeps the preference a WME was made for on the WME). An operator slot's WMEs, the
-    /// selected operator and the `+` ones, are supported by their proposals (observed:
-    /// rules testing them reference what the proposals rest on).
+    /// The WME's support: the preference its slot's last decision gave it while that
+    /// preference stands, else the one a decision would give it now.
     fn wma_support(&self, wme: &Wme) -> Support {
-        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
-            return Support::Architecture;
-        };
+        let decided = self.wma.decided.get(&wme.timetag).copied().filter(|&pid| {
+            let p = &self.decider.prefs[pid];
+            p.alive
+                && p.kind == PrefType::Acceptable
+                && (p.id, p.attr, p.value) == (wme.id, wme.attr, wme.value)
+        });
+        match decided.or_else(|| self.wma_candidate(wme)) {
+            Some(pid) if self.decider.prefs[pid].o_support => Support::O,
+            Some(pid) => Support::I(pid),
+            None => Support::Architecture,
+        }
+    }
+
+    /// The preference a decision of the WME's slot gives it: its slot's newest acceptable
+    /// preference for its value (9.6 lists a slot's preferences newest first and gives a
+    /// WME the first for its value). An operator slot's WMEs, the selected operator and
+    /// the `+` ones, are supported by their proposals (observed: rules testing them
+    /// reference what the proposals rest on).
+    fn wma_candidate(&self, wme: &Wme) -> Option<PrefId> {
+        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         // A result's preference belongs to the justification built for it in 9.6, and
         // has the justification's support (observed: the WMEs a result's justification
         // rests on gain its references).
@@ -141,11 +157,28 @@ impl AgentCore {
                 }
             }
         }
-        let found = justified.or(found);
-        match found {
-            Some(pid) if self.decider.prefs[pid].o_support => Support::O,
-            Some(pid) => Support::I(pid),
-            None => Support::Architecture,
+        justified.or(found)
+    }
+
+    /// Non-context slots were decided: each of their WMEs takes the preference the
+    /// decision gives it (9.6's `decide_non_context_slot` sets it on kept and new WMEs).
+    pub(crate) fn wma_slots_decided(&mut self, keys: &[(Sym, Sym)]) {
+        for key in keys {
+            let Some(slot) = self.decider.slots.get(key) else {
+                continue;
+            };
+            for (_, acceptable, w) in slot.wmes.iter() {
+                let Some(wme) = self.wm.get(w).copied() else {
+                    continue;
+                };
+                if acceptable {
+                    continue;
+                }
+                match self.wma_candidate(&wme) {
+                    Some(pid) => self.wma.decided.insert(wme.timetag, pid),
+                    None => self.wma.decided.remove(&wme.timetag),
+                };
+            }
         }
     }
 

@@ -74,6 +74,11 @@ pub struct Wma {
     /// rests on, found once, at its first reference (9.6's `wma_o_set`), with the
     /// preference's (id, attr, value) to tell a reused handle.
     pub(crate) o_sets: FxHashMap<PrefId, OSet>,
+    /// For a WME of a non-context slot: the preference its slot's last decision gave it
+    /// (9.6's `w->preference`, set whenever the slot is decided). References made before
+    /// the slot is decided again, as by a new preference for the same value, go through
+    /// it, not through the newer preference.
+    pub(crate) decided: FxHashMap<u64, PrefId>,
     /// Elements of WMEs that left working memory in this decision: kept until it ends, so
     /// that the `<=WM:` lines still show their activation.
     removed: Vec<u64>,
@@ -125,6 +130,7 @@ impl Wma {
         self.queue.clear();
         self.val_refs.clear();
         self.o_sets.clear();
+        self.decided.clear();
         self.removed.clear();
     }
 
