@@ -193,11 +193,17 @@ impl AgentCore {
         if self.symbols.known.item != wme.attr || !self.symbols.is_goal(wme.id) {
             return None;
         }
-        let gi = self.decider.goals.iter().position(|g| g.state == wme.id)?;
+        self.candidate_plus_wme(wme.id, wme.value)
+    }
+
+    /// For the substate `goal` of an operator impasse: the `+` WME of the candidate
+    /// `value` in the operator slot of the state above.
+    pub(crate) fn candidate_plus_wme(&self, goal: Sym, value: Sym) -> Option<crate::wm::WmeId> {
+        let gi = self.decider.goals.iter().position(|g| g.state == goal)?;
         let above = self.decider.goals.get(gi.checked_sub(1)?)?.state;
         let op = self.symbols.known.operator;
         let slot = self.decider.slots.get(&(above, op))?;
-        slot.wmes.get(&(wme.value, true))
+        slot.wmes.get(&(value, true))
     }
 
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an

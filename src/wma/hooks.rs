@@ -21,6 +21,10 @@ enum Support {
     I(PrefId),
     /// Made by the architecture (the goal stack, the io link, input): it never decays.
     Architecture,
+    /// An operator impasse's `^item` or `^non-numeric`: 9.6 gives it an architectural
+    /// firing whose one condition is the candidate's `+` WME in the state above, so it
+    /// stands on that WME's support.
+    Item(WmeId),
 }
 
 impl AgentCore {
@@ -112,6 +116,7 @@ impl AgentCore {
                     self.wma.reference(tt, n);
                 }
             }
+            Support::Item(plus) => self.wma_activate(plus, n),
             Support::Architecture => {}
         }
     }
@@ -123,6 +128,14 @@ impl AgentCore {
     /// The WME's support: the preference its slot's last decision gave it while that
     /// preference stands, else the one a decision would give it now.
     fn wma_support(&self, wme: &Wme) -> Support {
+        let known = &self.symbols.known;
+        if (wme.attr == known.item || wme.attr == known.non_numeric)
+            && self.symbols.is_goal(wme.id)
+        {
+            if let Some(plus) = self.candidate_plus_wme(wme.id, wme.value) {
+                return Support::Item(plus);
+            }
+        }
         let decided = self.wma.decided.get(&wme.timetag).copied().filter(|&pid| {
             let p = &self.decider.prefs[pid];
             p.alive
@@ -274,7 +287,7 @@ impl AgentCore {
                             }
                         }
                     }
-                    Support::O => {}
+                    Support::Item(_) | Support::O => {}
                 }
             }
         }
@@ -344,6 +357,24 @@ impl AgentCore {
                 },
                 Support::Architecture => {
                     out.insert(c.timetag);
+                }
+                Support::Item(plus) => {
+                    let Some(p) = self.wm.get(plus).copied() else {
+                        continue;
+                    };
+                    match self.wma_support(&p) {
+                        Support::I(p2) => {
+                            let set = self.wma_o_set(p2);
+                            out.extend(set);
+                        }
+                        Support::O => {
+                            self.wma_ensure_element(&p);
+                            out.insert(p.timetag);
+                        }
+                        _ => {
+                            out.insert(p.timetag);
+                        }
+                    }
                 }
             }
         }
