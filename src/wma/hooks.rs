@@ -149,28 +149,30 @@ impl AgentCore {
         }
     }
 
-    /// The preference a decision of the WME's slot gives it: its slot's newest acceptable
-    /// preference for its value (9.6 lists a slot's preferences newest first and gives a
-    /// WME the first for its value). An operator slot's WMEs, the selected operator and
-    /// the `+` ones, are supported by their proposals (observed: rules testing them
-    /// reference what the proposals rest on).
+    /// The preference a decision of the WME's slot gives it: 9.6 keeps a slot's
+    /// preferences of each kind by the level of their firings' match goals, the highest
+    /// goal first and the newest first within a level, and gives a WME the first for its
+    /// value (so a result's justification or chunk, a level up, wins over the substate
+    /// firing that made it). An operator slot's WMEs, the selected operator and the `+`
+    /// ones, are supported by their proposals (observed: rules testing them reference what
+    /// the proposals rest on).
     fn wma_candidate(&self, wme: &Wme) -> Option<PrefId> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        // A result's preference belongs to the justification built for it in 9.6, and
-        // has the justification's support (observed: the WMEs a result's justification
-        // rests on gain its references).
-        let mut found = None;
-        let mut justified = None;
+        let mut best: Option<(u32, PrefId)> = None;
         for pid in slot.prefs_for(wme.value) {
             let p = &self.decider.prefs[pid];
             if p.alive && p.kind == PrefType::Acceptable {
-                found = Some(pid);
-                if p.inst.is_some_and(|i| self.decider.insts[i].serial != 0) {
-                    justified = Some(pid);
+                let level = p
+                    .inst
+                    .and_then(|i| self.decider.insts[i].goal)
+                    .map_or(1, |g| self.sym_level(g));
+                // Newer preferences come later here: a tie in level goes to the later.
+                if best.is_none_or(|(l, _)| level <= l) {
+                    best = Some((level, pid));
                 }
             }
         }
-        justified.or(found)
+        best.map(|(_, pid)| pid)
     }
 
     /// Non-context slots were decided: each of their WMEs takes the preference the
