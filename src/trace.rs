@@ -428,6 +428,9 @@ impl AgentCore {
                 activation,
             });
         }
+        if !added && !self.wma.removal_lines.is_empty() {
+            self.wma_flush_removal_line(w.timetag);
+        }
     }
 }
 

@@ -203,11 +203,37 @@ fn masked_smem(text: &str) -> String {
         .join("\n")
 }
 
+/// The WMA trace's `activate` lines of one decision in timetag order: 9.6 lists them in
+/// the order of its WMEs' memory addresses, which no other kernel can share.
+fn activations_in_timetag_order(text: &str) -> String {
+    let timetag = |l: &str| -> u64 {
+        l.split(": activate ")
+            .nth(1)
+            .and_then(|r| r.split_whitespace().next()?.parse().ok())
+            .unwrap_or(0)
+    };
+    let is_activation = |l: &str| l.starts_with("WMA @") && l.contains(": activate ");
+    let mut out: Vec<&str> = Vec::new();
+    let mut run: Vec<&str> = Vec::new();
+    for line in text.split('\n') {
+        if is_activation(line) {
+            run.push(line);
+            continue;
+        }
+        run.sort_by_key(|l| timetag(l));
+        out.append(&mut run);
+        out.push(line);
+    }
+    run.sort_by_key(|l| timetag(l));
+    out.append(&mut run);
+    out.join("\n")
+}
+
 /// The text as compared: the `soar` summary's title and `chunk stats`' identity counts
 /// made neutral, and `stats`' figures that cannot match masked.
 fn comparable(command: &str, text: &str) -> String {
     let first = command.split_whitespace().next().unwrap_or_default();
-    let text = neutral_identity_counts(&neutral_title(text));
+    let text = activations_in_timetag_order(&neutral_identity_counts(&neutral_title(text)));
     if first == "stats" || first == "st" {
         masked_stats(&text)
     } else if first == "smem" || first == "epmem" {

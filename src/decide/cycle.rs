@@ -444,9 +444,12 @@ impl AgentCore {
         // Input changes not applied yet go with the rest of working memory.
         self.inputs.queue.clear();
         let all = self.wm.all();
+        // 9.6 clears the decay elements without the WMA trace's `remove` lines.
+        let wma_traced = std::mem::replace(&mut self.settings.trace.wma, false);
         for w in all.into_iter().rev() {
             self.remove_wme(w);
         }
+        self.settings.trace.wma = wma_traced;
         self.matches.clear();
         // Tracking stays on (its rows go), as in 9.6.
         let tracking = self.decider.cycle_stats.tracking;

@@ -147,7 +147,7 @@ impl AgentCore {
         // Operators whose proposal went are removed before the `+` WMEs change (9.6's
         // REMOVING lines come first, and its removals are buffered in that order).
         let goals_before = self.decider.goals.len();
-        if self.settings.trace.wmes {
+        if self.settings.trace.wmes || self.settings.trace.wma {
             self.removed_wmes = Some(Vec::new());
         }
         // A substate whose GDS holds a WME the slot decisions remove goes first, before

@@ -92,6 +92,7 @@ impl AgentCore {
 
     /// A WME left working memory.
     pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
+        self.wma_trace_removal(wme.timetag);
         self.wma.decided.remove(&wme.timetag);
         self.wma.remove(wme.timetag);
     }
@@ -299,6 +300,7 @@ impl AgentCore {
             0
         };
         self.wma.create(wme.timetag, boost);
+        self.wma_trace_add(wme);
     }
 
     fn wma_cached_o_set(&self, pid: PrefId) -> Option<Vec<u64>> {
@@ -388,8 +390,19 @@ impl AgentCore {
     /// working-memory phase.
     pub(crate) fn wma_end_decision(&mut self) {
         let now = self.decider.d_cycle_count;
+        // A `remove` line whose `<=WM:` line never came is not lost.
+        for tt in std::mem::take(&mut self.wma.removal_lines) {
+            self.wma.removal_lines.push(tt);
+            self.wma_flush_removal_line(tt);
+        }
         self.wma.purge_removed();
-        self.wma.record_decision(now);
+        if self.settings.trace.wma {
+            let mut counts = Vec::new();
+            self.wma.record_decision(now, Some(&mut counts));
+            self.wma_trace_activations(&counts);
+        } else {
+            self.wma.record_decision(now, None);
+        }
         let due = self.wma.due(now);
         if due.is_empty() || self.wma.params.fake_forgetting {
             return;
@@ -412,11 +425,17 @@ impl AgentCore {
         if !forgot {
             return;
         }
-        // The removals are traced as any others: 9.6.5 prints no heading around them
-        // (observed with `watch --wmes`).
+        // The removals are traced as any others, between two headings when the WMA trace
+        // is on (9.6.5 prints none with only `watch --wmes`).
+        if self.settings.trace.wma {
+            self.output.push_str("\n\nWMA: BEGIN FORGOTTEN WME LIST\n\n");
+        }
         let before = self.wm.removals();
         self.update_slots();
         self.wma.forgotten += self.wm.removals() - before;
+        if self.settings.trace.wma {
+            self.output.push_str("\nWMA: END FORGOTTEN WME LIST\n\n");
+        }
     }
 
     /// `forget-wme lti`: a long-term identifier's WMEs go all together, once every

@@ -12,6 +12,7 @@
 pub mod decay;
 mod hooks;
 pub mod params;
+mod trace;
 
 use decay::{DecayHistory, DecayModel};
 use params::WmaParams;
@@ -79,6 +80,8 @@ pub struct Wma {
     /// the slot is decided again, as by a new preference for the same value, go through
     /// it, not through the newer preference.
     pub(crate) decided: FxHashMap<u64, PrefId>,
+    /// With the WMA trace on: WMEs whose `remove` line waits for their `<=WM:` line.
+    pub(crate) removal_lines: Vec<u64>,
     /// Elements of WMEs that left working memory in this decision: kept until it ends, so
     /// that the `<=WM:` lines still show their activation.
     removed: Vec<u64>,
@@ -131,6 +134,7 @@ impl Wma {
         self.val_refs.clear();
         self.o_sets.clear();
         self.decided.clear();
+        self.removal_lines.clear();
         self.removed.clear();
     }
 
@@ -263,7 +267,8 @@ impl Wma {
 
     /// Records the current decision's references (9.6's `wma_update_decay_histories`)
     /// and, with queued forgetting, predicts each referenced element's decision.
-    pub(crate) fn record_decision(&mut self, now: u64) {
+    /// With `counts`, each element's references in the decision are listed there.
+    pub(crate) fn record_decision(&mut self, now: u64, mut counts: Option<&mut Vec<(u64, u64)>>) {
         let queued = self.params.forgetting.queued();
         self.recorded = Some(now);
         for tt in std::mem::take(&mut self.touched) {
@@ -271,6 +276,9 @@ impl Wma {
                 continue;
             };
             let n = std::mem::take(&mut el.buffered);
+            if let Some(c) = counts.as_mut() {
+                c.push((tt, n));
+            }
             el.history.record(n, now);
             el.just_created = false;
             if queued {
