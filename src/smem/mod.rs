@@ -128,40 +128,54 @@ impl Smem {
     /// log-odds of Σ (now − t + 1)^−d over the last ten (`base_level`), to which an LTI
     /// that has spread adds it (`spread.rs`).
     pub fn activate(&mut self, lti: i64) -> DbResult<()> {
+        self.touch(lti, true)
+    }
+
+    /// 9.6's activation of an LTI (`lti_activate`): with `add_access` an access at the
+    /// clock's time, which then advances; without, the activation recomputed at the
+    /// clock's time, no access added (what a `^store` does: observed on soar-sml 9.6.5, a
+    /// stored LTI counts an activation update but no access). An activation with nothing
+    /// to go on (no access yet) is taken as one access when the agent began: ln(f) for
+    /// f = x / (1 + x), x = clock^−d.
+    fn touch(&mut self, lti: i64, add_access: bool) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
         let autocommit = !self.params.lazy_commit() && self.params.in_file();
         let spreading = self.params.spreading();
         let settings = spread::Settings::of(&self.params);
         let store = self.store()?;
-        let now = store.var(schema::var::MAX_CYCLE)?.max(1);
-        store.set_var(schema::var::MAX_CYCLE, now + 1)?;
+        let clock = store.var(schema::var::MAX_CYCLE)?.max(1);
         let mut record = store.record(lti)?;
-        record.total += 1.0;
-        record.last = now;
-        if record.first == 0 {
-            record.first = now;
-        }
-        record.history.insert(0, now);
-        record.history.truncate(10);
+        // `at` is the time the base-level sum is taken at, less one.
+        let (now, at) = if add_access {
+            store.set_var(schema::var::MAX_CYCLE, clock + 1)?;
+            record.total += 1.0;
+            record.last = clock;
+            if record.first == 0 {
+                record.first = clock;
+            }
+            record.history.insert(0, clock);
+            record.history.truncate(10);
+            (clock, clock)
+        } else {
+            (clock, clock - 1)
+        };
         let value = match mode {
             Mode::Recency => now as f64,
             Mode::Frequency => record.total,
-            Mode::BaseLevel => {
-                base_level(&record.history, now, decay)
-            }
+            Mode::BaseLevel => base_level(&record.history, at, decay),
+        };
+        let unused = settings.unused_odds(store.var(schema::var::MAX_CYCLE)?).ln();
+        let base = if value == schema::ACT_LOW || value == 0.0 {
+            unused
+        } else {
+            value
         };
         // An LTI that has spread keeps its activation with it: the new base-level plus the
         // spread it has (9.6's `lti_activate`).
         let with_spread = if spreading { store.spread_row(lti)? } else { None };
         if let Some((_, spread, _)) = with_spread {
             let offset = settings.offset();
-            let clock = store.var(schema::var::MAX_CYCLE)?;
-            let base = if value == schema::ACT_LOW || value == 0.0 {
-                settings.unused_odds(clock).ln()
-            } else {
-                value
-            };
             let modified = if spread == 0.0 || spread < offset {
                 0.0
             } else {
@@ -170,7 +184,7 @@ impl Smem {
             store.write_access(lti, record)?;
             store.write_spread_activation(lti, value, spread, base + modified)?;
         } else {
-            store.write_activation(lti, record, value)?;
+            store.write_activation(lti, record, value, base)?;
         }
         // Without lazy-commit a file has each change as soon as it is made, as with 9.6;
         // the store otherwise holds part of an activation back until the next commit.
@@ -179,6 +193,11 @@ impl Smem {
         }
         self.stats.act_updates += 1;
         Ok(())
+    }
+
+    /// A `^store`'s activation of the stored LTI (no access added).
+    pub fn activate_stored(&mut self, lti: i64) -> DbResult<()> {
+        self.touch(lti, false)
     }
 
     /// `print @N`: one LTI (`None` when it does not exist).

@@ -920,13 +920,13 @@ impl Store {
     /// Writes an activation: the LTI's record and its history; its augmentations' copy of
     /// the value (which the retrieval's order reads) waits in the memo until the next
     /// commit (`write_pending`).
-    pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
+    pub fn write_activation(&self, lti: i64, record: Record, base: f64, value: f64) -> DbResult<()> {
         let history = &record.history;
         let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
         self.memo.borrow_mut().activation_changed(lti, &rows, value);
         db(exec(&self.conn, 
-            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
-            params![lti, record.total, record.last, record.first, value],
+            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?6 WHERE lti_id=?1",
+            params![lti, record.total, record.last, record.first, base, value],
         ))?;
         self.write_history(lti, history)?;
         self.memo.borrow_mut().records.insert(lti, record);
@@ -934,6 +934,10 @@ impl Store {
     }
 
     fn write_history(&self, lti: i64, history: &[i64]) -> DbResult<()> {
+        // An LTI gets its history row with its first access.
+        if history.is_empty() {
+            return Ok(());
+        }
         let mut t = [0i64; 10];
         for (slot, h) in t.iter_mut().zip(history) {
             *slot = *h;

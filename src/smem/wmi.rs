@@ -91,9 +91,11 @@ impl AgentCore {
         self.smem.context = context;
     }
 
-    /// `init-soar`: working memory is new, so are the links' records.
+    /// `init-soar`: working memory is new, so are the links' records; the counts of
+    /// `smem --stats` start again (observed on soar-sml 9.6.5).
     pub(crate) fn smem_reinitialize(&mut self) {
         self.smem.links = Links::default();
+        self.smem.stats = super::SmemStats::default();
     }
 
     fn smem_go(&mut self, store_only: bool, mut header: Option<bool>) {
@@ -359,10 +361,12 @@ impl AgentCore {
                     if let Some(d) = self.symbols.id_data_mut(sti) {
                         d.lti = lti;
                     }
-                    // A retrieve counts as an activation update but leaves the LTI's
-                    // recency as it was (observed on soar-sml 9.6.5).
-                    self.smem.stats.act_updates += 1;
-                    let done = self.smem_install(sti, lti, level, depth, &mut added);
+                    // A retrieve activates the LTI, as a query does (9.6's
+                    // `install_memory` with activation; observed on soar-sml 9.6.5).
+                    let done = self
+                        .smem
+                        .activate(lti)
+                        .and_then(|()| self.smem_install(sti, lti, level, depth, &mut added));
                     match done {
                         Ok(()) => {
                             if replacing {
@@ -513,7 +517,7 @@ impl AgentCore {
             };
             self.smem.store()?.add_aug(lti, &attr, &value)?;
         }
-        self.smem.activate(lti)?;
+        self.smem.activate_stored(lti)?;
         self.smem.stats.stores += 1;
         let lazy = self.smem.params.lazy_commit();
         self.smem.store()?.commit(lazy)?;
