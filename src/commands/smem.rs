@@ -128,6 +128,15 @@ impl Interpreter {
                     Err(SetError::Protected) => Err(ctx.error(
                         "This parameter is protected while the semantic memory database is open.",
                     )),
+                    Err(SetError::SpreadingNeedsBaseLevel) => Err(ctx.error(
+                        "Spreading activation cannot be turned on until the 'activation-mode' is also set to base-level.\nRun 'smem --set activation-mode base-level' first if you intend to use spreading.",
+                    )),
+                    Err(SetError::ModeWhileSpreading) => Err(ctx.error(
+                        "activation-mode cannot be changed while spreading activation is on.",
+                    )),
+                    Err(SetError::SpreadingLocked) => Err(ctx.error(
+                        "Some spreading activation settings cannot be changed once spreading activation has been turned on.",
+                    )),
                     Ok(()) => {
                         let mut s = format!("{} is now {}\n", words[0], words[1]);
                         if words[0] == "append" && words[1] == "off" {
@@ -170,6 +179,8 @@ impl Interpreter {
                     .unwrap_or(1)
                     .max(1);
                 let cue = command_line_cue(&clauses);
+                self.agent.smem_note_context();
+                let smem = &mut self.agent.smem;
                 let found = smem.query_first(&cue, how_many).map_err(db)?;
                 let mut s = String::new();
                 if found.is_empty() {

@@ -9,6 +9,7 @@ pub mod params;
 mod print;
 pub mod query;
 mod schema;
+pub mod spread;
 pub mod store;
 pub mod text;
 pub mod wmi;
@@ -36,6 +37,11 @@ pub struct Smem {
     pub stats: SmemStats,
     /// The working-memory interface's record of each state's commands and results.
     pub(crate) links: wmi::Links,
+    /// Spreading activation's record of its sources.
+    spread: spread::Spread,
+    /// The LTIs with an instance in working memory (the sources of spreading), as the
+    /// caller of a query last gave them.
+    pub context: std::collections::BTreeSet<i64>,
 }
 
 impl Smem {
@@ -115,32 +121,71 @@ impl Smem {
         Ok(marks)
     }
 
-    /// Activates an LTI at time `now` (the decision cycle) by the activation mode (Soar
-    /// manual, Semantic Memory, "Retrieval"): recency takes the time, frequency the count
-    /// of activations, base-level ln(Σ (now − t)^−d) over the last ten. The store keeps
-    /// the clock past the latest time.
-    pub fn activate(&mut self, lti: i64, now: i64) -> DbResult<()> {
+    /// Activates an LTI by the activation mode (Soar manual, Semantic Memory,
+    /// "Retrieval") at the time of semantic memory's own clock, which counts activations
+    /// (9.6's `smem_max_cycle`, kept in the store; a decision without one does not advance
+    /// it): recency takes the time, frequency the count of activations, base-level the
+    /// log-odds of Σ (now − t + 1)^−d over the last ten (`base_level`), to which an LTI
+    /// that has spread adds it (`spread.rs`).
+    pub fn activate(&mut self, lti: i64) -> DbResult<()> {
+        self.touch(lti, true)
+    }
+
+    /// 9.6's activation of an LTI (`lti_activate`): with `add_access` an access at the
+    /// clock's time, which then advances; without, the activation recomputed at the
+    /// clock's time, no access added (what a `^store` does: observed on soar-sml 9.6.5, a
+    /// stored LTI counts an activation update but no access). An activation with nothing
+    /// to go on (no access yet) is taken as one access when the agent began: ln(f) for
+    /// f = x / (1 + x), x = clock^−d.
+    fn touch(&mut self, lti: i64, add_access: bool) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
         let autocommit = !self.params.lazy_commit() && self.params.in_file();
+        let spreading = self.params.spreading();
+        let settings = spread::Settings::of(&self.params);
         let store = self.store()?;
-        let now = now.max(1);
-        let clock = store.var(schema::var::MAX_CYCLE)?;
-        store.set_var(schema::var::MAX_CYCLE, clock.max(now + 1))?;
+        let clock = store.var(schema::var::MAX_CYCLE)?.max(1);
         let mut record = store.record(lti)?;
-        record.total += 1.0;
-        record.last = now;
-        if record.first == 0 {
-            record.first = now;
-        }
-        record.history.insert(0, now);
-        record.history.truncate(10);
+        // `at` is the time the base-level sum is taken at, less one.
+        let (now, at) = if add_access {
+            store.set_var(schema::var::MAX_CYCLE, clock + 1)?;
+            record.total += 1.0;
+            record.last = clock;
+            if record.first == 0 {
+                record.first = clock;
+            }
+            record.history.insert(0, clock);
+            record.history.truncate(10);
+            (clock, clock)
+        } else {
+            (clock, clock - 1)
+        };
         let value = match mode {
             Mode::Recency => now as f64,
             Mode::Frequency => record.total,
-            Mode::BaseLevel => base_level(&record.history, now, decay, record.total),
+            Mode::BaseLevel => base_level(&record.history, at, decay),
         };
-        store.write_activation(lti, record, value)?;
+        let unused = settings.unused_odds(store.var(schema::var::MAX_CYCLE)?).ln();
+        let base = if value == schema::ACT_LOW || value == 0.0 {
+            unused
+        } else {
+            value
+        };
+        // An LTI that has spread keeps its activation with it: the new base-level plus the
+        // spread it has (9.6's `lti_activate`).
+        let with_spread = if spreading { store.spread_row(lti)? } else { None };
+        if let Some((_, spread, _)) = with_spread {
+            let offset = settings.offset();
+            let modified = if spread == 0.0 || spread < offset {
+                0.0
+            } else {
+                spread.ln() - offset.ln()
+            };
+            store.write_access(lti, record)?;
+            store.write_spread_activation(lti, value, spread, base + modified)?;
+        } else {
+            store.write_activation(lti, record, value, base)?;
+        }
         // Without lazy-commit a file has each change as soon as it is made, as with 9.6;
         // the store otherwise holds part of an activation back until the next commit.
         if autocommit {
@@ -150,21 +195,28 @@ impl Smem {
         Ok(())
     }
 
+    /// A `^store`'s activation of the stored LTI (no access added).
+    pub fn activate_stored(&mut self, lti: i64) -> DbResult<()> {
+        self.touch(lti, false)
+    }
+
     /// `print @N`: one LTI (`None` when it does not exist).
     pub fn print_lti(&mut self, lti: i64) -> DbResult<Option<String>> {
+        let spreading = self.params.spreading();
         let store = self.store()?;
         if !store.lti_exists(lti)? {
             return Ok(None);
         }
-        print::lti(store, lti).map(Some)
+        print::lti(store, lti, spreading).map(Some)
     }
 
     /// `print @`: every LTI.
     pub fn print_all(&mut self) -> DbResult<String> {
+        let spreading = self.params.spreading();
         let store = self.store()?;
         let mut s = String::new();
         for lti in store.ltis()? {
-            s.push_str(&print::lti(store, lti)?);
+            s.push_str(&print::lti(store, lti, spreading)?);
         }
         Ok(s)
     }
@@ -218,18 +270,19 @@ impl Smem {
     }
 }
 
-/// Base-level activation: ln of Σ (now − t + 1)^−d over the activation times (older ones
-/// beyond the ten kept are counted as if at the oldest kept time).
-fn base_level(history: &[i64], now: i64, decay: f64, total: f64) -> f64 {
-    let mut sum = 0.0;
-    for &t in history {
-        sum += ((now - t + 1) as f64).powf(-decay);
+/// Base-level activation as 9.6.5 computes it (Soar manual, Semantic Memory, "Base-level
+/// activation"): the sum s of (now − t + 1)^−d over the ten most recent activation times,
+/// given as the log-odds ln(s / (1 + s)). The older activations add nothing: 9.6.5 reads a
+/// full history as longer than ten and so never adds its approximation of them (observed
+/// on soar-sml 9.6.5 with twelve activations).
+fn base_level(history: &[i64], now: i64, decay: f64) -> f64 {
+    let sum: f64 = history
+        .iter()
+        .map(|&t| ((now + 1 - t) as f64).powf(-decay))
+        .sum();
+    if sum > 0.0 {
+        (sum / (1.0 + sum)).ln()
+    } else {
+        schema::ACT_LOW
     }
-    let extra = total - history.len() as f64;
-    if extra > 0.0 {
-        if let Some(&oldest) = history.last() {
-            sum += extra * ((now - oldest + 1) as f64).powf(-decay);
-        }
-    }
-    sum.ln()
 }

@@ -38,7 +38,24 @@ pub enum SetError {
     Value,
     /// A store setting while the database is open.
     Protected,
+    /// `spreading on` while `activation-mode` is not `base-level`.
+    SpreadingNeedsBaseLevel,
+    /// `activation-mode` while spreading is on.
+    ModeWhileSpreading,
+    /// A setting of the spreading model while spreading is on.
+    SpreadingLocked,
 }
+
+/// The spreading settings 9.6 fixes while spreading is on (the fingerprints already made
+/// depend on them).
+const SPREAD_LOCKED: [&str; 6] = [
+    "spreading-limit",
+    "spreading-depth-limit",
+    "spreading-baseline",
+    "spreading-continue-probability",
+    "spreading-loop-avoidance",
+    "spreading-wma-source",
+];
 
 /// Every parameter of `smem`, with 9.6's defaults.
 #[derive(Debug, Clone, PartialEq)]
@@ -50,7 +67,15 @@ pub struct SmemParams {
 const INTEGERS: [&str; 4] = ["thresh", "cache-size", "spreading-limit", "spreading-depth-limit"];
 
 /// The parameters that cannot change while the database is open (they shape the store).
-const PROTECTED: [&str; 5] = ["database", "path", "page-size", "cache-size", "optimization"];
+const PROTECTED: [&str; 7] = [
+    "database",
+    "path",
+    "page-size",
+    "cache-size",
+    "optimization",
+    "spreading-limit",
+    "spreading-depth-limit",
+];
 
 impl Default for SmemParams {
     fn default() -> Self {
@@ -92,12 +117,12 @@ impl Default for SmemParams {
                 p("spreading", Kind::Words(ON_OFF), "off"),
                 p("spreading-limit", Kind::Number, "300"),
                 p("spreading-depth-limit", Kind::Number, "10"),
-                p("spreading-baseline", Kind::Number, "0.0001"),
-                p("spreading-continue-probability", Kind::Number, "0.9"),
+                p("spreading-baseline", Kind::Positive, "0.0001"),
+                p("spreading-continue-probability", Kind::Positive, "0.9"),
                 p("spreading-loop-avoidance", Kind::Words(ON_OFF), "off"),
                 p("spreading-edge-updating", Kind::Words(ON_OFF), "off"),
                 p("spreading-wma-source", Kind::Words(ON_OFF), "off"),
-                p("spreading-edge-update-factor", Kind::Number, "0.99"),
+                p("spreading-edge-update-factor", Kind::Positive, "0.99"),
             ],
         }
     }
@@ -149,10 +174,10 @@ impl SmemParams {
 
     /// Sets a parameter; `open` says whether the database is open.
     pub fn set(&mut self, name: &str, value: &str, open: bool) -> Result<(), SetError> {
-        let Some(p) = self.params.iter_mut().find(|p| p.name == name) else {
+        let Some(kind) = self.find(name).map(|p| p.kind) else {
             return Err(SetError::Name);
         };
-        let ok = match p.kind {
+        let ok = match kind {
             Kind::Words(words) => words.contains(&value),
             Kind::Text | Kind::Number => true,
             Kind::Positive => value.trim().parse::<f64>().is_ok_and(|x| x > 0.0),
@@ -162,9 +187,22 @@ impl SmemParams {
         if !ok {
             return Err(SetError::Value);
         }
+        // Spreading adds to base-level activation, so 9.6 ties the two settings.
+        if name == "spreading" && value == "on" && self.mode() != Mode::BaseLevel {
+            return Err(SetError::SpreadingNeedsBaseLevel);
+        }
+        if name == "activation-mode" && self.spreading() {
+            return Err(SetError::ModeWhileSpreading);
+        }
+        if SPREAD_LOCKED.contains(&name) && self.spreading() {
+            return Err(SetError::SpreadingLocked);
+        }
         if open && PROTECTED.contains(&name) {
             return Err(SetError::Protected);
         }
+        let Some(p) = self.params.iter_mut().find(|p| p.name == name) else {
+            return Err(SetError::Name);
+        };
         p.value = match p.kind {
             // 9.6 adds the list's first number to its thresholds, if it is a new one
             // above zero (observed on soar-sml 9.6.5: `1,2,3` after `10` gives `10, 1`).
@@ -186,11 +224,13 @@ impl SmemParams {
         self.find(name).map_or("", |p| p.value.as_str())
     }
 
-    fn number(&self, name: &str) -> f64 {
+    /// A number parameter as 9.6 reads it.
+    pub fn number(&self, name: &str) -> f64 {
         self.find(name).map_or(0.0, |p| leading_number(&p.value))
     }
 
-    fn on(&self, name: &str) -> bool {
+    /// Whether an on/off parameter is on.
+    pub fn on(&self, name: &str) -> bool {
         self.word(name) == "on"
     }
 
@@ -238,6 +278,11 @@ impl SmemParams {
 
     pub fn base_decay(&self) -> f64 {
         self.number("base-decay")
+    }
+
+    /// `spreading on`: LTIs in working memory spread activation to the LTIs they reach.
+    pub fn spreading(&self) -> bool {
+        self.on("spreading")
     }
 
     /// `smem ?`: the settings and sub-commands, in 9.6's layout.
@@ -386,7 +431,7 @@ pub enum Mode {
     Recency,
     /// The number of activations.
     Frequency,
-    /// ln(Σ (now − t)^−d) over the activation history.
+    /// The log-odds of Σ (now − t + 1)^−d over the activation history.
     BaseLevel,
 }
 

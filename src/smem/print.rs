@@ -33,8 +33,9 @@ fn grouped(store: &Store, lti: i64, text: fn(&Val) -> String) -> DbResult<BTreeM
     Ok(by_attr)
 }
 
-/// `(@N ^attr value ... [+A.AAA])` and a newline.
-pub fn lti(store: &Store, lti: i64) -> DbResult<String> {
+/// `(@N ^attr value ... [+A.AAA])` and a newline; with spreading on, an LTI that has
+/// spread shows its activation with the spread.
+pub fn lti(store: &Store, lti: i64, spreading: bool) -> DbResult<String> {
     let mut s = format!("(@{lti}");
     for (a, values) in grouped(store, lti, value_text)? {
         s.push_str(&format!(" ^{a}"));
@@ -43,7 +44,12 @@ pub fn lti(store: &Store, lti: i64) -> DbResult<String> {
             s.push_str(&v);
         }
     }
-    s.push_str(&format!(" [{:+.3}])\n", store.shown_activation(lti)?));
+    let spread = if spreading { store.spread_row(lti)? } else { None };
+    let act = match spread {
+        Some((_, _, value)) => value,
+        None => store.shown_activation(lti)?,
+    };
+    s.push_str(&format!(" [{act:+.3}])\n"));
     Ok(s)
 }
 

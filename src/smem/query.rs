@@ -4,6 +4,7 @@
 //! activated first, among equals the one whose augmentation was written last (as 9.6 orders
 //! them).
 
+use super::spread::{Lead, StdHeap};
 use super::store::{AugValue, DbResult, Store, Val};
 use super::Smem;
 
@@ -100,7 +101,19 @@ impl Smem {
     /// the walk stops at the `limit`th match, so a cue of one common and one rare element
     /// costs the rare one's candidates, not the common one's.
     pub fn query_first(&mut self, cue: &Cue, limit: usize) -> DbResult<Vec<i64>> {
-        let store = self.store()?;
+        let spreading = self.params.spreading();
+        let settings = super::spread::Settings::of(&self.params);
+        self.store()?;
+        let Smem {
+            store: Some(store),
+            spread,
+            context,
+            ..
+        } = self
+        else {
+            return Ok(Vec::new());
+        };
+        let store: &Store = store;
         let firsts: Vec<(&Val, Want)> = cue
             .pos
             .iter()
@@ -135,10 +148,39 @@ impl Smem {
             }
         }
         let (attr, want) = &firsts[lead];
+        // With spreading, the candidates that have spread are ranked by it, beside the
+        // others' walk (9.6 keeps them in a queue it takes from while its top is at least
+        // the walk's next activation).
+        let mut spread_queue: StdHeap<i64> = StdHeap::default();
+        let mut with_spread = rustc_hash::FxHashSet::default();
+        if spreading {
+            if let Some((a, v)) = element(store, attr, want)? {
+                let lead_el = Lead {
+                    attr: a,
+                    constant: match v {
+                        AugValue::Const(c) => Some(c),
+                        _ => None,
+                    },
+                    lti: match v {
+                        AugValue::Lti(l) => Some(l),
+                        _ => None,
+                    },
+                };
+                spread.calculate(store, &settings, context, &lead_el)?;
+                with_spread = store.spread_ltis()?;
+                if !with_spread.is_empty() {
+                    for (l, act) in store.spread_candidates(&lead_el)? {
+                        spread_queue.push(act, l);
+                    }
+                }
+            }
+        }
         let mut candidates = Vec::new();
         let want_all = !cue.math.is_empty();
-        store.walk_ranked(attr, value_of(want).as_ref(), |c| {
-            if cue.prohibit.contains(&c) {
+        let mut taken = rustc_hash::FxHashSet::default();
+        // Whether `c` matches the rest of the cue; true when enough have been found.
+        let mut consider = |c: i64, candidates: &mut Vec<i64>| -> DbResult<bool> {
+            if cue.prohibit.contains(&c) || taken.contains(&c) {
                 return Ok(false);
             }
             for &(a, v) in &checks {
@@ -151,9 +193,38 @@ impl Smem {
                     return Ok(false);
                 }
             }
+            taken.insert(c);
             candidates.push(c);
             Ok(!want_all && candidates.len() >= limit)
+        };
+        let mut done = false;
+        store.walk_ranked(attr, value_of(want).as_ref(), |c| {
+            if with_spread.is_empty() {
+                return consider(c, &mut candidates);
+            }
+            if with_spread.contains(&c) {
+                return Ok(false);
+            }
+            let act = store.rank_activation(c)?;
+            while let Some(&(top, l)) = spread_queue.top() {
+                if act > top {
+                    break;
+                }
+                spread_queue.pop();
+                if consider(l, &mut candidates)? {
+                    done = true;
+                    return Ok(true);
+                }
+            }
+            consider(c, &mut candidates)
         })?;
+        if !done && (want_all || candidates.len() < limit) {
+            while let Some((_, l)) = spread_queue.pop() {
+                if consider(l, &mut candidates)? {
+                    break;
+                }
+            }
+        }
         for (attr, test) in &cue.math {
             let mut kept = Vec::new();
             for &c in &candidates {

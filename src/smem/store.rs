@@ -24,12 +24,12 @@ pub enum Val {
 
 /// `Connection::execute` through the statement cache: the same few statements run once
 /// per augmentation, so parsing them each time would cost more than running them.
-fn exec<P: rusqlite::Params>(conn: &Connection, sql: &str, p: P) -> rusqlite::Result<usize> {
+pub(super) fn exec<P: rusqlite::Params>(conn: &Connection, sql: &str, p: P) -> rusqlite::Result<usize> {
     conn.prepare_cached(sql)?.execute(p)
 }
 
 /// `Connection::query_row` through the statement cache.
-fn row<T, P, F>(conn: &Connection, sql: &str, p: P, f: F) -> rusqlite::Result<T>
+pub(super) fn row<T, P, F>(conn: &Connection, sql: &str, p: P, f: F) -> rusqlite::Result<T>
 where
     P: rusqlite::Params,
     F: FnOnce(&rusqlite::Row<'_>) -> rusqlite::Result<T>,
@@ -41,12 +41,19 @@ where
 pub type DbResult<T> = Result<T, String>;
 
 fn db<T>(r: rusqlite::Result<T>) -> DbResult<T> {
-    r.map_err(|e| format!("semantic memory database error: {e}"))
+    r.map_err(db_error)
+}
+
+pub(super) fn db_error(e: rusqlite::Error) -> String {
+    format!("semantic memory database error: {e}")
 }
 
 /// An open store.
 pub struct Store {
-    conn: Connection,
+    pub(super) conn: Connection,
+    /// Whether spreading has made traversals in this store (only then do changes to the
+    /// augmentations look for the traversals they invalidate).
+    pub(super) spread_used: std::cell::Cell<bool>,
     /// Where new LTI numbers are looked for (9.6 takes the lowest free number from here).
     next_lti: i64,
     /// Symbol numbers already looked up, both ways. A symbol row is never changed once
@@ -111,6 +118,7 @@ impl Store {
             sym_ids: RefCell::default(),
             sym_vals: RefCell::default(),
             memo: RefCell::default(),
+            spread_used: std::cell::Cell::new(false),
         };
         let tables: i64 = store
             .conn
@@ -154,6 +162,11 @@ impl Store {
             }
             None => store.create()?,
         }
+        let traversals = db(store
+            .conn
+            .query_row("SELECT 1 FROM smem_likelihood_trajectories LIMIT 1", [], |_| Ok(()))
+            .optional())?;
+        store.spread_used.set(traversals.is_some());
         if p.lazy_commit() {
             db(store.conn.execute_batch("BEGIN"))?;
         }
@@ -204,7 +217,9 @@ impl Store {
         Ok(())
     }
 
-    /// `smem --clear`: every LTI and constant goes; the clock starts again.
+    /// `smem --clear`: every LTI and constant goes; the clock starts again. Spreading's
+    /// tables stay, as with 9.6.5 (observed: a source still in working memory spreads to
+    /// the new LTIs of the old numbers).
     pub fn clear(&mut self) -> DbResult<()> {
         for t in [
             "smem_symbols_type",
@@ -494,12 +509,28 @@ impl Store {
             [lti],
             |r| r.get(0),
         ))?;
-        let weight = if l != 0 { 1.0 } else { 0.0 };
-        db(exec(&self.conn, 
+        db(exec(&self.conn,
             "INSERT INTO smem_augmentations (lti_id, attribute_s_id, value_constant_s_id, value_lti_id, activation_value, edge_weight) VALUES (?1, ?2, ?3, ?4, ?5, ?6)",
-            params![lti, a, c, l, act.unwrap_or(schema::ACT_LOW), weight],
+            params![lti, a, c, l, act.unwrap_or(schema::ACT_LOW), if l != 0 { 1.0 } else { 0.0 }],
         ))?;
         self.count_aug(lti, a, c, l, 1)?;
+        if l != 0 {
+            // Each LTI edge of an LTI that gains one weighs 1 / its LTI edges (9.6's fan).
+            let n: i64 = db(row(
+                &self.conn,
+                "SELECT lti_augmentations FROM smem_lti WHERE lti_id=?1",
+                [lti],
+                |r| r.get(0),
+            ))?;
+            if n > 1 {
+                db(exec(
+                    &self.conn,
+                    "UPDATE smem_augmentations SET edge_weight=?2 WHERE lti_id=?1 AND value_constant_s_id=0",
+                    params![lti, 1.0 / n as f64],
+                ))?;
+            }
+            self.invalidate_through(lti)?;
+        }
         Ok(true)
     }
 
@@ -598,6 +629,9 @@ impl Store {
             }
             db(exec(&self.conn, "DELETE FROM smem_augmentations WHERE rowid=?1", [rowid]))?;
             self.count_aug(lti, ra, rc, rl, -1)?;
+            if rl != 0 {
+                self.invalidate_edge(lti, rl)?;
+            }
             gone += 1;
         }
         Ok(gone)
@@ -794,21 +828,57 @@ impl Store {
         self.with_aug_rows(lti, |rows| Memo::has(rows, a, value))
     }
 
-    /// An LTI's activation as retrieval compares it (the lowest for one never activated).
-    pub fn activation(&self, lti: i64) -> DbResult<f64> {
-        let v: Option<Option<f64>> = db(row(&self.conn, 
-                "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
-                [lti],
-                |r| r.get(0),
-            )
-            .optional())?;
-        Ok(v.flatten().unwrap_or(schema::ACT_LOW))
-    }
-
     /// An LTI's activation as `print` shows it (0 for one never activated).
     pub fn shown_activation(&self, lti: i64) -> DbResult<f64> {
-        let a = self.activation(lti)?;
-        Ok(if a == schema::ACT_LOW { 0.0 } else { a })
+        let v: Option<Option<f64>> = db(row(
+            &self.conn,
+            "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
+            [lti],
+            |r| r.get(0),
+        )
+        .optional())?;
+        Ok(v.flatten().unwrap_or(0.0))
+    }
+
+    /// `activation_base_level` of an LTI (0 for one never activated).
+    pub fn base_activation(&self, lti: i64) -> DbResult<f64> {
+        let v: Option<Option<f64>> = db(row(
+            &self.conn,
+            "SELECT activation_base_level FROM smem_lti WHERE lti_id=?1",
+            [lti],
+            |r| r.get(0),
+        )
+        .optional())?;
+        Ok(v.flatten().unwrap_or(0.0))
+    }
+
+    /// The activation the augmentations of an LTI are ranked by (the lowest for one never
+    /// activated).
+    pub fn rank_activation(&self, lti: i64) -> DbResult<f64> {
+        self.with_aug_rows(lti, |rows| {
+            rows.first().and_then(|e| e.act).unwrap_or(schema::ACT_LOW)
+        })
+    }
+
+    /// Sets the activation an LTI's augmentations are ranked by; the rows have it at the
+    /// next commit.
+    pub fn set_rank_activation(&self, lti: i64, value: f64) -> DbResult<()> {
+        let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
+        self.memo.borrow_mut().activation_changed(lti, &rows, value);
+        Ok(())
+    }
+
+    /// Writes an LTI's access record (count, times, history) but not its activation, for an
+    /// LTI whose activation is kept with its spread.
+    pub fn write_access(&self, lti: i64, record: Record) -> DbResult<()> {
+        db(exec(
+            &self.conn,
+            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4 WHERE lti_id=?1",
+            params![lti, record.total, record.last, record.first],
+        ))?;
+        self.write_history(lti, &record.history)?;
+        self.memo.borrow_mut().records.insert(lti, record);
+        Ok(())
     }
 
     /// The activation record of an LTI: its activations, the last and first times, and the
@@ -850,23 +920,32 @@ impl Store {
     /// Writes an activation: the LTI's record and its history; its augmentations' copy of
     /// the value (which the retrieval's order reads) waits in the memo until the next
     /// commit (`write_pending`).
-    pub fn write_activation(&self, lti: i64, record: Record, value: f64) -> DbResult<()> {
+    pub fn write_activation(&self, lti: i64, record: Record, base: f64, value: f64) -> DbResult<()> {
         let history = &record.history;
         let rows = self.with_aug_rows(lti, <[AugEntry]>::to_vec)?;
         self.memo.borrow_mut().activation_changed(lti, &rows, value);
         db(exec(&self.conn, 
-            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?5 WHERE lti_id=?1",
-            params![lti, record.total, record.last, record.first, value],
+            "UPDATE smem_lti SET activations_total=?2, activations_last=?3, activations_first=?4, activation_base_level=?5, activation_spread=0.0, activation_value=?6 WHERE lti_id=?1",
+            params![lti, record.total, record.last, record.first, base, value],
         ))?;
+        self.write_history(lti, history)?;
+        self.memo.borrow_mut().records.insert(lti, record);
+        Ok(())
+    }
+
+    fn write_history(&self, lti: i64, history: &[i64]) -> DbResult<()> {
+        // An LTI gets its history row with its first access.
+        if history.is_empty() {
+            return Ok(());
+        }
         let mut t = [0i64; 10];
         for (slot, h) in t.iter_mut().zip(history) {
             *slot = *h;
         }
-        db(exec(&self.conn, 
+        db(exec(&self.conn,
             "INSERT OR REPLACE INTO smem_activation_history (lti_id,t1,t2,t3,t4,t5,t6,t7,t8,t9,t10,touch1,touch2,touch3,touch4,touch5,touch6,touch7,touch8,touch9,touch10) VALUES (?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,1,1,1,1,1,1,1,1,1,1)",
             params![lti, t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], t[9]],
         ))?;
-        self.memo.borrow_mut().records.insert(lti, record);
         Ok(())
     }
 

@@ -75,9 +75,27 @@ impl AgentCore {
         }
     }
 
-    /// `init-soar`: working memory is new, so are the links' records.
+    /// Gives semantic memory the LTIs with an instance in working memory (an identifier
+    /// linked to the LTI with an augmentation of its own), the sources of spreading
+    /// activation, before a query.
+    pub(crate) fn smem_note_context(&mut self) {
+        if !self.smem.params.spreading() {
+            return;
+        }
+        let mut context = std::collections::BTreeSet::new();
+        for w in self.wm.all() {
+            if let Some(lti) = self.wm.get(w).and_then(|x| self.symbols.lti(x.id)) {
+                context.insert(lti);
+            }
+        }
+        self.smem.context = context;
+    }
+
+    /// `init-soar`: working memory is new, so are the links' records; the counts of
+    /// `smem --stats` start again (observed on soar-sml 9.6.5).
     pub(crate) fn smem_reinitialize(&mut self) {
         self.smem.links = Links::default();
+        self.smem.stats = super::SmemStats::default();
     }
 
     fn smem_go(&mut self, store_only: bool, mut header: Option<bool>) {
@@ -272,7 +290,6 @@ impl AgentCore {
         wmes: &[Wme],
         replacing: bool,
     ) -> Vec<WmeId> {
-        let now = self.decider.d_cycle_count as i64;
         let mut added = Vec::new();
         // 9.6.5 answers a malformed command with `^bad-cmd <command>` (observed).
         let Some(cmd) = self.smem_command(wmes) else {
@@ -288,12 +305,13 @@ impl AgentCore {
         let depth = cmd.depth.unwrap_or(1);
         if let Some(q) = cmd.query {
             let cue = self.smem_cue(q, cmd.neg_query, cmd.math_query, &cmd.prohibit);
+            self.smem_note_context();
             self.smem.stats.queries += 1;
             let found = self.smem.query_first(&cue, 1).map(|f| f.first().copied());
             match found {
                 Ok(Some(lti)) => {
                     let activate = if self.smem.params.activate_on_query() {
-                        self.smem.activate(lti, now)
+                        self.smem.activate(lti)
                     } else {
                         Ok(())
                     };
@@ -343,10 +361,12 @@ impl AgentCore {
                     if let Some(d) = self.symbols.id_data_mut(sti) {
                         d.lti = lti;
                     }
-                    // A retrieve counts as an activation update but leaves the LTI's
-                    // recency as it was (observed on soar-sml 9.6.5).
-                    self.smem.stats.act_updates += 1;
-                    let done = self.smem_install(sti, lti, level, depth, &mut added);
+                    // A retrieve activates the LTI, as a query does (9.6's
+                    // `install_memory` with activation; observed on soar-sml 9.6.5).
+                    let done = self
+                        .smem
+                        .activate(lti)
+                        .and_then(|()| self.smem_install(sti, lti, level, depth, &mut added));
                     match done {
                         Ok(()) => {
                             if replacing {
@@ -470,7 +490,6 @@ impl AgentCore {
     /// an LTI gets a new one; an identifier value without one gets one too, empty), and
     /// the LTI is activated. 9.6 prints `@` for each object stored.
     fn smem_store_object(&mut self, id: Sym) -> Result<(), String> {
-        let now = self.decider.d_cycle_count as i64;
         let lti = match self.symbols.lti(id) {
             Some(l) => l,
             None => {
@@ -498,7 +517,7 @@ impl AgentCore {
             };
             self.smem.store()?.add_aug(lti, &attr, &value)?;
         }
-        self.smem.activate(lti, now)?;
+        self.smem.activate_stored(lti)?;
         self.smem.stats.stores += 1;
         let lazy = self.smem.params.lazy_commit();
         self.smem.store()?.commit(lazy)?;
