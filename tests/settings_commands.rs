@@ -214,7 +214,6 @@ fn chunk_stats_says_extra_words_are_not_used() {
 fn chunk_settings_without_effect_say_so() {
     let mut a = Agent::default();
     for cmd in [
-        "chunk add-osk off",
         "chunk automatically-create-singletons off",
         "chunk allow-opaque off",
         "chunk add-ltm-links on",
@@ -227,7 +226,9 @@ fn chunk_settings_without_effect_say_so() {
             "{cmd}: {out}"
         );
     }
-    // allow-local-negations and bottom-only act: no such warning.
+    // allow-local-negations, bottom-only and add-osk act: no such warning.
     let out = a.execute("chunk allow-local-negations off").unwrap();
     assert_eq!(out, "allow-local-negations is now off\n");
+    let out = a.execute("chunk add-osk off").unwrap();
+    assert_eq!(out, "add-osk is now off\n");
 }

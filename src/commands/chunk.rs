@@ -193,7 +193,6 @@ const SINGLETONS_UNUSED: &str = "conditions on one superstate WME always become 
 /// Why a `chunk` switch that rusoar accepts changes nothing, for those that do not.
 fn without_effect(name: &str) -> Option<&'static str> {
     Some(match name {
-        "add-osk" => "chunks never include operator selection knowledge (they are learned as with add-osk off)",
         "automatically-create-singletons" => SINGLETONS_UNUSED,
         "add-ltm-links" | "allow-opaque" => "rusoar has no long-term memories to recall knowledge from",
         _ => return None,

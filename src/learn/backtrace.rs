@@ -5,7 +5,7 @@
 //! literal (EBC's constraint propagation).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
-use crate::symbols::Sym;
+use crate::symbols::{Sym, Symbols};
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 
@@ -112,11 +112,11 @@ impl Backtrace {
     }
 
     /// Backtraces a result preference through the firing that made it.
-    pub fn result(&mut self, origin: &PrefOrigin, quiescence: Sym, t: Sym) {
-        self.firing(&origin.trace, quiescence, t);
+    pub fn result(&mut self, origin: &PrefOrigin, symbols: &Symbols, quiescence: Sym, t: Sym) {
+        self.firing(&origin.trace, symbols, quiescence, t);
     }
 
-    fn firing(&mut self, trace: &Arc<InstTrace>, quiescence: Sym, t: Sym) {
+    fn firing(&mut self, trace: &Arc<InstTrace>, symbols: &Symbols, quiescence: Sym, t: Sym) {
         let mut stack = vec![trace.clone()];
         while let Some(trace) = stack.pop() {
             if !self.visited.insert(Arc::as_ptr(&trace)) {
@@ -148,6 +148,16 @@ impl Backtrace {
                                 let r = self.find(made);
                                 self.literal.entry(r).or_insert(field);
                             }
+                            // A variable tested on what was made from a literal (or a
+                            // function's value): that identity is the literal (9.6
+                            // literalizes it, checked on soar-sml 9.6.5).
+                            (tested, 0) => {
+                                self.propagations += 1;
+                                if !symbols.is_id(field) {
+                                    let r = self.find(tested);
+                                    self.literal.entry(r).or_insert(field);
+                                }
+                            }
                             (tested, made) => {
                                 self.propagations += 1;
                                 self.join(tested, made)
@@ -156,6 +166,11 @@ impl Backtrace {
                     }
                     self.local_constraints(&trace, c, origin);
                     locals.push(origin.trace.clone());
+                    // The knowledge that selected a tested operator goes with its
+                    // proposal, without joining identities (`chunk add-osk`).
+                    if let Some(osk) = &c.osk {
+                        locals.extend(osk.iter().map(|o| o.trace.clone()));
+                    }
                 }
             }
             if let Some(prod) = &trace.prod {
