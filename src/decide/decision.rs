@@ -149,13 +149,16 @@ impl AgentCore {
 
 
     /// The origins of the preferences of slot `key` that selected `winner` (`chunk
-    /// add-osk`); `None` when the setting is off or there are none.
+    /// add-osk`; with the setting off, its prohibit preferences alone, as in 9.6); `None`
+    /// when there are none.
     fn selection_knowledge(&self, key: (Sym, Sym), prefs: &[Pref], winner: Sym) -> Option<Osk> {
-        if !self.settings.chunk.add_osk {
-            return None;
-        }
         let slot = self.decider.slots.get(&key)?;
-        let origins: Vec<_> = super::osk::selection_knowledge(prefs, winner)
+        let chosen = if self.settings.chunk.add_osk {
+            super::osk::selection_knowledge(prefs, winner)
+        } else {
+            super::osk::prohibits(prefs)
+        };
+        let origins: Vec<_> = chosen
             .into_iter()
             .filter_map(|i| self.decider.prefs[*slot.prefs.get(i)?].origin.clone())
             .collect();

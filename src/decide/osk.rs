@@ -144,6 +144,15 @@ pub fn selection_knowledge(prefs: &[Pref], winner: Sym) -> Vec<usize> {
     out
 }
 
+/// With `add-osk` off, 9.6 still backtraces through an operator slot's prohibit
+/// preferences: their indices in `prefs`, newest first.
+pub fn prohibits(prefs: &[Pref]) -> Vec<usize> {
+    (0..prefs.len())
+        .rev()
+        .filter(|&i| prefs[i].kind == PrefType::Prohibit)
+        .collect()
+}
+
 /// Adds preference `i` unless it is there, or (with `unique`) one that says the same is.
 fn add(prefs: &[Pref], out: &mut Vec<usize>, i: usize, unique: bool) {
     let p = &prefs[i];

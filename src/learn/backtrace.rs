@@ -58,6 +58,8 @@ pub struct Backtrace {
     /// Conditions that tested a WME another condition had already given to the rule
     /// (they become one condition).
     pub merged: usize,
+    /// Relational tests on local conditions whose value a rule made as a literal.
+    pub literal_constraints: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
 }
@@ -81,6 +83,7 @@ impl Backtrace {
         self.joins = 0;
         self.merged = 0;
         self.tested_quiescence = false;
+        self.literal_constraints = 0;
     }
 
     /// The representative of an identity's joined set.
@@ -130,7 +133,7 @@ impl Backtrace {
                     self.firings += 1;
                 }
                 if c.level > 0 && c.level < self.level {
-                    self.add_ground(c, &trace);
+                    self.add_ground(c, &trace, symbols);
                     continue;
                 }
                 if c.wme.attr == quiescence && c.wme.value == t {
@@ -200,14 +203,17 @@ impl Backtrace {
             .into_iter()
             .zip(&origin.ids)
         {
-            if made == 0 {
-                continue;
-            }
             if matches!(t, crate::production::Test::Equal(_)) {
                 continue;
             }
             let mut tests = Vec::new();
             relational_parts(t, &mut tests);
+            if made == 0 {
+                // Tested on a literal the rule made: detected (9.6 counts it), but the
+                // literal meets it, so nothing is left to enforce.
+                self.literal_constraints += tests.len();
+                continue;
+            }
             for test in tests {
                 self.constraints.push(Constraint {
                     ident: made,
@@ -242,12 +248,21 @@ impl Backtrace {
     }
 
     /// A superstate WME: the same WME tested twice joins the identities of both tests.
-    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>) {
+    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>, symbols: &Symbols) {
         if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
             self.merged += 1;
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);
+            }
+            // A value one test names by a literal is that literal in the other too (9.6
+            // unifies the values of two conditions on one singleton WME).
+            let value = c.wme.value;
+            if let (0, i) | (i, 0) = (ids[2], c.ids[2]) {
+                if i != 0 && !symbols.is_id(value) {
+                    let r = self.find(i);
+                    self.literal.entry(r).or_insert(value);
+                }
             }
             return;
         }
