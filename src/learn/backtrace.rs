@@ -5,7 +5,8 @@
 //! literal (EBC's constraint propagation).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
-use crate::symbols::{Sym, Symbols};
+use crate::agent::AgentCore;
+use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 
@@ -115,11 +116,12 @@ impl Backtrace {
     }
 
     /// Backtraces a result preference through the firing that made it.
-    pub fn result(&mut self, origin: &PrefOrigin, symbols: &Symbols, quiescence: Sym, t: Sym) {
-        self.firing(&origin.trace, symbols, quiescence, t);
+    pub fn result(&mut self, origin: &PrefOrigin, agent: &AgentCore, quiescence: Sym, t: Sym) {
+        self.firing(&origin.trace, agent, quiescence, t);
     }
 
-    fn firing(&mut self, trace: &Arc<InstTrace>, symbols: &Symbols, quiescence: Sym, t: Sym) {
+    fn firing(&mut self, trace: &Arc<InstTrace>, agent: &AgentCore, quiescence: Sym, t: Sym) {
+        let symbols = &agent.symbols;
         let mut stack = vec![trace.clone()];
         while let Some(trace) = stack.pop() {
             if !self.visited.insert(Arc::as_ptr(&trace)) {
@@ -133,7 +135,7 @@ impl Backtrace {
                     self.firings += 1;
                 }
                 if c.level > 0 && c.level < self.level {
-                    self.add_ground(c, &trace, symbols);
+                    self.add_ground(c, &trace, agent);
                     continue;
                 }
                 if c.wme.attr == quiescence && c.wme.value == t {
@@ -248,8 +250,12 @@ impl Backtrace {
     }
 
     /// A superstate WME: the same WME tested twice joins the identities of both tests.
-    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>, symbols: &Symbols) {
-        if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
+    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>, agent: &AgentCore) {
+        let symbols = &agent.symbols;
+        let first = self.ground_at.get(&c.wme.timetag).copied();
+        // A WME that is no singleton may be tested by several conditions of the chunk,
+        // each with its own identities (9.6; equal ones merge when the rule is built).
+        if let Some(g) = first.filter(|_| agent.is_singleton(&c.wme)) {
             self.merged += 1;
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
@@ -266,7 +272,9 @@ impl Backtrace {
             }
             return;
         }
-        self.ground_at.insert(c.wme.timetag, self.grounds.len());
+        if first.is_none() {
+            self.ground_at.insert(c.wme.timetag, self.grounds.len());
+        }
         self.grounds.push(Ground {
             cond: c.clone(),
             trace: trace.clone(),
