@@ -9,6 +9,7 @@ mod episode;
 mod negations;
 mod record;
 pub mod settings;
+mod singletons;
 pub mod stats;
 
 use crate::decide::ids::InstId;
