@@ -155,13 +155,6 @@ impl Interpreter {
             value,
         };
         let text = pattern_text(&pattern);
-        self.warn(
-            Diagnostic::warning(format!(
-                "`chunk singleton` patterns are accepted and listed but have no effect in rusoar yet: {SINGLETONS_UNUSED}"
-            ))
-            .at(ctx.arg_span(0))
-            .with_label("no effect yet"),
-        );
         let singletons = &mut self.agent.settings.chunk.singletons;
         if remove {
             return Ok(match singletons.iter().position(|p| *p == pattern) {
@@ -186,15 +179,9 @@ impl Interpreter {
     }
 }
 
-/// How rusoar's learner stands to the singleton patterns (Soar manual, ch. 4, "Chunking",
-/// singletons): it does not consult them.
-const SINGLETONS_UNUSED: &str = "conditions on one superstate WME always become one condition of the chunk, whatever the patterns say";
-
 /// Why a `chunk` switch that rusoar accepts changes nothing, for those that do not.
 fn without_effect(name: &str) -> Option<&'static str> {
     Some(match name {
-        "add-osk" => "chunks never include operator selection knowledge (they are learned as with add-osk off)",
-        "automatically-create-singletons" => SINGLETONS_UNUSED,
         "add-ltm-links" | "allow-opaque" => "rusoar has no long-term memories to recall knowledge from",
         _ => return None,
     })

@@ -83,6 +83,7 @@ impl AgentCore {
                 slot_changed: true,
                 made: Vec::new(),
                 learned_below: false,
+                osk: None,
             });
         }
         let start_dc = self.decider.decisions;

@@ -6,6 +6,7 @@
 use super::procedure::{self, NumericMode, Outcome, Policy, Pref};
 use crate::agent::Exploration;
 use super::state::ImpasseKind;
+use crate::learn::Osk;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
@@ -54,7 +55,8 @@ impl AgentCore {
             }
             self.decider.goals[gi].slot_changed = false;
             let prefs = self.slot_prefs((goal.state, op));
-            let outcome = match self.take_forced_operator(&prefs) {
+            let forced = self.take_forced_operator(&prefs);
+            let outcome = match forced {
                 Some(o) => Outcome::Winner(o),
                 None => {
                     if self.settings.trace.indifferent {
@@ -62,6 +64,14 @@ impl AgentCore {
                     }
                     procedure::decide(&prefs, policy, numeric_mode, &mut self.rng)
                 }
+            };
+            // A substate's choice keeps the knowledge it rests on, for chunking; a forced
+            // choice rests on none, an impasse clears it.
+            self.decider.goals[gi].osk = match outcome {
+                Outcome::Winner(o) if forced.is_none() && goal.level > 1 => {
+                    self.selection_knowledge((goal.state, op), &prefs, o)
+                }
+                _ => None,
             };
             let (kind, on_operator, items) = match outcome {
                 Outcome::Winner(o) => {
@@ -137,6 +147,23 @@ impl AgentCore {
         }
     }
 
+
+    /// The origins of the preferences of slot `key` that selected `winner` (`chunk
+    /// add-osk`; with the setting off, its prohibit preferences alone, as in 9.6); `None`
+    /// when there are none.
+    fn selection_knowledge(&self, key: (Sym, Sym), prefs: &[Pref], winner: Sym) -> Option<Osk> {
+        let slot = self.decider.slots.get(&key)?;
+        let chosen = if self.settings.chunk.add_osk {
+            super::osk::selection_knowledge(prefs, winner)
+        } else {
+            super::osk::prohibits(prefs)
+        };
+        let origins: Vec<_> = chosen
+            .into_iter()
+            .filter_map(|i| self.decider.prefs[*slot.prefs.get(i)?].origin.clone())
+            .collect();
+        (!origins.is_empty()).then(|| origins.into())
+    }
 
     /// `decide select`: the forced operator when one of the slot's acceptable preferences
     /// proposes it, whatever the other preferences say; it is used up then (Soar manual,

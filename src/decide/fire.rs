@@ -137,7 +137,15 @@ impl AgentCore {
                     if !self.symbols.is_id(id) {
                         continue;
                     }
-                    let kind = *kind;
+                    // A binary indifferent preference whose referent is a number is a
+                    // numeric one (`= <v>` with <v> bound to a number, as 9.6 reads it).
+                    let kind = match (*kind, referent.map(|r| self.symbols.get(r))) {
+                        (
+                            PrefType::BinaryIndifferent,
+                            Some(SymData::Int(_) | SymData::Float(_)),
+                        ) => PrefType::NumericIndifferent,
+                        (kind, _) => kind,
+                    };
                     let number = match (kind, referent.map(|r| self.symbols.get(r))) {
                         (PrefType::NumericIndifferent, Some(&SymData::Int(i))) => Some(i as f64),
                         (PrefType::NumericIndifferent, Some(&SymData::Float(f))) => Some(f),

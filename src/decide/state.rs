@@ -106,6 +106,9 @@ pub struct Goal {
     /// A state below this one learned a rule: with `chunk bottom-only`, this one learns no
     /// more while it lasts.
     pub learned_below: bool,
+    /// The operator selection knowledge of the last decision that selected this state's
+    /// operator (`chunk add-osk`, see `osk.rs`): the origins of the preferences it rests on.
+    pub osk: Option<crate::learn::Osk>,
 }
 
 /// Where a removed substate's WME goes in a phase's `<=WM:` listing.

@@ -360,6 +360,7 @@ impl AgentCore {
             slot_changed: true,
             made: Vec::new(),
                 learned_below: false,
+                osk: None,
         });
     }
 

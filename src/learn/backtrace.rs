@@ -5,6 +5,7 @@
 //! literal (EBC's constraint propagation).
 
 use super::{Ident, InstTrace, PrefOrigin, TraceCond};
+use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::atomic::Ordering::Relaxed;
@@ -62,6 +63,8 @@ pub struct Backtrace {
     /// Conditions that tested a WME another condition had already given to the rule
     /// (they become one condition).
     pub merged: usize,
+    /// Relational tests on local conditions whose value a rule made as a literal.
+    pub literal_constraints: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
 }
@@ -86,6 +89,7 @@ impl Backtrace {
         self.joins = 0;
         self.merged = 0;
         self.tested_quiescence = false;
+        self.literal_constraints = 0;
     }
 
     /// The representative of an identity's joined set.
@@ -117,11 +121,11 @@ impl Backtrace {
     }
 
     /// Backtraces a result preference through the firing that made it.
-    pub fn result(&mut self, origin: &PrefOrigin, quiescence: Sym, t: Sym) {
-        self.firing(&origin.trace, quiescence, t);
+    pub fn result(&mut self, origin: &PrefOrigin, agent: &AgentCore, quiescence: Sym, t: Sym) {
+        self.firing(&origin.trace, agent, quiescence, t);
     }
 
-    fn firing(&mut self, trace: &Arc<InstTrace>, quiescence: Sym, t: Sym) {
+    fn firing(&mut self, trace: &Arc<InstTrace>, agent: &AgentCore, quiescence: Sym, t: Sym) {
         let mut stack = std::mem::take(&mut self.stack);
         stack.push(trace.clone());
         while let Some(trace) = stack.pop() {
@@ -136,7 +140,7 @@ impl Backtrace {
                     self.firings += 1;
                 }
                 if c.level > 0 && c.level < self.level {
-                    self.add_ground(c, &trace);
+                    self.add_ground(c, &trace, agent);
                     continue;
                 }
                 if c.wme.attr == quiescence && c.wme.value == t {
@@ -145,11 +149,20 @@ impl Backtrace {
                 if let Some(origin) = &c.support {
                     // Without identities (learning off) there is nothing to propagate.
                     if c.ids != [0; 3] || origin.ids[..3] != [0; 3] {
-                        self.propagate(&trace, c, origin);
+                        self.propagate(&trace, c, origin, &agent.symbols);
                     }
                     // A firing already gone through would be passed over when popped.
                     if origin.trace.backtraced.load(Relaxed) != self.number {
                         stack.push(origin.trace.clone());
+                    }
+                    // The knowledge that selected a tested operator goes with its
+                    // proposal, without joining identities (`chunk add-osk`).
+                    if let Some(osk) = &c.osk {
+                        for o in osk.iter() {
+                            if o.trace.backtraced.load(Relaxed) != self.number {
+                                stack.push(o.trace.clone());
+                            }
+                        }
                     }
                 }
             }
@@ -171,7 +184,13 @@ impl Backtrace {
 
     /// Where a local condition met the action that made its WME: identities on both
     /// sides join, and a literal tested on what was made from a variable fixes it.
-    fn propagate(&mut self, trace: &Arc<InstTrace>, c: &TraceCond, origin: &PrefOrigin) {
+    fn propagate(
+        &mut self,
+        trace: &Arc<InstTrace>,
+        c: &TraceCond,
+        origin: &PrefOrigin,
+        symbols: &crate::symbols::Symbols,
+    ) {
         let fields = [c.wme.id, c.wme.attr, c.wme.value];
         for ((&tested, &made), field) in c.ids.iter().zip(&origin.ids).zip(fields) {
             match (tested, made) {
@@ -182,6 +201,16 @@ impl Backtrace {
                     self.propagations_blocked += 1;
                     let r = self.find(made);
                     self.literal.entry(r).or_insert(field);
+                }
+                // A variable tested on what was made from a literal (or a function's
+                // value): that identity is the literal (9.6 literalizes it, checked on
+                // soar-sml 9.6.5).
+                (tested, 0) => {
+                    self.propagations += 1;
+                    if !symbols.is_id(field) {
+                        let r = self.find(tested);
+                        self.literal.entry(r).or_insert(field);
+                    }
                 }
                 (tested, made) => {
                     self.propagations += 1;
@@ -204,14 +233,17 @@ impl Backtrace {
             .into_iter()
             .zip(&origin.ids)
         {
-            if made == 0 {
-                continue;
-            }
             if matches!(t, crate::production::Test::Equal(_)) {
                 continue;
             }
             let mut tests = Vec::new();
             relational_parts(t, &mut tests);
+            if made == 0 {
+                // Tested on a literal the rule made: detected (9.6 counts it), but the
+                // literal meets it, so nothing is left to enforce.
+                self.literal_constraints += tests.len();
+                continue;
+            }
             for test in tests {
                 self.constraints.push(Constraint {
                     ident: made,
@@ -246,16 +278,31 @@ impl Backtrace {
     }
 
     /// A superstate WME: the same WME tested twice joins the identities of both tests.
-    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>) {
-        if let Some(&g) = self.ground_at.get(&c.wme.timetag) {
+    fn add_ground(&mut self, c: &TraceCond, trace: &Arc<InstTrace>, agent: &AgentCore) {
+        let symbols = &agent.symbols;
+        let first = self.ground_at.get(&c.wme.timetag).copied();
+        // A WME that is no singleton may be tested by several conditions of the chunk,
+        // each with its own identities (9.6; equal ones merge when the rule is built).
+        if let Some(g) = first.filter(|_| agent.is_singleton(&c.wme)) {
             self.merged += 1;
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);
             }
+            // A value one test names by a literal is that literal in the other too (9.6
+            // unifies the values of two conditions on one singleton WME).
+            let value = c.wme.value;
+            if let (0, i) | (i, 0) = (ids[2], c.ids[2]) {
+                if i != 0 && !symbols.is_id(value) {
+                    let r = self.find(i);
+                    self.literal.entry(r).or_insert(value);
+                }
+            }
             return;
         }
-        self.ground_at.insert(c.wme.timetag, self.grounds.len());
+        if first.is_none() {
+            self.ground_at.insert(c.wme.timetag, self.grounds.len());
+        }
         self.grounds.push(Ground {
             cond: c.clone(),
             trace: trace.clone(),

@@ -518,14 +518,24 @@ impl AgentCore {
             } else {
                 Head::None
             };
-            conditions.push(Condition::Positive(Cond {
+            let cond = Cond {
                 id: b.field_test(id, ti),
                 attr: b.field_test(attr, ta),
                 value: b.field_test(value, tv),
                 acceptable: w.acceptable,
                 goal,
                 span: orig.map(|o| o.span).unwrap_or_default(),
-            }));
+            };
+            // Two conditions of a chunk on one WME that came out the same are one (9.6
+            // merges them).
+            let same = |c: &Condition| {
+                matches!(c, Condition::Positive(x) if x.id == cond.id && x.attr == cond.attr
+                    && x.value == cond.value && x.acceptable == cond.acceptable)
+            };
+            if variablize && conditions.iter().any(same) {
+                continue;
+            }
+            conditions.push(Condition::Positive(cond));
         }
         if !variablize {
             // A justification is not reordered: 9.6 lists its conditions last found first,

@@ -160,7 +160,7 @@ impl AgentCore {
         let t = self.symbols.str("t");
         for &r in &results {
             if let Some(o) = self.decider.prefs[r].origin.clone() {
-                bt.result(&o, quiescence, t);
+                bt.result(&o, self, quiescence, t);
             }
         }
         if bt.grounds.is_empty() {

@@ -9,6 +9,7 @@ mod episode;
 mod negations;
 mod record;
 pub mod settings;
+mod singletons;
 pub mod stats;
 
 use crate::decide::ids::InstId;
@@ -40,6 +41,9 @@ pub struct TraceCond {
     pub support: Option<Arc<PrefOrigin>>,
     /// The acceptable preference an impasse's `^item` stands for (see `record.rs`).
     pub via_item: bool,
+    /// For a test of the match goal's selected operator: the knowledge that selected it
+    /// (`chunk add-osk`), backtraced with the operator's proposal.
+    pub osk: Option<Osk>,
 }
 
 /// What a firing in a substate looked like, kept as long as its preferences need it (the
@@ -138,6 +142,10 @@ pub struct PrefOrigin {
     /// The make action of `trace.prod` that made it (for RHS function calls in chunks).
     pub action: Option<usize>,
 }
+
+/// The origins of an operator's selection knowledge (`chunk add-osk`), shared by every
+/// firing that tests the operator.
+pub type Osk = Arc<[Arc<PrefOrigin>]>;
 
 /// A justification alive in preference memory (`print --justifications`).
 #[derive(Debug, Clone)]

@@ -66,6 +66,12 @@ impl AgentCore {
             }
         }
         let vars = TraceVars::new(table.clone(), slots);
+        let level = self
+            .decider
+            .inst_by_token
+            .get(&(p, t))
+            .and_then(|&i| self.decider.insts[i].goal)
+            .map_or(0, |g| self.sym_level(g));
         let wmes = self.rete.match_wmes(p, t);
         let positives = prod
             .conditions
@@ -99,9 +105,15 @@ impl AgentCore {
                         cond: None,
                         support: None,
                         via_item: true,
+                        osk: None,
                     });
                 }
             }
+            let osk = if wme_level == level {
+                self.selection_knowledge_of(&wme)
+            } else {
+                None
+            };
             conds.push(TraceCond {
                 wme,
                 wme_id: w,
@@ -110,14 +122,9 @@ impl AgentCore {
                 cond: Some(ci),
                 support,
                 via_item: false,
+                osk,
             });
         }
-        let level = self
-            .decider
-            .inst_by_token
-            .get(&(p, t))
-            .and_then(|&i| self.decider.insts[i].goal)
-            .map_or(0, |g| self.sym_level(g));
         let trace = Arc::new(InstTrace {
             base: names.base.clone(),
             generation: names.generation,
@@ -187,6 +194,19 @@ impl AgentCore {
         names
     }
 
+    /// For the selected operator `(G ^operator O)` of a substate G: the knowledge that
+    /// selected it (`chunk add-osk`).
+    fn selection_knowledge_of(&self, wme: &crate::wm::Wme) -> Option<super::Osk> {
+        if wme.acceptable || wme.attr != self.symbols.known.operator {
+            return None;
+        }
+        let goal = self.decider.goals.iter().find(|g| g.state == wme.id)?;
+        match goal.operator {
+            Some((o, _)) if o == wme.value => goal.osk.clone(),
+            _ => None,
+        }
+    }
+
     /// For `(G ^item X)` of a tie or conflict substate G: the WME `(S ^operator X +)` of
     /// the state above.
     fn item_preference_wme(&self, wme: &crate::wm::Wme) -> Option<crate::wm::WmeId> {
@@ -210,6 +230,19 @@ impl AgentCore {
     /// operator proposal) preference for its value that was recorded.
     fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        // A required operator, once selected, rests on its require preference (the
+        // candidate 9.6 selects).
+        if !wme.acceptable && wme.attr == self.symbols.known.operator {
+            let required = slot.prefs_for(wme.value).find_map(|pid| {
+                let p = &self.decider.prefs[pid];
+                (p.kind == PrefType::Require && p.value == wme.value)
+                    .then(|| p.origin.clone())
+                    .flatten()
+            });
+            if required.is_some() {
+                return required;
+            }
+        }
         slot.prefs_for(wme.value).find_map(|pid| {
             let p = &self.decider.prefs[pid];
             let kind_ok = match p.kind {

@@ -49,7 +49,7 @@ impl ChunkStats {
         self.identity_propagations += bt.propagations as u64;
         self.identity_propagations_blocked += bt.propagations_blocked as u64;
         self.identities_joined += bt.joins as u64;
-        self.constraints_collected += bt.constraints.len() as u64;
+        self.constraints_collected += (bt.constraints.len() + bt.literal_constraints) as u64;
     }
 }
 
