@@ -229,18 +229,14 @@ pub fn real_text(f: f64) -> String {
     if !f.is_finite() {
         return if f.is_nan() { String::new() } else if f > 0.0 { "Inf".into() } else { "-Inf".into() };
     }
-    let sci = format!("{f:.14e}");
-    let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let trim = |s: &str| -> String {
-        let t = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s };
-        if t.contains('.') { t.to_string() } else { format!("{t}.0") }
-    };
-    if (-4..15).contains(&exp) {
-        trim(&format!("{f:.*}", (14 - exp) as usize))
+    let g = crate::printer::constants::c_general(f, 15);
+    // SQLite always writes a REAL's decimal point, in the mantissa when there is an exponent.
+    let split = g.find('e').unwrap_or(g.len());
+    let (mantissa, exponent) = g.split_at(split);
+    if mantissa.contains('.') {
+        g
     } else {
-        let sign = if exp < 0 { '-' } else { '+' };
-        format!("{}e{sign}{:02}", trim(mantissa), exp.abs())
+        format!("{mantissa}.0{exponent}")
     }
 }
 

@@ -77,48 +77,7 @@ fn constant_text(agent: &AgentCore, s: Sym) -> Option<String> {
     match agent.symbols.get(s) {
         SymData::Str(t) => Some(t.to_string()),
         SymData::Int(i) => Some(i.to_string()),
-        SymData::Float(f) => Some(general_16(*f)),
+        SymData::Float(f) => Some(crate::printer::constants::c_general(*f, 16)),
         SymData::Id(_) => None,
-    }
-}
-
-/// C++'s `ostream << setprecision(16) << x` (printf's `%.16g`).
-fn general_16(x: f64) -> String {
-    if !x.is_finite() {
-        return if x.is_nan() { "nan".into() } else if x > 0.0 { "inf".into() } else { "-inf".into() };
-    }
-    if x == 0.0 {
-        return if x.is_sign_negative() { "-0".into() } else { "0".into() };
-    }
-    let sci = format!("{x:.15e}");
-    let (mantissa, exp) = sci.split_once('e').unwrap_or((&sci, "0"));
-    let exp: i32 = exp.parse().unwrap_or(0);
-    let trim = |s: &str| -> String {
-        if s.contains('.') {
-            s.trim_end_matches('0').trim_end_matches('.').to_string()
-        } else {
-            s.to_string()
-        }
-    };
-    if (-4..16).contains(&exp) {
-        trim(&format!("{x:.*}", (15 - exp) as usize))
-    } else {
-        let sign = if exp < 0 { '-' } else { '+' };
-        format!("{}e{sign}{:02}", trim(mantissa), exp.abs())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::general_16;
-
-    #[test]
-    fn floats_have_sixteen_significant_digits_as_in_cpp_streams() {
-        assert_eq!(general_16(2.5), "2.5");
-        assert_eq!(general_16(0.1), "0.1");
-        assert_eq!(general_16(1.0 / 3.0), "0.3333333333333333");
-        assert_eq!(general_16(100.0), "100");
-        assert_eq!(general_16(1e20), "1e+20");
-        assert_eq!(general_16(-0.00001), "-1e-05");
     }
 }
