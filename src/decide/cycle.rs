@@ -92,6 +92,7 @@ impl AgentCore {
         let stop_phase = self.settings.stop_phase;
         let max_dc_time = u64::try_from(self.settings.max_dc_time).unwrap_or(0);
         let mut decision_start = std::time::Instant::now();
+        self.decider.phase_clock = Some(decision_start);
         let max_nil = u64::try_from(self.settings.max_nil_output_cycles.max(1)).unwrap_or(1);
         let mut nil_cycles = 0u64;
         // Read only for output cycles: it walks the output-link.
@@ -165,6 +166,7 @@ impl AgentCore {
                 break;
             }
         }
+        self.decider.phase_clock = None;
         if self.decider.halted {
             // The end of an episode: the top state's RL rules take the last reward.
             self.rl_halted();
@@ -184,7 +186,10 @@ impl AgentCore {
         if self.events.any() && !self.decider.phase_started {
             self.events.send(&AgentEvent::BeforePhase(phase));
         }
-        let start = std::time::Instant::now();
+        let start = self
+            .decider
+            .phase_clock
+            .unwrap_or_else(std::time::Instant::now);
         self.do_phase_timed(phase, one_cycle);
         self.report_break_hits_in(phase);
         self.release_justifications();
@@ -195,7 +200,11 @@ impl AgentCore {
             Phase::Apply => 3,
             Phase::Output => 4,
         };
-        self.decider.phase_time[i] += start.elapsed();
+        let end = std::time::Instant::now();
+        self.decider.phase_time[i] += end.saturating_duration_since(start);
+        if self.decider.phase_clock.is_some() {
+            self.decider.phase_clock = Some(end);
+        }
         if phase == Phase::Output && self.decider.phase == Some(Phase::Input) {
             self.end_cycle_stats();
         }

@@ -204,6 +204,10 @@ pub struct DecideState {
     pub wm_size_samples: u64,
     pub wm_size_max: u64,
     pub phase_time: [std::time::Duration; 5],
+    /// During a run, when the last phase ended: the next phase starts then, so a phase
+    /// costs one clock read (none between runs, so that the time between them counts
+    /// for no phase).
+    pub phase_clock: Option<std::time::Instant>,
     pub input_fn_time: std::time::Duration,
     pub output_fn_time: std::time::Duration,
     /// Each decision cycle's time, WM changes and firings (`stats --max`, `--track`).
