@@ -33,6 +33,14 @@ pub fn selection_knowledge(prefs: &[Pref], winner: Sym) -> Vec<usize> {
             .filter(move |(_, p)| p.kind == kind)
     };
     let has = |kind: PrefType, v: Sym| prefs.iter().any(|p| p.kind == kind && p.value == v);
+    // Every preference of `kind` for value `c`, newest first.
+    let add_of = |out: &mut Vec<usize>, kind: PrefType, c: Sym| {
+        for (i, p) in newest_first(kind) {
+            if p.value == c {
+                add(prefs, out, i, true);
+            }
+        }
+    };
     let mut cands: Vec<Sym> = Vec::new();
     for p in prefs.iter().filter(|p| p.kind == PrefType::Acceptable) {
         if !has(PrefType::Prohibit, p.value)
@@ -77,11 +85,7 @@ pub fn selection_knowledge(prefs: &[Pref], winner: Sym) -> Vec<usize> {
             .map(|(c, _)| *c)
             .collect();
         for &c in &survivors {
-            for (i, p) in newest_first(PrefType::Better) {
-                if p.value == c {
-                    add(prefs, &mut out, i, true);
-                }
-            }
+            add_of(&mut out, PrefType::Better, c);
             for (i, p) in newest_first(PrefType::Worse) {
                 if p.referent == Some(c) {
                     add(prefs, &mut out, i, true);
@@ -97,11 +101,7 @@ pub fn selection_knowledge(prefs: &[Pref], winner: Sym) -> Vec<usize> {
     if cands.iter().any(|&c| has(PrefType::Best, c)) {
         cands.retain(|&c| has(PrefType::Best, c));
         for &c in &cands {
-            for (i, p) in newest_first(PrefType::Best) {
-                if p.value == c {
-                    add(prefs, &mut out, i, true);
-                }
-            }
+            add_of(&mut out, PrefType::Best, c);
         }
         if cands.len() <= 1 {
             return out;
@@ -111,11 +111,7 @@ pub fn selection_knowledge(prefs: &[Pref], winner: Sym) -> Vec<usize> {
     // not worst.
     if cands.iter().any(|&c| !has(PrefType::Worst, c)) {
         for &c in cands.iter().filter(|&&c| has(PrefType::Worst, c)) {
-            for (i, p) in newest_first(PrefType::Worst) {
-                if p.value == c {
-                    add(prefs, &mut out, i, true);
-                }
-            }
+            add_of(&mut out, PrefType::Worst, c);
         }
         cands.retain(|&c| !has(PrefType::Worst, c));
         if cands.len() <= 1 {

@@ -393,33 +393,23 @@ impl Store {
     /// After `lti` gained an LTI-valued augmentation: the traversals that went on from it
     /// are made again when next needed.
     pub fn invalidate_through(&self, lti: i64) -> DbResult<()> {
-        if !self.has_trajectories()? {
-            return Ok(());
-        }
-        let mut cond = vec!["(lti_id=?1 AND lti1!=0)".to_string()];
-        for i in 1..10 {
-            cond.push(format!("(lti{i}=?1 AND lti{}!=0)", i + 1));
-        }
-        exec(
-            &self.conn,
-            &format!(
-                "UPDATE smem_likelihood_trajectories SET valid_bit=0 WHERE {}",
-                cond.join(" OR ")
-            ),
-            [lti],
-        )
-        .map_err(super::store::db_error)?;
-        Ok(())
+        self.invalidate_steps("!=0", [lti])
     }
 
     /// After the edge `parent` → `child` went: the traversals that used it.
     pub fn invalidate_edge(&self, parent: i64, child: i64) -> DbResult<()> {
+        self.invalidate_steps("=?2", [parent, child])
+    }
+
+    /// Marks invalid the traversals with a step from LTI `?1` to a next LTI that meets
+    /// `next` (an SQL test on the next column).
+    fn invalidate_steps<P: rusqlite::Params>(&self, next: &str, params: P) -> DbResult<()> {
         if !self.has_trajectories()? {
             return Ok(());
         }
-        let mut cond = vec!["(lti_id=?1 AND lti1=?2)".to_string()];
+        let mut cond = vec![format!("(lti_id=?1 AND lti1{next})")];
         for i in 1..10 {
-            cond.push(format!("(lti{i}=?1 AND lti{}=?2)", i + 1));
+            cond.push(format!("(lti{i}=?1 AND lti{}{next})", i + 1));
         }
         exec(
             &self.conn,
@@ -427,7 +417,7 @@ impl Store {
                 "UPDATE smem_likelihood_trajectories SET valid_bit=0 WHERE {}",
                 cond.join(" OR ")
             ),
-            [parent, child],
+            params,
         )
         .map_err(super::store::db_error)?;
         Ok(())

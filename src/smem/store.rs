@@ -830,21 +830,19 @@ impl Store {
 
     /// An LTI's activation as `print` shows it (0 for one never activated).
     pub fn shown_activation(&self, lti: i64) -> DbResult<f64> {
-        let v: Option<Option<f64>> = db(row(
-            &self.conn,
-            "SELECT activation_value FROM smem_lti WHERE lti_id=?1",
-            [lti],
-            |r| r.get(0),
-        )
-        .optional())?;
-        Ok(v.flatten().unwrap_or(0.0))
+        self.lti_real(lti, "SELECT activation_value FROM smem_lti WHERE lti_id=?1")
     }
 
     /// `activation_base_level` of an LTI (0 for one never activated).
     pub fn base_activation(&self, lti: i64) -> DbResult<f64> {
+        self.lti_real(lti, "SELECT activation_base_level FROM smem_lti WHERE lti_id=?1")
+    }
+
+    /// A real column of an LTI's row, read by `sql` (0 when empty or the LTI is unknown).
+    fn lti_real(&self, lti: i64, sql: &str) -> DbResult<f64> {
         let v: Option<Option<f64>> = db(row(
             &self.conn,
-            "SELECT activation_base_level FROM smem_lti WHERE lti_id=?1",
+            sql,
             [lti],
             |r| r.get(0),
         )

@@ -391,10 +391,7 @@ impl AgentCore {
     pub(crate) fn wma_end_decision(&mut self) {
         let now = self.decider.d_cycle_count;
         // A `remove` line whose `<=WM:` line never came is not lost.
-        for tt in std::mem::take(&mut self.wma.removal_lines) {
-            self.wma.removal_lines.push(tt);
-            self.wma_flush_removal_line(tt);
-        }
+        self.wma_flush_removal_lines();
         self.wma.purge_removed();
         if self.settings.trace.wma {
             let mut counts = Vec::new();

@@ -57,6 +57,13 @@ impl AgentCore {
         }
     }
 
+    /// Every `remove` line still waiting for its `<=WM:` line.
+    pub(crate) fn wma_flush_removal_lines(&mut self) {
+        for tt in std::mem::take(&mut self.wma.removal_lines) {
+            self.wma_removal_line(tt);
+        }
+    }
+
     fn wma_removal_line(&mut self, timetag: u64) {
         let d = self.decider.d_cycle_count;
         self.output.push_str(&format!("WMA @{d}: remove {timetag}\n"));
