@@ -533,7 +533,7 @@ pub struct AgentCore {
     pub wm: WorkingMemory,
     pub rete: Rete,
     pub matches: MatchSet,
-    productions: IndexMap<ByName, Loaded>,
+    productions: IndexMap<ByName, Loaded, rustc_hash::FxBuildHasher>,
     /// The same rules by network id, for firing without a lookup by name.
     by_id: Vec<Option<std::sync::Arc<Production>>>,
     pub settings: Settings,
@@ -615,7 +615,7 @@ impl AgentCore {
             wm,
             rete,
             matches,
-            productions: IndexMap::new(),
+            productions: IndexMap::default(),
             by_id: Vec::new(),
             settings: Settings::default(),
             seed: None,
@@ -744,22 +744,40 @@ impl AgentCore {
         names.len()
     }
 
-    /// Puts a changed copy of a loaded rule in its place (an RL rule with a learned value):
-    /// the same name, network node and place in the listings; its next firing compiles the
-    /// new actions.
-    pub(crate) fn replace_production(&mut self, id: ProdId, p: Production) {
+    /// Changes a loaded rule where it is (an RL rule's learned value, at every update): the
+    /// same name, network node and place in the listings. The rule's two other handles are
+    /// set aside while `edit` runs, so that the rule is changed in place rather than copied
+    /// (a copy is made only while something else, a listing say, still holds the rule).
+    /// Returns whether the rule is loaded.
+    pub(crate) fn edit_production(&mut self, id: ProdId, edit: impl FnOnce(&mut Production)) -> bool {
         use indexmap::map::MutableKeys;
-        let production = std::sync::Arc::new(p);
-        if let Some((_, key, loaded)) = self.productions.get_full_mut2(production.name.as_str()) {
-            *key = ByName(production.clone());
-            loaded.production = production.clone();
+        use std::sync::{Arc, LazyLock};
+        /// What stands in the rule's other places while it changes.
+        static SET_ASIDE: LazyLock<Arc<Production>> = LazyLock::new(|| {
+            Arc::new(Production {
+                name: String::new(),
+                doc: None,
+                flags: crate::production::Flags::default(),
+                conditions: Arc::new(Vec::new()),
+                actions: Vec::new(),
+                span: crate::source::Span::default(),
+            })
+        });
+        let Some(Some(mut rule)) = self.by_id.get_mut(id.0 as usize).map(Option::take) else {
+            return false;
+        };
+        let index = self.productions.get_index_of(rule.name.as_str());
+        if let Some((key, loaded)) = index.and_then(|i| self.productions.get_index_mut2(i)) {
+            key.0 = SET_ASIDE.clone();
+            loaded.production = SET_ASIDE.clone();
         }
-        if let Some(slot) = self.by_id.get_mut(id.0 as usize) {
-            *slot = Some(production);
+        edit(Arc::make_mut(&mut rule));
+        if let Some((key, loaded)) = index.and_then(|i| self.productions.get_index_mut2(i)) {
+            key.0 = rule.clone();
+            loaded.production = rule.clone();
         }
-        if let Some(c) = self.decider.compiled.get_mut(id.0 as usize) {
-            *c = None;
-        }
+        self.by_id[id.0 as usize] = Some(rule);
+        true
     }
 
     pub fn production(&self, name: &str) -> Option<&Production> {

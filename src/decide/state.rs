@@ -280,6 +280,29 @@ impl DecideState {
         }
     }
 
+    /// An RL rule's compiled actions take its new value: in place, unless a firing holds
+    /// them now, when the rule compiles again at its next firing.
+    pub(crate) fn set_compiled_referent(&mut self, rule: crate::rete::ProdId, value: Sym) {
+        use super::compiled::{Act, Term};
+        let Some(entry) = self.compiled.get_mut(rule.0 as usize) else {
+            return;
+        };
+        let edited = entry.as_mut().and_then(std::rc::Rc::get_mut).is_some_and(|c| {
+            match c.actions.first_mut() {
+                Some(Act::Make {
+                    referent: Some(r), ..
+                }) => {
+                    *r = Term::Sym(value);
+                    true
+                }
+                _ => false,
+            }
+        });
+        if !edited {
+            *entry = None;
+        }
+    }
+
     pub fn alloc_inst(&mut self, inst: Instantiation) -> InstId {
         match self.free_insts.pop() {
             Some(i) => {

@@ -137,7 +137,7 @@ impl Rete {
         // compares it with an integer (identifiers and attributes are left to the full test).
         let mut value_int: Option<Option<i64>> = None;
         let base = self.succ_scratch.len();
-        for s in self.amems[a].successors.values() {
+        for s in self.succ_links.iter(self.amems[a].successors) {
             if let (Some(pre), false) = (&s.pre, s.left_unlinked) {
                 let int = match pre.field {
                     Field::Value if pre.int_order.is_some() => {

@@ -684,10 +684,7 @@ impl Rete {
             }
             match kind {
                 Kind::Join { amem, .. } | Kind::Negative { amem, .. } => {
-                    if !self.is_right_unlinked(n) {
-                        let key = self.nodes[n].amem_key;
-                        self.amems[amem].successors.remove(&key);
-                    }
+                    self.succ_links.forget(&mut self.amems[amem].successors, n);
                     self.release_amem(amem);
                 }
                 _ => {}

@@ -21,6 +21,7 @@ mod id_index;
 mod names;
 pub mod reorder;
 mod small_list;
+mod successors;
 pub(crate) mod stats;
 mod test_lists;
 pub mod tests;
@@ -110,9 +111,8 @@ pub(crate) struct Amem {
     /// Head of the intrusive list of right-memory entries (newest first).
     pub first: u32,
     pub count: u32,
-    /// Linked successors in activation order, keyed by their `amem_key`; ordered and keyed
-    /// so that unlinking one of thousands is cheap.
-    pub successors: std::collections::BTreeMap<u64, Succ>,
+    /// Linked successors in activation order (threaded through `Rete::succ_links`).
+    pub successors: successors::SuccList,
     pub refs: u32,
     /// Whether its entries are in the by-identifier index: a small memory is scanned
     /// instead (see `hash::SMALL_AMEM`), indexed once it grows, and no longer once empty.
@@ -256,9 +256,6 @@ pub(crate) struct Node {
     pub left_mode: LeftMode,
     /// Whether its join and negative children are in [`Rete::share`] (see `build.rs`).
     pub wide: bool,
-    /// Join and negative nodes: the place among their alpha memory's successors (ascending
-    /// = activation order), while linked.
-    pub amem_key: u64,
     /// Join and negative nodes: the nearest ancestor on the same alpha memory (`NONE` if none),
     /// found when the node is built.
     pub same_amem_ancestor: NodeId,
@@ -282,7 +279,7 @@ pub(crate) enum LeftMode {
 }
 
 // 100,000 rules build 400,000 nodes: each byte here is 0.4 MB.
-const _: () = assert!(std::mem::size_of::<Node>() == 88);
+const _: () = assert!(std::mem::size_of::<Node>() == 80);
 
 /// An optional `(depth, field)` in 4 bytes (depth in the high 30 bits), for [`Node::hash`]
 /// and the left index keys.
@@ -483,6 +480,8 @@ pub struct Rete {
     emptied_succ: Vec<NodeId>,
     /// The same for alpha-memory successors.
     succ_scratch: Vec<Succ>,
+    /// The links of the alpha memories' successor lists, by node.
+    succ_links: successors::SuccLinks,
     /// The batch of changes in progress, for leaving out its passing tokens.
     pub(crate) doom: doomed::DoomState,
     /// Counts changes to the network's nodes (summaries of it are kept until it changes).
@@ -538,6 +537,7 @@ impl Rete {
             scratch: Vec::new(),
             pending: Vec::new(),
             succ_scratch: Vec::new(),
+            succ_links: successors::SuccLinks::default(),
             emptied_succ: Vec::new(),
             root: NodeId::new(0),
             root_token: TokId::new(0),
@@ -570,7 +570,6 @@ impl Rete {
             left_keys: SmallList::Empty,
             left_mode: LeftMode::Scan,
             wide: false,
-            amem_key: 0,
             same_amem_ancestor: NodeId::NONE,
         };
         self.network_version += 1;
@@ -611,7 +610,7 @@ impl Rete {
             key,
             first: NIL,
             count: 0,
-            successors: std::collections::BTreeMap::new(),
+            successors: successors::SuccList::default(),
             refs: 1,
             indexed: false,
         };
@@ -670,7 +669,7 @@ impl Rete {
         let am = &mut self.amems[a];
         am.first = NIL;
         am.count = 0;
-        am.successors.clear();
+        self.succ_links.clear(&mut am.successors);
         self.free_amems.push(a);
     }
 
@@ -853,9 +852,8 @@ impl Rete {
                 let mut succ = std::mem::take(&mut self.emptied_succ);
                 succ.clear();
                 succ.extend(
-                    self.amems[amem]
-                        .successors
-                        .values()
+                    self.succ_links
+                        .iter(self.amems[amem].successors)
                         .map(|s| s.node),
                 );
                 self.unlink_left_all(&succ);
@@ -928,11 +926,9 @@ impl Rete {
         let (Kind::Join { amem, .. } | Kind::Negative { amem, .. }) = node.kind else {
             return;
         };
-        let key = node.amem_key;
-        if let Some(s) = self.amems[amem].successors.get_mut(&key) {
-            if s.node == n {
-                s.left_unlinked = unlinked;
-            }
+        let _ = amem;
+        if let Some(s) = self.succ_links.get_mut(n) {
+            s.left_unlinked = unlinked;
         }
     }
 
@@ -1013,8 +1009,7 @@ impl Rete {
             }
             _ => return,
         };
-        let key = self.nodes[n].amem_key;
-        self.amems[amem].successors.remove(&key);
+        self.succ_links.remove(&mut self.amems[amem].successors, n);
     }
 
     /// Puts a node back among its alpha memory's successors.
@@ -1047,26 +1042,10 @@ impl Rete {
     /// or else at the tail. The order therefore follows linking history, which decides the
     /// firing order of rules matched by one WME: 9.6 activates from the head.
     pub(crate) fn link_to_amem(&mut self, n: NodeId, amem: AmemId, syms: &Symbols) {
-        const GAP: u64 = 1 << 20;
         let mut a = self.nodes[n].same_amem_ancestor;
         while a != NodeId::NONE && self.is_right_unlinked(a) {
             a = self.nodes[a].same_amem_ancestor;
         }
-        let succ = &self.amems[amem].successors;
-        let key = if a == NodeId::NONE {
-            succ.keys().next_back().map_or(GAP, |&k| k + GAP)
-        } else {
-            let at = self.nodes[a].amem_key;
-            let before = succ.range(..at).next_back().map_or(0, |(&k, _)| k);
-            if at - before >= 2 {
-                before + (at - before) / 2
-            } else {
-                self.respace_successors(amem);
-                return self.link_to_amem(n, amem, syms);
-            }
-        };
-        self.nodes[n].amem_key = key;
-        let pre = self.prefilter(n, syms);
         let left_unlinked = matches!(
             self.nodes[n].kind,
             Kind::Join {
@@ -1074,14 +1053,16 @@ impl Rete {
                 ..
             }
         );
-        self.amems[amem].successors.insert(
-            key,
-            Succ {
-                node: n,
-                pre,
-                left_unlinked,
-            },
-        );
+        let pre = match self.succ_links.known(n) {
+            Some(s) => s.pre,
+            None => self.prefilter(n, syms),
+        };
+        let s = Succ {
+            node: n,
+            pre,
+            left_unlinked,
+        };
+        self.succ_links.insert(&mut self.amems[amem].successors, s, a);
     }
 
     /// The first test of join or negative node `n` on a field of the new WME against a
@@ -1120,22 +1101,6 @@ impl Rete {
             Kind::Join { tests, .. } | Kind::Negative { tests, .. } => self.test_lists.get(*tests),
             _ => &[],
         }
-    }
-
-    /// Spreads an alpha memory's successor keys out again, keeping their order.
-    fn respace_successors(&mut self, amem: AmemId) {
-        let nodes: Vec<Succ> = self.amems[amem]
-            .successors
-            .values()
-            .copied()
-            .collect();
-        let mut fresh = std::collections::BTreeMap::new();
-        for (i, n) in nodes.into_iter().enumerate() {
-            let key = (i as u64 + 1) << 20;
-            self.nodes[n.node].amem_key = key;
-            fresh.insert(key, n);
-        }
-        self.amems[amem].successors = fresh;
     }
 
     /// The nearest ancestor of `n` that is a join or negative node on `amem` (none when `n`

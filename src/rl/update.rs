@@ -397,20 +397,26 @@ impl AgentCore {
     /// Gives an RL rule a new value: its text shows it, its later firings make it, and its
     /// current instantiations' preferences take it now.
     fn set_rl_rule_value(&mut self, rule: ProdId, value: f64) {
-        let Some(old) = self.production_by_id(rule) else {
-            return;
-        };
-        let mut p = (*old).clone();
-        if let Some(Action::Make(m)) = p.actions.first_mut() {
-            m.referent = Some(RhsTerm::Const(Constant::Float(value)));
-        }
-        if self.rl.params.meta {
-            if let Some(v) = self.rl.rules.get(&rule) {
-                p.doc = Some(super::update_log::meta_text(v.updates, v.dbd_h));
+        let doc = self
+            .rl
+            .params
+            .meta
+            .then(|| self.rl.rules.get(&rule))
+            .flatten()
+            .map(|v| super::update_log::meta_text(v.updates, v.dbd_h));
+        let loaded = self.edit_production(rule, |p| {
+            if let Some(Action::Make(m)) = p.actions.first_mut() {
+                m.referent = Some(RhsTerm::Const(Constant::Float(value)));
             }
+            if doc.is_some() {
+                p.doc = doc;
+            }
+        });
+        if !loaded {
+            return;
         }
-        self.replace_production(rule, p);
         let sym = self.symbols.float(value);
+        self.decider.set_compiled_referent(rule, sym);
         for inst in self.decider.insts.iter().filter(|i| i.alive && i.prod == rule) {
             for &pid in &inst.prefs {
                 let pref = &mut self.decider.prefs[pid];
