@@ -9,9 +9,24 @@ use crate::production::{Action, RhsTerm};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 
-/// The lowest goal among the identifiers of a match's WMEs.
-pub fn match_goal(agent: &AgentCore, _p: ProdId, t: TokId) -> Option<Sym> {
-    goal_of(agent, agent.rete.chain_wmes(t))
+/// The lowest goal among the identifiers of a match's WMEs: read at the places of the
+/// rule's distinct identifiers once it is compiled, else from every WME of the match.
+pub fn match_goal(agent: &AgentCore, p: ProdId, t: TokId) -> Option<Sym> {
+    match agent.decider.compiled.get(p.0 as usize) {
+        Some(Some(rule)) if t != TokId::NONE => compiled_goal(agent, rule, agent.rete.token_row(t)),
+        _ => goal_of(agent, agent.rete.chain_wmes(t)),
+    }
+}
+
+/// The lowest goal among a compiled rule's identifiers in a match's row.
+fn compiled_goal(agent: &AgentCore, rule: &CompiledRule, row: &[crate::wm::WmeId]) -> Option<Sym> {
+    goal_among(
+        agent,
+        rule.id_places.iter().filter_map(|&(depth, field)| {
+            let w = *row.get(depth as usize)?;
+            (w != crate::rete::NIL_WME).then(|| agent.rete.field(w, field))
+        }),
+    )
 }
 
 pub(crate) fn goal_of(agent: &AgentCore, wmes: impl Iterator<Item = crate::wm::WmeId>) -> Option<Sym> {
@@ -143,11 +158,15 @@ fn compiled_support(agent: &AgentCore, rule: &CompiledRule, t: TokId) -> MatchSu
     if rule.flags.i_support || rule.proposes || !rule.may_test_operator {
         return i_support;
     }
-    let Some(goal) = goal_of(agent, agent.rete.chain_wmes(t)) else {
+    if t == TokId::NONE {
+        return i_support;
+    }
+    let row = agent.rete.token_row(t);
+    let Some(goal) = compiled_goal(agent, rule, row) else {
         return i_support;
     };
     let operator = agent.top.operator;
-    let selected = agent.rete.chain_wmes(t).find_map(|w| {
+    let selected = row.iter().find_map(|&w| {
         let wme = agent.wm.get(w)?;
         (wme.id == goal && wme.attr == operator && !wme.acceptable).then_some(wme.value)
     });
