@@ -240,18 +240,20 @@ pub fn decide(prefs: &[Pref], policy: Policy, mode: NumericMode, rng: &mut Mt199
 /// preferences; binary indifferents where it is the value contribute their referent as a
 /// number when the referent is one (usually 0 here, since referents are operators).
 pub fn numeric_value(prefs: &[Pref], c: Sym, mode: NumericMode) -> f64 {
-    let nums: Vec<f64> = prefs
+    // Summed in the preferences' order, from -0.0 as `Iterator::sum` does.
+    let (mut sum, mut count) = (-0.0, 0usize);
+    for n in prefs
         .iter()
         .filter(|p| p.value == c && p.kind == PrefType::NumericIndifferent)
         .filter_map(|p| p.number)
-        .collect();
-    if nums.is_empty() {
-        return 0.0;
+    {
+        sum += n;
+        count += 1;
     }
-    let sum: f64 = nums.iter().sum();
-    match mode {
-        NumericMode::Sum => sum,
-        NumericMode::Avg => sum / nums.len() as f64,
+    match (count, mode) {
+        (0, _) => 0.0,
+        (_, NumericMode::Sum) => sum,
+        (_, NumericMode::Avg) => sum / count as f64,
     }
 }
 

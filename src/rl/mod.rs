@@ -91,6 +91,9 @@ pub struct RlState {
     /// The number of the last rule a template made (`rl*<template>*<n>`); `init-soar`
     /// keeps it.
     pub template_count: u64,
+    /// Reused buffers for a template match's shape and the identifiers it has met.
+    shape_scratch: Vec<u64>,
+    shape_ids: Vec<Sym>,
     /// The decay of learned rules while `apoptosis` is on; made with the decay and
     /// threshold of the moment it is turned on (they cannot change while it is on).
     pub rule_decay: Option<apoptosis::RuleDecay>,

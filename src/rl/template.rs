@@ -132,6 +132,15 @@ impl AgentCore {
         o_support: bool,
         new_prefs: &mut Vec<PrefId>,
     ) {
+        // A match shaped like one that already made a rule makes the same rule, which is
+        // loaded: a duplicate, known without building it (and, as most matches are, without
+        // allocating).
+        let mut shape = (p, std::mem::take(&mut self.rl.shape_scratch));
+        self.match_shape(p, t, &mut shape.1);
+        if self.rl.template_rules.contains_key(&shape) {
+            self.rl.shape_scratch = shape.1;
+            return;
+        }
         let Some(template) = self.production_by_id(p) else {
             return;
         };
@@ -141,12 +150,6 @@ impl AgentCore {
             .into_iter()
             .map(|w| self.wm.get(w).copied())
             .collect();
-        // A match shaped like one that already made a rule makes the same rule, which is
-        // loaded: a duplicate, known without building it.
-        let shape = (p, self.match_shape(&wmes));
-        if self.rl.template_rules.contains_key(&shape) {
-            return;
-        }
         let mut b = Binder::default();
         let mut conditions = Vec::new();
         let positives = template
@@ -254,11 +257,15 @@ impl AgentCore {
     /// What a template's rule is made from: each field of the matched WMEs, a constant as
     /// itself and an identifier by its letter and the place it first appeared (the rule
     /// names identifiers' variables by letter, in order).
-    fn match_shape(&self, wmes: &[Option<crate::wm::Wme>]) -> Vec<u64> {
-        let mut firsts: Vec<Sym> = Vec::new();
-        let mut shape = Vec::with_capacity(wmes.len() * 3);
-        for w in wmes {
-            let Some(w) = w else {
+    fn match_shape(&mut self, p: ProdId, t: TokId, shape: &mut Vec<u64>) {
+        shape.clear();
+        let mut firsts = std::mem::take(&mut self.rl.shape_ids);
+        firsts.clear();
+        let positives = self.rete.production(p).map_or(0, |info| info.positives as usize);
+        let mut filled = 0;
+        for w in self.rete.match_row(p, t) {
+            filled += 1;
+            let Some(w) = self.wm.get(w) else {
                 shape.push(u64::MAX);
                 continue;
             };
@@ -276,7 +283,9 @@ impl AgentCore {
                 shape.push(code);
             }
         }
-        shape
+        // A match short of WMEs (never a complete one) is marked as `match_wmes` pads it.
+        shape.extend(std::iter::repeat_n(u64::MAX, positives.saturating_sub(filled)));
+        self.rl.shape_ids = firsts;
     }
 }
 

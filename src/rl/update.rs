@@ -40,34 +40,45 @@ impl AgentCore {
         ) else {
             return 0.0;
         };
-        let find = |id: Sym, attr: Sym| -> Vec<Sym> {
-            let mut found: Vec<(u64, Sym)> = self
-                .wm
-                .of_id(id)
-                .filter_map(|w| self.wm.get(w))
-                .filter(|w| w.attr == attr && !w.acceptable)
-                .map(|w| (w.timetag, w.value))
-                .collect();
-            // 9.6 walks a slot's WMEs newest first.
-            found.sort_by_key(|f| std::cmp::Reverse(f.0));
-            found.into_iter().map(|(_, v)| v).collect()
-        };
         let mut total = 0.0;
-        for r in find(goal, link) {
-            for x in find(r, reward) {
+        self.each_newest_first(goal, link, &mut |r| {
+            self.each_newest_first(r, reward, &mut |x| {
                 if !self.symbols.is_id(x) {
-                    continue;
+                    return;
                 }
-                for v in find(x, value) {
-                    match self.symbols.get(v) {
-                        SymData::Int(i) => total += *i as f64,
-                        SymData::Float(f) => total += *f,
-                        _ => {}
-                    }
-                }
-            }
-        }
+                self.each_newest_first(x, value, &mut |v| match self.symbols.get(v) {
+                    SymData::Int(i) => total += *i as f64,
+                    SymData::Float(f) => total += *f,
+                    _ => {}
+                });
+            });
+        });
         total
+    }
+
+    /// Calls `f` with the values of `id`'s WMEs on `attr` (acceptable preferences aside),
+    /// newest first as 9.6 walks a slot; the usual single value is found without
+    /// collecting.
+    fn each_newest_first(&self, id: Sym, attr: Sym, f: &mut dyn FnMut(Sym)) {
+        let mut found = self
+            .wm
+            .of_id(id)
+            .filter_map(|w| self.wm.get(w))
+            .filter(|w| w.attr == attr && !w.acceptable)
+            .map(|w| (w.timetag, w.value));
+        let Some(first) = found.next() else {
+            return;
+        };
+        let Some(second) = found.next() else {
+            f(first.1);
+            return;
+        };
+        let mut all = vec![first, second];
+        all.extend(found);
+        all.sort_by_key(|x| std::cmp::Reverse(x.0));
+        for (_, v) in all {
+            f(v);
+        }
     }
 
     /// When a decision selects an operator by the preferences: every state with an RL
