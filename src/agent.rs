@@ -32,6 +32,8 @@ impl LearnMode {
 /// `chunk`, `trace`, `output`, `decide`).
 #[derive(Debug, Clone)]
 pub struct Settings {
+    /// Ceilings on a run's growth (`limits`); none by default.
+    pub limits: crate::decide::limits::Limits,
     pub learn: LearnMode,
     pub max_chunks: i64,
     pub max_dupes: i64,
@@ -201,6 +203,7 @@ impl Exploration {
 impl Default for Settings {
     fn default() -> Self {
         Settings {
+            limits: crate::decide::limits::Limits::default(),
             learn: LearnMode::Never,
             max_chunks: 50,
             max_dupes: 3,

@@ -67,6 +67,7 @@ mod tests;
 
 pub use api::{Agent, Error, Io, ListenerId, Location, Printed, RunResult, RunUnit, StopReason};
 pub use commands::LoadReport;
+pub use decide::limits::Limits;
 pub use decide::state::Phase;
 pub use events::AgentEvent;
 pub use io::{InputUpdate, InputWme, IoError, OutputCommand, Value};

@@ -3,6 +3,7 @@
 use super::io::{children, has_attribute, value_text, Io};
 use super::{Error, Printed};
 use crate::commands::{Event, Interpreter, LoadReport};
+use crate::decide::limits::Limits;
 use crate::events::AgentEvent;
 use crate::io::{InputUpdate, Value};
 use crate::rhs::host::{RhsArg, RhsCall};
@@ -44,6 +45,8 @@ pub enum StopReason {
     Interrupted,
     /// The goal stack reached `max-goal-depth` (Soar manual, `soar max-goal-depth`).
     GoalDepthExceeded,
+    /// The run met a ceiling of [`Agent::set_limits`] (the `limits` command).
+    CeilingReached,
     /// [`RunUnit::Output`]: the agent changed its output-link.
     Output,
     /// [`RunUnit::Output`]: `max-nil-output-cycles` decisions passed without output.
@@ -361,6 +364,8 @@ impl Agent {
                 StopReason::Halted
             } else if r.depth_exceeded {
                 StopReason::GoalDepthExceeded
+            } else if r.ceiling {
+                StopReason::CeilingReached
             } else if r.interrupted {
                 StopReason::Interrupted
             } else {
@@ -405,6 +410,21 @@ impl Agent {
         let flag = Arc::clone(flag);
         self.interp.set_interrupt(Arc::clone(&flag));
         flag
+    }
+
+    /// Sets ceilings on a run's growth (0: none, the default for each): a run that makes
+    /// working memory hold more WMEs, or the matcher more partial matches, than its ceiling,
+    /// or that learns as many chunks as its ceiling, stops after the elaboration cycle or
+    /// phase in which it did, with a message in the trace, and reports
+    /// [`StopReason::CeilingReached`]. The agent stays usable: a later run goes on (and
+    /// stops again while a ceiling is still passed). The `limits` command sets the same.
+    pub fn set_limits(&mut self, limits: Limits) {
+        self.interp.agent.settings.limits = limits;
+    }
+
+    /// The ceilings of [`Agent::set_limits`].
+    pub fn limits(&self) -> Limits {
+        self.interp.agent.settings.limits
     }
 
     /// `init-soar`: working memory, the goal stack and the counters start again; rules stay.

@@ -28,6 +28,7 @@ const PAGES: &[(&str, &str)] = &[
     page!("gp"),
     page!("help"),
     page!("learn"),
+    page!("limits"),
     page!("load"),
     page!("ls"),
     page!("output"),
@@ -55,12 +56,13 @@ fn page(command: &str) -> Option<&'static str> {
     PAGES.iter().find(|(c, _)| *c == command).map(|(_, p)| *p)
 }
 
-/// The commands `help` lists (9.6 leaves out `learn` and `exit`, which work all the same).
+/// The commands `help` lists: 9.6's list (it leaves out `learn` and `exit`, which work all
+/// the same); rusoar's own `limits` has a page but is not in 9.6's list.
 fn listed() -> impl Iterator<Item = &'static str> {
     COMMANDS
         .iter()
         .copied()
-        .filter(|c| !matches!(*c, "learn" | "exit"))
+        .filter(|c| !matches!(*c, "learn" | "exit" | "limits"))
 }
 
 /// `help` with no argument: the command list, as 9.6 prints it.

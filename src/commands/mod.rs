@@ -10,6 +10,7 @@ mod chunk_stats;
 mod decide;
 mod files;
 mod gp;
+mod limits;
 pub mod help;
 mod memory;
 mod memory_usage;
@@ -63,6 +64,7 @@ pub const COMMANDS: &[&str] = &[
     "gp",
     "help",
     "learn",
+    "limits",
     "load",
     "ls",
     "output",
@@ -553,6 +555,7 @@ impl Interpreter {
             "echo" => Ok(cmd_echo(args)),
             "alias" => self.cmd_alias(args),
             "learn" => self.cmd_learn(&ctx, args),
+            "limits" => self.cmd_limits(&ctx, args),
             "chunk" => self.cmd_chunk(&ctx, args),
             "soar" => self.cmd_soar(&ctx, args),
             "trace" => self.cmd_trace(&ctx, args),

@@ -34,6 +34,8 @@ pub(crate) struct RunReport {
     pub interrupted: bool,
     /// The goal stack reached `max-goal-depth`.
     pub depth_exceeded: bool,
+    /// A ceiling of `limits` stopped the run.
+    pub ceiling: bool,
 }
 
 impl Interpreter {
@@ -187,6 +189,7 @@ impl Interpreter {
                 || self.agent.decider.break_interrupted
                 || (self.agent.decider.stop_requested && !self.agent.decider.halted),
             depth_exceeded: self.agent.decider.depth_exceeded,
+            ceiling: self.agent.decider.ceiling.is_some(),
         }
     }
 

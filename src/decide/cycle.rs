@@ -69,9 +69,12 @@ impl AgentCore {
         self.decider.stop_requested = false;
         self.decider.depth_exceeded = false;
         self.decider.rhs_interrupted = false;
+        self.decider.ceiling = None;
         self.decider.goal_retracted = false;
         self.decider.break_interrupted = false;
         self.learn.learned_this_run = 0;
+        // A run that starts past a ceiling stops before it does anything.
+        self.ceiling_reached();
         if self.decider.goals.is_empty() {
             self.decider.goals.push(Goal {
                 state: self.top.state,
@@ -128,6 +131,7 @@ impl AgentCore {
             let e_before = self.decider.e_cycles;
             // `run -e` stops after each elaboration cycle, inside the phase.
             self.do_phase(phase, unit == RunUnit::Elaborations);
+            self.ceiling_reached();
             match unit {
                 RunUnit::Decisions | RunUnit::Forever => {
                     if phase != stop_phase && self.decider.phase == Some(stop_phase) {
@@ -291,7 +295,7 @@ impl AgentCore {
                     if self.max_elaborations_reached(Phase::Decide) {
                         break;
                     }
-                    if (one_cycle || self.interrupt_requested())
+                    if (one_cycle || self.interrupt_requested() || self.ceiling_reached())
                         && self.has_pending(false)
                         && !self.decider.halted
                     {
@@ -330,7 +334,7 @@ impl AgentCore {
                     if self.max_elaborations_reached(Phase::Output) {
                         break;
                     }
-                    if (one_cycle || self.interrupt_requested())
+                    if (one_cycle || self.interrupt_requested() || self.ceiling_reached())
                         && self.has_pending(true)
                         && !self.decider.halted
                     {

@@ -17,6 +17,7 @@ pub mod functions;
 mod gc;
 mod gds;
 mod gds_trace;
+pub mod limits;
 mod osk;
 pub(crate) mod ids;
 pub mod procedure;

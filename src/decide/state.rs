@@ -174,6 +174,8 @@ pub struct DecideState {
     pub depth_exceeded: bool,
     /// A rule called `(interrupt)` in this run: the run stops after the phase.
     pub rhs_interrupted: bool,
+    /// The ceiling (`limits`) this run met, if any: the run stops.
+    pub(crate) ceiling: Option<super::limits::Ceiling>,
     /// `run -g`: the level of the lowest goal when the run began. The removal of a goal
     /// at this level or above stops the run after the phase (and clears this).
     pub goal_break_level: Option<u32>,

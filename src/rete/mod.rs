@@ -1209,6 +1209,11 @@ impl Rete {
         row
     }
 
+    /// The tokens the matcher holds (partial and complete matches).
+    pub(crate) fn token_total(&self) -> usize {
+        self.tokens.len() - self.free_tokens.len()
+    }
+
     /// Gives a deleted token's row back.
     pub(crate) fn free_row(&mut self, row: u32, depth: u32) {
         let len = depth as usize + 1;

@@ -1,0 +1,120 @@
+//! Ceilings on a run's growth (`limits`, `Agent::set_limits`): a run that passes one stops
+//! with a message and `StopReason::CeilingReached`, and the agent stays usable.
+
+use rusoar::{Agent, Limits, RunUnit, StopReason};
+
+/// Each elaboration cycle adds a thing, for ever (a thing's rule adds the next).
+const GROWING: &str = "sp {start (state <s> ^superstate nil) --> (<s> ^thing <t>)}
+                       sp {grow (state <s> ^thing <t>) -(<t> ^done) --> (<s> ^thing <n>) (<t> ^done yes)}";
+
+/// Every pair of things is a match: the matcher's partial matches grow with the square of
+/// working memory.
+const PAIRS: &str = "sp {start (state <s> ^superstate nil) --> (<s> ^thing <t>)}
+                     sp {more (state <s> ^thing <t>) -(<t> ^next) --> (<t> ^next <n>) (<s> ^thing <n>)}
+                     sp {pair (state <s> ^thing <a> ^thing <b>) --> (<s> ^paired yes)}";
+
+fn growing_agent(rules: &str) -> Agent {
+    let mut agent = Agent::default();
+    agent.execute(rules).unwrap();
+    agent.execute("soar max-elaborations 100000").unwrap();
+    agent
+}
+
+#[test]
+fn a_run_past_its_wme_ceiling_stops_with_a_message_and_can_go_on() {
+    let mut agent = growing_agent(GROWING);
+    agent.set_limits(Limits {
+        wmes: 500,
+        ..Limits::default()
+    });
+    let r = agent.run(1, RunUnit::Forever).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let held = agent.wme_count();
+    assert!((501..520).contains(&held), "{held} WMEs");
+    let trace = agent.take_output();
+    assert!(
+        trace.contains(&format!(
+            "Stopped: working memory holds {held} WMEs, more than its ceiling of 500"
+        )),
+        "{trace}"
+    );
+    // Still past it: the next run stops at once.
+    let again = agent.run(5, RunUnit::Decisions).unwrap();
+    assert_eq!(
+        (again.stop, agent.wme_count()),
+        (StopReason::CeilingReached, held)
+    );
+    // Raised, the run goes on from where it stopped.
+    agent.set_limits(Limits {
+        wmes: 1000,
+        ..Limits::default()
+    });
+    let on = agent.run(1, RunUnit::Forever).unwrap();
+    assert_eq!(on.stop, StopReason::CeilingReached);
+    assert!(agent.wme_count() > 1000);
+    agent.execute("print --depth 1 s1").unwrap();
+}
+
+#[test]
+fn a_run_past_its_token_ceiling_stops() {
+    let mut agent = growing_agent(PAIRS);
+    agent.execute("limits --tokens 2000").unwrap();
+    let r = agent.run(1, RunUnit::Forever).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let trace = agent.take_output();
+    assert!(
+        trace.contains("partial matches, more than its ceiling of 2000 (limits --tokens)"),
+        "{trace}"
+    );
+    // Far from the quadratic growth it would have without the ceiling.
+    assert!(agent.wme_count() < 200, "{} WMEs", agent.wme_count());
+}
+
+#[test]
+fn a_run_that_learns_its_ceiling_of_chunks_stops() {
+    // The look-ahead agent learns two chunks in its first six decisions.
+    let mut agent = Agent::default();
+    agent
+        .execute("source tests/agents/learn-lookahead.soar")
+        .unwrap();
+    agent.set_limits(Limits {
+        chunks: 1,
+        ..Limits::default()
+    });
+    let r = agent.run(30, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let trace = agent.take_output();
+    assert!(
+        trace.contains("Stopped: this run learned 1 chunk, its ceiling (limits --chunks)."),
+        "{trace}"
+    );
+    assert!(r.decisions < 6, "{} decisions", r.decisions);
+    // A new run counts its own chunks: the second is learned, and the run stops again.
+    let again = agent.run(30, RunUnit::Decisions).unwrap();
+    assert_eq!(again.stop, StopReason::CeilingReached);
+    assert!(agent.execute("print -c").unwrap().matches("chunk*").count() == 2);
+}
+
+#[test]
+fn the_command_lists_sets_and_refuses_bad_numbers() {
+    let mut agent = Agent::default();
+    let listing = agent.execute("limits").unwrap();
+    assert!(listing.contains("wmes                  none"), "{listing}");
+    agent.execute("limits -w 10 --tokens 20 -c 3").unwrap();
+    assert_eq!(
+        agent.limits(),
+        Limits {
+            wmes: 10,
+            tokens: 20,
+            chunks: 3
+        }
+    );
+    let err = agent.execute("limits --wmes lots").unwrap_err().to_string();
+    assert!(
+        err.contains("limits --wmes takes a whole number of 0 or more, not 'lots'."),
+        "{err}"
+    );
+    assert!(agent.execute("limits 5").is_err());
+    agent.execute("limits --wmes 0").unwrap();
+    assert_eq!(agent.limits().wmes, 0);
+}
