@@ -2,10 +2,8 @@
 //! WMEs in working memory, the partial matches the matcher holds, and the chunks one run
 //! learns. An agent that grows without end (a rule whose every firing multiplies its own
 //! matches, say) is stopped with a message instead of taking the machine's memory. The
-//! ceilings are checked after each elaboration cycle and each phase, where a run can stop
-//! and go on later; one cycle can therefore pass a ceiling before the run stops.
-
-use crate::agent::AgentCore;
+//! ceilings are checked after each elaboration cycle and each phase (`ceilings.rs`), where a
+//! run can stop and go on later; one cycle can therefore pass a ceiling before the run stops.
 
 /// The ceilings; 0 is none (the default for each).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -42,41 +40,5 @@ impl Ceiling {
                 if count == 1 { "" } else { "s" }
             ),
         }
-    }
-}
-
-impl AgentCore {
-    /// Whether the run has met a ceiling: the first time, the trace says which and the run
-    /// is asked to stop (it stops where an interrupt would, and `run` may go on later).
-    pub(crate) fn ceiling_reached(&mut self) -> bool {
-        if self.decider.ceiling.is_some() {
-            return true;
-        }
-        let limits = self.settings.limits;
-        if limits == Limits::default() {
-            return false;
-        }
-        let wmes = self.wm.len() as u64;
-        let tokens = self.rete.token_total() as u64;
-        let chunks = self.learn.learned_this_run;
-        let hit = if limits.wmes > 0 && wmes > limits.wmes {
-            Ceiling::Wmes {
-                count: wmes,
-                limit: limits.wmes,
-            }
-        } else if limits.tokens > 0 && tokens > limits.tokens {
-            Ceiling::Tokens {
-                count: tokens,
-                limit: limits.tokens,
-            }
-        } else if limits.chunks > 0 && chunks >= limits.chunks {
-            Ceiling::Chunks { count: chunks }
-        } else {
-            return false;
-        };
-        self.output.push_str(&hit.message());
-        self.decider.ceiling = Some(hit);
-        self.decider.stop_requested = true;
-        true
     }
 }

@@ -5,6 +5,7 @@
 //! holds.
 
 mod breaks;
+mod ceilings;
 pub mod by_token;
 pub(crate) mod compiled;
 mod consistency;

@@ -1,0 +1,40 @@
+//! The check of a run against its ceilings (`limits.rs`).
+
+use super::limits::{Ceiling, Limits};
+use crate::agent::AgentCore;
+
+impl AgentCore {
+    /// Whether the run has met a ceiling: the first time, the trace says which and the run
+    /// is asked to stop (it stops where an interrupt would, and `run` may go on later).
+    pub(crate) fn ceiling_reached(&mut self) -> bool {
+        if self.decider.ceiling.is_some() {
+            return true;
+        }
+        let limits = self.settings.limits;
+        if limits == Limits::default() {
+            return false;
+        }
+        let wmes = self.wm.len() as u64;
+        let tokens = self.rete.token_total() as u64;
+        let chunks = self.learn.learned_this_run;
+        let hit = if limits.wmes > 0 && wmes > limits.wmes {
+            Ceiling::Wmes {
+                count: wmes,
+                limit: limits.wmes,
+            }
+        } else if limits.tokens > 0 && tokens > limits.tokens {
+            Ceiling::Tokens {
+                count: tokens,
+                limit: limits.tokens,
+            }
+        } else if limits.chunks > 0 && chunks >= limits.chunks {
+            Ceiling::Chunks { count: chunks }
+        } else {
+            return false;
+        };
+        self.output.push_str(&hit.message());
+        self.decider.ceiling = Some(hit);
+        self.decider.stop_requested = true;
+        true
+    }
+}
