@@ -118,3 +118,45 @@ fn the_command_lists_sets_and_refuses_bad_numbers() {
     agent.execute("limits --wmes 0").unwrap();
     assert_eq!(agent.limits().wmes, 0);
 }
+
+/// Ctrl-C while a file is sourced (here a rule sets the interrupt flag during a run in the
+/// file): the run stops, the file stops after that command with an error naming it, what
+/// was loaded stays loaded, and the agent runs on.
+#[test]
+fn an_interrupt_while_sourcing_stops_the_file_and_keeps_the_agent_usable() {
+    let dir = std::env::temp_dir().join(format!("rusoar-interrupt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("inner.soar"),
+        "sp {press (state <s> ^superstate nil) --> (ctrl-c)}\nrun 5\nsp {later (state <s> ^superstate nil) --> (<s> ^later yes)}\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("main.soar"),
+        "source inner.soar\nsp {last (state <s> ^superstate nil) --> (<s> ^last yes)}\n",
+    )
+    .unwrap();
+    let mut agent = Agent::default();
+    let flag = agent.interrupt_flag();
+    agent.register_rhs_function("ctrl-c", move |_, _| {
+        flag.store(true, std::sync::atomic::Ordering::SeqCst);
+        Ok(rusoar::Value::Str(String::new()))
+    });
+    let err = agent
+        .source_file(dir.join("main.soar"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("Interrupted: the rest of this file is not sourced."),
+        "{err}"
+    );
+    let rules = agent.execute("print -a").unwrap();
+    assert!(
+        rules.contains("press") && !rules.contains("later") && !rules.contains("last"),
+        "{rules}"
+    );
+    // The flag was taken: the agent runs on.
+    let r = agent.run(2, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::LimitReached);
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -165,6 +165,8 @@ pub struct Interpreter {
     log: Option<output::OutputLog>,
     /// Set from outside (the REPL's Ctrl-C handler) to stop a `run` at the next decision.
     interrupt: Option<Arc<AtomicBool>>,
+    /// A run inside a sourced file was interrupted (Ctrl-C): the sourcing stops too.
+    run_interrupted_in_source: bool,
     /// Receives the trace while a `run` goes on, once per decision, instead of at its end.
     live: Option<LiveSink>,
     /// The column where the agent's print stream stands: trace output and the output of
@@ -213,6 +215,7 @@ impl Interpreter {
             after_at_marks: false,
             log: None,
             interrupt: None,
+            run_interrupted_in_source: false,
             live: None,
             // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
             print_col: Rc::new(Cell::new("     0: ==>S: S1 ".len())),
@@ -436,8 +439,29 @@ impl Interpreter {
             if self.exit_requested {
                 break;
             }
+            if self.source_interrupted() {
+                let d = Diagnostic::error("Interrupted: the rest of this file is not sourced.")
+                    .at(cmd.span)
+                    .with_label("the last command run")
+                    .with_note("what the file did up to here stays: its rules stay loaded");
+                return Err((self.failing(d), cmd.span));
+            }
         }
         Ok(())
+    }
+
+    /// Whether Ctrl-C (the interrupt flag) came while a file is being sourced, during a run
+    /// in it or between its commands: the file stops after the command it is at, as a
+    /// command that fails stops it, so the agent is left as that command left it.
+    fn source_interrupted(&mut self) -> bool {
+        if self.source_stack.is_empty() {
+            return false;
+        }
+        let flagged = self
+            .interrupt
+            .as_ref()
+            .is_some_and(|f| f.swap(false, Ordering::SeqCst));
+        std::mem::take(&mut self.run_interrupted_in_source) || flagged
     }
 
     /// A failure ends a line of `*` progress marks first, as a warning does.

@@ -132,6 +132,7 @@ impl Interpreter {
             let (_, fired) = self.agent.run(n, unit);
             (fired, self.end_run_hooks(hooks))
         };
+        self.run_interrupted_in_source = interrupted && !self.source_stack.is_empty();
         self.flush_agent_output();
         if self.agent.decider.halted && !halted_before {
             // 9.6's kernel ends its halt message with a newline (the print column is 0 after
