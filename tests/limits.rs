@@ -70,3 +70,33 @@ fn a_rule_of_5000_conditions_joined_in_a_chain() {
     agent.execute("excise long").expect("excise");
     assert_eq!(agent.check_invariants(), Ok(()));
 }
+
+/// A substate whose operators each replace the WME the last one made: every firing's
+/// record holds the one before it (for backtracing), 100,000 long. `init-soar` lets the
+/// whole chain go (9.6.5 holds it too: 1.3 GB at 200,000 decisions).
+#[test]
+fn letting_go_of_a_substate_chain_of_100000_firings() {
+    let mut agent = Agent::new("limits");
+    agent
+        .execute(
+            "sp {init*propose (state <s> ^superstate <ss>) (<ss> ^superstate nil) -(<s> ^last)
+                --> (<s> ^operator <o> +) (<o> ^name init)}
+             sp {init*apply (state <s> ^operator.name init) --> (<s> ^last <l>) (<l> ^n 0)}
+             sp {step*propose (state <s> ^superstate <ss> ^last <l>) (<ss> ^superstate nil)
+                --> (<s> ^operator <o> +) (<o> ^name step ^from <l>)}
+             sp {step*apply (state <s> ^operator <o> ^last <l>) (<o> ^name step ^from <l>) (<l> ^n <c>)
+                --> (<s> ^last <l> -) (<s> ^last <m>) (<m> ^n (+ <c> 1))}",
+        )
+        .expect("the rules");
+    agent.run(100_000, RunUnit::Decisions).expect("the run");
+    let last = agent.execute("print (s2 ^last *)").expect("print");
+    assert!(last.contains("^last"), "{last}");
+    agent.execute("init-soar").expect("init-soar");
+    assert_eq!(
+        agent
+            .run(2, RunUnit::Decisions)
+            .expect("a run after")
+            .decisions,
+        2
+    );
+}

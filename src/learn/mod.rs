@@ -67,6 +67,39 @@ pub struct InstTrace {
     pub backtraced: std::sync::atomic::AtomicU64,
 }
 
+impl Drop for InstTrace {
+    /// Firings in a substate chain through the preferences of the local WMEs each tested:
+    /// a long run in one substate makes a chain of hundreds of thousands, which goes when
+    /// the substate does. The links are let go one at a time here, from a list, where
+    /// dropping them in place would recurse once per link and overflow the stack.
+    fn drop(&mut self) {
+        let mut pending: Vec<Arc<PrefOrigin>> = Vec::new();
+        take_links(&mut self.conds, &mut pending);
+        while let Some(origin) = pending.pop() {
+            // A link someone else still holds stays; one held only here is followed.
+            let Some(origin) = Arc::into_inner(origin) else {
+                continue;
+            };
+            if let Some(mut trace) = Arc::into_inner(origin.trace) {
+                take_links(&mut trace.conds, &mut pending);
+            }
+        }
+    }
+}
+
+/// Moves the links to other firings out of `conds`: the origins of the WMEs they tested,
+/// and the selection knowledge they hold alone.
+fn take_links(conds: &mut [TraceCond], pending: &mut Vec<Arc<PrefOrigin>>) {
+    for c in conds {
+        pending.extend(c.support.take());
+        if let Some(osk) = c.osk.take() {
+            if Arc::strong_count(&osk) == 1 {
+                pending.extend(osk.iter().cloned());
+            }
+        }
+    }
+}
+
 /// A rule's variables as its recorded firings list them, made once per rule: the names in
 /// name order, and where each binding, each variable an action makes and each field of a
 /// make action sits among them.
