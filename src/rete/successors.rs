@@ -70,13 +70,19 @@ impl SuccLinks {
             linked: true,
             known: true,
         };
-        match prev {
-            NodeId::NONE => list.head = n,
-            p => self.links[p.index()].next = n,
+        self.join(list, prev, n);
+        self.join(list, n, before);
+    }
+
+    /// Makes `b` follow `a` in `list` (`NodeId::NONE` for the list's start or end).
+    fn join(&mut self, list: &mut SuccList, a: NodeId, b: NodeId) {
+        match a {
+            NodeId::NONE => list.head = b,
+            a => self.links[a.index()].next = b,
         }
-        match before {
-            NodeId::NONE => list.tail = n,
-            b => self.links[b.index()].prev = n,
+        match b {
+            NodeId::NONE => list.tail = a,
+            b => self.links[b.index()].prev = a,
         }
     }
 
@@ -87,14 +93,7 @@ impl SuccLinks {
         };
         link.linked = false;
         let (prev, next) = (link.prev, link.next);
-        match prev {
-            NodeId::NONE => list.head = next,
-            p => self.links[p.index()].next = next,
-        }
-        match next {
-            NodeId::NONE => list.tail = prev,
-            x => self.links[x.index()].prev = prev,
-        }
+        self.join(list, prev, next);
     }
 
     /// The entry `n` had when last linked, while the node lives.
