@@ -540,11 +540,9 @@ impl AgentCore {
         else {
             return;
         };
-        if self.settings.trace.firings_of(&j.production.flags) {
+        if self.settings.trace.firings_of(&j.flags()) {
             let mut out = std::mem::take(&mut self.output);
-            let event = TraceEvent::Retraction {
-                rule: &j.production.name,
-            };
+            let event = TraceEvent::Retraction { rule: j.name() };
             self.write_event(&mut out, &event);
             self.output = out;
             if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {

@@ -170,9 +170,10 @@ impl Interpreter {
             .learn
             .justifications
             .iter()
-            .find(|j| j.production.name == *name)
+            .find(|j| j.name() == *name)
         {
-            return Ok(self.rule_text(&j.production, rule_style, true));
+            let production = j.production(&self.agent.symbols);
+            return Ok(self.rule_text(&production, rule_style, true));
         }
         if let Some(var) = target.strip_prefix('<').and_then(|t| t.strip_suffix('>')) {
             return Ok(match context_variable(&self.agent, var) {
@@ -282,7 +283,8 @@ impl Interpreter {
         }
         if wanted("justifications") {
             for j in self.agent.learn.justifications.iter().rev() {
-                s.push_str(&self.rule_text(&j.production, style, false));
+                let production = j.production(&self.agent.symbols);
+                s.push_str(&self.rule_text(&production, style, false));
             }
         }
         s

@@ -423,6 +423,58 @@ impl AgentCore {
     }
 
     /// The rule a backtrace gives: a chunk (`variablize`) or a justification.
+    /// A justification made with learning off, as its sketch: the conditions in 9.6's order
+    /// (last found first, each state marked on its first condition) and the results, as
+    /// [`AgentCore::build_learned_rule`] writes them then. (Superstate negations are
+    /// written out at once by the builder: callers with any build the rule instead.)
+    pub(crate) fn sketch_justification(
+        &self,
+        bt: &Backtrace,
+        results: &[PrefId],
+        name: String,
+    ) -> super::sketch::Sketch {
+        let mut marked: FxHashSet<Sym> = FxHashSet::default();
+        let conditions = bt
+            .grounds
+            .iter()
+            .rev()
+            .map(|g| {
+                let w = g.cond.wme;
+                let span = g
+                    .cond
+                    .cond
+                    .and_then(|ci| match g.trace.prod.as_ref()?.conditions.get(ci)? {
+                        Condition::Positive(c) => Some(c.span),
+                        _ => None,
+                    })
+                    .unwrap_or_default();
+                let state = self.symbols.is_goal(w.id) && marked.insert(w.id);
+                (w, state, span)
+            })
+            .collect();
+        let actions = results
+            .iter()
+            .map(|&r| {
+                let p = &self.decider.prefs[r];
+                let span = p
+                    .origin
+                    .as_ref()
+                    .and_then(|o| match o.trace.prod.as_ref()?.actions.get(o.action?)? {
+                        Action::Make(m) => Some(m.span),
+                        _ => None,
+                    })
+                    .unwrap_or_default();
+                (pref_kind(p.kind), [p.id, p.attr, p.value], p.referent, span)
+            })
+            .collect();
+        super::sketch::Sketch {
+            name,
+            conditions,
+            negations: Vec::new(),
+            actions,
+        }
+    }
+
     pub(crate) fn build_learned_rule(
         &self,
         bt: &Backtrace,

@@ -6,6 +6,7 @@
 //! again from that instantiation, as 9.6 does (`chunkx2*...`).
 
 use super::backtrace::Backtrace;
+use super::sketch::Body;
 use super::{InstTrace, Justification, PrefOrigin, TraceCond};
 use crate::agent::{Added, AgentCore, LearnMode};
 use crate::decide::procedure::PrefType;
@@ -643,23 +644,34 @@ impl AgentCore {
             if self.tests_local_negation(bt) {
                 self.learn.stats.local_negation_justifications += 1;
             }
-            let prod = self.build_learned_rule(bt, results, name.to_string(), false);
+            // With learning off and no rule text to trace, the justification is kept as its
+            // sketch until something shows it.
+            let sketched = self.settings.learn == crate::agent::LearnMode::Never
+                && self.settings.learning_trace < 2
+                && negations.is_empty();
+            let body = if sketched {
+                Body::Sketch(Arc::new(self.sketch_justification(bt, results, name.to_string())))
+            } else {
+                Body::Rule(Arc::new(self.build_learned_rule(bt, results, name.to_string(), false)))
+            };
             match self.settings.learning_trace {
                 0 => {}
                 // `trace -L 1` names justifications as it names chunks.
                 1 => self.emit(&TraceEvent::LearnedRule { name, text: None }),
                 _ => {
-                    let text = crate::printer::production_text(&prod);
+                    let text = match &body {
+                        Body::Rule(prod) => crate::printer::production_text(prod),
+                        Body::Sketch(s) => {
+                            crate::printer::production_text(&s.production(&self.symbols))
+                        }
+                    };
                     self.emit(&TraceEvent::LearnedRule {
                         name,
                         text: Some(&text),
                     });
                 }
             }
-            self.learn.justifications.push(Justification {
-                production: Arc::new(prod),
-                serial,
-            });
+            self.learn.justifications.push(Justification::new(body, serial));
         }
         id
     }

@@ -10,6 +10,7 @@ mod negations;
 mod record;
 pub mod settings;
 mod singletons;
+pub(crate) mod sketch;
 pub mod stats;
 
 use crate::decide::ids::InstId;
@@ -183,9 +184,40 @@ pub type Osk = Arc<[Arc<PrefOrigin>]>;
 /// A justification alive in preference memory (`print --justifications`).
 #[derive(Debug, Clone)]
 pub struct Justification {
-    pub production: Arc<Production>,
+    body: sketch::Body,
     /// The serial that tells its instantiation from one in a reused slot.
     pub serial: u64,
+}
+
+impl Justification {
+    pub(crate) fn new(body: sketch::Body, serial: u64) -> Self {
+        Justification { body, serial }
+    }
+
+    pub fn name(&self) -> &str {
+        match &self.body {
+            sketch::Body::Rule(p) => &p.name,
+            sketch::Body::Sketch(s) => &s.name,
+        }
+    }
+
+    pub fn flags(&self) -> crate::production::Flags {
+        match &self.body {
+            sketch::Body::Rule(p) => p.flags.clone(),
+            sketch::Body::Sketch(_) => crate::production::Flags {
+                justification: true,
+                ..Default::default()
+            },
+        }
+    }
+
+    /// The justification as a rule (written out now if it was kept as a sketch).
+    pub fn production(&self, symbols: &crate::symbols::Symbols) -> Arc<Production> {
+        match &self.body {
+            sketch::Body::Rule(p) => Arc::clone(p),
+            sketch::Body::Sketch(s) => Arc::new(s.production(symbols)),
+        }
+    }
 }
 
 /// Learning's counters and state that survive `init-soar` (chunks do) and those that do not.
