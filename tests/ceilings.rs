@@ -106,6 +106,7 @@ fn the_command_lists_sets_and_refuses_bad_numbers() {
         Limits {
             wmes: 10,
             tokens: 20,
+            preferences: 0,
             chunks: 3
         }
     );
@@ -159,4 +160,43 @@ fn an_interrupt_while_sourcing_stops_the_file_and_keeps_the_agent_usable() {
     let r = agent.run(2, RunUnit::Decisions).unwrap();
     assert_eq!(r.stop, StopReason::LimitReached);
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A fuzzed command line (`fuzz/` `command_line`, a timeout): an application whose every
+/// firing makes two counts where it removes one, so that its matches double with each
+/// elaboration cycle of one apply phase. Each later `run` went one cycle further before its
+/// interrupt was looked at, twice the work of the last, past any time limit. Under a WME
+/// ceiling the first run stops at it, and a later run stops before it does anything.
+#[test]
+fn an_application_that_doubles_each_cycle_stops_at_its_ceiling() {
+    let mut agent = growing_agent(
+        "sp {propose*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> + =) (<o> ^name init)}
+         sp {apply*init (state <s> ^operator.name init) --> (<s> ^count 1 ^colour 0 ^recent <r>) (<r> ^value 0)}
+         sp {propose*count (state <s> ^count {<c> < 3000}) --> (<s> ^operator <o> + =) (<o> ^name count)}
+         sp {apply*count (state <s> ^operator.name count ^count <c> ^colour <k> ^recent <r>)
+            --> (<s> ^count <c> - ^count *(+ <c> 1) ^colour <k> - ^colour (mod (+ <c> 1) 7)
+                 ^recent <r> - ^recent <n>)
+                (<n> ^value (+ <c> 1) ^previous D<r>)}",
+    );
+    agent.execute("srand 2").unwrap();
+    agent.execute("soar max-elaborations 100").unwrap();
+    agent.set_limits(Limits {
+        wmes: 20_000,
+        ..Limits::default()
+    });
+    let started = std::time::Instant::now();
+    let r = agent.run(6, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let held = agent.wme_count();
+    assert!((20_000..60_000).contains(&held), "{held} WMEs");
+    for _ in 0..3 {
+        let again = agent.run(6, RunUnit::Decisions).unwrap();
+        assert_eq!((again.stop, again.firings), (StopReason::CeilingReached, 0));
+    }
+    assert_eq!(agent.wme_count(), held);
+    assert!(
+        started.elapsed().as_secs_f64() < 5.0,
+        "{:?}",
+        started.elapsed()
+    );
 }

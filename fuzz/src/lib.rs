@@ -7,7 +7,7 @@ pub mod random_agent;
 pub mod smem_agent;
 pub mod steps;
 
-use rusoar::{Agent, AgentEvent};
+use rusoar::{Agent, AgentEvent, Limits};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -21,10 +21,21 @@ pub const EVENT_BUDGET: u64 = 50_000;
 /// short ones do not.
 pub const MAX_INPUT: usize = 4096;
 
-/// A fresh agent whose runs stop once [`EVENT_BUDGET`] events have happened, working in a
-/// folder of its own.
+/// The ceilings every fuzzed agent runs under: the event budget is looked at between
+/// elaboration cycles, and an agent whose matches double with each cycle makes each run's
+/// first cycle twice the last; a ceiling stops a run before it starts.
+pub const CEILINGS: Limits = Limits {
+    wmes: 20_000,
+    tokens: 50_000,
+    preferences: 50_000,
+    chunks: 0,
+};
+
+/// A fresh agent whose runs stop once [`EVENT_BUDGET`] events have happened, under
+/// [`CEILINGS`], working in a folder of its own.
 pub fn bounded_agent() -> Agent {
     let mut agent = Agent::new("fuzz");
+    agent.set_limits(CEILINGS);
     agent.set_working_directory(scratch_dir());
     let flag: Arc<AtomicBool> = agent.interrupt_flag();
     let mut events = 0u64;
@@ -55,11 +66,15 @@ pub fn scratch_dir() -> PathBuf {
 }
 
 /// Whether fuzzed text may be given to the command language: it names no path outside
-/// the scratch folder (no `/`, `\`, `..` or `~`), and it is not too long.
+/// the scratch folder (no `/`, `\`, `..` or `~`), it does not lift the harness's ceilings
+/// (no word that names the `limits` command), and it is not too long.
 pub fn confined(text: &str) -> bool {
     text.len() <= MAX_INPUT
         && !text.contains('/')
         && !text.contains('\\')
         && !text.contains("..")
         && !text.contains('~')
+        && !text
+            .split(|c: char| c.is_whitespace() || "{}()\"|;".contains(c))
+            .any(|w| w.len() >= 2 && "limits".starts_with(w))
 }

@@ -10,12 +10,13 @@ impl Interpreter {
         let specs = [
             opt_arg('w', "wmes"),
             opt_arg('t', "tokens"),
+            opt_arg('p', "preferences"),
             opt_arg('c', "chunks"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
         if !parsed.args.is_empty() {
             return Err(ctx.error(
-                "Syntax: limits [-w|--wmes n] [-t|--tokens n] [-c|--chunks n]   (0: no ceiling)",
+                "Syntax: limits [-w|--wmes n] [-t|--tokens n] [-p|--preferences n] [-c|--chunks n]   (0: no ceiling)",
             ));
         }
         let mut limits = self.agent.settings.limits;
@@ -31,6 +32,7 @@ impl Interpreter {
             match *long {
                 "wmes" => limits.wmes = n,
                 "tokens" => limits.tokens = n,
+                "preferences" => limits.preferences = n,
                 _ => limits.chunks = n,
             }
         }
@@ -48,6 +50,7 @@ impl Interpreter {
         let rows = [
             ("wmes", limits.wmes, "WMEs in working memory"),
             ("tokens", limits.tokens, "partial matches in the matcher"),
+            ("preferences", limits.preferences, "preferences in preference memory"),
             ("chunks", limits.chunks, "chunks learned in one run"),
         ];
         let mut text = String::from("=== Ceilings on a run ===");

@@ -16,6 +16,7 @@ impl AgentCore {
         }
         let wmes = self.wm.len() as u64;
         let tokens = self.rete.token_total() as u64;
+        let prefs = self.decider.live_prefs() as u64;
         let chunks = self.learn.learned_this_run;
         let hit = if limits.wmes > 0 && wmes > limits.wmes {
             Ceiling::Wmes {
@@ -26,6 +27,11 @@ impl AgentCore {
             Ceiling::Tokens {
                 count: tokens,
                 limit: limits.tokens,
+            }
+        } else if limits.preferences > 0 && prefs > limits.preferences {
+            Ceiling::Preferences {
+                count: prefs,
+                limit: limits.preferences,
             }
         } else if limits.chunks > 0 && chunks >= limits.chunks {
             Ceiling::Chunks { count: chunks }

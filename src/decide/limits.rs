@@ -13,6 +13,9 @@ pub struct Limits {
     /// The most partial matches (tokens) the matcher may hold: a run stops once it holds
     /// more.
     pub tokens: u64,
+    /// The most preferences preference memory may hold: a run stops once it holds more
+    /// (rules can pile up preferences for the same few WMEs).
+    pub preferences: u64,
     /// The most chunks one run may learn: the run stops once it has learned this many.
     pub chunks: u64,
 }
@@ -22,6 +25,7 @@ pub struct Limits {
 pub(crate) enum Ceiling {
     Wmes { count: u64, limit: u64 },
     Tokens { count: u64, limit: u64 },
+    Preferences { count: u64, limit: u64 },
     Chunks { count: u64 },
 }
 
@@ -34,6 +38,9 @@ impl Ceiling {
             ),
             Ceiling::Tokens { count, limit } => format!(
                 "\nStopped: the matcher holds {count} partial matches, more than its ceiling of {limit} (limits --tokens).\n"
+            ),
+            Ceiling::Preferences { count, limit } => format!(
+                "\nStopped: preference memory holds {count} preferences, more than its ceiling of {limit} (limits --preferences).\n"
             ),
             Ceiling::Chunks { count } => format!(
                 "\nStopped: this run learned {count} chunk{}, its ceiling (limits --chunks).\n",

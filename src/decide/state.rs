@@ -305,6 +305,11 @@ impl DecideState {
         }
     }
 
+    /// The preferences in preference memory (the ones freed aside).
+    pub(crate) fn live_prefs(&self) -> usize {
+        self.prefs.len() - self.free_prefs.len()
+    }
+
     pub fn alloc_inst(&mut self, inst: Instantiation) -> InstId {
         match self.free_insts.pop() {
             Some(i) => {

@@ -25,7 +25,7 @@ const USAGE: &[(&str, &str)] = &[
     ("gp", "gp {name conditions --> actions}"),
     ("help", "help [command]"),
     ("learn", "learn [-l] [-e|-d|-o] [-a|-b] [-n|-N] [-p|-P]"),
-    ("limits", "limits [-w|--wmes n] [-t|--tokens n] [-c|--chunks n]"),
+    ("limits", "limits [-w|--wmes n] [-t|--tokens n] [-p|--preferences n] [-c|--chunks n]"),
     ("load", "load file [-a|-d|-v] path\nload library|percepts|rete-network ..."),
     ("ls", "ls"),
     ("output", "output\noutput ?\noutput enabled|callbacks|console|echo-commands|warnings|agent-writes [on|off]\noutput agent-logs channel [on|off]\noutput print-depth [n]\noutput log [-A|--append] file\noutput log --add text\noutput log --close\noutput command-to-file [-a|--append] file command..."),
