@@ -470,7 +470,6 @@ impl AgentCore {
         super::sketch::Sketch {
             name,
             conditions,
-            negations: Vec::new(),
             actions,
         }
     }

@@ -3,6 +3,7 @@
 //! tests) and is shown only by `print` and the retraction trace, while a run makes one for
 //! nearly every result: writing each out as rule text at once would cost more than the
 //! backtrace that found it. The text, when asked for, is the one the rule builder writes.
+//! (A justification with superstate negations is written out at once.)
 
 use crate::ast::{Constant, Head};
 use crate::production::{
@@ -20,8 +21,6 @@ pub(crate) struct Sketch {
     /// Each condition's WME, whether it marks its identifier as a state (the first test of
     /// each state), and the span of the rule condition it came from; in the rule's order.
     pub conditions: Vec<(Wme, bool, PackedSpan)>,
-    /// Negated conditions (already written out: few justifications have any).
-    pub negations: Vec<Condition>,
     /// Each result: its preference kind, id, attribute, value and referent, and the span of
     /// the action that made it.
     pub actions: Vec<(PrefKind, [Sym; 3], Option<Sym>, PackedSpan)>,
@@ -31,7 +30,7 @@ impl Sketch {
     /// The justification as a rule.
     pub fn production(&self, symbols: &Symbols) -> Production {
         let test = |s: Sym| Test::Equal(term(symbols, s));
-        let mut conditions: Vec<Condition> = self
+        let conditions: Vec<Condition> = self
             .conditions
             .iter()
             .map(|&(w, state, span)| {
@@ -45,11 +44,6 @@ impl Sketch {
                 })
             })
             .collect();
-        for n in &self.negations {
-            if !conditions.contains(n) {
-                conditions.push(n.clone());
-            }
-        }
         let rhs = |s: Sym| match term(symbols, s) {
             Term::Var(v) => RhsTerm::Var(v.to_string()),
             Term::Const(c) => RhsTerm::Const(c),
@@ -84,7 +78,7 @@ impl Sketch {
 
 /// A symbol as a justification writes it: an identifier by its bare name (`S1`), a
 /// constant as itself.
-pub(crate) fn term(symbols: &Symbols, s: Sym) -> Term {
+fn term(symbols: &Symbols, s: Sym) -> Term {
     match symbols.get(s) {
         SymData::Id(_) => Term::Var(symbols.text(s).into()),
         SymData::Str(x) => Term::Const(Constant::Str(x.to_string())),
