@@ -200,3 +200,21 @@ fn an_application_that_doubles_each_cycle_stops_at_its_ceiling() {
         started.elapsed()
     );
 }
+
+/// Every pair of things asks for the same WME: preferences pile up with the square of the
+/// things while working memory barely grows, and the preferences ceiling stops the run.
+#[test]
+fn a_run_past_its_preference_ceiling_stops() {
+    let mut agent = growing_agent(PAIRS);
+    agent.execute("limits --preferences 3000").unwrap();
+    let r = agent.run(1, RunUnit::Forever).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let trace = agent.take_output();
+    assert!(
+        trace.contains("preferences, more than its ceiling of 3000 (limits --preferences)"),
+        "{trace}"
+    );
+    assert!(agent.wme_count() < 300, "{} WMEs", agent.wme_count());
+    let listing = agent.execute("limits").unwrap();
+    assert!(listing.contains("preferences           3000"), "{listing}");
+}

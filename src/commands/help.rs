@@ -65,7 +65,7 @@ fn listed() -> impl Iterator<Item = &'static str> {
         .filter(|c| !matches!(*c, "learn" | "exit" | "limits"))
 }
 
-/// `help` with no argument: the command list, as 9.6 prints it.
+/// `help` with no argument: the command list, as 9.6 prints it, then rusoar's own command.
 pub fn listing() -> String {
     let mut s = String::from("Soar 9.6 Command List (rusoar):\n\n");
     for c in listed() {
@@ -76,6 +76,7 @@ pub fn listing() -> String {
     s.push_str("To get a quick summary of sub-command and settings:           <command> ?\n");
     s.push_str("\nNote:  Many previous Soar commands are now sub-commands. To locate a help \n");
     s.push_str("       entry, try 'help <old command name>'.");
+    s.push_str("\n\nrusoar's own command: limits (ceilings on a run's growth).");
     s
 }
 
