@@ -11,8 +11,8 @@ A crash, a panic, a hang (over --timeout seconds per input) or running out of me
 the target and leaves the input in fuzz/artifacts/TARGET: each becomes a regression test
 in tests/ before it is fixed. The summary gives each target's executions and coverage.
 
-usage: python3 scripts/fuzz.py [--seconds S] [--timeout T] [TARGET ...]
-       (every target for S seconds each, 10 by default)
+usage: python3 scripts/fuzz.py [--seconds S] [--runs N] [--timeout T] [TARGET ...]
+       (every target for S seconds each, 10 by default, or until N executions if sooner)
 """
 import argparse
 import glob
@@ -147,11 +147,13 @@ def prepare(target):
     return corpus
 
 
-def run(target, seconds, timeout):
+def run(target, seconds, timeout, runs):
     corpus = prepare(target)
     cmd = ["cargo", "+nightly", "fuzz", "run", "-O", target, corpus, "--",
            "-max_total_time=%d" % seconds, "-timeout=%d" % timeout,
            "-rss_limit_mb=4096", "-max_len=4096", "-print_final_stats=1"]
+    if runs:
+        cmd.append("-runs=%d" % runs)
     p = subprocess.run(cmd, cwd=FUZZ, capture_output=True, text=True)
     log = p.stdout + p.stderr
     runs = re.findall(r"stat::number_of_executed_units:\s*(\d+)", log)
@@ -170,6 +172,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--seconds", type=int, default=10)
     ap.add_argument("--timeout", type=int, default=1)
+    ap.add_argument("--runs", type=int, default=0, help="stop a target after this many executions")
     ap.add_argument("targets", nargs="*")
     a = ap.parse_args()
     targets = a.targets or TARGETS
@@ -181,7 +184,7 @@ def main():
     build = subprocess.run(["cargo", "+nightly", "fuzz", "build", "-O"], cwd=FUZZ)
     if build.returncode != 0:
         sys.exit("the fuzz targets do not build")
-    failed = [t for t in targets if not run(t, a.seconds, a.timeout)]
+    failed = [t for t in targets if not run(t, a.seconds, a.timeout, a.runs)]
     if failed:
         sys.exit("findings in: %s (inputs in fuzz/artifacts/)" % ", ".join(failed))
 

@@ -429,6 +429,28 @@ fn trailing_key(s: &str) -> Option<&str> {
     Some(&s[start..])
 }
 
+/// The heading, in radians, of a heading typed in degrees: one that is written back as
+/// degrees that read back as the same radians. The plain conversion does not promise it
+/// (3° is 0.05235987755982989 rad, written 3.0000000000000004°, read back
+/// 0.0523598775598299 rad), so reading and writing are repeated until they agree; should
+/// they settle on a cycle instead, its smallest member is taken, which every member of the
+/// cycle leads to.
+fn heading_radians(degrees: f64) -> f64 {
+    let read = |d: f64| super::geom::normalize_angle(d.to_radians());
+    let mut seen = vec![read(degrees)];
+    loop {
+        let last = seen[seen.len() - 1];
+        let next = read(last.to_degrees());
+        if next == last || !next.is_finite() {
+            return last;
+        }
+        if let Some(i) = seen.iter().position(|&x| x == next) {
+            return seen[i..].iter().copied().fold(f64::INFINITY, f64::min);
+        }
+        seen.push(next);
+    }
+}
+
 /// Best-effort dotted path (`wall[1].x1`, `robot.heading`) of the field a toml error points at.
 fn field_at(text: &str, span: std::ops::Range<usize>, raw_message: &str) -> Option<String> {
     let start = span.start.min(text.len());
@@ -663,7 +685,7 @@ impl RawWorld {
             Some(h) => c.finite("robot.heading", h)?,
             None => 0.0,
         };
-        let start = Pose::new(x, y, super::geom::normalize_angle(heading.to_radians()));
+        let start = Pose::new(x, y, heading_radians(heading));
         let gap = clearance(start.position(), &walls);
         if gap < RADIUS_M {
             return Err(invalid(

@@ -14,7 +14,7 @@ pub mod store;
 pub mod text;
 pub mod wmi;
 
-use params::{Mode, SmemParams};
+use params::{Mode, SmemParams, UpdatePolicy};
 use store::{DbResult, Store, Val};
 use text::{Clause, Item, Node};
 
@@ -140,6 +140,7 @@ impl Smem {
     fn touch(&mut self, lti: i64, add_access: bool) -> DbResult<()> {
         let mode = self.params.mode();
         let decay = self.params.base_decay();
+        let inhibition = self.params.inhibition();
         let autocommit = !self.params.lazy_commit() && self.params.in_file();
         let spreading = self.params.spreading();
         let settings = spread::Settings::of(&self.params);
@@ -149,6 +150,9 @@ impl Smem {
         // `at` is the time the base-level sum is taken at, less one.
         let (now, at) = if add_access {
             store.set_var(schema::var::MAX_CYCLE, clock + 1)?;
+            if mode == Mode::BaseLevel && self.params.update_policy() == UpdatePolicy::Incremental {
+                self.touch_incremental(clock)?;
+            }
             record.total += 1.0;
             record.last = clock;
             if record.first == 0 {
@@ -163,8 +167,9 @@ impl Smem {
         let value = match mode {
             Mode::Recency => now as f64,
             Mode::Frequency => record.total,
-            Mode::BaseLevel => base_level(&record.history, at, decay),
+            Mode::BaseLevel => base_level(&record.history, at, decay, inhibition),
         };
+        let store = self.store()?;
         let unused = settings.unused_odds(store.var(schema::var::MAX_CYCLE)?).ln();
         let base = if value == schema::ACT_LOW || value == 0.0 {
             unused
@@ -192,6 +197,28 @@ impl Smem {
             store.commit(false)?;
         }
         self.stats.act_updates += 1;
+        Ok(())
+    }
+
+    /// The incremental update policy, at an access at `time`: each LTI last activated a
+    /// threshold's age before has its activation computed again (9.6's `lti_activate`).
+    fn touch_incremental(&mut self, time: i64) -> DbResult<()> {
+        for age in self.params.incremental_threshes() {
+            if age > 0 && time - age > 0 {
+                for lti in self.store()?.ltis_last_activated_at(time - age)? {
+                    self.touch(lti, false)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The naive update policy, before a query's walk: the activation of each LTI the walk
+    /// may visit is computed again, in the order of their numbers.
+    pub(crate) fn touch_all(&mut self, ltis: &[i64]) -> DbResult<()> {
+        for &lti in ltis {
+            self.touch(lti, false)?;
+        }
         Ok(())
     }
 
@@ -275,14 +302,24 @@ impl Smem {
 /// given as the log-odds ln(s / (1 + s)). The older activations add nothing: 9.6.5 reads a
 /// full history as longer than ten and so never adds its approximation of them (observed
 /// on soar-sml 9.6.5 with twelve activations).
-fn base_level(history: &[i64], now: i64, decay: f64) -> f64 {
+///
+/// With `inhibition` (`base-inhibition on`), an LTI accessed r ticks ago is held back, as
+/// 9.6.5 does, by the log-odds of i = 1 / (1 + 10 / r): ln(i / (1 + i)), which is ln(1/12)
+/// right after its access and fades towards ln(1/2) as it ages.
+fn base_level(history: &[i64], now: i64, decay: f64, inhibition: bool) -> f64 {
     let sum: f64 = history
         .iter()
         .map(|&t| ((now + 1 - t) as f64).powf(-decay))
         .sum();
-    if sum > 0.0 {
-        (sum / (1.0 + sum)).ln()
-    } else {
-        schema::ACT_LOW
+    if sum <= 0.0 {
+        return schema::ACT_LOW;
+    }
+    let odds = (sum / (1.0 + sum)).ln();
+    match history.first() {
+        Some(&last) if inhibition && now + 1 != last => {
+            let i = 1.0 / (1.0 + 10.0 / (now + 1 - last) as f64);
+            odds + (i / (1.0 + i)).ln()
+        }
+        _ => odds,
     }
 }

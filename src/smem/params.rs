@@ -280,6 +280,33 @@ impl SmemParams {
         self.number("base-decay")
     }
 
+    /// `base-update-policy`: when base-level activations are computed again.
+    pub fn update_policy(&self) -> UpdatePolicy {
+        match self.word("base-update-policy") {
+            "naive" => UpdatePolicy::Naive,
+            "incremental" => UpdatePolicy::Incremental,
+            _ => UpdatePolicy::Stable,
+        }
+    }
+
+    /// `base-incremental-threshes`, ascending: the ages (on semantic memory's clock) at
+    /// which the incremental policy recomputes an LTI's activation.
+    pub fn incremental_threshes(&self) -> Vec<i64> {
+        let mut t: Vec<i64> = self
+            .word("base-incremental-threshes")
+            .split(',')
+            .filter_map(|x| x.trim().parse().ok())
+            .collect();
+        t.sort_unstable();
+        t.dedup();
+        t
+    }
+
+    /// `base-inhibition on`: a recently accessed LTI's base-level activation is lowered.
+    pub fn inhibition(&self) -> bool {
+        self.on("base-inhibition")
+    }
+
     /// `spreading on`: LTIs in working memory spread activation to the LTIs they reach.
     pub fn spreading(&self) -> bool {
         self.on("spreading")
@@ -433,6 +460,18 @@ pub enum Mode {
     Frequency,
     /// The log-odds of Σ (now − t + 1)^−d over the activation history.
     BaseLevel,
+}
+
+/// When base-level activations are computed again (`base-update-policy`; Soar manual,
+/// Semantic Memory, "Retrieval").
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UpdatePolicy {
+    /// Only when the LTI itself is activated.
+    Stable,
+    /// Also every candidate of a query's walk, just before it.
+    Naive,
+    /// Also, at each activation, the LTIs last activated a threshold's age ago.
+    Incremental,
 }
 
 #[cfg(test)]

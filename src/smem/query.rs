@@ -4,6 +4,7 @@
 //! activated first, among equals the one whose augmentation was written last (as 9.6 orders
 //! them).
 
+use super::params::{Mode, UpdatePolicy};
 use super::spread::{Lead, StdHeap};
 use super::store::{AugValue, DbResult, Store, Val};
 use super::Smem;
@@ -103,13 +104,15 @@ impl Smem {
     pub fn query_first(&mut self, cue: &Cue, limit: usize) -> DbResult<Vec<i64>> {
         let spreading = self.params.spreading();
         let settings = super::spread::Settings::of(&self.params);
+        let naive = self.params.mode() == Mode::BaseLevel
+            && self.params.update_policy() == UpdatePolicy::Naive;
         self.store()?;
         let Smem {
             store: Some(store),
             spread,
             context,
             ..
-        } = self
+        } = &mut *self
         else {
             return Ok(Vec::new());
         };
@@ -175,6 +178,20 @@ impl Smem {
                 }
             }
         }
+        // The naive update policy computes again the activation of every LTI the walk may
+        // visit, first (9.6 reads them into a set, so by number).
+        if naive {
+            let mut visit = std::collections::BTreeSet::new();
+            store.walk_ranked(attr, value_of(want).as_ref(), |c| {
+                visit.insert(c);
+                Ok(false)
+            })?;
+            let visit: Vec<i64> = visit.into_iter().collect();
+            self.touch_all(&visit)?;
+        }
+        let Some(store) = self.store.as_ref() else {
+            return Ok(Vec::new());
+        };
         let mut candidates = Vec::new();
         let want_all = !cue.math.is_empty();
         let mut taken = rustc_hash::FxHashSet::default();

@@ -434,6 +434,16 @@ impl Store {
         rows.map(db).collect()
     }
 
+    /// The LTIs last activated at `time`, by number (what the incremental update policy
+    /// recomputes; 9.6 reads them by its index on that time).
+    pub fn ltis_last_activated_at(&self, time: i64) -> DbResult<Vec<i64>> {
+        let mut st = db(self
+            .conn
+            .prepare_cached("SELECT lti_id FROM smem_lti WHERE activations_last=?1 ORDER BY lti_id"))?;
+        let rows = db(st.query_map([time], |r| r.get(0)))?;
+        rows.map(db).collect()
+    }
+
     /// An LTI's augmentations in 9.6's order: by the attribute's symbol number, then the
     /// value's (the order of 9.6's index on them; observed in the order of retrieved WMEs).
     pub fn augs(&self, lti: i64) -> DbResult<Vec<(Val, Val)>> {
