@@ -1219,40 +1219,55 @@ fn term_vars<'a>(t: &'a RhsTerm, in_call: bool, acc: &mut Vec<(&'a str, bool)>) 
     }
 }
 
+/// The variables of an action, each with whether it must be bound before the action can be
+/// carried out (an id, a function's argument) or is made by it when unbound.
+fn action_vars<'a>(a: &'a Action, acc: &mut Vec<(&'a str, bool)>) {
+    match a {
+        Action::Make(m) => {
+            term_vars(&m.id, true, acc);
+            for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
+                term_vars(t, false, acc);
+            }
+        }
+        Action::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, acc)),
+    }
+}
+
 /// RHS action ids and function arguments must be bound on the LHS or be new identifiers
-/// made by this rule (an unbound variable in value position).
+/// made by an action that can itself be carried out (an unbound variable in its attribute,
+/// value or referent). As 9.6 orders a rule's actions, an action is placed once what it
+/// needs is bound, and then binds all its variables; the actions never placed are
+/// ungrounded, so `(<r> ^self <r>)` alone does not ground `<r>`.
 fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnostic> {
     let bound = bound_names(p);
     let mut new_ids: FxHashSet<&str> = FxHashSet::default();
-    for a in &p.actions {
-        if let Action::Make(m) = a {
-            for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
-                if let RhsTerm::Var(v) = t {
-                    if !bound.contains(v.as_str()) {
-                        new_ids.insert(v);
-                    }
-                }
+    let mut placed = vec![false; p.actions.len()];
+    let mut vars = Vec::new();
+    loop {
+        let mut progress = false;
+        for (a, done) in p.actions.iter().zip(placed.iter_mut()) {
+            if *done {
+                continue;
             }
+            vars.clear();
+            action_vars(a, &mut vars);
+            if vars
+                .iter()
+                .any(|(v, must)| *must && !bound.contains(v) && !new_ids.contains(v))
+            {
+                continue;
+            }
+            *done = true;
+            progress = true;
+            new_ids.extend(vars.iter().map(|(v, _)| *v));
+        }
+        if !progress {
+            break;
         }
     }
-    let ok = |v: &str| bound.contains(v) || new_ids.contains(v);
     let mut bad: Vec<(String, Span)> = Vec::new();
     let mut seen: FxHashSet<String> = FxHashSet::default();
-    let mut vars = Vec::new();
-    for a in &p.actions {
-        vars.clear();
-        match a {
-            Action::Make(m) => {
-                term_vars(&m.id, true, &mut vars);
-                for t in [&m.attr, &m.value].into_iter().chain(m.referent.as_ref()) {
-                    term_vars(t, false, &mut vars);
-                }
-            }
-            Action::Call(f) => f.args.iter().for_each(|a| term_vars(a, true, &mut vars)),
-        }
-        if !vars.iter().any(|(v, must)| *must && !ok(v)) {
-            continue;
-        }
+    for (a, _) in p.actions.iter().zip(&placed).filter(|(_, done)| !**done) {
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
             Action::Make(m) => (make_text(m), m.span.span()),

@@ -546,9 +546,35 @@ fn render(spec: &RuleSpec) -> String {
     for c in &spec.conds {
         bind_cond(c, &mut bound);
     }
+    // A new identifier is made by an action whose own id is grounded (bound, or made by
+    // another such action), so `made` grows until no action adds to it.
     let mut made: Vec<u8> = Vec::new();
+    loop {
+        let before = made.len();
+        add_made(spec, &mut made);
+        if made.len() == before {
+            break;
+        }
+    }
+    let mut r = Renderer {
+        out: String::new(),
+        bound,
+        made,
+        rng: u64::from(spec.layout),
+    };
+    r.rule(spec);
+    r.out
+}
+
+/// The new identifiers the make actions whose ids are grounded by `made` create.
+fn add_made(spec: &RuleSpec, made: &mut Vec<u8>) {
     for a in &spec.actions {
-        if let ActionSpec::Make(_, attrs) = a {
+        if let ActionSpec::Make(id, attrs) = a {
+            if let RhsId::New(k) = id {
+                if !made.contains(k) {
+                    continue;
+                }
+            }
             for am in attrs {
                 // Referents are rendered only on ^operator (other attributes take + and -).
                 let operator = matches!(am.last, MakeAttr::Operator);
@@ -563,21 +589,15 @@ fn render(spec: &RuleSpec) -> String {
                     });
                     for r in std::iter::once(v).chain(referents) {
                         if let RhsVal::New(k) = r {
-                            made.push(*k);
+                            if !made.contains(k) {
+                                made.push(*k);
+                            }
                         }
                     }
                 }
             }
         }
     }
-    let mut r = Renderer {
-        out: String::new(),
-        bound,
-        made,
-        rng: u64::from(spec.layout),
-    };
-    r.rule(spec);
-    r.out
 }
 
 fn bind_atom(a: &Atom, bound: &mut Vec<&'static str>) {
