@@ -847,7 +847,7 @@ impl AgentCore {
 
     /// Adds a WME now (as `wm add` and the input phase do) and matches it.
     pub fn add_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let links = self.symbols.is_id(value);
         let w = self.wm.add_typed(id, attr, value, acceptable, links);
         self.match_wme_now(w, (id, attr, value), acceptable);
         w
@@ -918,10 +918,8 @@ impl AgentCore {
             }
         }
         // What it pointed at may now be unlinked: garbage collection looks there.
-        for x in [wme.value, wme.attr] {
-            if self.symbols.is_id(x) {
-                self.decider.gc_candidates.push(x);
-            }
+        if self.symbols.is_id(wme.value) {
+            self.decider.gc_candidates.push(wme.value);
         }
         Some(wme)
     }

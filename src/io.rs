@@ -150,7 +150,7 @@ impl AgentCore {
             self.wm
                 .parent_wmes(id)
                 .iter()
-                .any(|&(w, _)| self.wm.get(w).is_some())
+                .any(|&w| self.wm.get(w).is_some())
         };
         if is_state || pointed_at() {
             Ok(id)
@@ -191,7 +191,7 @@ impl AgentCore {
     }
 
     fn queue_input_add(&mut self, id: Sym, attr: Sym, value: Sym) -> WmeId {
-        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let links = self.symbols.is_id(value);
         let w = self.wm.add_typed(id, attr, value, false, links);
         let tt = self.wm.get(w).map_or(0, |x| x.timetag);
         self.inputs.queue.push(InputChange::Add(w, tt));

@@ -100,9 +100,13 @@ pub fn print_object_at(
         }
         order.push((x, d));
         if d + 1 < depth {
+            // An identifier as attribute is printed below its object too, before the value
+            // (as 9.6 prints it).
             for w in sorted_wmes(agent, x) {
-                if agent.symbols.is_id(w.value) && !seen.contains(&w.value) {
-                    frontier.push_back((w.value, d + 1));
+                for v in [w.attr, w.value] {
+                    if agent.symbols.is_id(v) && !seen.contains(&v) {
+                        frontier.push_back((v, d + 1));
+                    }
                 }
             }
         }
@@ -139,7 +143,7 @@ pub fn print_object_at(
 }
 
 /// Prints one object at `level` (none when it was printed or has no WMEs) and returns its
-/// WMEs' values in the order printed, for the walk to go on below it.
+/// WMEs' attributes and values in the order printed, for the walk to go on below it.
 fn print_one(
     agent: &AgentCore,
     id: Sym,
@@ -209,7 +213,7 @@ fn print_one(
         out.push('\n');
     }
     *col = 0;
-    wmes.iter().map(|w| w.value).collect()
+    wmes.iter().flat_map(|w| [w.attr, w.value]).collect()
 }
 
 /// `matches <rule>` (`production matches`): each condition with its partial-match count;

@@ -50,13 +50,15 @@ pub struct WorkingMemory {
     count: usize,
     additions: u64,
     removals: u64,
-    /// The WMEs that point at a symbol (as value, then as attribute), for garbage
-    /// collection's upward search; `link_pos` is each WME's place in those lists.
-    parents: FxHashMap<Sym, Vec<(WmeId, bool)>>,
-    link_pos: Vec<[u32; 2]>,
+    /// The WMEs whose value is a symbol, for garbage collection's upward search; `link_pos`
+    /// is each WME's place in those lists. An identifier used as an attribute is not linked
+    /// by it: 9.6 counts links only from values, so an object named only as an attribute
+    /// stays when the WME goes (checked with soar_sml 9.6.5).
+    parents: FxHashMap<Sym, Vec<WmeId>>,
+    link_pos: Vec<u32>,
     /// Emptied lists, kept for their room: identifiers come and go with every firing.
     spare_id_lists: Vec<Vec<WmeId>>,
-    spare_parent_lists: Vec<Vec<(WmeId, bool)>>,
+    spare_parent_lists: Vec<Vec<WmeId>>,
     /// A bit per symbol: whether a WME has ever pointed at it. Garbage collection searches
     /// only identifiers that lose a link, so one no WME ever pointed at (the object of an
     /// action whose link to it failed) stays, as in 9.6; the invariant checker tells
@@ -111,19 +113,19 @@ impl WorkingMemory {
 
     /// Adds a WME with the next timetag (one global counter; Soar manual, ch. 3, "Timetags").
     pub fn add(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        self.add_typed(id, attr, value, acceptable, [true, true])
+        self.add_typed(id, attr, value, acceptable, true)
     }
 
-    /// [`WorkingMemory::add`], told whether the value and the attribute are identifiers:
-    /// only identifiers are searched upward by garbage collection, so a constant needs no
-    /// list of the WMEs that point at it (most WMEs have constant values and attributes).
+    /// [`WorkingMemory::add`], told whether the value is an identifier: only identifiers
+    /// are searched upward by garbage collection, so a constant needs no list of the WMEs
+    /// that point at it (most WMEs have constant values).
     pub fn add_typed(
         &mut self,
         id: Sym,
         attr: Sym,
         value: Sym,
         acceptable: bool,
-        [value_is_id, attr_is_id]: [bool; 2],
+        value_is_id: bool,
     ) -> WmeId {
         let timetag = self.next_timetag;
         self.next_timetag += 1;
@@ -158,14 +160,10 @@ impl WorkingMemory {
         self.count += 1;
         self.additions += 1;
         if self.link_pos.len() <= w.0 as usize {
-            self.link_pos.resize(w.0 as usize + 1, [u32::MAX; 2]);
+            self.link_pos.resize(w.0 as usize + 1, NOT_LINKED);
         }
-        for (slot, target, link) in [(0, value, value_is_id), (1, attr, attr_is_id)] {
-            if !link {
-                self.link_pos[w.0 as usize][slot] = NOT_LINKED;
-                continue;
-            }
-            let (word, bit) = (target.0 as usize / 64, target.0 % 64);
+        if value_is_id {
+            let (word, bit) = (value.0 as usize / 64, value.0 % 64);
             if self.pointed_at.len() <= word {
                 self.pointed_at.resize(word + 1, 0);
             }
@@ -173,10 +171,12 @@ impl WorkingMemory {
             let spare = &mut self.spare_parent_lists;
             let list = self
                 .parents
-                .entry(target)
+                .entry(value)
                 .or_insert_with(|| spare.pop().unwrap_or_default());
-            self.link_pos[w.0 as usize][slot] = list.len() as u32;
-            list.push((w, slot == 1));
+            self.link_pos[w.0 as usize] = list.len() as u32;
+            list.push(w);
+        } else {
+            self.link_pos[w.0 as usize] = NOT_LINKED;
         }
         if let Some(j) = self.journal.as_mut() {
             j.push((true, wme));
@@ -184,8 +184,8 @@ impl WorkingMemory {
         w
     }
 
-    fn unlink(&mut self, w: WmeId, slot: usize, target: Sym) {
-        let pos = self.link_pos[w.0 as usize][slot];
+    fn unlink(&mut self, w: WmeId, target: Sym) {
+        let pos = self.link_pos[w.0 as usize];
         if pos == NOT_LINKED {
             return;
         }
@@ -194,8 +194,8 @@ impl WorkingMemory {
             return;
         };
         list.swap_remove(pos);
-        if let Some(&(moved, as_attr)) = list.get(pos) {
-            self.link_pos[moved.0 as usize][usize::from(as_attr)] = pos as u32;
+        if let Some(&moved) = list.get(pos) {
+            self.link_pos[moved.0 as usize] = pos as u32;
         }
         if list.is_empty() {
             if let Some(list) = self.parents.remove(&target) {
@@ -206,11 +206,10 @@ impl WorkingMemory {
         }
     }
 
-    /// The WMEs whose value or attribute is the identifier `x` (any order; a constant has
-    /// none listed when its WMEs were added with [`WorkingMemory::add_typed`]).
-    /// The WMEs that point at `x`, as [`WorkingMemory::parents_of`] lists them (removed ones
-    /// included: check with `get`).
-    pub fn parent_wmes(&self, x: Sym) -> &[(WmeId, bool)] {
+    /// The WMEs whose value is the identifier `x`, in any order (removed ones included:
+    /// check with `get`); a constant has none listed when its WMEs were added with
+    /// [`WorkingMemory::add_typed`].
+    pub fn parent_wmes(&self, x: Sym) -> &[WmeId] {
         self.parents.get(&x).map_or(&[], Vec::as_slice)
     }
 
@@ -237,8 +236,7 @@ impl WorkingMemory {
                 }
             }
         }
-        self.unlink(w, 0, wme.value);
-        self.unlink(w, 1, wme.attr);
+        self.unlink(w, wme.value);
         if let Some(j) = self.journal.as_mut() {
             j.push((false, wme));
         }
@@ -310,9 +308,9 @@ impl WorkingMemory {
         use crate::pools::{hash_table_bytes, Pool};
         pools.push(Pool::of_vec::<Option<Wme>>("wme", self.wmes.capacity()));
         pools.push(Pool::of_vec::<u32>("wme id place", self.id_pos.capacity()));
-        pools.push(Pool::of_vec::<[u32; 2]>("wme link place", self.link_pos.capacity()));
+        pools.push(Pool::of_vec::<u32>("wme link place", self.link_pos.capacity()));
         hash_table_bytes::<Sym, IdList>(self.by_id.capacity())
-            + hash_table_bytes::<Sym, Vec<(WmeId, bool)>>(self.parents.capacity())
+            + hash_table_bytes::<Sym, Vec<WmeId>>(self.parents.capacity())
     }
 
     /// Whether a WME has ever pointed at `x` (as its value or attribute).

@@ -114,7 +114,7 @@ impl Interpreter {
     pub(super) fn value_support(&self, id: Sym, detail: Detail) -> String {
         let agent = &self.agent;
         let mut wmes: Vec<(WmeId, Wme)> = Vec::new();
-        for &(w, _) in agent.wm.parent_wmes(id) {
+        for &w in agent.wm.parent_wmes(id) {
             if let Some(wme) = agent.wm.get(w) {
                 if wme.value == id && !wmes.iter().any(|(x, _)| *x == w) {
                     wmes.push((w, *wme));

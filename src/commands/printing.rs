@@ -99,8 +99,11 @@ fn tree_rec(
         out.push_str(&"  ".repeat(level));
         out.push_str(&wme_line(agent, &w, style.0, style.1));
         out.push('\n');
-        if level + 1 < depth && agent.symbols.is_id(w.value) && seen.insert(w.value) {
-            tree_rec(agent, w.value, level + 1, depth, style, seen, out);
+        // An identifier as attribute goes below the WME too, before the value (as in 9.6).
+        for v in [w.attr, w.value] {
+            if level + 1 < depth && agent.symbols.is_id(v) && seen.insert(v) {
+                tree_rec(agent, v, level + 1, depth, style, seen, out);
+            }
         }
     }
 }

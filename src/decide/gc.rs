@@ -60,13 +60,11 @@ impl AgentCore {
                     let Some(wme) = self.wm.get(w).copied() else {
                         continue;
                     };
-                    for v in [wme.value, wme.attr] {
-                        if self.symbols.is_id(v)
-                            && !gc.dead.contains(&v)
-                            && !self.linked(v, &mut gc)
-                        {
-                            gc.stack.push(v);
-                        }
+                    // Only values link: an identifier used as an attribute stays, as in 9.6.
+                    let v = wme.value;
+                    if self.symbols.is_id(v) && !gc.dead.contains(&v) && !self.linked(v, &mut gc)
+                    {
+                        gc.stack.push(v);
                     }
                 }
             }
@@ -147,7 +145,7 @@ impl AgentCore {
         let mut found = false;
         'search: while let Some(&(y, start)) = gc.path.last() {
             let parents = self.wm.parent_wmes(y);
-            for (i, &(w, _)) in parents.iter().enumerate().skip(start) {
+            for (i, &w) in parents.iter().enumerate().skip(start) {
                 let Some(p) = self.wm.get(w).map(|wme| wme.id) else {
                     continue;
                 };

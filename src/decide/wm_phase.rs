@@ -281,7 +281,7 @@ impl AgentCore {
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
     fn add_slot_wme(&mut self, id: Sym, attr: Sym, value: Sym, acceptable: bool) -> WmeId {
-        let links = [self.symbols.is_id(value), self.symbols.is_id(attr)];
+        let links = self.symbols.is_id(value);
         let w = self.wm.add_typed(id, attr, value, acceptable, links);
         self.decider.wme_changes += 1;
         self.decider
