@@ -51,7 +51,21 @@ impl AgentCore {
     }
 
     /// Prints `     0: ==>S: S1 ` (trace level ≥ 1), as agent creation and `init-soar` do.
+    /// With WME tracing on, the top state's WMEs are traced as 9.6 makes them: the state's
+    /// own (timetags 1–10, newest first) before that line, the io link's (11–13) after it
+    /// (checked with soar_sml 9.6.5 at `init-soar`).
     pub fn print_initial_state(&mut self) {
+        let tops: Vec<crate::wm::Wme> = if self.settings.trace.wmes {
+            let mut w: Vec<_> = self.wm.all().into_iter().filter_map(|w| self.wm.get(w).copied()).collect();
+            w.retain(|x| x.timetag <= 13);
+            w.sort_by_key(|x| std::cmp::Reverse(x.timetag));
+            w
+        } else {
+            Vec::new()
+        };
+        for w in tops.iter().filter(|w| w.timetag <= 10) {
+            self.trace_wme(true, w);
+        }
         if self.settings.trace.decisions {
             self.emit(&TraceEvent::State {
                 cycle: 0,
@@ -59,6 +73,9 @@ impl AgentCore {
                 state: self.top.state,
                 impasse: None,
             });
+        }
+        for w in tops.iter().filter(|w| w.timetag > 10) {
+            self.trace_wme(true, w);
         }
     }
 
@@ -292,7 +309,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached(Phase::Decide) {
+                    if self.has_pending(false) && self.max_elaborations_reached(Phase::Decide) {
                         break;
                     }
                     if (one_cycle || self.interrupt_requested() || self.ceiling_reached())
@@ -331,7 +348,7 @@ impl AgentCore {
                     if !self.elaboration_cycle() {
                         break;
                     }
-                    if self.max_elaborations_reached(Phase::Output) {
+                    if self.has_pending_in_apply() && self.max_elaborations_reached(Phase::Output) {
                         break;
                     }
                     if (one_cycle || self.interrupt_requested() || self.ceiling_reached())
@@ -368,6 +385,9 @@ impl AgentCore {
         }
     }
 
+    /// Whether the phase has had its `max-elaborations` cycles, with a warning. Asked only
+    /// while something is left to fire: a phase whose last allowed cycle reached
+    /// quiescence ends without the warning (checked with soar_sml 9.6.5).
     fn max_elaborations_reached(&mut self, next: Phase) -> bool {
         if self.decider.e_cycles_this_phase >= self.settings.max_elaborations.max(1) as u64 {
             if self.settings.warnings {
