@@ -2,6 +2,7 @@
 //! 9): `print <id>` objects with attributes sorted and wrapped at 80 columns, `print -i`
 //! one WME per line with timetags, and `matches <rule>` partial-match listings.
 
+use rustc_hash::FxHashSet;
 use crate::agent::AgentCore;
 use crate::decide::state::SubstateLine;
 use crate::printer::{cond_text, cond_text_with};
@@ -396,6 +397,22 @@ impl AgentCore {
         self.output = out;
     }
 
+    /// `+ ... ALREADY SUPPORTED ON TOP LEVEL.  IGNORING.` for a preference not added.
+    pub(crate) fn trace_ignored_pref(&mut self, pid: crate::decide::state::PrefId) {
+        if !self.settings.trace.preferences {
+            return;
+        }
+        let mut out = std::mem::take(&mut self.output);
+        let pref = &self.decider.prefs[pid];
+        let event = TraceEvent::IgnoredPreference {
+            pref,
+            level: pref_level(self, pref),
+            rule: pref_rule(self, pref),
+        };
+        self.trace_text.write(&mut out, self.output_line_start, &self.symbols, &event);
+        self.output = out;
+    }
+
     /// Writes the `Preference` event of `pid` into `out`; `line_start` as for
     /// [`TraceText96::write`](crate::trace_text::TraceText96::write).
     pub(crate) fn write_pref_event(
@@ -564,41 +581,35 @@ impl AgentCore {
         self.trace_retracted_prefs(inst);
     }
 
-    /// The preferences of one elaboration cycle's firings as they are asserted: the newest
-    /// firing first, each one's preferences newest first; an o-supported reject shows as
-    /// the removal of the preferences it takes away.
-    pub(crate) fn trace_new_preferences(&mut self, new_prefs: &[crate::decide::state::PrefId]) {
+    /// The removals the o-supported rejects of one elaboration cycle's firings make, in
+    /// firing and action order (before the cycle's other preferences are added, checked
+    /// on 9.6: water-jug, o-reject and blocks-world at trace 5). A preference two rejects
+    /// take is removed, and traced, once.
+    pub(crate) fn trace_o_reject_removals(&mut self, new_prefs: &[crate::decide::state::PrefId]) {
         use crate::decide::procedure::PrefType;
-        // The o-rejects' removals first, in firing and action order, then the other
-        // preferences (checked on 9.6: water-jug, o-reject and blocks-world at trace 5).
+        let mut gone: FxHashSet<crate::decide::state::PrefId> = FxHashSet::default();
         for &pid in new_prefs.iter() {
-            let p = self.decider.prefs[pid].clone();
-            if p.kind == PrefType::Reject && p.o_support {
-                let removed: Vec<_> = self
-                    .decider
-                    .slots
-                    .get(&(p.id, p.attr))
-                    .map(|slot| {
-                        slot.prefs
-                            .iter()
-                            .rev()
-                            .copied()
-                            .filter(|&x| {
-                                x != pid && self.decider.prefs[x].value == p.value
-                            })
-                            .collect()
-                    })
-                    .unwrap_or_default();
-                for r in removed {
-                    self.trace_pref('-', r);
-                }
-            }
-        }
-        for &pid in new_prefs.iter().rev() {
             let p = &self.decider.prefs[pid];
-            let o_reject = p.kind == PrefType::Reject && p.o_support;
-            if !o_reject && !self.decider.results_taken_by_o_rejects.contains(&pid) {
-                self.trace_pref('+', pid);
+            if !(p.kind == PrefType::Reject && p.o_support) {
+                continue;
+            }
+            let (key, value) = ((p.id, p.attr), p.value);
+            let removed: Vec<_> = self
+                .decider
+                .slots
+                .get(&key)
+                .map(|slot| {
+                    slot.prefs
+                        .iter()
+                        .rev()
+                        .copied()
+                        .filter(|&x| x != pid && self.decider.prefs[x].value == value)
+                        .filter(|&x| gone.insert(x))
+                        .collect()
+                })
+                .unwrap_or_default();
+            for r in removed {
+                self.trace_pref('-', r);
             }
         }
     }

@@ -38,6 +38,14 @@ pub(crate) enum TraceEvent<'a> {
         level: u32,
         rule: Option<&'a str>,
     },
+    /// A top-level o-supported acceptable preference not added because its value has one
+    /// already (`trace --preferences`): `+ (S1 ^a b +  :O ) (rule) ALREADY SUPPORTED ON TOP
+    /// LEVEL.  IGNORING.`
+    IgnoredPreference {
+        pref: &'a Preference,
+        level: u32,
+        rule: Option<&'a str>,
+    },
     /// One of a traced firing's or retraction's preferences (`trace --timetags` or
     /// `--fullwmes`), at its identifier's level.
     InstantiationPreference { pref: &'a Preference, level: u32 },

@@ -67,6 +67,12 @@ impl TraceText96 {
                 pref_text(out, symbols, pref, level, rule);
                 out.push('\n');
             }
+            TraceEvent::IgnoredPreference { pref, level, rule } => {
+                fresh_line(out, line_start);
+                out.push_str("+ ");
+                pref_text(out, symbols, pref, level, rule);
+                out.push_str(" ALREADY SUPPORTED ON TOP LEVEL.  IGNORING.\n");
+            }
             TraceEvent::InstantiationPreference { pref, level } => {
                 fresh_line(out, line_start);
                 out.push(' ');

@@ -201,6 +201,38 @@ fn an_application_that_doubles_each_cycle_stops_at_its_ceiling() {
     );
 }
 
+/// The same fuzzed agent traced at level 5: every firing of the last cycle rejects the same
+/// `^colour` and `^recent` WMEs, whose preferences go once, so the trace lists each removal
+/// once (it listed all of them again for every firing, 56 million lines, as the square of
+/// the firings).
+#[test]
+fn a_wme_many_firings_reject_has_its_removals_traced_once() {
+    let mut agent = growing_agent(
+        "sp {propose*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> + =) (<o> ^name init)}
+         sp {apply*init (state <s> ^operator.name init) --> (<s> ^count 1 ^colour 0 ^recent <r>) (<r> ^value 0)}
+         sp {propose*count (state <s> ^count {<c> < 3000}) --> (<s> ^operator <o> + =) (<o> ^name count)}
+         sp {apply*count (state <s> ^operator.name count ^count <c> ^colour <k> ^recent <r>)
+            --> (<s> ^count <c> - ^count *(+ <c> 1) ^colour <k> - ^colour (mod (+ <c> 1) 7)
+                 ^recent <r> - ^recent <n>)
+                (<n> ^value (+ <c> 1) ^previous D<r>)}",
+    );
+    agent.execute("srand 2").unwrap();
+    agent.execute("watch 5").unwrap();
+    agent.set_limits(Limits {
+        wmes: 20_000,
+        ..Limits::default()
+    });
+    let r = agent.run(6, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    let text = agent.take_output();
+    let removals = text.lines().filter(|l| l.starts_with("- ")).count();
+    let firings = text.lines().filter(|l| l.starts_with("Firing ")).count();
+    assert!(
+        removals <= 4 * firings,
+        "{removals} removals for {firings} firings"
+    );
+}
+
 /// Every pair of things asks for the same WME: preferences pile up with the square of the
 /// things while working memory barely grows, and the preferences ceiling stops the run.
 #[test]

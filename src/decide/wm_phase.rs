@@ -34,10 +34,13 @@ impl AgentCore {
     }
 
     /// O-supported rejects remove every preference for their value first; the other new
-    /// preferences join their slots, newest at the head.
+    /// preferences join their slots, newest at the head, but for a top-level o-supported
+    /// acceptable preference whose value has one already (9.6 ignores it; Soar manual,
+    /// "Preference memory").
     pub(super) fn assert_preferences(&mut self, new_prefs: &[PrefId]) {
-        if self.settings.trace.preferences {
-            self.trace_new_preferences(new_prefs);
+        let tracing = self.settings.trace.preferences;
+        if tracing {
+            self.trace_o_reject_removals(new_prefs);
         }
         let taken = std::mem::take(&mut self.decider.results_taken_by_o_rejects);
         for &pid in &taken {
@@ -70,6 +73,16 @@ impl AgentCore {
             }
             let key = (p.id, p.attr);
             let value = p.value;
+            if self.already_top_o_supported(pid) {
+                if tracing {
+                    self.trace_ignored_pref(pid);
+                }
+                self.decider.free_pref(pid);
+                continue;
+            }
+            if tracing {
+                self.trace_pref('+', pid);
+            }
             let slot = self.decider.slots.entry_id(key);
             self.decider.slots.slot_mut(slot).push(pid, value);
             self.mark_changed(key, Some(slot));
@@ -77,6 +90,26 @@ impl AgentCore {
                 self.wma_preference_added(pid);
             }
         }
+    }
+
+    /// Whether `pid` is a top-level o-supported acceptable preference for a non-context
+    /// slot that already holds a top-level o-supported preference for its value.
+    fn already_top_o_supported(&mut self, pid: PrefId) -> bool {
+        let top_level = |p: &Preference| p.o_support && p.matched.is_some();
+        let p = &self.decider.prefs[pid];
+        if p.kind != PrefType::Acceptable || !top_level(p) {
+            return false;
+        }
+        let (key, value) = ((p.id, p.attr), p.value);
+        let Some(slot) = self.decider.slots.get(&key) else {
+            return false;
+        };
+        let prefs = &self.decider.prefs;
+        let duplicate = slot
+            .prefs
+            .iter()
+            .any(|&x| prefs[x].value == value && top_level(&prefs[x]));
+        duplicate && !self.is_context_slot(key)
     }
 
     fn is_context_slot(&mut self, key: (Sym, Sym)) -> bool {
