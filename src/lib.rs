@@ -27,6 +27,7 @@ kernel_modules!(
     io,
     learn,
     lexer,
+    memory_timers,
     parser,
     percepts,
     percepts_phase,

@@ -233,6 +233,34 @@ fn a_wme_many_firings_reject_has_its_removals_traced_once() {
     );
 }
 
+/// A fuzzed rule (`fuzz/` `production_parser`, a timeout under the fuzzer's
+/// instrumentation): a condition not linked to a state matches every `^io` WME, and each
+/// firing on each state makes one more, so its matches grow with the square of working
+/// memory (9.6 runs away on it too: `soar_sml` 9.6.5 had not finished `run 3` after 30
+/// s). Under the fuzzer's ceilings it stops at its partial matches at once.
+#[test]
+fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
+    let mut agent = Agent::new("io-everywhere");
+    agent
+        .execute("sp {io*everywhere (<ss> ^io <io>) (state <s> ^superstate <x>) --> (<s> ^io <n>)}")
+        .unwrap();
+    agent.set_limits(Limits {
+        wmes: 10_000,
+        tokens: 20_000,
+        preferences: 20_000,
+        ..Limits::default()
+    });
+    let started = std::time::Instant::now();
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    agent.check_invariants().unwrap();
+    assert!(
+        started.elapsed().as_secs_f64() < 2.0,
+        "{:?}",
+        started.elapsed()
+    );
+}
+
 /// Every pair of things asks for the same WME: preferences pile up with the square of the
 /// things while working memory barely grows, and the preferences ceiling stops the run.
 #[test]

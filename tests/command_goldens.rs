@@ -203,6 +203,20 @@ fn masked_smem(text: &str) -> String {
         .join("\n")
 }
 
+/// What `--timers` prints with its figures masked: they are the machine's times (a timer
+/// that has timed nothing prints `0` in both kernels, and stays unmasked).
+fn timers_masked(text: &str) -> String {
+    text.lines()
+        .map(|line| match line.rsplit_once(' ') {
+            Some((head, value)) if value != "0" && value.parse::<f64>().is_ok() => {
+                format!("{head} #")
+            }
+            _ => line.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
 /// The WMA trace's `activate` lines of one decision in timetag order: 9.6 lists them in
 /// the order of its WMEs' memory addresses, which no other kernel can share.
 fn activations_in_timetag_order(text: &str) -> String {
@@ -236,6 +250,8 @@ fn comparable(command: &str, text: &str) -> String {
     let text = activations_in_timetag_order(&neutral_identity_counts(&neutral_title(text)));
     if first == "stats" || first == "st" {
         masked_stats(&text)
+    } else if (first == "smem" || first == "epmem") && command.contains("--timers") {
+        timers_masked(&text)
     } else if first == "smem" || first == "epmem" {
         masked_smem(&text)
     } else {

@@ -182,7 +182,8 @@ impl Interpreter {
             _ => {
                 // "timers"
                 count(0, 1)?;
-                timers_answer(ctx, "Episodic Memory Timers", &TIMERS, words.first())
+                let timers = &self.agent.epmem.timers;
+                timers_answer(ctx, "Episodic Memory Timers", &TIMERS, timers, words.first())
             }
         }
     }

@@ -3,6 +3,8 @@
 //! value when a name is given, with 9.6's errors for an unknown name.
 
 use super::{CmdResult, Ctx};
+use crate::memory_timers::MemoryTimers;
+use crate::printer::constants::c_general;
 
 /// A 40-column row: `label:` and the value right-aligned.
 pub(super) fn row40(label: &str, value: &str) -> String {
@@ -47,23 +49,25 @@ pub(super) fn stats_answer(
     }
 }
 
-/// `--timers [NAME]`: rusoar does not time its memories, so each timer reads 0, as 9.6's
-/// do with `timers off`.
+/// `--timers [NAME]`: the seconds each timer has added up, as a C++ stream prints a double
+/// (`0`, `2e-06`).
 pub(super) fn timers_answer(
     ctx: &Ctx,
     title: &str,
-    timers: &[&str],
+    names: &[&str],
+    timers: &MemoryTimers,
     which: Option<&String>,
 ) -> CmdResult {
+    let value = |name: &str| c_general(timers.seconds(name), 6);
     match which {
         None => {
             let mut s = banner(title);
-            for t in timers {
-                s.push_str(&row40(t, "0"));
+            for t in names {
+                s.push_str(&row40(t, &value(t)));
             }
             Ok(s)
         }
-        Some(w) if timers.contains(&w.as_str()) => Ok(" 0".into()),
+        Some(w) if names.contains(&w.as_str()) => Ok(format!(" {}", value(w))),
         Some(_) => Err(ctx.error("Invalid timer.")),
     }
 }

@@ -272,7 +272,8 @@ impl Interpreter {
             _ => {
                 // "timers"
                 count(0, 1)?;
-                timers_answer(ctx, "Semantic Memory Timers", &TIMERS, words.first())
+                let timers = &self.agent.smem.timers;
+                timers_answer(ctx, "Semantic Memory Timers", &TIMERS, timers, words.first())
             }
         }
     }

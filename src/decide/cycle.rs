@@ -500,6 +500,7 @@ impl AgentCore {
         let reopen = self.epmem.is_open() && self.epmem.params.get("database").as_deref() == Some("file");
         self.epmem_close();
         self.epmem.present_trace.clear();
+        self.epmem.timers.reset();
         self.wma.reinitialize();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();

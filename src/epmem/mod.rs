@@ -76,11 +76,39 @@ pub(crate) struct LinkState {
     pub results: Vec<WmeId>,
 }
 
+/// Episodic memory's timers and their levels (9.6's names). The level-three timers of
+/// the query's and the retrieval's parts, which 9.6.5 lists, time nothing in rusoar.
+pub mod timer {
+    use crate::memory_timers::Timer;
+    /// Episodic memory's work at a phase: the episode and the commands.
+    pub const TOTAL: Timer = ("_total", 1);
+    /// Reading the commands of `^epmem.command`.
+    pub const API: Timer = ("epmem_api", 2);
+    /// Making the store.
+    pub const INIT: Timer = ("epmem_init", 2);
+    /// Putting a retrieved episode in working memory.
+    pub const NCB_RETRIEVAL: Timer = ("epmem_ncb_retrieval", 2);
+    /// `next` commands.
+    pub const NEXT: Timer = ("epmem_next", 2);
+    /// `previous` commands.
+    pub const PREV: Timer = ("epmem_prev", 2);
+    /// Queries.
+    pub const QUERY: Timer = ("epmem_query", 2);
+    /// Storing an episode.
+    pub const STORAGE: Timer = ("epmem_storage", 2);
+    /// Deciding whether an episode is due.
+    pub const TRIGGER: Timer = ("epmem_trigger", 2);
+    /// Adding and removing the commands' results.
+    pub const WM_PHASE: Timer = ("epmem_wm_phase", 2);
+}
+
 /// The episodic memory of one agent.
 #[derive(Debug, Default)]
 pub struct Epmem {
     pub params: params::EpmemParams,
     pub stats: EpmemStats,
+    /// `epmem --timers`: the time spent in each part ([`timer`]).
+    pub timers: crate::memory_timers::MemoryTimers,
     /// The store, made at the first episode or command after learning is on.
     pub(crate) store: Option<store::Store>,
     /// The file the store is written to, with `database file`.

@@ -141,6 +141,11 @@ impl EpmemParams {
         Ok(())
     }
 
+    /// `timers` as a level: `off` 0, `one` 1, `two` 2, `three` 3.
+    pub fn timers(&self) -> u8 {
+        crate::memory_timers::MemoryTimers::level_of(self.word("timers"))
+    }
+
     fn word(&self, name: &str) -> &str {
         self.find(name).map_or("", |p| p.value.as_str())
     }

@@ -48,6 +48,22 @@ impl AgentCore {
         meta: &mut Triples,
         retrieval: &mut Triples,
     ) -> BTreeMap<i64, Sym> {
+        let level = self.epmem.params.timers();
+        let timer = crate::memory_timers::MemoryTimers::start(super::timer::NCB_RETRIEVAL, level);
+        let nodes = self.epmem_install_untimed(state, res, t, meta, retrieval);
+        self.epmem.timers.stop(timer);
+        nodes
+    }
+
+    /// [`epmem_install`](Self::epmem_install)'s work, untimed.
+    fn epmem_install_untimed(
+        &mut self,
+        state: Sym,
+        res: Sym,
+        t: Option<i64>,
+        meta: &mut Triples,
+        retrieval: &mut Triples,
+    ) -> BTreeMap<i64, Sym> {
         let valid = t.is_some_and(|t| self.epmem.store.as_ref().is_some_and(|s| s.valid(t)));
         let link = self.epmem.links.entry(state).or_default();
         let (Some(t), true) = (t, valid) else {

@@ -32,11 +32,25 @@ impl AgentCore {
         if !self.epmem.params.learning() {
             return;
         }
+        let total = self.epmem_timer(super::timer::TOTAL);
+        let t = self.epmem_timer(super::timer::INIT);
         self.epmem_attach();
-        if self.epmem_episode_due() {
+        self.epmem.timers.stop(t);
+        let t = self.epmem_timer(super::timer::TRIGGER);
+        let due = self.epmem_episode_due();
+        self.epmem.timers.stop(t);
+        if due {
+            let t = self.epmem_timer(super::timer::STORAGE);
             self.epmem_new_episode();
+            self.epmem.timers.stop(t);
         }
         self.epmem_respond();
+        self.epmem.timers.stop(total);
+    }
+
+    /// Starts `timer` if episodic memory's `timers` setting reaches its level.
+    fn epmem_timer(&self, timer: crate::memory_timers::Timer) -> crate::memory_timers::Running {
+        crate::memory_timers::MemoryTimers::start(timer, self.epmem.params.timers())
     }
 
     /// The output phase's part.
@@ -225,6 +239,7 @@ impl AgentCore {
         if !wm_phase {
             return;
         }
+        let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
         for (state, _cmd, res, cmds) in work {
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
             self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
@@ -249,6 +264,7 @@ impl AgentCore {
             self.trace_wme(false, wme);
         }
         self.collect_garbage();
+        self.epmem.timers.stop(wm_phase);
     }
 
     /// Reads and carries out one state's command.
@@ -260,7 +276,10 @@ impl AgentCore {
         meta: &mut Triples,
         retrieval: &mut Triples,
     ) {
-        let Some(c) = self.epmem_parse(cmds) else {
+        let t = self.epmem_timer(super::timer::API);
+        let parsed = self.epmem_parse(cmds);
+        self.epmem.timers.stop(t);
+        let Some(c) = parsed else {
             let (a, v) = (self.symbols.str("status"), self.symbols.str("bad-cmd"));
             meta.push((res, a, v));
             return;
@@ -269,6 +288,8 @@ impl AgentCore {
             self.epmem_install(state, res, Some(t), meta, retrieval);
             self.epmem.stats.retrievals += 1;
         } else if let Some(x) = c.next.or(c.previous) {
+            let which = if c.next.is_some() { super::timer::NEXT } else { super::timer::PREV };
+            let timer = self.epmem_timer(which);
             let last = self.epmem.links.get(&state).and_then(|l| l.last_memory);
             let store = self.epmem.store.as_ref();
             let t = match (last, c.next.is_some()) {
@@ -282,11 +303,14 @@ impl AgentCore {
             } else {
                 self.epmem.stats.prevs += 1;
             }
+            self.epmem.timers.stop(timer);
             let got = self.epmem.links.get(&state).and_then(|l| l.last_memory).is_some();
             let a = self.symbols.str(if got { "success" } else { "failure" });
             meta.push((res, a, x));
         } else if let Some(q) = c.query {
+            let t = self.epmem_timer(super::timer::QUERY);
             self.epmem_query(state, res, q, &c, meta, retrieval);
+            self.epmem.timers.stop(t);
             self.epmem.stats.queries += 1;
         }
     }

@@ -14,6 +14,7 @@ pub mod store;
 pub mod text;
 pub mod wmi;
 
+use crate::memory_timers::{MemoryTimers, Running, Timer};
 use params::{Mode, SmemParams, UpdatePolicy};
 use store::{DbResult, Store, Val};
 use text::{Clause, Item, Node};
@@ -35,6 +36,8 @@ pub struct Smem {
     /// The database, opened at its first use.
     store: Option<Store>,
     pub stats: SmemStats,
+    /// `smem --timers`: the time spent in each part ([`timer`]).
+    pub timers: MemoryTimers,
     /// The working-memory interface's record of each state's commands and results.
     pub(crate) links: wmi::Links,
     /// Spreading activation's record of its sources.
@@ -44,7 +47,37 @@ pub struct Smem {
     pub context: std::collections::BTreeSet<i64>,
 }
 
+/// Semantic memory's timers and their levels (9.6's names; the spreading timers 9.6.5
+/// lists time nothing in rusoar, which spreads within the query).
+pub mod timer {
+    use crate::memory_timers::Timer;
+    /// The processing of the working-memory commands at a phase.
+    pub const TOTAL: Timer = ("_total", 1);
+    /// Reading the commands of `^smem.command`.
+    pub const API: Timer = ("smem_api", 2);
+    /// Opening the database.
+    pub const INIT: Timer = ("smem_init", 2);
+    /// Putting a retrieved LTI's augmentations in working memory.
+    pub const NCB_RETRIEVAL: Timer = ("smem_ncb_retrieval", 2);
+    /// Queries.
+    pub const QUERY: Timer = ("smem_query", 2);
+    /// Stores, and `smem --add`.
+    pub const STORAGE: Timer = ("smem_storage", 2);
+    /// Activation updates.
+    pub const ACTIVATION: Timer = ("three_activation", 3);
+}
+
 impl Smem {
+    /// Starts `timer` if the `timers` setting reaches its level.
+    pub fn timer_start(&self, timer: Timer) -> Running {
+        MemoryTimers::start(timer, self.timers_level())
+    }
+
+    /// The `timers` setting as a level (0 for `off`).
+    pub fn timers_level(&self) -> u8 {
+        self.params.timers()
+    }
+
     /// Whether the database is open (its store settings are then fixed).
     pub fn is_open(&self) -> bool {
         self.store.is_some()
@@ -62,7 +95,10 @@ impl Smem {
     /// The store, opened on first use.
     pub fn store(&mut self) -> DbResult<&mut Store> {
         if self.store.is_none() {
-            self.store = Some(Store::open(&self.params)?);
+            let t = self.timer_start(timer::INIT);
+            let opened = Store::open(&self.params);
+            self.timers.stop(t);
+            self.store = Some(opened?);
         }
         match self.store.as_mut() {
             Some(s) => Ok(s),
@@ -74,6 +110,13 @@ impl Smem {
     /// new LTIs in the order their clauses come (a variable seen only as a value, after
     /// them). Returns one `@` per LTI written, as 9.6 prints.
     pub fn add(&mut self, clauses: &[Clause]) -> DbResult<String> {
+        let t = self.timer_start(timer::STORAGE);
+        let done = self.add_untimed(clauses);
+        self.timers.stop(t);
+        done
+    }
+
+    fn add_untimed(&mut self, clauses: &[Clause]) -> DbResult<String> {
         let store = self.store()?;
         let mut vars: Vec<(String, i64)> = Vec::new();
         let mut order: Vec<&Node> = clauses.iter().map(|c| &c.id).collect();
@@ -128,7 +171,10 @@ impl Smem {
     /// log-odds of Σ (now − t + 1)^−d over the last ten (`base_level`), to which an LTI
     /// that has spread adds it (`spread.rs`).
     pub fn activate(&mut self, lti: i64) -> DbResult<()> {
-        self.touch(lti, true)
+        let t = self.timer_start(timer::ACTIVATION);
+        let done = self.touch(lti, true);
+        self.timers.stop(t);
+        done
     }
 
     /// 9.6's activation of an LTI (`lti_activate`): with `add_access` an access at the

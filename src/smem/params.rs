@@ -280,6 +280,11 @@ impl SmemParams {
         self.number("base-decay")
     }
 
+    /// `timers` as a level: `off` 0, `one` 1, `two` 2, `three` 3.
+    pub fn timers(&self) -> u8 {
+        crate::memory_timers::MemoryTimers::level_of(self.word("timers"))
+    }
+
     /// `base-update-policy`: when base-level activations are computed again.
     pub fn update_policy(&self) -> UpdatePolicy {
         match self.word("base-update-policy") {

@@ -102,6 +102,13 @@ impl Smem {
     /// the walk stops at the `limit`th match, so a cue of one common and one rare element
     /// costs the rare one's candidates, not the common one's.
     pub fn query_first(&mut self, cue: &Cue, limit: usize) -> DbResult<Vec<i64>> {
+        let t = self.timer_start(super::timer::QUERY);
+        let found = self.query_first_untimed(cue, limit);
+        self.timers.stop(t);
+        found
+    }
+
+    fn query_first_untimed(&mut self, cue: &Cue, limit: usize) -> DbResult<Vec<i64>> {
         let spreading = self.params.spreading();
         let settings = super::spread::Settings::of(&self.params);
         let naive = self.params.mode() == Mode::BaseLevel

@@ -75,6 +75,13 @@ impl AgentCore {
         }
     }
 
+    /// [`smem_go_untimed`](Self::smem_go_untimed) under the `_total` timer.
+    fn smem_go(&mut self, store_only: bool, header: Option<bool>) {
+        let t = self.smem.timer_start(super::timer::TOTAL);
+        self.smem_go_untimed(store_only, header);
+        self.smem.timers.stop(t);
+    }
+
     /// Gives semantic memory the LTIs with an instance in working memory (an identifier
     /// linked to the LTI with an augmentation of its own), the sources of spreading
     /// activation, before a query.
@@ -96,9 +103,10 @@ impl AgentCore {
     pub(crate) fn smem_reinitialize(&mut self) {
         self.smem.links = Links::default();
         self.smem.stats = super::SmemStats::default();
+        self.smem.timers.reset();
     }
 
-    fn smem_go(&mut self, store_only: bool, mut header: Option<bool>) {
+    fn smem_go_untimed(&mut self, store_only: bool, mut header: Option<bool>) {
         let states: Vec<(Sym, u32)> = self
             .decider
             .goals
@@ -292,12 +300,18 @@ impl AgentCore {
     ) -> Vec<WmeId> {
         let mut added = Vec::new();
         // 9.6.5 answers a malformed command with `^bad-cmd <command>` (observed).
-        let Some(cmd) = self.smem_command(wmes) else {
+        let t = self.smem.timer_start(super::timer::API);
+        let cmd = self.smem_command(wmes);
+        self.smem.timers.stop(t);
+        let Some(cmd) = cmd else {
             self.smem_result(res, "bad-cmd", None, Some(cmd_id), &mut added);
             return added;
         };
         for &s in &cmd.stores {
-            match self.smem_store_object(s) {
+            let t = self.smem.timer_start(super::timer::STORAGE);
+            let stored = self.smem_store_object(s);
+            self.smem.timers.stop(t);
+            match stored {
                 Ok(()) => self.smem_result(res, "success", None, Some(s), &mut added),
                 Err(e) => self.smem_error(res, s, &e, &mut added),
             }
@@ -460,6 +474,21 @@ impl AgentCore {
         depth: i64,
         added: &mut Vec<WmeId>,
     ) -> Result<(), String> {
+        let t = self.smem.timer_start(super::timer::NCB_RETRIEVAL);
+        let done = self.smem_install_below(sti, lti, level, depth, added);
+        self.smem.timers.stop(t);
+        done
+    }
+
+    /// [`smem_install`](Self::smem_install)'s work, untimed.
+    fn smem_install_below(
+        &mut self,
+        sti: Sym,
+        lti: i64,
+        level: u32,
+        depth: i64,
+        added: &mut Vec<WmeId>,
+    ) -> Result<(), String> {
         let augs = self.smem.store()?.augs(lti)?;
         let mut children = Vec::new();
         for (a, v) in augs {
@@ -480,7 +509,7 @@ impl AgentCore {
         if depth > 1 {
             for (child, l) in children {
                 self.smem.links.deeper.push(child);
-                self.smem_install(child, l, level, depth - 1, added)?;
+                self.smem_install_below(child, l, level, depth - 1, added)?;
             }
         }
         Ok(())
