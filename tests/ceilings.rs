@@ -162,6 +162,16 @@ fn an_interrupt_while_sourcing_stops_the_file_and_keeps_the_agent_usable() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// The rules of a fuzzed command line: an application whose every firing makes two counts
+/// where it rejects one, and rejects the same `^colour` and `^recent` WMEs as every other.
+const DOUBLING_APPLICATION: &str = "sp {propose*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> + =) (<o> ^name init)}
+     sp {apply*init (state <s> ^operator.name init) --> (<s> ^count 1 ^colour 0 ^recent <r>) (<r> ^value 0)}
+     sp {propose*count (state <s> ^count {<c> < 3000}) --> (<s> ^operator <o> + =) (<o> ^name count)}
+     sp {apply*count (state <s> ^operator.name count ^count <c> ^colour <k> ^recent <r>)
+        --> (<s> ^count <c> - ^count *(+ <c> 1) ^colour <k> - ^colour (mod (+ <c> 1) 7)
+             ^recent <r> - ^recent <n>)
+            (<n> ^value (+ <c> 1) ^previous D<r>)}";
+
 /// A fuzzed command line (`fuzz/` `command_line`, a timeout): an application whose every
 /// firing makes two counts where it removes one, so that its matches double with each
 /// elaboration cycle of one apply phase. Each later `run` went one cycle further before its
@@ -169,15 +179,7 @@ fn an_interrupt_while_sourcing_stops_the_file_and_keeps_the_agent_usable() {
 /// ceiling the first run stops at it, and a later run stops before it does anything.
 #[test]
 fn an_application_that_doubles_each_cycle_stops_at_its_ceiling() {
-    let mut agent = growing_agent(
-        "sp {propose*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> + =) (<o> ^name init)}
-         sp {apply*init (state <s> ^operator.name init) --> (<s> ^count 1 ^colour 0 ^recent <r>) (<r> ^value 0)}
-         sp {propose*count (state <s> ^count {<c> < 3000}) --> (<s> ^operator <o> + =) (<o> ^name count)}
-         sp {apply*count (state <s> ^operator.name count ^count <c> ^colour <k> ^recent <r>)
-            --> (<s> ^count <c> - ^count *(+ <c> 1) ^colour <k> - ^colour (mod (+ <c> 1) 7)
-                 ^recent <r> - ^recent <n>)
-                (<n> ^value (+ <c> 1) ^previous D<r>)}",
-    );
+    let mut agent = growing_agent(DOUBLING_APPLICATION);
     agent.execute("srand 2").unwrap();
     agent.execute("soar max-elaborations 100").unwrap();
     agent.set_limits(Limits {
@@ -207,15 +209,7 @@ fn an_application_that_doubles_each_cycle_stops_at_its_ceiling() {
 /// the firings).
 #[test]
 fn a_wme_many_firings_reject_has_its_removals_traced_once() {
-    let mut agent = growing_agent(
-        "sp {propose*init (state <s> ^superstate nil -^count) --> (<s> ^operator <o> + =) (<o> ^name init)}
-         sp {apply*init (state <s> ^operator.name init) --> (<s> ^count 1 ^colour 0 ^recent <r>) (<r> ^value 0)}
-         sp {propose*count (state <s> ^count {<c> < 3000}) --> (<s> ^operator <o> + =) (<o> ^name count)}
-         sp {apply*count (state <s> ^operator.name count ^count <c> ^colour <k> ^recent <r>)
-            --> (<s> ^count <c> - ^count *(+ <c> 1) ^colour <k> - ^colour (mod (+ <c> 1) 7)
-                 ^recent <r> - ^recent <n>)
-                (<n> ^value (+ <c> 1) ^previous D<r>)}",
-    );
+    let mut agent = growing_agent(DOUBLING_APPLICATION);
     agent.execute("srand 2").unwrap();
     agent.execute("watch 5").unwrap();
     agent.set_limits(Limits {
