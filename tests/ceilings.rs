@@ -239,9 +239,9 @@ fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
         .execute("sp {io*everywhere (<ss> ^io <io>) (state <s> ^superstate <x>) --> (<s> ^io <n>)}")
         .unwrap();
     agent.set_limits(Limits {
-        wmes: 10_000,
-        tokens: 20_000,
-        preferences: 20_000,
+        wmes: 5_000,
+        tokens: 10_000,
+        preferences: 10_000,
         ..Limits::default()
     });
     let started = std::time::Instant::now();
@@ -253,6 +253,27 @@ fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
         "{:?}",
         started.elapsed()
     );
+}
+
+/// Another fuzzed rule (`production_parser`, a timeout under instrumentation): a condition
+/// with an identifier alone, `(<nss>)`, matches every WME, and each firing makes one more on
+/// the superstate. Under the fuzzer's ceilings it stops at its WMEs.
+#[test]
+fn a_rule_on_every_wme_stops_at_its_ceiling() {
+    let mut agent = Agent::new("every-wme");
+    agent
+        .execute("sp {every*wme (state <s> ^superstate <ss>) (<nss>) (<x> -^p.3) --> (<ss> ^res3 <n>)}")
+        .unwrap();
+    agent.set_limits(Limits {
+        wmes: 5_000,
+        tokens: 10_000,
+        preferences: 10_000,
+        ..Limits::default()
+    });
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    assert!(agent.wme_count() < 6_000, "{} WMEs", agent.wme_count());
+    agent.check_invariants().unwrap();
 }
 
 /// Every pair of things asks for the same WME: preferences pile up with the square of the

@@ -15,7 +15,7 @@ use std::sync::Arc;
 /// Events (phases, firings, WME changes) an agent may make before its run is stopped: a
 /// fuzzed agent may loop for ever by design (`run` with no count, a rule that elaborates
 /// without end under a raised `max-elaborations`), which is no finding.
-pub const EVENT_BUDGET: u64 = 50_000;
+pub const EVENT_BUDGET: u64 = 10_000;
 
 /// Inputs longer than this are passed over: long inputs slow the search and find nothing
 /// short ones do not.
@@ -28,9 +28,9 @@ pub const MAX_INPUT: usize = 4096;
 /// instrumentation (a rule matching every `^io` WME of every state took 2.3 s at 50,000
 /// partial matches).
 pub const CEILINGS: Limits = Limits {
-    wmes: 10_000,
-    tokens: 20_000,
-    preferences: 20_000,
+    wmes: 5_000,
+    tokens: 10_000,
+    preferences: 10_000,
     chunks: 0,
 };
 
