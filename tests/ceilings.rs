@@ -262,7 +262,9 @@ fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
 fn a_rule_on_every_wme_stops_at_its_ceiling() {
     let mut agent = Agent::new("every-wme");
     agent
-        .execute("sp {every*wme (state <s> ^superstate <ss>) (<nss>) (<x> -^p.3) --> (<ss> ^res3 <n>)}")
+        .execute(
+            "sp {every*wme (state <s> ^superstate <ss>) (<nss>) (<x> -^p.3) --> (<ss> ^res3 <n>)}",
+        )
         .unwrap();
     agent.set_limits(Limits {
         wmes: 5_000,
