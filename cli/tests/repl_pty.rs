@@ -107,7 +107,9 @@ fn a_session_in_a_pseudo_terminal() {
     let before = p.exp_string("after ctrl-c\r\n").unwrap();
     assert!(!before.contains("never printed\r\n"), "{before}");
 
-    // Ctrl-D leaves, and the history was saved.
+    // Ctrl-D leaves, and the history was saved. (Wait for the prompt: a Ctrl-D typed
+    // while the line editor is still drawing it can be lost on a loaded machine.)
+    p.exp_regex(r"soar \d+> ").unwrap();
     p.send_control('d').unwrap();
     p.exp_eof().unwrap();
     let saved = std::fs::read_to_string(&history).unwrap_or_default();
