@@ -227,6 +227,19 @@ fn a_wme_many_firings_reject_has_its_removals_traced_once() {
     );
 }
 
+/// An agent with `rule`, under the ceilings the fuzz targets run with (`fuzz/src/lib.rs`).
+fn under_fuzz_ceilings(rule: &str) -> Agent {
+    let mut agent = Agent::new("fuzzed");
+    agent.execute(rule).unwrap();
+    agent.set_limits(Limits {
+        wmes: 5_000,
+        tokens: 10_000,
+        preferences: 10_000,
+        ..Limits::default()
+    });
+    agent
+}
+
 /// A fuzzed rule (`fuzz/` `production_parser`, a timeout under the fuzzer's
 /// instrumentation): a condition not linked to a state matches every `^io` WME, and each
 /// firing on each state makes one more, so its matches grow with the square of working
@@ -234,16 +247,9 @@ fn a_wme_many_firings_reject_has_its_removals_traced_once() {
 /// s). Under the fuzzer's ceilings it stops at its partial matches at once.
 #[test]
 fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
-    let mut agent = Agent::new("io-everywhere");
-    agent
-        .execute("sp {io*everywhere (<ss> ^io <io>) (state <s> ^superstate <x>) --> (<s> ^io <n>)}")
-        .unwrap();
-    agent.set_limits(Limits {
-        wmes: 5_000,
-        tokens: 10_000,
-        preferences: 10_000,
-        ..Limits::default()
-    });
+    let mut agent = under_fuzz_ceilings(
+        "sp {io*everywhere (<ss> ^io <io>) (state <s> ^superstate <x>) --> (<s> ^io <n>)}",
+    );
     let started = std::time::Instant::now();
     let r = agent.run(3, RunUnit::Decisions).unwrap();
     assert_eq!(r.stop, StopReason::CeilingReached);
@@ -260,18 +266,9 @@ fn a_rule_on_every_io_wme_of_every_state_stops_at_its_ceiling() {
 /// the superstate. Under the fuzzer's ceilings it stops at its WMEs.
 #[test]
 fn a_rule_on_every_wme_stops_at_its_ceiling() {
-    let mut agent = Agent::new("every-wme");
-    agent
-        .execute(
-            "sp {every*wme (state <s> ^superstate <ss>) (<nss>) (<x> -^p.3) --> (<ss> ^res3 <n>)}",
-        )
-        .unwrap();
-    agent.set_limits(Limits {
-        wmes: 5_000,
-        tokens: 10_000,
-        preferences: 10_000,
-        ..Limits::default()
-    });
+    let mut agent = under_fuzz_ceilings(
+        "sp {every*wme (state <s> ^superstate <ss>) (<nss>) (<x> -^p.3) --> (<ss> ^res3 <n>)}",
+    );
     let r = agent.run(3, RunUnit::Decisions).unwrap();
     assert_eq!(r.stop, StopReason::CeilingReached);
     assert!(agent.wme_count() < 6_000, "{} WMEs", agent.wme_count());
