@@ -481,7 +481,8 @@ impl Interpreter {
         }
         // `smem --add`'s `@` marks run on with them, as in 9.6.
         let this_is_star = result.chars().all(|c| c == '*' || c == '#' || c == '@');
-        if self.after_star && !this_is_star {
+        // Text after a line of `@` marks alone runs on with it, as in 9.6.
+        if self.after_star && !this_is_star && !self.after_at_marks {
             self.events.push(Event::Text("\n".into()));
         }
         if self.after_star && this_is_star {
