@@ -275,6 +275,33 @@ fn a_rule_on_every_wme_stops_at_its_ceiling() {
     agent.check_invariants().unwrap();
 }
 
+/// A fuzzed rule (`production_parser`, out of memory): each firing puts a new object on
+/// the superstate under an attribute the rule's conditions join on itself, so one cycle's
+/// firings grow with the square of the objects, and the next cycle's additions made
+/// hundreds of millions of partial matches before the cycle ended (1.8 GB in 11 s). The
+/// preferences' ceiling stops the cycle before its changes reach the matcher.
+#[test]
+fn firings_past_the_preference_ceiling_stop_before_their_changes_are_matched() {
+    let mut agent = under_fuzz_ceilings(
+        "sp {square (state <s> ^superstate <ss>) (<ss> ^<v>) (<ss> ^<v> -^missing)
+             --> (<ss> ^res1 <v> ^th-tce 500 ^min-position.error 10 0)}",
+    );
+    let started = std::time::Instant::now();
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    assert!(agent.wme_count() < 5_000, "{} WMEs", agent.wme_count());
+    agent.check_invariants().unwrap();
+    assert!(
+        started.elapsed().as_secs_f64() < 2.0,
+        "{:?}",
+        started.elapsed()
+    );
+    // Still past it: the next run stops at once, and the agent answers.
+    let again = agent.run(1, RunUnit::Decisions).unwrap();
+    assert_eq!(again.stop, StopReason::CeilingReached);
+    agent.execute("print --depth 1 s1").unwrap();
+}
+
 /// Every pair of things asks for the same WME: preferences pile up with the square of the
 /// things while working memory barely grows, and the preferences ceiling stops the run.
 #[test]

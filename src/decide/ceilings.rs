@@ -4,6 +4,12 @@ use super::limits::{Ceiling, Limits};
 use crate::agent::AgentCore;
 
 impl AgentCore {
+    /// Whether preference memory holds more than its ceiling.
+    pub(crate) fn preferences_over_ceiling(&self) -> bool {
+        let limit = self.settings.limits.preferences;
+        limit > 0 && self.decider.live_prefs() as u64 > limit
+    }
+
     /// Whether the run has met a ceiling: the first time, the trace says which and the run
     /// is asked to stop (it stops where an interrupt would, and `run` may go on later).
     pub(crate) fn ceiling_reached(&mut self) -> bool {

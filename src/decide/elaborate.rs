@@ -218,6 +218,13 @@ impl AgentCore {
         sc.retracted = retracted;
         sc.new_prefs = new_prefs;
         self.decider.cycle_scratch = sc;
+        // Firings past the preference ceiling stop before their changes reach the matcher,
+        // where one cycle's worth can exhaust memory; the slots keep their changes for the
+        // run that goes on.
+        if self.preferences_over_ceiling() {
+            self.ceiling_reached();
+            return true;
+        }
         self.update_slots();
         // Semantic memory stores what the rules asked it to store, at once.
         self.smem_after_elaboration((apply && self.settings.trace.phases).then_some(o_support));
