@@ -33,7 +33,7 @@ def first(path):
 def second(path):
     return ["epmem --set database file", f"epmem --set path {path}", "epmem --set append on",
             "epmem --set learning on", f"source {{{AGENT}}}", "run 5",
-            "epmem --print 3", "epmem --print 18", "epmem --stats time"]
+            "epmem --print 3", "epmem --print 7", "epmem --print 18", "epmem --stats time"]
 
 
 def backup(path):
@@ -53,7 +53,7 @@ def dump(path):
 def episodes(text):
     """The printed episodes' lines and the `time` statistic."""
     return [line.strip() for line in text.splitlines()
-            if line.startswith("(<id") or line.strip().isdigit()]
+            if line.startswith(("(<id", "(@")) or line.strip().isdigit()]
 
 
 def differences(a, b):

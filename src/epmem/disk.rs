@@ -23,13 +23,14 @@ const MAX_GAP: i64 = 1 << 20;
 const CONST: usize = 0;
 const EDGE: usize = 1;
 
-/// The tables of each kind: rows, open ranges, single episodes, closed ranges, and the
-/// row's column.
+/// The tables of each kind: rows, open ranges, single episodes, closed ranges, the row's
+/// column, and the column of an edge's long-term identifier (`0` for constants).
 struct Tables {
     now: &'static str,
     point: &'static str,
     range: &'static str,
     id: &'static str,
+    lti: &'static str,
 }
 
 const TABLES: [Tables; 2] = [
@@ -38,14 +39,21 @@ const TABLES: [Tables; 2] = [
         point: "epmem_wmes_constant_point",
         range: "epmem_wmes_constant_range",
         id: "wc_id",
+        lti: "0",
     },
     Tables {
         now: "epmem_wmes_identifier_now",
         point: "epmem_wmes_identifier_point",
         range: "epmem_wmes_identifier_range",
         id: "wi_id",
+        lti: "lti_id",
     },
 ];
+
+/// A long-term identifier column (NULL, as 9.6 leaves some, is none).
+fn lti_of(r: &rusqlite::Row<'_>, i: usize) -> rusqlite::Result<i64> {
+    Ok(r.get::<_, Option<i64>>(i)?.unwrap_or(0))
+}
 
 /// What one episode changed, for the file: the rows whose range started at it, and the
 /// ranges that ended before it, as (row, first episode, last episode), for constants and
@@ -65,6 +73,8 @@ pub struct Disk {
     constants: usize,
     rows: [usize; 2],
     nodes: i64,
+    /// How many of the store's later links of nodes to long-term identifiers it holds.
+    later_ltis: usize,
     trees: [Tree; 2],
 }
 
@@ -85,6 +95,7 @@ impl Disk {
             constants: 2,
             rows: [0, 0],
             nodes: 1,
+            later_ltis: 0,
             trees: [Tree::default(); 2],
         }
     }
@@ -293,21 +304,22 @@ impl Disk {
             }
             self.rows[k] = rows_of.count();
             let t = &TABLES[k];
-            let mut ranges: Vec<(i64, i64, i64)> = Vec::new();
+            let mut ranges: Vec<(i64, i64, i64, i64)> = Vec::new();
             for sql in [
-                format!("SELECT {}, start_episode_id, end_episode_id FROM {}", t.id, t.range),
-                format!("SELECT {}, episode_id, episode_id FROM {}", t.id, t.point),
+                format!("SELECT {}, start_episode_id, end_episode_id, {} FROM {}", t.id, t.lti, t.range),
+                format!("SELECT {}, episode_id, episode_id, {} FROM {}", t.id, t.lti, t.point),
             ] {
                 let mut q = self.conn.prepare(&sql)?;
                 let mut rows = q.query([])?;
                 while let Some(r) = rows.next()? {
-                    ranges.push((r.get(0)?, r.get(1)?, r.get(2)?));
+                    ranges.push((r.get(0)?, r.get(1)?, r.get(2)?, lti_of(r, 3)?));
                 }
             }
             ranges.sort_unstable();
-            for (row, start, end) in ranges {
+            for (row, start, end, lti) in ranges {
                 if row >= 1 && row as usize <= rows_of.count() {
                     rows_of.life_mut(row).ranges.push((start, end));
+                    rows_of.set_lti(row, start, lti);
                 }
             }
             for row in 1..=rows_of.count() as i64 {
@@ -339,18 +351,21 @@ impl Disk {
         let tx = self.conn.transaction()?;
         for k in [CONST, EDGE] {
             let t = &TABLES[k];
-            let open: Vec<(i64, i64)> = {
-                let mut q = tx.prepare(&format!("SELECT {}, start_episode_id FROM {}", t.id, t.now))?;
-                let rows = q.query_map([], |r| Ok((r.get(0)?, r.get(1)?)))?;
+            let open: Vec<(i64, i64, i64)> = {
+                let sql = format!("SELECT {}, start_episode_id, {} FROM {}", t.id, t.lti, t.now);
+                let mut q = tx.prepare(&sql)?;
+                let rows = q.query_map([], |r| Ok((r.get(0)?, r.get(1)?, lti_of(r, 2)?)))?;
                 rows.collect::<rusqlite::Result<_>>()?
             };
             let rows_of = if k == CONST { &mut store.consts } else { &mut store.edges };
-            for (row, start) in open {
-                Self::end_range(&tx, &mut self.trees[k], k, row, start.min(last), last)?;
+            for (row, start, lti) in open {
+                let start = start.min(last);
+                Self::end_range(&tx, &mut self.trees[k], k, (row, start, last), lti)?;
                 if row >= 1 && row as usize <= rows_of.count() {
                     let life = rows_of.life_mut(row);
-                    life.ranges.push((start.min(last), last));
+                    life.ranges.push((start, last));
                     life.ranges.sort_unstable();
+                    rows_of.set_lti(row, start, lti);
                 }
             }
             tx.execute(&format!("DELETE FROM {}", t.now), [])?;
@@ -360,29 +375,37 @@ impl Disk {
     }
 
     /// Writes a range that ended: one episode is a point, more a range filed in the tree.
+    /// `lti`: an edge's long-term identifier in the range (0: none).
     fn end_range(
         conn: &Connection,
         tree: &mut Tree,
         k: usize,
-        row: i64,
-        start: i64,
-        end: i64,
+        (row, start, end): (i64, i64, i64),
+        lti: i64,
     ) -> rusqlite::Result<()> {
         if start == end {
-            let sql = if k == CONST {
-                "INSERT INTO epmem_wmes_constant_point (wc_id, episode_id) VALUES (?1, ?2)"
+            if k == CONST {
+                conn.prepare_cached("INSERT INTO epmem_wmes_constant_point (wc_id, episode_id) VALUES (?1, ?2)")?
+                    .execute(params![row, start])?;
             } else {
-                "INSERT INTO epmem_wmes_identifier_point (wi_id, episode_id, lti_id) VALUES (?1, ?2, 0)"
-            };
-            conn.prepare_cached(sql)?.execute(params![row, start])?;
+                conn.prepare_cached(
+                    "INSERT INTO epmem_wmes_identifier_point (wi_id, episode_id, lti_id) VALUES (?1, ?2, ?3)",
+                )?
+                .execute(params![row, start, lti])?;
+            }
         } else {
             let node = tree.insert(start, end);
-            let sql = if k == CONST {
-                "INSERT INTO epmem_wmes_constant_range (rit_id, start_episode_id, end_episode_id, wc_id) VALUES (?1, ?2, ?3, ?4)"
+            if k == CONST {
+                conn.prepare_cached(
+                    "INSERT INTO epmem_wmes_constant_range (rit_id, start_episode_id, end_episode_id, wc_id) VALUES (?1, ?2, ?3, ?4)",
+                )?
+                .execute(params![node, start, end, row])?;
             } else {
-                "INSERT INTO epmem_wmes_identifier_range (rit_id, start_episode_id, end_episode_id, wi_id, lti_id) VALUES (?1, ?2, ?3, ?4, 0)"
-            };
-            conn.prepare_cached(sql)?.execute(params![node, start, end, row])?;
+                conn.prepare_cached(
+                    "INSERT INTO epmem_wmes_identifier_range (rit_id, start_episode_id, end_episode_id, wi_id, lti_id) VALUES (?1, ?2, ?3, ?4, ?5)",
+                )?
+                .execute(params![node, start, end, row, lti])?;
+            }
         }
         if k == EDGE {
             conn.prepare_cached("UPDATE epmem_wmes_identifier SET last_episode_id = ?1 WHERE wi_id = ?2")?
@@ -392,13 +415,16 @@ impl Disk {
     }
 
     /// Writes a range that starts at `episode` and is still open.
-    fn start_range(conn: &Connection, k: usize, row: i64, episode: i64) -> rusqlite::Result<()> {
-        let sql = if k == CONST {
-            "INSERT INTO epmem_wmes_constant_now (wc_id, start_episode_id) VALUES (?1, ?2)"
+    fn start_range(conn: &Connection, k: usize, row: i64, episode: i64, lti: i64) -> rusqlite::Result<()> {
+        if k == CONST {
+            conn.prepare_cached("INSERT INTO epmem_wmes_constant_now (wc_id, start_episode_id) VALUES (?1, ?2)")?
+                .execute(params![row, episode])?;
         } else {
-            "INSERT INTO epmem_wmes_identifier_now (wi_id, start_episode_id, lti_id) VALUES (?1, ?2, 0)"
-        };
-        conn.prepare_cached(sql)?.execute(params![row, episode])?;
+            conn.prepare_cached(
+                "INSERT INTO epmem_wmes_identifier_now (wi_id, start_episode_id, lti_id) VALUES (?1, ?2, ?3)",
+            )?
+            .execute(params![row, episode, lti])?;
+        }
         if k == EDGE {
             conn.prepare_cached("UPDATE epmem_wmes_identifier SET last_episode_id = ?1 WHERE wi_id = ?2")?
                 .execute(params![OPEN, row])?;
@@ -448,14 +474,16 @@ impl Disk {
         let before = self.trees;
         for k in [CONST, EDGE] {
             let t = &TABLES[k];
+            let rows = if k == CONST { &store.consts } else { &store.edges };
             for &(row, start, end) in &ch.ended[k] {
                 self.conn
                     .prepare_cached(&format!("DELETE FROM {} WHERE {} = ?1", t.now, t.id))?
                     .execute([row])?;
-                Self::end_range(&self.conn, &mut self.trees[k], k, row, start, end)?;
+                let lti = rows.lti_at(row, start);
+                Self::end_range(&self.conn, &mut self.trees[k], k, (row, start, end), lti)?;
             }
             for &row in &ch.started[k] {
-                Self::start_range(&self.conn, k, row, episode)?;
+                Self::start_range(&self.conn, k, row, episode, rows.lti_at(row, episode))?;
             }
         }
         self.conn
@@ -492,10 +520,17 @@ impl Disk {
         }
         self.constants = store.constant_count();
         for n in self.nodes..store.next_node {
+            let lti = store.node_ltis.get(&n).copied().unwrap_or(0);
             self.conn
-                .prepare_cached("INSERT INTO epmem_nodes (n_id, lti_id) VALUES (?1, 0)")?
-                .execute([n])?;
+                .prepare_cached("INSERT INTO epmem_nodes (n_id, lti_id) VALUES (?1, ?2)")?
+                .execute([n, lti])?;
         }
+        for &(n, lti) in store.later_ltis.iter().skip(self.later_ltis) {
+            self.conn
+                .prepare_cached("INSERT OR REPLACE INTO epmem_nodes (n_id, lti_id) VALUES (?1, ?2)")?
+                .execute([n, lti])?;
+        }
+        self.later_ltis = store.later_ltis.len();
         if store.next_node != self.nodes {
             Self::set_var(&self.conn, var::NEXT_NODE, store.next_node)?;
             self.nodes = store.next_node;
@@ -580,11 +615,13 @@ impl Disk {
             ch.ended[k].sort_unstable_by_key(|&(row, _, end)| (end, row));
         }
         for k in [CONST, EDGE] {
+            let rows = if k == CONST { &store.consts } else { &store.edges };
             for &(row, start, end) in &ch.ended[k] {
-                Self::end_range(&self.conn, &mut self.trees[k], k, row, start, end)?;
+                let lti = rows.lti_at(row, start);
+                Self::end_range(&self.conn, &mut self.trees[k], k, (row, start, end), lti)?;
             }
             for &(row, start) in &opened[k] {
-                Self::start_range(&self.conn, k, row, start)?;
+                Self::start_range(&self.conn, k, row, start, rows.lti_at(row, start))?;
             }
         }
         for e in 1..store.time {

@@ -74,8 +74,8 @@ impl AgentCore {
         self.wm.keep_journal(false);
     }
 
-    /// An identifier's WMEs in the order 9.6 lists them: the architecture's, then input,
-    /// then each slot (newest slot first; in a slot, newest WME first, acceptable
+    /// An identifier's WMEs in the order 9.6 lists them: the architecture's, then input
+    /// (newest first, but on a long-term identifier's object), then each slot (newest slot first; in a slot, newest WME first, acceptable
     /// preferences after the rest), the operator slot and the memories' links last.
     pub(crate) fn epmem_augs_of(&self, id: Sym) -> Vec<Wme> {
         let is_state = self.symbols.id_data(id).is_some_and(|d| d.is_goal);
@@ -100,6 +100,11 @@ impl AgentCore {
             } else {
                 input.push(*wme);
             }
+        }
+        // The WMEs a semantic-memory retrieval put on a long-term identifier's object come
+        // in the order they were made (seen with 9.6.5), the others newest first.
+        if self.symbols.lti(id).is_some() {
+            input.reverse();
         }
         let operator = self.symbols.find_str("operator");
         let mut out = impasse;
@@ -212,6 +217,7 @@ impl AgentCore {
         let time = self.epmem.time();
         let mut new_consts: Vec<i64> = Vec::new();
         let mut new_edges: Vec<i64> = Vec::new();
+        let mut edge_ltis: Vec<(i64, i64)> = Vec::new();
         let mut visited: FxHashSet<Sym> = FxHashSet::default();
         let mut reservations: FxHashMap<u64, Reservation> = FxHashMap::default();
         let mut new_ids: FxHashSet<Sym> = FxHashSet::default();
@@ -234,6 +240,7 @@ impl AgentCore {
                     new_ids: &mut new_ids,
                     new_consts: &mut new_consts,
                     new_edges: &mut new_edges,
+                    edge_ltis: &mut edge_ltis,
                 };
                 self.epmem_store_level(&wmes, &mut level);
             }
@@ -246,6 +253,9 @@ impl AgentCore {
         }
         for &e in &new_edges {
             store.edges.open(e, time);
+        }
+        for &(e, lti) in &edge_ltis {
+            store.edges.set_lti(e, time, lti);
         }
         let mut changes = Changes {
             started: [new_consts, new_edges],
@@ -310,10 +320,25 @@ impl AgentCore {
                 continue;
             }
             if self.symbols.is_id(w.value) {
+                self.epmem_note_lti(w.value);
                 self.epmem_store_edge(w, lv);
             } else {
                 self.epmem_store_constant(w, lv);
             }
+        }
+    }
+
+    /// A stored identifier seen linked to semantic memory for the first time: the store
+    /// records its node's link (9.6's `update_node`).
+    fn epmem_note_lti(&mut self, id: Sym) {
+        let lti = self.symbols.lti(id).unwrap_or(0);
+        let enc = &mut self.epmem.encoder;
+        if lti == 0 || enc.lti_known.contains(&id) {
+            return;
+        }
+        if let (Some(&node), Some(store)) = (enc.node_of.get(&id), self.epmem.store.as_mut()) {
+            enc.lti_known.insert(id);
+            store.later_ltis.push((node, lti));
         }
     }
 
@@ -356,6 +381,7 @@ impl AgentCore {
                 enc.node_of.insert(w.value, child);
             }
         }
+        let lti = self.symbols.lti(w.value).unwrap_or(0);
         let enc = &mut self.epmem.encoder;
         let Some(store) = self.epmem.store.as_mut() else {
             return;
@@ -367,18 +393,28 @@ impl AgentCore {
                 if life.ended {
                     life.ended = false;
                     lv.new_edges.push(e);
+                    lv.edge_ltis.push((e, lti));
                 }
                 e
             }
             None => {
-                let child = *enc.node_of.entry(w.value).or_insert_with(|| {
-                    let n = store.next_node;
-                    store.next_node += 1;
-                    n
-                });
+                let child = match enc.node_of.get(&w.value) {
+                    Some(&n) => n,
+                    None => {
+                        let n = store.next_node;
+                        store.next_node += 1;
+                        enc.node_of.insert(w.value, n);
+                        if lti != 0 {
+                            store.node_ltis.insert(n, lti);
+                            enc.lti_known.insert(w.value);
+                        }
+                        n
+                    }
+                };
                 enc.refs.entry(child).or_default();
                 let e = store.edges.add((lv.parent, key.1, child));
                 lv.new_edges.push(e);
+                lv.edge_ltis.push((e, lti));
                 e
             }
         };
@@ -431,4 +467,6 @@ struct Level<'a> {
     new_ids: &'a mut FxHashSet<Sym>,
     new_consts: &'a mut Vec<i64>,
     new_edges: &'a mut Vec<i64>,
+    /// New edges' ranges with the long-term identifier their child stands for.
+    edge_ltis: &'a mut Vec<(i64, i64)>,
 }

@@ -21,7 +21,7 @@ mod wmi;
 
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 
 /// The counts of `epmem --stats`.
@@ -62,6 +62,8 @@ pub(crate) struct Encoder {
     /// Rows whose WMEs went since the last episode (`false`: one came back).
     pub const_removals: BTreeMap<i64, bool>,
     pub edge_removals: BTreeMap<i64, bool>,
+    /// Stored identifiers whose link to semantic memory the store has recorded.
+    pub lti_known: FxHashSet<Sym>,
 }
 
 /// Each state's record of its `^epmem` link.

@@ -37,6 +37,11 @@ impl AgentCore {
         }
     }
 
+    /// Whether semantic memory holds long-term identifier `lti`.
+    fn epmem_lti_exists(&mut self, lti: i64) -> bool {
+        self.smem.is_open() && self.smem.store().is_ok_and(|s| s.lti_exists(lti).unwrap_or(false))
+    }
+
     /// Rebuilds episode `t` under `res` (or says `^retrieved no-memory`): the episode's WMEs
     /// go to `retrieval`, the `^retrieved`, `^memory-id` and `^present-id` results to
     /// `meta`. Returns the identifier made for each node, for a graph match's mapping.
@@ -87,10 +92,14 @@ impl AgentCore {
         let Some(store) = self.epmem.store.as_ref() else {
             return ids;
         };
-        let edges: Vec<(i64, i64, i64)> = store
+        // Each edge with the long-term identifier its child stood for (0: none).
+        let edges: Vec<(i64, i64, i64, i64)> = store
             .edges_at(t)
             .into_iter()
-            .map(|e| store.edges.triple(e))
+            .map(|e| {
+                let (p, a, c) = store.edges.triple(e);
+                (p, a, c, store.edges.lti_at(e, t))
+            })
             .collect();
         let consts: Vec<(i64, i64, i64)> = store
             .consts
@@ -105,9 +114,9 @@ impl AgentCore {
         loop {
             let before = pending.len();
             let mut waiting = Vec::new();
-            for (p, a, c) in pending {
+            for (p, a, c, lti) in pending {
                 let Some(&parent) = ids.get(&p) else {
-                    waiting.push((p, a, c));
+                    waiting.push((p, a, c, lti));
                     continue;
                 };
                 let attr = self.epmem_symbol(a);
@@ -117,6 +126,13 @@ impl AgentCore {
                         let letter = self.symbols.text(attr).chars().next().unwrap_or('I');
                         let level = self.symbols.id_data(parent).map_or(level, |d| d.level);
                         let x = self.symbols.new_id(letter, level);
+                        // It links to its long-term identifier again, if semantic memory
+                        // still has it.
+                        if lti != 0 && self.epmem_lti_exists(lti) {
+                            if let Some(d) = self.symbols.id_data_mut(x) {
+                                d.lti = lti;
+                            }
+                        }
                         ids.insert(c, x);
                         x
                     }

@@ -56,6 +56,9 @@ pub struct Rows {
     index: FxHashMap<Triple, i64>,
     /// The rows of each episode, kept beside `lives` as ranges open and close.
     timeline: Timeline,
+    /// Edges only: the long-term identifier (`@N`) the child stood for in the range that
+    /// started at an episode, by (row, first episode); absent for none.
+    ltis: FxHashMap<(i64, i64), i64>,
 }
 
 impl Rows {
@@ -136,6 +139,28 @@ impl Rows {
         }
     }
 
+    /// Records that row `id`'s range starting at episode `start` links its child to
+    /// long-term identifier `lti` (0: none).
+    pub fn set_lti(&mut self, id: i64, start: i64, lti: i64) {
+        if lti != 0 {
+            self.ltis.insert((id, start), lti);
+        }
+    }
+
+    /// The long-term identifier row `id`'s child stood for in episode `t` (0: none), as
+    /// 9.6 keeps it with each range.
+    pub fn lti_at(&self, id: i64, t: i64) -> i64 {
+        if self.ltis.is_empty() {
+            return 0;
+        }
+        let life = self.life(id);
+        let start = match life.now {
+            Some(s) if s <= t => Some(s),
+            _ => life.ranges.iter().find(|&&(s, e)| s <= t && t <= e).map(|&(s, _)| s),
+        };
+        start.and_then(|s| self.ltis.get(&(id, s)).copied()).unwrap_or(0)
+    }
+
     /// The rows in episode `t`, by number.
     pub fn at(&self, t: i64) -> Vec<i64> {
         let mut rows = Vec::new();
@@ -156,6 +181,11 @@ pub struct Store {
     pub next_node: i64,
     /// The next episode (9.6's `time` statistic): episodes are 1 to `time - 1`.
     pub time: i64,
+    /// The long-term identifier of each node made for an identifier that had one.
+    pub node_ltis: FxHashMap<i64, i64>,
+    /// (node, long-term identifier) for stored identifiers found linked to semantic memory
+    /// after their node was made, in the order found (9.6 adds an `epmem_nodes` row).
+    pub later_ltis: Vec<(i64, i64)>,
 }
 
 impl Default for Store {
@@ -167,6 +197,8 @@ impl Default for Store {
             edges: Rows::default(),
             next_node: 1,
             time: 1,
+            node_ltis: FxHashMap::default(),
+            later_ltis: Vec::new(),
         }
     }
 }
