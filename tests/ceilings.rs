@@ -302,6 +302,37 @@ fn firings_past_the_preference_ceiling_stop_before_their_changes_are_matched() {
     agent.execute("print --depth 1 s1").unwrap();
 }
 
+/// Another fuzzed rule (`production_parser`, a timeout under instrumentation): a condition
+/// with no test but its identifier, `(<ss> ^<v> -^missing)`, joined with every WME, so the
+/// additions of one phase made partial matches as the square of their number (323,193
+/// from 568 WMEs) before the phase ended. The rest of the batch waits once the partial
+/// matches pass their ceiling, and the run stops there.
+#[test]
+fn one_phases_additions_stop_at_the_partial_match_ceiling() {
+    let mut agent = under_fuzz_ceilings(
+        "sp {cross (state <s> ^superstate <ss>) (<x> ^<v> -^missing)
+             --> (<ss> ^res2 <v> ^th-tce 500 ^min-position.error 10 0 ^max 1000)}",
+    );
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    agent.check_invariants().unwrap();
+    let trace = agent.take_output();
+    let held: u64 = trace
+        .split("the matcher holds ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no partial-match ceiling in {trace}"));
+    assert!(held < 20_000, "{held} partial matches");
+    // Raised, the run goes on and the waiting WMEs are made.
+    let held = agent.wme_count();
+    agent.set_limits(Limits::default());
+    agent.execute("soar max-elaborations 2").unwrap();
+    agent.run(1, RunUnit::Elaborations).unwrap();
+    agent.check_invariants().unwrap();
+    assert!(agent.wme_count() >= held, "{} < {held}", agent.wme_count());
+}
+
 /// Every pair of things asks for the same WME: preferences pile up with the square of the
 /// things while working memory barely grows, and the preferences ceiling stops the run.
 #[test]

@@ -4,6 +4,12 @@ use super::limits::{Ceiling, Limits};
 use crate::agent::AgentCore;
 
 impl AgentCore {
+    /// Whether the matcher holds more partial matches than its ceiling.
+    pub(crate) fn tokens_over_ceiling(&self) -> bool {
+        let limit = self.settings.limits.tokens;
+        limit > 0 && self.rete.token_total() as u64 > limit
+    }
+
     /// Whether preference memory holds more than its ceiling.
     pub(crate) fn preferences_over_ceiling(&self) -> bool {
         let limit = self.settings.limits.preferences;

@@ -246,7 +246,13 @@ impl AgentCore {
         // removes (see below).
         let adds_at = self.output.len();
         let mut traced_adds = Vec::new();
-        for &w in added.iter().rev() {
+        for (k, &w) in added.iter().enumerate().rev() {
+            // Past the partial-match ceiling, the rest of the batch waits unmatched: one
+            // phase's additions can make partial matches as the square of their number.
+            if self.tokens_over_ceiling() {
+                self.defer_additions(&mut added, k + 1);
+                break;
+            }
             if let Some(wme) = self.wm.get(w).copied() {
                 self.trace_wme(true, &wme);
                 if self.settings.trace.wmes {
@@ -310,6 +316,32 @@ impl AgentCore {
         (sc.adds, sc.removes, sc.context, sc.added, sc.want) =
             (adds, removes, context, added, want);
         self.decider.slot_scratch = sc;
+    }
+
+    /// Takes the first `count` WMEs of `added`, which the matcher has not seen, back out of
+    /// working memory, and marks their slots to be decided again: a run stopped at its
+    /// ceiling makes them when it goes on.
+    fn defer_additions(&mut self, added: &mut Vec<WmeId>, count: usize) {
+        for w in added.drain(..count) {
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            let key = (wme.id, wme.attr);
+            let slot = self.decider.slots.id_of(&key);
+            if let Some(id) = slot {
+                let slots = &mut self.decider.slots;
+                slots.slot_mut(id).wmes.remove(&(wme.value, wme.acceptable));
+                slots.slot_mut(id).full = true;
+            }
+            self.decider.wme_changes -= 1;
+            // Listeners never heard of it: it goes without an event (its object, now
+            // unlinked, goes with the garbage as any other).
+            let events = std::mem::take(&mut self.events);
+            self.remove_wme(w);
+            self.events = events;
+            self.mark_changed(key, slot);
+        }
+        self.ceiling_reached();
     }
 
     /// Puts a slot's WME into working memory (with its timetag); the caller matches it.
