@@ -863,6 +863,13 @@ impl AgentCore {
             .map(|w| w.value)
     }
 
+    /// A WME of `id` whose value is `value` (the first found).
+    pub(crate) fn wme_linking(&self, id: Sym, value: Sym) -> Option<WmeId> {
+        self.wm
+            .of_id(id)
+            .find(|&w| self.wm.get(w).is_some_and(|x| x.value == value && !x.acceptable))
+    }
+
     /// Matches a WME in the network and against the justifications' negations, which
     /// retract in 9.6's place among the rules' retractions (see `justification_wme_added`).
     pub(crate) fn match_wme_now(&mut self, w: WmeId, fields: (Sym, Sym, Sym), acceptable: bool) {

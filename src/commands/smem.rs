@@ -149,8 +149,9 @@ impl Interpreter {
             }
             "add" => {
                 count(1, 1)?;
-                let (clauses, wrong) = text::parse_prefix(&words[0], true);
-                let marks = smem.add(&clauses).map_err(db)?;
+                let (mut clauses, wrong) = text::parse_prefix(&words[0], true);
+                in_symbol_order(&mut clauses, &mut self.agent.symbols);
+                let marks = self.agent.smem.add(&clauses).map_err(db)?;
                 match wrong {
                     // The clauses before the wrong one are stored, as in 9.6.
                     Some(n) if marks.is_empty() => {
@@ -357,4 +358,34 @@ fn command_line_cue(clauses: &[text::Clause]) -> Cue {
         }
     }
     cue
+}
+
+/// Puts each clause's attributes in the order of their symbols' creation, the symbols of
+/// the text made in the order it is read: 9.6 files a clause's attributes by symbol, in
+/// memory order, which is the order it stores them in (and so the order of its semantic
+/// memory's symbol numbers, and of the WMEs a retrieval makes).
+fn in_symbol_order(clauses: &mut [text::Clause], symbols: &mut crate::symbols::Symbols) {
+    use crate::smem::store::Val;
+    let mut sym = |v: &Val| match v {
+        Val::Str(s) => Some(symbols.str(s)),
+        Val::Int(i) => Some(symbols.int(*i)),
+        Val::Float(f) => Some(symbols.float(*f)),
+        Val::Lti(_) => None,
+    };
+    for c in clauses.iter_mut() {
+        let mut keyed: Vec<_> = std::mem::take(&mut c.augs)
+            .into_iter()
+            .map(|(attr, values)| {
+                let key = sym(&attr);
+                for v in &values {
+                    if let text::Item::Const(k) = v {
+                        sym(k);
+                    }
+                }
+                (key, attr, values)
+            })
+            .collect();
+        keyed.sort_by_key(|(key, _, _)| *key);
+        c.augs = keyed.into_iter().map(|(_, attr, values)| (attr, values)).collect();
+    }
 }

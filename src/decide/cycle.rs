@@ -304,6 +304,7 @@ impl AgentCore {
                     self.trace_phase(TraceEvent::PhaseBegin(Phase::Propose));
                     self.decider.e_cycles_this_phase = 0;
                     self.decider.phase_started = true;
+                    self.decider.last_wave_o_support = false;
                 }
                 while self.has_pending(false) && !self.decider.halted {
                     if !self.elaboration_cycle() {
@@ -343,6 +344,7 @@ impl AgentCore {
                 if !self.decider.phase_started {
                     self.trace_phase(TraceEvent::PhaseBegin(Phase::Apply));
                     self.decider.phase_started = true;
+                    self.decider.last_wave_o_support = true;
                 }
                 while self.has_pending_in_apply() && !self.decider.halted {
                     if !self.elaboration_cycle() {

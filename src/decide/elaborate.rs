@@ -122,6 +122,7 @@ impl AgentCore {
             _ => false,
         };
         self.decider.pe_cycles += u64::from(o_support);
+        self.decider.last_wave_o_support = o_support;
         if apply && self.settings.trace.phases {
             self.emit(&TraceEvent::FiringProductions {
                 o_support,

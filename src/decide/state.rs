@@ -201,6 +201,10 @@ pub struct DecideState {
     /// each phase (Input, Propose, Decide, Apply, Output) and in the input and output
     /// callbacks.
     pub pe_cycles: u64,
+    /// The last wave of firings was of o-supported rules (9.6's `FIRING_TYPE`): set at
+    /// each elaboration cycle, and for the apply phase as it begins. The memories' results
+    /// take their support from it.
+    pub last_wave_o_support: bool,
     pub wm_base: (u64, u64),
     pub wm_size_sum: u64,
     pub wm_size_samples: u64,

@@ -186,6 +186,14 @@ impl AgentCore {
                     self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
                 }
             }
+            if self.wma.on() && !fresh.is_empty() {
+                let mut conditions: Vec<WmeId> = [(state, link), (link, cmd), (link, res)]
+                    .into_iter()
+                    .filter_map(|(id, value)| self.wme_linking(id, value))
+                    .collect();
+                conditions.extend(cmd_wmes.iter().filter_map(|w| self.wm.by_timetag(w.timetag)));
+                self.wma_memory_results(&fresh, &conditions);
+            }
             self.smem.links.by_link.entry(link).or_default().results = added;
             // The old results go as 9.6 removes them: what was retrieved and nothing else
             // links, newest first, then the result link's own WMEs, oldest first; what
@@ -343,6 +351,10 @@ impl AgentCore {
                         // The negative cue's `^success` comes before the cue's.
                         Ok(()) => {
                             if replacing {
+                                // The `^depth-retrieved` slot is new, where the others
+                                // are still marked from the old results' removal: it is
+                                // decided first.
+                                self.smem_depth_results(res, &mut added);
                                 self.smem_result(res, "retrieved", None, Some(sti), &mut added);
                             }
                             for x in [cmd.neg_query, Some(q)].into_iter().flatten() {
@@ -384,6 +396,7 @@ impl AgentCore {
                     match done {
                         Ok(()) => {
                             if replacing {
+                                self.smem_depth_results(res, &mut added);
                                 self.smem_result(res, "retrieved", None, Some(sti), &mut added);
                             }
                             self.smem_result(res, "success", None, Some(r), &mut added);

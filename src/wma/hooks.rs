@@ -242,9 +242,6 @@ impl AgentCore {
         if self.wma.element(wme.timetag).is_some() {
             return;
         }
-        let now = self.decider.d_cycle_count;
-        let mut seen: FxHashSet<u64> = FxHashSet::default();
-        let (mut count, mut sum) = (0u64, 0.0f64);
         let creators: Vec<PrefId> = self
             .decider
             .slots
@@ -258,49 +255,85 @@ impl AgentCore {
                     .collect()
             })
             .unwrap_or_default();
-        for pid in creators {
-            for cw in self.wma_pref_conditions(pid) {
-                let Some(c) = self.wm.get(cw).copied() else {
-                    continue;
-                };
-                if !seen.insert(c.timetag) {
-                    continue;
+        let conditions: Vec<WmeId> = creators
+            .into_iter()
+            .flat_map(|pid| self.wma_pref_conditions(pid))
+            .collect();
+        let boost = self.wma_initial_boost(&conditions);
+        self.wma.create(wme.timetag, boost);
+        self.wma_trace_add(wme);
+    }
+
+    /// The first references of a WME made by firings that tested `conditions`: the
+    /// average, rounded down, of their decayed sums (an architecture WME counts as one of
+    /// e, an i-supported one by the o-supported WMEs its support rests on, a WME whose
+    /// element is new this decision not at all), each WME once.
+    fn wma_initial_boost(&mut self, conditions: &[WmeId]) -> u64 {
+        let now = self.decider.d_cycle_count;
+        let mut seen: FxHashSet<u64> = FxHashSet::default();
+        let (mut count, mut sum) = (0u64, 0.0f64);
+        for &cw in conditions {
+            let Some(c) = self.wm.get(cw).copied() else {
+                continue;
+            };
+            if !seen.insert(c.timetag) {
+                continue;
+            }
+            if let Some(el) = self.wma.element(c.timetag) {
+                if !el.just_created {
+                    count += 1;
+                    sum += self.wma.time_sum(c.timetag, now);
                 }
-                if let Some(el) = self.wma.element(c.timetag) {
-                    if !el.just_created {
-                        count += 1;
-                        sum += self.wma.time_sum(c.timetag, now);
-                    }
-                    continue;
+                continue;
+            }
+            match self.wma_support(&c) {
+                Support::Architecture => {
+                    count += 1;
+                    sum += super::TIME_SUM_NONE;
                 }
-                match self.wma_support(&c) {
-                    Support::Architecture => {
-                        count += 1;
-                        sum += super::TIME_SUM_NONE;
-                    }
-                    // Only a support already found counts (9.6 looks at the o-set the
-                    // preference has, without making one).
-                    Support::I(p2) => {
-                        let members = self.wma_cached_o_set(p2).unwrap_or_default();
-                        for m in members {
-                            let fresh = self.wma.element(m).is_some_and(|e| e.just_created);
-                            if !fresh && seen.insert(m) {
-                                count += 1;
-                                sum += self.wma.time_sum(m, now);
-                            }
+                // Only a support already found counts (9.6 looks at the o-set the
+                // preference has, without making one).
+                Support::I(p2) => {
+                    let members = self.wma_cached_o_set(p2).unwrap_or_default();
+                    for m in members {
+                        let fresh = self.wma.element(m).is_some_and(|e| e.just_created);
+                        if !fresh && seen.insert(m) {
+                            count += 1;
+                            sum += self.wma.time_sum(m, now);
                         }
                     }
-                    Support::Item(_) | Support::O => {}
                 }
+                Support::Item(_) | Support::O => {}
             }
         }
-        let boost = if count > 0 {
+        if count > 0 {
             (sum / count as f64).floor() as u64
         } else {
             0
-        };
-        self.wma.create(wme.timetag, boost);
-        self.wma_trace_add(wme);
+        }
+    }
+
+    /// WMEs a memory (semantic or episodic) just put in working memory for a command: 9.6
+    /// makes them through an instantiation of the architecture's that tests the memory's
+    /// link, command and result WMEs and the command's WMEs (`conditions`), o-supported
+    /// when the last wave of firings was, and each starts with that boost and one
+    /// reference for its preference.
+    pub(crate) fn wma_memory_results(&mut self, results: &[WmeId], conditions: &[WmeId]) {
+        if !self.decider.last_wave_o_support {
+            return;
+        }
+        for &w in results {
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            if self.wma.element(wme.timetag).is_some() {
+                continue;
+            }
+            let boost = self.wma_initial_boost(conditions);
+            self.wma.create(wme.timetag, boost);
+            self.wma.reference(wme.timetag, 1);
+            self.wma_trace_add(&wme);
+        }
     }
 
     fn wma_cached_o_set(&self, pid: PrefId) -> Option<Vec<u64>> {
