@@ -60,11 +60,11 @@ pub fn sorted_wmes(agent: &AgentCore, id: Sym) -> Vec<Wme> {
         .enumerate()
         .filter_map(|(i, w)| {
             let wme = *agent.wm.get(w)?;
-            let made_by_epmem = agent.epmem.made(w);
-            let rank = if made_by_epmem {
-                wme.timetag
-            } else {
-                (n - i) as u64
+            let place = agent.epmem.made(w);
+            let made_by_epmem = place.is_some();
+            let rank = match place {
+                Some(k) => k as u64,
+                None => (n - i) as u64,
             };
             Some((
                 agent.symbols.text(wme.attr).into_bytes(),

@@ -74,7 +74,8 @@ pub(crate) struct LinkState {
     pub last_cmd_count: usize,
     /// The episode retrieved last (for `next` and `previous`).
     pub last_memory: Option<i64>,
-    /// The WMEs the results added.
+    /// The results' WMEs, in the order of their triples (the episode's, then the meta
+    /// results).
     pub results: Vec<WmeId>,
 }
 
@@ -135,9 +136,15 @@ impl Epmem {
         self.store.as_ref().map_or(1, |s| s.time)
     }
 
-    /// Whether episodic memory's results hold this WME.
-    pub(crate) fn made(&self, w: WmeId) -> bool {
-        !self.links.is_empty() && self.links.values().any(|l| l.results.contains(&w))
+    /// Where episodic memory's results hold this WME: its place among its command's
+    /// results, in triple order (9.6 lists a result's slot in that order).
+    pub(crate) fn made(&self, w: WmeId) -> Option<usize> {
+        if self.links.is_empty() {
+            return None;
+        }
+        self.links
+            .values()
+            .find_map(|l| l.results.iter().position(|&x| x == w))
     }
 
     /// `epmem --backup FILE`: the store as 9.6's database file.

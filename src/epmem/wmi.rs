@@ -13,6 +13,10 @@ use crate::wm::{Wme, WmeId};
 /// A state's `^epmem` link: the link, its `^command` and its `^result`.
 type Link = (Sym, Sym, Sym);
 
+/// A state with a new command: the state, its result link, its old results, and the
+/// command's WMEs (none when it was emptied).
+type NewCommand = (Sym, Sym, Vec<WmeId>, Option<Vec<Wme>>);
+
 /// A parsed `^command` (9.6's `_epmem_respond_to_cmd_parse`).
 #[derive(Debug, Default)]
 struct Command {
@@ -190,7 +194,7 @@ impl AgentCore {
         let mut wm_phase = false;
         let mut added: Vec<WmeId> = Vec::new();
         let mut removed: Vec<Wme> = Vec::new();
-        let mut work: Vec<(Sym, Sym, Sym, Vec<Wme>)> = Vec::new();
+        let mut work: Vec<NewCommand> = Vec::new();
         for (state, link) in self.epmem_states() {
             let Some((_, cmd, res)) = link else { continue };
             // Every WME under the command, breadth-first.
@@ -226,30 +230,20 @@ impl AgentCore {
             }
             wm_phase = true;
             let old = std::mem::take(&mut info.results);
-            for w in old.into_iter().rev() {
-                if let Some(x) = self.wm.get(w).copied() {
-                    removed.push(x);
-                    self.remove_wme(w);
-                }
-            }
-            if count > 0 {
-                work.push((state, cmd, res, top_level.unwrap_or_default()));
-            }
+            work.push((state, res, old, (count > 0).then(|| top_level.unwrap_or_default())));
         }
         if !wm_phase {
             return;
         }
         let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
-        for (state, _cmd, res, cmds) in work {
+        for (state, res, old, cmds) in work {
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
-            self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
-            let mut mine = Vec::new();
-            for (id, attr, value) in retrieval.into_iter().chain(meta) {
-                let w = self.wm.add(id, attr, value, false);
-                self.match_wme_now(w, (id, attr, value), false);
-                mine.push(w);
+            if let Some(cmds) = cmds {
+                self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
             }
-            added.extend(&mine);
+            let triples: Triples = retrieval.into_iter().chain(meta).collect();
+            let (mine, made) = self.epmem_place_results(res, &old, &triples, &mut removed);
+            added.extend(made);
             self.epmem.links.entry(state).or_default().results = mine;
         }
         self.decider.wme_changes += (added.len() + removed.len()) as u64;
@@ -259,12 +253,87 @@ impl AgentCore {
             }
         }
         self.epmem_trace_present_adds();
-        self.epmem_trace_present_removals();
+        // The episode the old results linked goes first, then those results, then the old
+        // `^present-id` (9.6's order).
+        self.collect_garbage();
         for wme in &removed {
             self.trace_wme(false, wme);
         }
-        self.collect_garbage();
+        self.epmem_trace_present_removals();
         self.epmem.timers.stop(wm_phase);
+    }
+
+    /// Puts a command's results (`triples`) in working memory in place of the last
+    /// command's (`old`), as 9.6's slots decide them: the slots new to this command first,
+    /// in the order of their last triples, then those the old results held, newest first;
+    /// in a slot, the later triple first. A result whose WME is there already keeps it.
+    /// Returns the results' WMEs in triple order, and those made, in the order made; the
+    /// old WMEs that go are removed, and listed in `removed`.
+    fn epmem_place_results(
+        &mut self,
+        res: Sym,
+        old: &[WmeId],
+        triples: &Triples,
+        removed: &mut Vec<Wme>,
+    ) -> (Vec<WmeId>, Vec<WmeId>) {
+        // Only the old results on the result link go with the command: the episode they
+        // linked goes with the garbage, if nothing else links it.
+        let old_wmes: Vec<(WmeId, Wme)> = old
+            .iter()
+            .filter_map(|&w| Some((w, *self.wm.get(w)?)))
+            .filter(|(_, x)| x.id == res)
+            .collect();
+        // The slots the old results held, in the order of their triples.
+        let mut held: Vec<(Sym, Sym)> = Vec::new();
+        for (_, x) in &old_wmes {
+            if !held.contains(&(x.id, x.attr)) {
+                held.push((x.id, x.attr));
+            }
+        }
+        let mut order: Vec<(usize, (Sym, Sym))> = Vec::new();
+        for (i, &(id, attr, _)) in triples.iter().enumerate() {
+            let key = (id, attr);
+            let last = !triples[i + 1..].iter().any(|t| (t.0, t.1) == key);
+            if last && !held.contains(&key) {
+                order.push((i, key));
+            }
+        }
+        let slots: Vec<(Sym, Sym)> = order
+            .into_iter()
+            .map(|(_, k)| k)
+            .chain(held.iter().rev().copied().filter(|k| triples.iter().any(|t| (t.0, t.1) == *k)))
+            .collect();
+        let mut kept: Vec<WmeId> = Vec::new();
+        let mut placed: Vec<Option<WmeId>> = vec![None; triples.len()];
+        for (i, t) in triples.iter().enumerate() {
+            let reuse = old_wmes.iter().find(|(w, x)| {
+                (x.id, x.attr, x.value) == *t && !kept.contains(w)
+            });
+            if let Some(&(w, _)) = reuse {
+                kept.push(w);
+                placed[i] = Some(w);
+            }
+        }
+        for &(w, x) in &old_wmes {
+            if !kept.contains(&w) {
+                removed.push(x);
+                self.remove_wme(w);
+            }
+        }
+        let mut made = Vec::new();
+        for key in slots {
+            for i in (0..triples.len()).rev() {
+                let (id, attr, value) = triples[i];
+                if (id, attr) != key || placed[i].is_some() {
+                    continue;
+                }
+                let w = self.wm.add(id, attr, value, false);
+                self.match_wme_now(w, (id, attr, value), false);
+                placed[i] = Some(w);
+                made.push(w);
+            }
+        }
+        (placed.into_iter().flatten().collect(), made)
     }
 
     /// Reads and carries out one state's command.
