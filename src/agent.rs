@@ -377,9 +377,12 @@ pub enum Added {
     Duplicate {
         of: String,
     },
-    /// The network cannot test the rule as its conditions were ordered: not added.
+    /// The network cannot test the rule as its conditions were ordered, or its matches
+    /// would pass the partial-match ceiling: not added.
     Rejected {
         reason: String,
+        /// What a diagnostic's label says of it.
+        why: &'static str,
     },
 }
 
@@ -687,12 +690,10 @@ impl AgentCore {
                     .is_some_and(|w| w != v)
             })
         };
-        let id = match self.rete.add_production(
-            &p,
-            &mut self.symbols,
-            &mut self.matches,
-            &apart,
-        ) {
+        self.rete.token_budget = usize::try_from(self.settings.limits.tokens).unwrap_or(usize::MAX);
+        let added = self.rete.add_production(&p, &mut self.symbols, &mut self.matches, &apart);
+        self.rete.token_budget = 0;
+        let id = match added {
             Ok(id) => id,
             Err(crate::rete::BuildError::Duplicate(of)) => {
                 return Added::Duplicate {
@@ -705,6 +706,13 @@ impl AgentCore {
             Err(e @ crate::rete::BuildError::UnboundInNegation(_)) => {
                 return Added::Rejected {
                     reason: e.to_string(),
+                    why: "its conditions are not all connected",
+                };
+            }
+            Err(e @ crate::rete::BuildError::MatchCeiling(_)) => {
+                return Added::Rejected {
+                    reason: format!("Rule {} not added: {e}", p.name),
+                    why: "a ceiling on the matcher refuses it",
                 };
             }
         };

@@ -333,6 +333,43 @@ fn one_phases_additions_stop_at_the_partial_match_ceiling() {
     assert!(agent.wme_count() >= held, "{} < {held}", agent.wme_count());
 }
 
+/// A fuzzed rule (`production_parser`, out of memory at load): conditions that test
+/// nothing but an identifier, `(<a>)`, each match every WME, so matching the new rule
+/// against working memory made their cross product (7.8 million partial matches from 13
+/// WMEs, 2 GB, before any run). Under a partial-match ceiling such a rule is refused with
+/// a message, and the agent goes on without it.
+#[test]
+fn a_rule_whose_first_matches_pass_the_ceiling_is_refused() {
+    let rule =
+        "sp {cross (state <s> ^superstate nil) (<a>) (<b>) (<c>) (<d>) (<e>) --> (<s> ^x y)}";
+    let mut agent = Agent::new("fuzzed");
+    agent.set_limits(Limits {
+        tokens: 10_000,
+        ..Limits::default()
+    });
+    let started = std::time::Instant::now();
+    let refused = agent.execute(rule).unwrap_err().to_string();
+    assert!(
+        refused.contains("not added") && refused.contains("(limits --tokens)"),
+        "{refused}"
+    );
+    assert!(
+        started.elapsed().as_secs_f64() < 2.0,
+        "{:?}",
+        started.elapsed()
+    );
+    let shown = agent
+        .execute("print cross")
+        .unwrap_or_else(|e| e.to_string());
+    assert!(shown.contains("No production named cross"), "{shown}");
+    agent.check_invariants().unwrap();
+    agent.run(2, RunUnit::Decisions).unwrap();
+    agent.check_invariants().unwrap();
+    // Without the ceiling the same rule loads (and matches).
+    let mut free = Agent::new("free");
+    free.execute(rule).unwrap();
+}
+
 /// Every pair of things asks for the same WME: preferences pile up with the square of the
 /// things while working memory barely grows, and the preferences ceiling stops the run.
 #[test]

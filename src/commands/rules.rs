@@ -75,10 +75,8 @@ impl Interpreter {
                 );
                 Ok(String::new())
             }
-            Added::Rejected { reason } => {
-                let d = Diagnostic::error(reason)
-                    .at(ast.name_span)
-                    .with_label("its conditions are not all connected");
+            Added::Rejected { reason, why } => {
+                let d = Diagnostic::error(reason).at(ast.name_span).with_label(why);
                 Err(self.sp_failed(d, Some(&name)))
             }
         }

@@ -26,6 +26,9 @@ pub enum BuildError {
     /// 9.6 reports the same and then cannot go on; the rule is refused here.
     #[error("Rete build found test of unbound var: {0}")]
     UnboundInNegation(String),
+    /// Matching the production against working memory passed the partial-match budget.
+    #[error("its matches would take the matcher past {0} partial matches (limits --tokens)")]
+    MatchCeiling(usize),
 }
 
 /// The first variable that a negation (or a condition of a conjunctive negation) compares
@@ -190,6 +193,7 @@ impl Rete {
             return Err(BuildError::UnboundInNegation(v));
         }
         let pid = ProdId(self.prods.len() as u32);
+        self.fill_aborted = false;
         let mut bindings = Bindings::default();
         let mut cond_nodes = vec![NodeId::NONE; p.conditions.len()];
         let mut positives = 0;
@@ -214,6 +218,7 @@ impl Rete {
                 _ => None,
             });
         if let Some(twin) = twin {
+            self.fill_aborted = false;
             self.delete_node_and_unused_ancestors(parent, syms, sink);
             return Err(BuildError::Duplicate(twin));
         }
@@ -228,7 +233,19 @@ impl Rete {
             action_key: action_key.into(),
         }));
         self.fill_new_node(pnode, syms, sink);
+        if std::mem::take(&mut self.fill_aborted) {
+            self.excise(pid, syms, sink);
+            return Err(BuildError::MatchCeiling(self.token_budget));
+        }
         Ok(pid)
+    }
+
+    /// Whether a new node's filling has passed the token budget (which it then stops).
+    fn fill_over_budget(&mut self) -> bool {
+        if self.fill_aborted || (self.token_budget > 0 && self.token_total() > self.token_budget) {
+            self.fill_aborted = true;
+        }
+        self.fill_aborted
     }
 
     fn next_depth(&self, cur: Cur) -> u32 {
@@ -602,14 +619,22 @@ impl Rete {
             return;
         }
         let pkind = self.nodes[parent].kind.clone();
+        // Each activation below makes at most one token in the new node, which has no
+        // children yet: checking the budget before each bounds the filling.
         match pkind {
             Kind::Root | Kind::Memory => {
                 for t in self.node_tokens(parent).into_iter().rev() {
+                    if self.fill_over_budget() {
+                        return;
+                    }
                     self.left_activation(n, t, NIL_WME, syms, sink);
                 }
             }
             Kind::Negative { .. } | Kind::Ncc { .. } => {
                 for t in self.node_tokens(parent).into_iter().rev() {
+                    if self.fill_over_budget() {
+                        return;
+                    }
                     if self.links[t].results == NIL {
                         self.left_activation(n, t, NIL_WME, syms, sink);
                     }
@@ -621,6 +646,9 @@ impl Rete {
                 let items = self.amem_items(amem);
                 for t in self.live_tokens(grand).into_iter().rev() {
                     for &w in items.iter().rev() {
+                        if self.fill_over_budget() {
+                            return;
+                        }
                         if self.tokens[t].alive
                             && self.tests_pass(self.test_lists.get(tests), t, w, depth, syms)
                         {

@@ -496,6 +496,11 @@ pub struct Rete {
     /// theirs in that table order (see `AgentCore::match_wme_now`).
     pub(crate) mark_alphas: bool,
     pub(crate) alpha_marks: Vec<(u8, usize)>,
+    /// The most partial matches a production's first matching may bring the network to
+    /// (0: no limit): past it the new nodes stop filling and the production is refused.
+    pub(crate) token_budget: usize,
+    /// A new node stopped filling at the budget while this production was added.
+    fill_aborted: bool,
 }
 
 impl Default for Rete {
@@ -547,6 +552,8 @@ impl Rete {
             left_activations: 0,
             tokens_made: 0,
             mark_alphas: false,
+            token_budget: 0,
+            fill_aborted: false,
             alpha_marks: Vec::new(),
         };
         r.root = r.new_node(Kind::Root, NodeId::NONE, 0);
