@@ -290,17 +290,16 @@ impl AgentCore {
                 held.push((x.id, x.attr));
             }
         }
-        let mut order: Vec<(usize, (Sym, Sym))> = Vec::new();
+        let mut fresh: Vec<(Sym, Sym)> = Vec::new();
         for (i, &(id, attr, _)) in triples.iter().enumerate() {
             let key = (id, attr);
             let last = !triples[i + 1..].iter().any(|t| (t.0, t.1) == key);
             if last && !held.contains(&key) {
-                order.push((i, key));
+                fresh.push(key);
             }
         }
-        let slots: Vec<(Sym, Sym)> = order
+        let slots: Vec<(Sym, Sym)> = fresh
             .into_iter()
-            .map(|(_, k)| k)
             .chain(held.iter().rev().copied().filter(|k| triples.iter().any(|t| (t.0, t.1) == *k)))
             .collect();
         let mut kept: Vec<WmeId> = Vec::new();
