@@ -322,6 +322,8 @@ impl AgentCore {
         if !self.decider.last_wave_o_support {
             return;
         }
+        // One firing made them all: they share its boost.
+        let boost = self.wma_initial_boost(conditions);
         for &w in results {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
@@ -329,7 +331,6 @@ impl AgentCore {
             if self.wma.element(wme.timetag).is_some() {
                 continue;
             }
-            let boost = self.wma_initial_boost(conditions);
             self.wma.create(wme.timetag, boost);
             self.wma.reference(wme.timetag, 1);
             self.wma_trace_add(&wme);
