@@ -103,8 +103,15 @@ def main():
     os.chdir(ROOT)
     if sys.argv[1:2] == ["--one"]:
         name, path = sys.argv[2], sys.argv[3]
+        # The kernel writes some debugging lines straight to the process's standard output
+        # (`trace -A`: "in assert_new_preferences:"), not to the agent's print stream: they
+        # go to /dev/null, and the golden to the real standard output.
+        golden_out = os.fdopen(os.dup(1), "w")
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 1)
         kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
-        sys.stdout.write(golden_text(kernel, name, commands_of(path)))
+        golden_out.write(golden_text(kernel, name, commands_of(path)))
+        golden_out.flush()
         kernel.Shutdown()
         return
     check = "--check" in sys.argv[1:]

@@ -725,6 +725,8 @@ impl AgentCore {
         self.rl.rule_added(id, &production);
         self.productions
             .insert(ByName(production.clone()), Loaded { production, id });
+        // 9.6's matcher queues the new rule's matches as it builds the rule.
+        self.trace_queued_matches_now();
         if replaced {
             Added::Replaced
         } else {
@@ -884,6 +886,7 @@ impl AgentCore {
         self.rete.mark_alphas = self.watches_justification_negations();
         self.rete
             .add_wme(w, fields, acceptable, &self.symbols, &mut self.matches);
+        self.trace_queued_matches_now();
         self.justification_wme_added(w);
         if self.events.any() {
             if let Some(wme) = self.wm.get(w).copied() {
@@ -918,6 +921,7 @@ impl AgentCore {
         let rule_retractions = self.matches.retractions.len();
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
         let wme = self.wm.remove(w)?;
+        self.trace_queued_matches_now();
         self.justification_wme_removed(w, wme.timetag, rule_retractions);
         if self.wma.on() {
             self.wma_wme_removed(&wme);

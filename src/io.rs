@@ -326,6 +326,7 @@ impl AgentCore {
             }
         }
         let batch = self.rete.begin_doomed_batch(&added, &removed);
+        self.mark_queued_matches();
         for change in queue.iter().rev() {
             let InputChange::Add(w, tt) = *change else {
                 continue;

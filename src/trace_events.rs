@@ -49,6 +49,20 @@ pub(crate) enum TraceEvent<'a> {
     /// One of a traced firing's or retraction's preferences (`trace --timetags` or
     /// `--fullwmes`), at its identifier's level.
     InstantiationPreference { pref: &'a Preference, level: u32 },
+    /// The matcher queues a new match of a rule for firing, o-supported (`ms_o_assertions`)
+    /// or not (`trace --assertions`).
+    MatchQueued { rule: &'a str, o_support: bool },
+    /// An instantiation's preferences go into preference memory (`trace --assertions`).
+    AssertingInstantiation { rule: &'a str },
+    /// An instantiation's preferences are in preference memory (`trace --assertions`).
+    InstantiationAsserted,
+    /// A queued match fires: its instantiation is made, in `state` at `level`
+    /// (`trace --assertions`).
+    NewMatch {
+        rule: &'a str,
+        state: Option<Sym>,
+        level: u32,
+    },
     /// A traced rule fires (`trace --rules` and the other firing settings).
     Firing { rule: &'a str },
     /// A traced rule or justification retracts.

@@ -79,6 +79,22 @@ impl TraceText96 {
                 pref_text(out, symbols, pref, level, None);
                 out.push('\n');
             }
+            TraceEvent::MatchQueued { rule, o_support } => {
+                fresh_line(out, line_start);
+                let list = if o_support { 'o' } else { 'i' };
+                let _ = write!(out, "   RETE: putting [{rule}] into ms_{list}_assertions");
+            }
+            TraceEvent::AssertingInstantiation { rule } => {
+                let _ = write!(out, "\n      asserting instantiation: {rule}");
+            }
+            TraceEvent::InstantiationAsserted => fresh_line(out, line_start),
+            TraceEvent::NewMatch { rule, state, level } => {
+                let state = state.map_or_else(|| "nil".to_string(), |g| symbols.text(g));
+                let _ = writeln!(
+                    out,
+                    "\nNew match of {rule} in state {state} (level {level}).  Creating instantiation."
+                );
+            }
             TraceEvent::Firing { rule } => {
                 let _ = write!(out, "\nFiring {rule}\n");
             }

@@ -54,6 +54,8 @@ impl Interpreter {
         if p.flags.explain {
             self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
         }
+        // The matcher may trace the rule's first matches (`trace --assertions`).
+        self.agent.output_line_start = self.print_col.get() == 0;
         match self.agent.add_production(p) {
             Added::New => {
                 self.count_loaded();

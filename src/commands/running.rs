@@ -219,6 +219,7 @@ impl Interpreter {
     /// `init-soar`'s work: the agent starts again (the initial state is traced, input
     /// WMEs are put back) and the program's listeners hear of it.
     pub(super) fn reinitialize(&mut self) {
+        self.agent.output_line_start = self.print_col.get() == 0;
         self.agent.init_soar();
         self.agent.print_initial_state();
         self.agent.report_break_hits();

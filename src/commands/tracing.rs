@@ -268,6 +268,11 @@ impl Interpreter {
             let at = ctx.cmd.span;
             Diagnostic::error(m).at(at).with_label("in this command")
         })?;
+        // The matches queued so far were queued untraced (9.6 traces a match as it is
+        // queued, never later).
+        if !self.agent.settings.trace.assertions {
+            self.agent.classify_new_matches();
+        }
         let trace = &mut self.agent.settings.trace;
         let mut level = None;
         // What each flag was set to, reported in 9.6's order.

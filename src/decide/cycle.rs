@@ -296,6 +296,7 @@ impl AgentCore {
                 self.apply_input_changes();
                 self.epmem_trace_present();
                 self.classify_new_matches();
+                self.end_queued_matches();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Input));
                 self.decider.phase = Some(Phase::Propose);
             }
@@ -333,6 +334,7 @@ impl AgentCore {
                 self.decide_context_slots();
                 self.reduce_exploration_parameters();
                 self.classify_new_matches();
+                self.end_queued_matches();
                 // With `epmem phase selection`, after the decision (9.6's place for it).
                 self.epmem_selection_phase();
                 self.trace_phase(TraceEvent::PhaseEnd(Phase::Decide));
@@ -481,11 +483,14 @@ impl AgentCore {
         self.inputs.queue.clear();
         let all = self.wm.all();
         // 9.6 clears the decay elements without the WMA trace's `remove` lines.
+        // Nor does it queue the matches the removals make (`trace --assertions`).
         let wma_traced = std::mem::replace(&mut self.settings.trace.wma, false);
+        let assertions_traced = std::mem::replace(&mut self.settings.trace.assertions, false);
         for w in all.into_iter().rev() {
             self.remove_wme(w);
         }
         self.settings.trace.wma = wma_traced;
+        self.settings.trace.assertions = assertions_traced;
         self.matches.clear();
         // Tracking stays on (its rows go), as in 9.6.
         let tracking = self.decider.cycle_stats.tracking;
@@ -514,6 +519,7 @@ impl AgentCore {
             &mut self.matches,
             Some(old),
         );
+        self.trace_queued_matches_now();
         if reopen {
             self.epmem_attach();
         }

@@ -92,6 +92,7 @@ impl AgentCore {
                         self.rl_store(goal.state, o);
                         self.rl_trace_record(goal.state, goal.level, &cands, &values, chosen, policy);
                     }
+                    self.mark_queued_matches();
                     let w = self.add_wme(goal.state, op, o, false);
                     if let Some(wme) = self.wm.get(w).copied() {
                         self.trace_wme(true, &wme);

@@ -17,6 +17,8 @@ impl AgentCore {
     /// operator (observed on 9.6).
     pub(crate) fn classify_new_matches(&mut self) {
         self.matches.compact();
+        let at = self.decider.queued_matches_at;
+        let mut queued = String::new();
         let n = self.matches.assertions.len();
         for i in 0..n {
             let key = self.matches.assertions[i];
@@ -31,8 +33,63 @@ impl AgentCore {
                 self.write_event(&mut out, &TraceEvent::MixedOperatorElaborations { rule });
                 self.output = out;
             }
+            if self.settings.trace.assertions {
+                self.trace_queued_match(&mut queued, at, key.0, s.o_support);
+            }
             self.matches.support.insert(key, s.o_support);
         }
+        if !queued.is_empty() {
+            match at.filter(|&a| a <= self.output.len()) {
+                Some(a) => {
+                    self.output.insert_str(a, &queued);
+                    self.decider.queued_matches_at = Some(a + queued.len());
+                }
+                None => self.output.push_str(&queued),
+            }
+        }
+    }
+
+    /// With `trace --assertions`, the matches a WME change just made are classified at
+    /// once, as 9.6's matcher queues them, so that each gets its `RETE: putting` line
+    /// even when it goes again before the phase ends.
+    #[inline]
+    pub(crate) fn trace_queued_matches_now(&mut self) {
+        if self.settings.trace.assertions && self.matches.has_assertions() {
+            self.classify_new_matches();
+        }
+    }
+
+    /// Marks where the print stream stands as the place of the `RETE: putting` lines of
+    /// the matches the changes about to be traced make, unless a place is marked already:
+    /// 9.6 changes the matcher for a whole batch of changes before it traces them.
+    pub(crate) fn mark_queued_matches(&mut self) {
+        if self.settings.trace.assertions && self.decider.queued_matches_at.is_none() {
+            self.decider.queued_matches_at = Some(self.output.len());
+        }
+    }
+
+    /// Ends the batch of changes [`Self::mark_queued_matches`] began: the `RETE: putting`
+    /// lines that follow go where the print stream stands.
+    pub(crate) fn end_queued_matches(&mut self) {
+        self.decider.queued_matches_at = None;
+    }
+
+    /// `RETE: putting [rule] into ms_o_assertions` (`trace --assertions`) into `queued`,
+    /// the lines that go at `at` in the print stream (at its end when `None`): 9.6 prints
+    /// them as the matcher queues the match, before the phase's `=>WM:` lines.
+    fn trace_queued_match(&self, queued: &mut String, at: Option<usize>, p: ProdId, o: bool) {
+        // Whether the stream stands at a line's start where the lines go.
+        let line_start = match at.filter(|&a| a <= self.output.len()) {
+            _ if !queued.is_empty() => false,
+            Some(0) => self.output_line_start,
+            Some(a) => self.output.as_bytes()[a - 1] == b'\n',
+            None => self.at_line_start(),
+        };
+        let event = TraceEvent::MatchQueued {
+            rule: self.production_name(p),
+            o_support: o,
+        };
+        self.trace_text.write(queued, line_start, &self.symbols, &event);
     }
 
     /// One elaboration cycle: the pending matches of one support type fire at the active

@@ -9,6 +9,7 @@ use super::state::{InstId, Instantiation, PrefId, Preference};
 use crate::agent::AgentCore;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
+use crate::trace_events::TraceEvent;
 use crate::wm::WmeId;
 use std::rc::Rc;
 
@@ -30,6 +31,9 @@ impl AgentCore {
         }
         counts[p.0 as usize] += 1;
         self.send_rule_event(p, false);
+        if self.settings.trace.assertions {
+            self.trace_new_match(p, t, new_prefs.len());
+        }
         let mut traced_wmes = Vec::new();
         let traced = self.settings.trace.firings_of(&rule.flags)
             || (!self.watched_rules.is_empty() && self.watched_rules.contains(self.production_name(p)));
@@ -214,6 +218,23 @@ impl AgentCore {
             }
         }
         self.decider.rhs_new_ids = new_ids;
+    }
+
+    /// `New match of rule in state S1 (level 1).  Creating instantiation.` (`trace
+    /// --assertions`), and the instantiation noted for its `asserting` line; its
+    /// preferences start at `first` among the new ones.
+    fn trace_new_match(&mut self, p: ProdId, t: TokId, first: usize) {
+        let state = crate::decide::support::match_goal(self, p, t);
+        let level = state
+            .and_then(|g| self.symbols.id_data(g))
+            .map_or(1, |d| d.level);
+        let rule = self.production_name(p).to_string();
+        self.emit(&TraceEvent::NewMatch {
+            rule: &rule,
+            state,
+            level,
+        });
+        self.decider.instantiations_made.push((rule, first));
     }
 
     /// A rule's compiled actions (compiled at its first firing); `None` for a rule that

@@ -205,6 +205,12 @@ pub struct DecideState {
     /// each elaboration cycle, and for the apply phase as it begins. The memories' results
     /// take their support from it.
     pub last_wave_o_support: bool,
+    /// Where in the print stream the next `RETE: putting` lines go (`trace
+    /// --assertions`): before the `=>WM:` lines of the changes that made the matches.
+    pub queued_matches_at: Option<usize>,
+    /// The instantiations an elaboration cycle's goal level made, oldest first, each with
+    /// where its preferences start among the new ones (`trace --assertions` only).
+    pub instantiations_made: Vec<(String, usize)>,
     pub wm_base: (u64, u64),
     pub wm_size_sum: u64,
     pub wm_size_samples: u64,

@@ -333,6 +333,7 @@ impl AgentCore {
             self.decider.depth_exceeded = true;
         }
         self.decider.wme_changes += wmes.len() as u64;
+        self.mark_queued_matches();
         for &w in wmes.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
                 self.trace_wme(true, &wme);

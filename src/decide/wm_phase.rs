@@ -11,6 +11,7 @@ use super::slot::SlotId;
 use super::state::{PrefId, Preference, Slot};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
+use crate::trace_events::TraceEvent;
 use crate::wm::WmeId;
 use rustc_hash::FxHashSet;
 
@@ -66,29 +67,48 @@ impl AgentCore {
                 self.mark_changed(key, slot);
             }
         }
-        for &pid in new_prefs.iter().rev() {
-            let p = &self.decider.prefs[pid];
-            if !p.alive {
-                continue;
+        // Instantiations newest first, each one's preferences newest first; `trace
+        // --assertions` names each instantiation before its preferences.
+        let made = std::mem::take(&mut self.decider.instantiations_made);
+        if made.is_empty() {
+            for &pid in new_prefs.iter().rev() {
+                self.assert_preference(pid, tracing);
             }
-            let key = (p.id, p.attr);
-            let value = p.value;
-            if self.already_top_o_supported(pid) {
-                if tracing {
-                    self.trace_ignored_pref(pid);
-                }
-                self.decider.free_pref(pid);
-                continue;
+        }
+        for (k, (rule, start)) in made.iter().enumerate().rev() {
+            self.emit(&TraceEvent::AssertingInstantiation { rule });
+            let end = made.get(k + 1).map_or(new_prefs.len(), |next| next.1);
+            for &pid in new_prefs[(*start).min(end)..end].iter().rev() {
+                self.assert_preference(pid, tracing);
             }
+            self.emit(&TraceEvent::InstantiationAsserted);
+        }
+    }
+
+    /// One new preference into its slot (`+` traced when `tracing`), unless it is gone or
+    /// its value's top-level o-support is there already.
+    fn assert_preference(&mut self, pid: PrefId, tracing: bool) {
+        let p = &self.decider.prefs[pid];
+        if !p.alive {
+            return;
+        }
+        let key = (p.id, p.attr);
+        let value = p.value;
+        if self.already_top_o_supported(pid) {
             if tracing {
-                self.trace_pref('+', pid);
+                self.trace_ignored_pref(pid);
             }
-            let slot = self.decider.slots.entry_id(key);
-            self.decider.slots.slot_mut(slot).push(pid, value);
-            self.mark_changed(key, Some(slot));
-            if self.wma.on() {
-                self.wma_preference_added(pid);
-            }
+            self.decider.free_pref(pid);
+            return;
+        }
+        if tracing {
+            self.trace_pref('+', pid);
+        }
+        let slot = self.decider.slots.entry_id(key);
+        self.decider.slots.slot_mut(slot).push(pid, value);
+        self.mark_changed(key, Some(slot));
+        if self.wma.on() {
+            self.wma_preference_added(pid);
         }
     }
 
@@ -245,6 +265,7 @@ impl AgentCore {
         // Where the `=>WM:` lines start: 9.6 warns there of a WME this phase adds and
         // removes (see below).
         let adds_at = self.output.len();
+        self.mark_queued_matches();
         let mut traced_adds = Vec::new();
         for (k, &w) in added.iter().enumerate().rev() {
             // Past the partial-match ceiling, the rest of the batch waits unmatched: one
@@ -289,13 +310,18 @@ impl AgentCore {
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
         // 9.6's warning comes after the garbage's `-` lines.
+        // The `RETE: putting` lines so far stand before the `=>WM:` lines; the garbage's
+        // go before them, and the warning after them.
+        let queued_len = self.decider.queued_matches_at.map_or(0, |at| at - adds_at);
+        self.end_queued_matches();
         let gc_lines = self.collect_garbage_traced_at(Some(adds_at));
         if self.settings.trace.wmes {
-            self.warn_added_and_removed(&traced_adds, adds_at + gc_lines);
+            self.warn_added_and_removed(&traced_adds, adds_at + gc_lines + queued_len);
         }
         self.trace_removed_wmes(decided);
         self.epmem_trace_present_removals();
         self.classify_new_matches();
+        self.end_queued_matches();
         // Impasses are re-checked once i-supported processing is quiescent (9.6 checks at
         // minor quiescence): a result that ends a tie removes the tie's substate before the
         // phase ends.

@@ -242,7 +242,12 @@ impl AgentCore {
                 let prod = self.build_learned_rule(bt, &results, name.clone(), true);
                 let constraints = super::stats::operational_constraints(&prod);
                 self.learn.stats.note_identities(bt);
-                match self.add_production(prod) {
+                // The learned rule's match that its own instantiation takes over below is
+                // not queued (9.6 refracts it): its other matches are traced after that.
+                let traced = std::mem::replace(&mut self.settings.trace.assertions, false);
+                let added = self.add_production(prod);
+                self.settings.trace.assertions = traced;
+                match added {
                     // A learned rule's conditions are connected to its state.
                     Added::Rejected { .. } => {}
                     Added::Duplicate { .. } => {
@@ -275,6 +280,7 @@ impl AgentCore {
         let refracted = chunk
             .as_ref()
             .and_then(|(pid, _)| self.take_refracted_match(*pid, &ground_wmes));
+        self.trace_queued_matches_now();
         let chunk_match = chunk
             .as_ref()
             .zip(refracted)
@@ -353,6 +359,11 @@ impl AgentCore {
                 backtraced: Default::default(),
             }),
         };
+        if self.settings.trace.assertions {
+            self.decider
+                .instantiations_made
+                .push((name.clone(), new_prefs.len()));
+        }
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
             let mut p = self.decider.prefs[r].clone();
