@@ -387,3 +387,21 @@ fn a_run_past_its_preference_ceiling_stops() {
     let listing = agent.execute("limits").unwrap();
     assert!(listing.contains("preferences           3000"), "{listing}");
 }
+
+/// Another fuzzed rule of the same shape (`production_parser`, a timeout under
+/// instrumentation): its first cycle alone made 8,472 firings and 101,664 preferences.
+/// The cycle stops firing once its preferences pass their ceiling.
+#[test]
+fn one_cycles_firings_stop_at_the_preference_ceiling() {
+    let mut agent = under_fuzz_ceilings(
+        "sp {square (state <s> ^superstate <ss>) (<ss> ^<v>) (<ss> ^<v> -^missing)
+             --> (<ss> ^res2 <v> ^th-tce 500 ^min-position.error 10 0 ^a 1 ^b 2 ^c 3
+                  ^d 4 ^e 5 ^f 6 ^g 7 ^h 8)}",
+    );
+    let r = agent.run(3, RunUnit::Decisions).unwrap();
+    assert_eq!(r.stop, StopReason::CeilingReached);
+    assert!(r.firings < 2_000, "{} firings", r.firings);
+    agent.check_invariants().unwrap();
+    let again = agent.run(1, RunUnit::Decisions).unwrap();
+    assert_eq!(again.stop, StopReason::CeilingReached);
+}

@@ -16,6 +16,21 @@ impl AgentCore {
         limit > 0 && self.decider.live_prefs() as u64 > limit
     }
 
+    /// The run met the preference ceiling with `count` preferences (held at some moment
+    /// of the cycle): it stops as at any ceiling.
+    pub(crate) fn preference_ceiling_reached(&mut self, count: u64) {
+        if self.decider.ceiling.is_some() {
+            return;
+        }
+        let hit = Ceiling::Preferences {
+            count,
+            limit: self.settings.limits.preferences,
+        };
+        self.output.push_str(&hit.message());
+        self.decider.ceiling = Some(hit);
+        self.decider.stop_requested = true;
+    }
+
     /// Whether the run has met a ceiling: the first time, the trace says which and the run
     /// is asked to stop (it stops where an interrupt would, and `run` may go on later).
     pub(crate) fn ceiling_reached(&mut self) -> bool {

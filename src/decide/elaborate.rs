@@ -196,6 +196,9 @@ impl AgentCore {
         if top.is_none() {
             self.inner_elaboration_pass(None);
         }
+        // Past the preference ceiling the rest of the cycle's matches wait: one cycle of a
+        // rule that joins a state's WMEs with themselves can make a hundred thousand.
+        let mut over_ceiling = None;
         while let Some(l) = level {
             let change_level = next_change;
             self.inner_elaboration_pass(Some(l));
@@ -214,6 +217,10 @@ impl AgentCore {
                 self.matches.taken(p, t);
                 // A halt ends the run after this elaboration cycle: the rest still fires.
                 self.fire(p, t, o_support, &mut new_prefs);
+                if self.preferences_over_ceiling() {
+                    over_ceiling = Some(self.decider.live_prefs() as u64);
+                    break;
+                }
             }
             if exist && l > next_change {
                 next_change = l;
@@ -222,6 +229,9 @@ impl AgentCore {
             // `+` lines before `Retracting`), which sets the order slots change in.
             self.assert_preferences(&new_prefs);
             new_prefs.clear();
+            if over_ceiling.is_some() {
+                break;
+            }
             self.queue_new_lower_matches(l, apply, &mut queued, &mut levels);
             level = levels.iter().copied().find(|&x| x > l);
         }
@@ -279,6 +289,12 @@ impl AgentCore {
         // Firings past the preference ceiling stop before their changes reach the matcher,
         // where one cycle's worth can exhaust memory; the slots keep their changes for the
         // run that goes on.
+        if let Some(count) = over_ceiling {
+            // The cycle's retractions may have brought the count down again: the run stops
+            // all the same, or it would go on a firing a cycle.
+            self.preference_ceiling_reached(count);
+            return true;
+        }
         if self.preferences_over_ceiling() {
             self.ceiling_reached();
             return true;
