@@ -749,6 +749,14 @@ impl AgentCore {
         }
     }
 
+    /// Takes the live justifications out of the rules' listing (`excise --all`), their
+    /// instantiations left as they are; returns how many there were.
+    pub fn excise_justifications(&mut self) -> usize {
+        let n = self.learn.justifications.len();
+        self.learn.justifications.clear();
+        n
+    }
+
     pub fn excise_all(&mut self) -> usize {
         let names: Vec<String> = self.productions.keys().map(|k| k.0.name.clone()).collect();
         for n in &names {

@@ -184,7 +184,11 @@ impl Interpreter {
             for name in &names {
                 self.report.note_excised(name);
             }
-            return Ok(excised_text(n - templates));
+            // The live justifications are excised and counted too; their instantiations
+            // stay in preference memory, and so do the results they support (checked on
+            // soar-sml 9.6.5: agent learn-justification keeps its i-supported `^isup`).
+            let justifications = self.agent.excise_justifications();
+            return Ok(excised_text(n - templates + justifications));
         }
         if parsed.has("rl") && parsed.options.len() == 1 && parsed.args.is_empty() {
             // The RL rules (Soar manual, ch. 5, "Reinforcement Learning"), newest first;
