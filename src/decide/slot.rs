@@ -334,7 +334,15 @@ impl Slots {
             .push(key.1);
         // A freed place holds an emptied slot (with its room) or a default one.
         let id = match self.free.pop() {
-            Some(id) => id,
+            // A place emptied by `remove` holds a slot without room: a spare one has some.
+            Some(id) => {
+                if self.arena[id].prefs.capacity() == 0 {
+                    if let Some(spare) = self.spare.pop() {
+                        self.arena[id] = spare;
+                    }
+                }
+                id
+            }
             None => {
                 self.arena.push(self.spare.pop().unwrap_or_default());
                 self.gens.push(0);
