@@ -1,7 +1,7 @@
 //! `run`, `soar init`, `firing-counts` and `stats` over the decision cycle (Soar manual,
 //! ch. 9, `run`, `soar`, `production`, `stats`).
 
-use super::options::{self, opt};
+use super::options::{self, opt, opt_arg};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::decide::cycle::RunUnit;
 use crate::source::Diagnostic;
@@ -52,6 +52,7 @@ impl Interpreter {
             opt('u', "update"),
             opt('n', "noupdate"),
             opt('g', "goal"),
+            opt_arg('i', "interleave"),
         ];
         let parsed = options::parse(args, &specs).map_err(|m| ctx.error(m))?;
         if parsed.args.len() > 1 {
@@ -80,6 +81,9 @@ impl Interpreter {
         } else {
             RunUnit::Forever
         };
+        if let Some(step) = parsed.value("interleave") {
+            check_interleave(step, unit).map_err(|m| ctx.error(m))?;
+        }
         // A count of 0 is an error but for decisions, where it runs on to the stop phase
         // (checked on the official kernel).
         if count == Some(0) && unit != RunUnit::Decisions {
@@ -262,4 +266,24 @@ impl Interpreter {
             .map(|(n, name)| format!("{n:>6}:  {name}\n"))
             .collect())
     }
+}
+
+/// `run -i e|p|d|o`: the step by which the kernel interleaves its agents' runs. With one
+/// agent it changes nothing, but 9.6 checks it: a step of the run's unit or finer, where a
+/// phase run takes phases only and an elaboration run elaborations only (checked on
+/// soar-sml 9.6.5).
+fn check_interleave(step: &str, unit: RunUnit) -> Result<(), String> {
+    let allowed: &[&str] = match unit {
+        RunUnit::Elaborations => &["e"],
+        RunUnit::Phases => &["p"],
+        RunUnit::Decisions => &["e", "p", "d"],
+        RunUnit::OutputCycles | RunUnit::Forever => &["e", "p", "d", "o"],
+    };
+    if !["e", "p", "d", "o"].contains(&step) {
+        return Err(format!("Invalid interleave switch: {step}"));
+    }
+    if !allowed.contains(&step) {
+        return Err("Run type and interleave setting incompatible.".to_string());
+    }
+    Ok(())
 }
