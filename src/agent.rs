@@ -749,6 +749,12 @@ impl AgentCore {
         }
     }
 
+    /// Whether an identifier is still in working memory: a goal, or an object with WMEs
+    /// or one a WME links to. One that garbage collection took is gone, as 9.6 frees it.
+    pub(crate) fn id_in_memory(&self, id: Sym) -> bool {
+        self.symbols.is_goal(id) || self.wm.has_wmes(id) || !self.wm.parent_wmes(id).is_empty()
+    }
+
     /// Takes the live justifications out of the rules' listing (`excise --all`), their
     /// instantiations left as they are; returns how many there were.
     pub fn excise_justifications(&mut self) -> usize {

@@ -439,6 +439,11 @@ fn float_tok(lexeme: &str) -> Tok {
     Tok::Float(lexeme.parse::<f64>().unwrap_or(0.0) + 0.0)
 }
 
+/// Whether `c` is one of Soar's symbol constituents (the `Constituent` lexeme above).
+pub fn is_constituent(c: char) -> bool {
+    c.is_ascii_alphanumeric() || "$%&*+-/:<=>?_@".contains(c)
+}
+
 /// `[A-Za-z][0-9]+`: lexes as an identifier in Soar; a constant with its letter upper-cased
 /// inside productions, as Soar's parser makes it.
 pub fn is_identifier_shaped(s: &str) -> bool {

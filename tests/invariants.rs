@@ -76,3 +76,30 @@ fn an_object_whose_link_failed_stays_and_is_no_violation() {
     assert_eq!(agent.execute("print v1").expect("print"), "(V1 ^a y)\n");
     assert_eq!(agent.check_invariants(), Ok(()));
 }
+
+/// Found by the `command_line` fuzz target: `wm remove` of the WME that alone linked a
+/// substate's `^epmem` object left the object's WMEs in working memory, linked to no goal.
+/// 9.6 collects the object at once (`soar_sml` 9.6.5: `print e3` then says there is no
+/// identifier E3; command golden `wm-remove-link`).
+#[test]
+fn removing_the_link_of_an_object_takes_the_object_with_it() {
+    let mut agent = Agent::default();
+    agent
+        .execute("wm add s1 color red\nwatch 0\nrun 300")
+        .expect("the agent runs");
+    let link = agent.execute("print --internal s72").expect("print");
+    let tt = link
+        .lines()
+        .find(|l| l.contains("^epmem E72"))
+        .and_then(|l| l.trim_start_matches('(').split(':').next())
+        .expect("S72 has its ^epmem link")
+        .to_string();
+    agent
+        .execute(&format!("wm remove {tt}"))
+        .expect("wm remove");
+    assert_eq!(agent.check_invariants(), Ok(()));
+    assert_eq!(
+        agent.execute("print e72").expect("print"),
+        "There is no identifier E72.\n"
+    );
+}

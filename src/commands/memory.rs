@@ -35,6 +35,13 @@ impl Interpreter {
         };
         let id = agent.symbols.find_id(&args[0]).ok_or_else(invalid)?;
         let attr_word = args[1].strip_prefix('^').unwrap_or(&args[1]);
+        // A word Soar's lexer does not read as one symbol (checked on soar-sml 9.6.5).
+        if !reads_as_symbol(attr_word) {
+            return Err(ctx.error("Unknown attribute type."));
+        }
+        if args[2] != "*" && !reads_as_symbol(&args[2]) {
+            return Err(ctx.error("Unknown value type."));
+        }
         let attr = symbol_for_word(agent, attr_word, false).ok_or_else(|| {
             Diagnostic::error("Invalid identifier")
                 .at(ctx.arg_span(2))
@@ -62,6 +69,9 @@ impl Interpreter {
         };
         if let Some(w) = self.agent.wm.by_timetag(tt) {
             self.agent.remove_wme(w);
+            // What only it linked goes at once (9.6: `wm remove` of `(S3 ^epmem E3)` leaves
+            // no identifier E3).
+            self.agent.collect_garbage();
         }
         Ok(String::new())
     }
@@ -115,6 +125,16 @@ impl Interpreter {
         }
     }
 
+}
+
+/// Whether a `wm add` word is one symbol to Soar's lexer: `|...|`, a number, or
+/// constituents only (a `|` within is read as the start of a quote, as 9.6 reads it).
+fn reads_as_symbol(word: &str) -> bool {
+    word.starts_with('|')
+        || (word.contains('.') && word.parse::<f64>().is_ok())
+        || word
+            .chars()
+            .all(|c| c == '|' || crate::lexer::is_constituent(c))
 }
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words

@@ -604,7 +604,9 @@ impl Interpreter {
             other => Err(not_yet(&ctx, other)),
         };
         // These commands print through the agent's printer in 9.6 (checked one by one).
-        let printed = matches!(name, "print" | "learn" | "chunk")
+        // 9.6 answers `print` of an identifier that is gone without its printer.
+        let no_such_id = matches!(&result, Ok(t) if t.starts_with("There is no identifier"));
+        let printed = (matches!(name, "print" | "learn" | "chunk") && !no_such_id)
             || (name == "production" && args.first().is_some_and(|a| a == "matches"));
         // With `output enabled` or `output callbacks` off, what 9.6 prints through the
         // agent is not shown (checked one by one on soar-sml 9.6.5).

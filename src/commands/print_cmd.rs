@@ -182,7 +182,12 @@ impl Interpreter {
                 Err(()) => "Expected identifier (or context variable)\n".to_string(),
             });
         }
-        if let Some(id) = self.agent.symbols.find_id(target) {
+        if let Some(id) = self
+            .agent
+            .symbols
+            .find_id(target)
+            .filter(|&id| self.agent.id_in_memory(id))
+        {
             return Ok(self.print_id(id, style));
         }
         if let Some(lti) = target.strip_prefix('@') {
