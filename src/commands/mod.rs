@@ -233,6 +233,12 @@ impl Interpreter {
         self.print_col.get()
     }
 
+    /// Tells the agent whether the print stream stands at a line's start, before it
+    /// traces (9.6 starts some lines only when it does not).
+    fn sync_line_start(&mut self) {
+        self.agent.output_line_start = self.print_col.get() == 0;
+    }
+
     /// A flag that, once set, stops the current `run` after the elaboration cycle it is in
     /// (the phase goes on at the next run); the run then reports `Interrupted.` and clears
     /// the flag. The REPL's Ctrl-C handler sets it.

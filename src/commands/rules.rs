@@ -55,7 +55,7 @@ impl Interpreter {
             self.print_result(format!("Now watching any chunks formed by rule '{name}'"));
         }
         // The matcher may trace the rule's first matches (`trace --assertions`).
-        self.agent.output_line_start = self.print_col.get() == 0;
+        self.sync_line_start();
         match self.agent.add_production(p) {
             Added::New => {
                 self.count_loaded();

@@ -131,7 +131,7 @@ impl Interpreter {
         let (fired, interrupted) = if halted_before {
             (0, false)
         } else {
-            self.agent.output_line_start = self.print_col.get() == 0;
+            self.sync_line_start();
             let hooks = self.begin_run_hooks();
             let (_, fired) = self.agent.run(n, unit);
             (fired, self.end_run_hooks(hooks))
@@ -223,7 +223,7 @@ impl Interpreter {
     /// `init-soar`'s work: the agent starts again (the initial state is traced, input
     /// WMEs are put back) and the program's listeners hear of it.
     pub(super) fn reinitialize(&mut self) {
-        self.agent.output_line_start = self.print_col.get() == 0;
+        self.sync_line_start();
         self.agent.init_soar();
         self.agent.print_initial_state();
         self.agent.report_break_hits();

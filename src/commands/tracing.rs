@@ -268,9 +268,12 @@ impl Interpreter {
             let at = ctx.cmd.span;
             Diagnostic::error(m).at(at).with_label("in this command")
         })?;
-        // The matches queued so far were queued untraced (9.6 traces a match as it is
-        // queued, never later).
-        if !self.agent.settings.trace.assertions {
+        // Turning `-A` on: the matches queued so far were queued untraced (9.6 traces a
+        // match as it is queued, never later).
+        let assertions_on = changes
+            .iter()
+            .any(|c| matches!(c, Change::Flag("assertions", true)));
+        if assertions_on && !self.agent.settings.trace.assertions {
             self.agent.classify_new_matches();
         }
         let trace = &mut self.agent.settings.trace;

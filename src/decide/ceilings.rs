@@ -19,13 +19,16 @@ impl AgentCore {
     /// The run met the preference ceiling with `count` preferences (held at some moment
     /// of the cycle): it stops as at any ceiling.
     pub(crate) fn preference_ceiling_reached(&mut self, count: u64) {
-        if self.decider.ceiling.is_some() {
-            return;
+        if self.decider.ceiling.is_none() {
+            self.stop_at_ceiling(Ceiling::Preferences {
+                count,
+                limit: self.settings.limits.preferences,
+            });
         }
-        let hit = Ceiling::Preferences {
-            count,
-            limit: self.settings.limits.preferences,
-        };
+    }
+
+    /// The trace says which ceiling the run met, and the run is asked to stop.
+    fn stop_at_ceiling(&mut self, hit: Ceiling) {
         self.output.push_str(&hit.message());
         self.decider.ceiling = Some(hit);
         self.decider.stop_requested = true;
@@ -65,9 +68,7 @@ impl AgentCore {
         } else {
             return false;
         };
-        self.output.push_str(&hit.message());
-        self.decider.ceiling = Some(hit);
-        self.decider.stop_requested = true;
+        self.stop_at_ceiling(hit);
         true
     }
 }

@@ -265,6 +265,9 @@ impl AgentCore {
         // Where the `=>WM:` lines start: 9.6 warns there of a WME this phase adds and
         // removes (see below).
         let adds_at = self.output.len();
+        // This batch's `RETE: putting` lines go before its own `=>WM:` lines, also when
+        // an earlier batch of the phase marked a place (forgetting runs this in a phase).
+        self.end_queued_matches();
         self.mark_queued_matches();
         let mut traced_adds = Vec::new();
         for (k, &w) in added.iter().enumerate().rev() {
@@ -309,10 +312,12 @@ impl AgentCore {
         }
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
         self.remove_invalid_gds_goals();
-        // 9.6's warning comes after the garbage's `-` lines.
         // The `RETE: putting` lines so far stand before the `=>WM:` lines; the garbage's
-        // go before them, and the warning after them.
-        let queued_len = self.decider.queued_matches_at.map_or(0, |at| at - adds_at);
+        // `-` lines go before them, and 9.6's warning after them.
+        let queued_len = self
+            .decider
+            .queued_matches_at
+            .map_or(0, |at| at.saturating_sub(adds_at));
         self.end_queued_matches();
         let gc_lines = self.collect_garbage_traced_at(Some(adds_at));
         if self.settings.trace.wmes {
