@@ -103,3 +103,22 @@ fn removing_the_link_of_an_object_takes_the_object_with_it() {
         "There is no identifier E72.\n"
     );
 }
+
+/// An identifier garbage collection took is gone: `wm add` on it is refused, as 9.6
+/// refuses it, rather than hanging a WME on an unlinked object (a fuzzed command script).
+#[test]
+fn wm_add_refuses_an_identifier_that_was_collected() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {top*init (state <s> ^superstate nil -^a) --> (<s> ^a 2 ^obj <x>) (<x> ^name thing)}\n\
+             run 1",
+        )
+        .expect("the agent runs");
+    assert_eq!(agent.check_invariants(), Ok(()));
+    let err = agent.execute("wm add x1 color red").unwrap_err();
+    assert_eq!(err.message(), "Invalid identifier");
+    // As a value it links the object again, as in 9.6.
+    agent.execute("wm add s1 color x1").expect("wm add");
+    assert_eq!(agent.check_invariants(), Ok(()));
+}

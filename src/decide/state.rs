@@ -263,6 +263,11 @@ pub struct DecideState {
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
+    /// Each preference handle's allocation number: a reused handle gets a new one, so
+    /// what is kept about a preference (working-memory activation's o-sets) can tell it
+    /// from the one that held the handle before.
+    pub pref_serials: Vec<u64>,
+    pub prefs_allocated: u64,
     /// Justifications whose conditions lost a WME, retracted in the next elaboration cycle.
     /// (instantiation, serial, place among the rule retractions it goes before: an
     /// index into `MatchSet::retractions`, `usize::MAX` after them all).
@@ -334,16 +339,24 @@ impl DecideState {
     }
 
     pub fn alloc_pref(&mut self, pref: Preference) -> PrefId {
+        self.prefs_allocated += 1;
         match self.free_prefs.pop() {
             Some(i) => {
                 self.prefs[i] = pref;
+                self.pref_serials[i.index()] = self.prefs_allocated;
                 i
             }
             None => {
                 self.prefs.push(pref);
+                self.pref_serials.push(self.prefs_allocated);
                 PrefId::from_index(self.prefs.len() - 1)
             }
         }
+    }
+
+    /// The allocation number of the preference now holding handle `pid`.
+    pub fn pref_serial(&self, pid: PrefId) -> u64 {
+        self.pref_serials[pid.index()]
     }
 
     /// Frees a retracted instantiation (nothing refers to it any more).

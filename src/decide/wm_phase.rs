@@ -106,6 +106,9 @@ impl AgentCore {
         }
         let slot = self.decider.slots.entry_id(key);
         self.decider.slots.slot_mut(slot).push(pid, value);
+        if self.wma.on() && !self.decider.slots.slot(slot).changed {
+            self.wma.clear_slot_references(key);
+        }
         self.mark_changed(key, Some(slot));
         if self.wma.on() {
             self.wma_preference_added(pid);

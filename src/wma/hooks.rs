@@ -25,6 +25,9 @@ enum Support {
     /// firing whose one condition is the candidate's `+` WME in the state above, so it
     /// stands on that WME's support.
     Item(WmeId),
+    /// An i-supported result of a memory, by its timetag: it stands on what the
+    /// architecture's firing that made it tested.
+    Memory(u64),
 }
 
 impl AgentCore {
@@ -94,6 +97,7 @@ impl AgentCore {
     pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
         self.wma_trace_removal(wme.timetag);
         self.wma.decided.remove(&wme.timetag);
+        self.wma.memory_results.remove(&wme.timetag);
         self.wma.remove(wme.timetag);
     }
 
@@ -118,6 +122,11 @@ impl AgentCore {
                 }
             }
             Support::Item(plus) => self.wma_activate(plus, n),
+            Support::Memory(tt) => {
+                for member in self.wma_memory_o_set(tt) {
+                    self.wma.reference(member, n);
+                }
+            }
             Support::Architecture => {}
         }
     }
@@ -136,6 +145,9 @@ impl AgentCore {
             if let Some(plus) = self.candidate_plus_wme(wme.id, wme.value) {
                 return Support::Item(plus);
             }
+        }
+        if self.wma.memory_results.contains_key(&wme.timetag) {
+            return Support::Memory(wme.timetag);
         }
         let decided = self.wma.decided.get(&wme.timetag).copied().filter(|&pid| {
             let p = &self.decider.prefs[pid];
@@ -293,8 +305,12 @@ impl AgentCore {
                 }
                 // Only a support already found counts (9.6 looks at the o-set the
                 // preference has, without making one).
-                Support::I(p2) => {
-                    let members = self.wma_cached_o_set(p2).unwrap_or_default();
+                support @ (Support::I(_) | Support::Memory(_)) => {
+                    let members = match support {
+                        Support::I(p2) => self.wma_cached_o_set(p2),
+                        _ => self.wma_cached_memory_o_set(c.timetag),
+                    }
+                    .unwrap_or_default();
                     for m in members {
                         let fresh = self.wma.element(m).is_some_and(|e| e.just_created);
                         if !fresh && seen.insert(m) {
@@ -320,6 +336,20 @@ impl AgentCore {
     /// reference for its preference.
     pub(crate) fn wma_memory_results(&mut self, results: &[WmeId], conditions: &[WmeId]) {
         if !self.decider.last_wave_o_support {
+            // I-supported: referencing one references what the firing tested.
+            let tested: Vec<(WmeId, u64)> = conditions
+                .iter()
+                .filter_map(|&w| self.wm.get(w).map(|x| (w, x.timetag)))
+                .collect();
+            for &w in results {
+                if let Some(wme) = self.wm.get(w) {
+                    let result = super::MemoryResult {
+                        conditions: tested.clone(),
+                        o_set: None,
+                    };
+                    self.wma.memory_results.insert(wme.timetag, result);
+                }
+            }
             return;
         }
         // One firing made them all: they share its boost.
@@ -337,11 +367,37 @@ impl AgentCore {
         }
     }
 
+    fn wma_cached_memory_o_set(&self, timetag: u64) -> Option<Vec<u64>> {
+        self.wma.memory_results.get(&timetag)?.o_set.clone()
+    }
+
+    /// The o-set of an i-supported memory result, found at its first reference and kept.
+    fn wma_memory_o_set(&mut self, timetag: u64) -> Vec<u64> {
+        if let Some(set) = self.wma_cached_memory_o_set(timetag) {
+            return set;
+        }
+        let Some(result) = self.wma.memory_results.get(&timetag) else {
+            return Vec::new();
+        };
+        let conditions: Vec<WmeId> = result
+            .conditions
+            .iter()
+            .filter(|&&(w, tt)| self.wm.get(w).is_some_and(|x| x.timetag == tt))
+            .map(|&(w, _)| w)
+            .collect();
+        let mut out = std::collections::BTreeSet::new();
+        self.wma_collect_conditions(&conditions, &mut out, &mut FxHashSet::default());
+        let set: Vec<u64> = out.into_iter().collect();
+        if let Some(result) = self.wma.memory_results.get_mut(&timetag) {
+            result.o_set = Some(set.clone());
+        }
+        set
+    }
+
     fn wma_cached_o_set(&self, pid: PrefId) -> Option<Vec<u64>> {
-        let p = &self.decider.prefs[pid];
-        let key = (p.id, p.attr, p.value);
+        let serial = self.decider.pref_serial(pid);
         match self.wma.o_sets.get(&pid) {
-            Some((k, set)) if *k == key && p.alive => Some(set.clone()),
+            Some((s, set)) if *s == serial && self.decider.prefs[pid].alive => Some(set.clone()),
             _ => None,
         }
     }
@@ -357,9 +413,8 @@ impl AgentCore {
         let mut visiting = FxHashSet::default();
         self.wma_collect_o_set(pid, &mut out, &mut visiting);
         let set: Vec<u64> = out.into_iter().collect();
-        let p = &self.decider.prefs[pid];
-        let key = (p.id, p.attr, p.value);
-        self.wma.o_sets.insert(pid, (key, set.clone()));
+        let serial = self.decider.pref_serial(pid);
+        self.wma.o_sets.insert(pid, (serial, set.clone()));
         set
     }
 
@@ -372,7 +427,19 @@ impl AgentCore {
         if !visiting.insert(pid) {
             return;
         }
-        for cw in self.wma_pref_conditions(pid) {
+        let conditions = self.wma_pref_conditions(pid);
+        self.wma_collect_conditions(&conditions, out, visiting);
+    }
+
+    /// The o-set of WMEs a firing tested: the o-supported and architectural ones, and
+    /// those the i-supported ones rest on.
+    fn wma_collect_conditions(
+        &mut self,
+        conditions: &[WmeId],
+        out: &mut std::collections::BTreeSet<u64>,
+        visiting: &mut FxHashSet<PrefId>,
+    ) {
+        for &cw in conditions {
             let Some(c) = self.wm.get(cw).copied() else {
                 continue;
             };
@@ -387,15 +454,15 @@ impl AgentCore {
                         let mut sub = std::collections::BTreeSet::new();
                         self.wma_collect_o_set(p2, &mut sub, visiting);
                         let set: Vec<u64> = sub.into_iter().collect();
-                        let p = &self.decider.prefs[p2];
-                        let key = (p.id, p.attr, p.value);
-                        self.wma.o_sets.insert(p2, (key, set.clone()));
+                        let serial = self.decider.pref_serial(p2);
+                        self.wma.o_sets.insert(p2, (serial, set.clone()));
                         out.extend(set);
                     }
                 },
                 Support::Architecture => {
                     out.insert(c.timetag);
                 }
+                Support::Memory(tt) => out.extend(self.wma_memory_o_set(tt)),
                 Support::Item(plus) => {
                     let Some(p) = self.wm.get(plus).copied() else {
                         continue;

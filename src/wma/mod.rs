@@ -21,6 +21,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use crate::decide::ids::PrefId;
 use crate::symbols::Sym;
+use crate::wm::WmeId;
 
 /// 9.6's activation for a WME without a decay history (architectural and i-supported
 /// WMEs): `wm activation` prints it as 1.
@@ -36,7 +37,7 @@ const NOT_QUEUED: u64 = u64::MAX;
 const FORGOTTEN: u64 = 0;
 
 /// A preference's (id, attr, value), and the timetags of the WMEs its support rests on.
-pub(crate) type OSet = ((Sym, Sym, Sym), Vec<u64>);
+pub(crate) type OSet = (u64, Vec<u64>);
 
 /// The decay element of one o-supported WME.
 #[derive(Debug, Clone)]
@@ -68,9 +69,9 @@ pub struct Wma {
     touched: BTreeSet<u64>,
     /// Elements by the decision at which forgetting checks them.
     queue: BTreeMap<u64, BTreeSet<u64>>,
-    /// References to values of non-context slots made before the value's WME exists: the
-    /// WME starts with them (9.6's `wma_val_references`).
-    val_refs: FxHashMap<(Sym, Sym, Sym), u64>,
+    /// References to values of non-context slots made before the value's WME exists, by
+    /// slot, then value: the WME starts with them (9.6's `wma_val_references`).
+    val_refs: FxHashMap<(Sym, Sym), FxHashMap<Sym, u64>>,
     /// For an i-supported preference: the o-supported and architectural WMEs its support
     /// rests on, found once, at its first reference (9.6's `wma_o_set`), with the
     /// preference's (id, attr, value) to tell a reused handle.
@@ -82,12 +83,26 @@ pub struct Wma {
     pub(crate) decided: FxHashMap<u64, PrefId>,
     /// With the WMA trace on: WMEs whose `remove` line waits for their `<=WM:` line.
     pub(crate) removal_lines: Vec<u64>,
+    /// An i-supported result of a memory (semantic or episodic), by timetag: the WMEs,
+    /// with their timetags, of the architecture's firing that made it, and the o-set found
+    /// at its first reference (9.6 makes such results through an instantiation of its own
+    /// and gives them its preference's o-set).
+    pub(crate) memory_results: FxHashMap<u64, MemoryResult>,
     /// Elements of WMEs that left working memory in this decision: kept until it ends, so
     /// that the `<=WM:` lines still show their activation.
     removed: Vec<u64>,
     /// The last decision whose references are in the histories: from then on the clock
     /// activations are read at is the next decision (9.6 moves its own clock there).
     recorded: Option<u64>,
+}
+
+/// What activation keeps about an i-supported memory result.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct MemoryResult {
+    /// The WMEs the result's firing tested, with their timetags then.
+    pub(crate) conditions: Vec<(WmeId, u64)>,
+    /// The o-supported and architectural WMEs its support rests on, once referenced.
+    pub(crate) o_set: Option<Vec<u64>>,
 }
 
 impl Wma {
@@ -133,6 +148,7 @@ impl Wma {
         self.queue.clear();
         self.val_refs.clear();
         self.o_sets.clear();
+        self.memory_results.clear();
         self.decided.clear();
         self.removal_lines.clear();
         self.removed.clear();
@@ -230,16 +246,32 @@ impl Wma {
     }
 
     /// A preference for `(id, attr, value)` joined a non-context slot without that WME.
-    pub(crate) fn value_reference(&mut self, key: (Sym, Sym, Sym)) {
-        *self.val_refs.entry(key).or_insert(0) += 1;
+    pub(crate) fn value_reference(&mut self, (id, attr, value): (Sym, Sym, Sym)) {
+        *self
+            .val_refs
+            .entry((id, attr))
+            .or_default()
+            .entry(value)
+            .or_insert(0) += 1;
     }
 
     /// The references made to a value before its WME existed.
-    pub(crate) fn take_value_references(&mut self, key: (Sym, Sym, Sym)) -> Option<u64> {
-        if self.val_refs.is_empty() {
-            return None;
+    pub(crate) fn take_value_references(&mut self, (id, attr, value): (Sym, Sym, Sym)) -> Option<u64> {
+        let refs = self.val_refs.get_mut(&(id, attr))?;
+        let n = refs.remove(&value);
+        if refs.is_empty() {
+            self.val_refs.remove(&(id, attr));
         }
-        self.val_refs.remove(&key)
+        n
+    }
+
+    /// A preference joined a slot that no change had marked since its last decision: the
+    /// references its values collected then, for WMEs that never came, are dropped
+    /// (9.6's `add_preference_to_tm`).
+    pub(crate) fn clear_slot_references(&mut self, slot: (Sym, Sym)) {
+        if !self.val_refs.is_empty() {
+            self.val_refs.remove(&slot);
+        }
     }
 
     fn unqueue(&mut self, timetag: u64, at: u64) {
