@@ -38,6 +38,9 @@ pub struct Smem {
     pub stats: SmemStats,
     /// `smem --timers`: the time spent in each part ([`timer`]).
     pub timers: MemoryTimers,
+    /// Whether `print @` writes floats with sixteen decimals: 9.6's number stream turns
+    /// to fixed notation once it has written an activation, and stays so.
+    print_fixed: bool,
     /// The working-memory interface's record of each state's commands and results.
     pub(crate) links: wmi::Links,
     /// Spreading activation's record of its sources.
@@ -276,21 +279,26 @@ impl Smem {
     /// `print @N`: one LTI (`None` when it does not exist).
     pub fn print_lti(&mut self, lti: i64) -> DbResult<Option<String>> {
         let spreading = self.params.spreading();
+        let mut fixed = self.print_fixed;
         let store = self.store()?;
         if !store.lti_exists(lti)? {
             return Ok(None);
         }
-        print::lti(store, lti, spreading).map(Some)
+        let text = print::lti(store, lti, spreading, &mut fixed)?;
+        self.print_fixed = fixed;
+        Ok(Some(text))
     }
 
     /// `print @`: every LTI.
     pub fn print_all(&mut self) -> DbResult<String> {
         let spreading = self.params.spreading();
+        let mut fixed = self.print_fixed;
         let store = self.store()?;
         let mut s = String::new();
         for lti in store.ltis()? {
-            s.push_str(&print::lti(store, lti, spreading)?);
+            s.push_str(&print::lti(store, lti, spreading, &mut fixed)?);
         }
+        self.print_fixed = fixed;
         Ok(s)
     }
 

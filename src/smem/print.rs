@@ -3,15 +3,18 @@
 //! attribute together, and `smem --export`'s clauses (checked on soar-sml 9.6.5).
 
 use super::store::{DbResult, Store, Val};
-use crate::printer::constants::rereadable;
+use crate::printer::constants::{c_general, rereadable};
 use std::collections::BTreeMap;
 
-/// A value as `print @` shows it: a float with sixteen decimals.
-fn value_text(v: &Val) -> String {
+/// A value as `print @` shows it. 9.6 writes numbers through one stream that keeps its
+/// settings: sixteen significant digits, and once something has written a number in fixed
+/// notation there (an activation does), sixteen decimals from then on (`fixed`).
+fn value_text(v: &Val, fixed: bool) -> String {
     match v {
         Val::Str(s) => rereadable(s),
         Val::Int(i) => i.to_string(),
-        Val::Float(f) => format!("{f:.16}"),
+        Val::Float(f) if fixed => format!("{f:.16}"),
+        Val::Float(f) => c_general(*f, 16),
         Val::Lti(l) => format!("@{l}"),
     }
 }
@@ -20,12 +23,16 @@ fn value_text(v: &Val) -> String {
 fn export_text(v: &Val) -> String {
     match v {
         Val::Float(f) => format!("{f:.6}"),
-        v => value_text(v),
+        v => value_text(v, true),
     }
 }
 
 /// The augmentations grouped by attribute text, attributes in order, values as stored.
-fn grouped(store: &Store, lti: i64, text: fn(&Val) -> String) -> DbResult<BTreeMap<String, Vec<String>>> {
+fn grouped(
+    store: &Store,
+    lti: i64,
+    text: impl Fn(&Val) -> String,
+) -> DbResult<BTreeMap<String, Vec<String>>> {
     let mut by_attr: BTreeMap<String, Vec<String>> = BTreeMap::new();
     for (a, v) in store.augs(lti)? {
         by_attr.entry(text(&a)).or_default().push(text(&v));
@@ -34,10 +41,12 @@ fn grouped(store: &Store, lti: i64, text: fn(&Val) -> String) -> DbResult<BTreeM
 }
 
 /// `(@N ^attr value ... [+A.AAA])` and a newline; with spreading on, an LTI that has
-/// spread shows its activation with the spread.
-pub fn lti(store: &Store, lti: i64, spreading: bool) -> DbResult<String> {
+/// spread shows its activation with the spread. The activation is written in fixed
+/// notation, which the stream keeps (`fixed` is set).
+pub fn lti(store: &Store, lti: i64, spreading: bool, fixed: &mut bool) -> DbResult<String> {
     let mut s = format!("(@{lti}");
-    for (a, values) in grouped(store, lti, value_text)? {
+    let floats_fixed = *fixed;
+    for (a, values) in grouped(store, lti, |v| value_text(v, floats_fixed))? {
         s.push_str(&format!(" ^{a}"));
         for v in values {
             s.push(' ');
@@ -50,6 +59,7 @@ pub fn lti(store: &Store, lti: i64, spreading: bool) -> DbResult<String> {
         None => store.shown_activation(lti)?,
     };
     s.push_str(&format!(" [{act:+.3}])\n"));
+    *fixed = true;
     Ok(s)
 }
 

@@ -502,7 +502,11 @@ impl AgentCore {
         depth: i64,
         added: &mut Vec<WmeId>,
     ) -> Result<(), String> {
-        let augs = self.smem.store()?.augs(lti)?;
+        let mut augs = self.smem.store()?.augs(lti)?;
+        // 9.6 makes an attribute's values last first (observed on soar-sml 9.6.5).
+        for run in augs.chunk_by_mut(|x, y| x.0 == y.0) {
+            run.reverse();
+        }
         let mut children = Vec::new();
         for (a, v) in augs {
             let attr = self.smem_sym(&a);
@@ -543,7 +547,13 @@ impl AgentCore {
             }
         };
         self.smem.store()?.remove_augs(lti, None, None)?;
-        for w in self.smem_wmes(id) {
+        // 9.6 files the object's attributes by symbol, in memory order, which is the
+        // order the symbols were made in, and each attribute's values as its slot lists
+        // them, the newest WME first: that order gives them their symbol numbers, and so
+        // the order a retrieval makes their WMEs in (observed on soar-sml 9.6.5).
+        let mut wmes = self.smem_wmes(id);
+        wmes.sort_by_key(|w| (w.attr, std::cmp::Reverse(w.timetag)));
+        for w in wmes {
             let Some(attr) = self.smem_val(w.attr).filter(|a| !matches!(a, Val::Lti(_))) else {
                 continue;
             };
