@@ -71,13 +71,16 @@ impl AgentCore {
         }
         gc.clear();
         self.decider.gc_scratch = gc;
-        self.decider.gc_candidates = candidates;
-        self.decider.gc_candidates.clear();
         if garbage.is_empty() {
+            self.decider.gc_candidates = candidates;
+            self.decider.gc_candidates.clear();
             return 0;
         }
-        garbage.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
-        // 9.6 lists the removals newest first; they happen oldest first here.
+        let garbage = self.removal_order(garbage, &candidates);
+        self.decider.gc_candidates = candidates;
+        self.decider.gc_candidates.clear();
+        // 9.6 lists the removals in the reverse of the order it collects them in; they
+        // happen in that order here.
         let mut removed_lines = Vec::new();
         let mut pref_lines = String::new();
         for w in garbage {
@@ -123,6 +126,74 @@ impl AgentCore {
         // What these removals point at was all collected above.
         self.decider.gc_candidates.clear();
         inserted
+    }
+
+    /// The order 9.6 collects unlinked WMEs in: an object's links are counted, and an
+    /// object whose last link goes is collected next (the last one to lose its last link
+    /// first), starting with the objects the phase's changes unlinked (in the order the
+    /// trace lists the changes). An object gives up its slots in the order they were
+    /// made, each slot's WMEs newest first. What that walk cannot reach (a cycle whose
+    /// links never all go) follows, oldest first.
+    fn removal_order(&self, garbage: Vec<WmeId>, candidates: &[Sym]) -> Vec<WmeId> {
+        use rustc_hash::FxHashMap;
+        let mut by_id: FxHashMap<Sym, Vec<(u64, Sym, WmeId)>> = FxHashMap::default();
+        for &w in &garbage {
+            if let Some(x) = self.wm.get(w) {
+                by_id.entry(x.id).or_default().push((x.timetag, x.attr, w));
+            }
+        }
+        // The links to each collected object from collected WMEs.
+        let mut links: FxHashMap<Sym, u32> = FxHashMap::default();
+        for &w in &garbage {
+            if let Some(x) = self.wm.get(w) {
+                if by_id.contains_key(&x.value) {
+                    *links.entry(x.value).or_default() += 1;
+                }
+            }
+        }
+        // The first unlinked by the phase on top: 9.6 makes the changes in the reverse of
+        // the order it lists them in, and collects the last object unlinked first.
+        let mut stack: Vec<Sym> = candidates
+            .iter()
+            .rev()
+            .copied()
+            .filter(|c| by_id.contains_key(c) && !links.contains_key(c))
+            .collect();
+        let mut order = Vec::with_capacity(garbage.len());
+        let mut done: rustc_hash::FxHashSet<Sym> = rustc_hash::FxHashSet::default();
+        while let Some(id) = stack.pop() {
+            if !done.insert(id) {
+                continue;
+            }
+            let Some(mut wmes) = by_id.remove(&id) else {
+                continue;
+            };
+            // Slots in the order of their first WME, each slot's WMEs newest first.
+            let mut first: FxHashMap<Sym, u64> = FxHashMap::default();
+            for &(tt, attr, _) in &wmes {
+                let f = first.entry(attr).or_insert(tt);
+                *f = (*f).min(tt);
+            }
+            wmes.sort_by_key(|&(tt, attr, _)| (first[&attr], std::cmp::Reverse(tt)));
+            for (_, _, w) in wmes {
+                order.push(w);
+                let Some(value) = self.wm.get(w).map(|x| x.value) else {
+                    continue;
+                };
+                if let Some(n) = links.get_mut(&value) {
+                    *n -= 1;
+                    if *n == 0 {
+                        stack.push(value);
+                    }
+                }
+            }
+        }
+        if order.len() < garbage.len() {
+            let mut rest: Vec<WmeId> = by_id.into_values().flatten().map(|(_, _, w)| w).collect();
+            rest.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
+            order.extend(rest);
+        }
+        order
     }
 
     /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a

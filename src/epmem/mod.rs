@@ -77,6 +77,8 @@ pub(crate) struct LinkState {
     /// The results' WMEs, in the order of their triples (the episode's, then the meta
     /// results).
     pub results: Vec<WmeId>,
+    /// Where the meta results start in `results`.
+    pub meta_start: usize,
 }
 
 /// Episodic memory's timers and their levels (9.6's names). The level-three timers of

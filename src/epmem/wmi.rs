@@ -230,7 +230,8 @@ impl AgentCore {
             }
             wm_phase = true;
             let old = std::mem::take(&mut info.results);
-            work.push((state, res, old, (count > 0).then(|| top_level.unwrap_or_default())));
+            let old_meta = old.get(info.meta_start..).unwrap_or_default().to_vec();
+            work.push((state, res, old_meta, (count > 0).then(|| top_level.unwrap_or_default())));
         }
         if !wm_phase {
             return;
@@ -241,10 +242,13 @@ impl AgentCore {
             if let Some(cmds) = cmds {
                 self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
             }
+            let meta_start = retrieval.len();
             let triples: Triples = retrieval.into_iter().chain(meta).collect();
-            let (mine, made) = self.epmem_place_results(res, &old, &triples, &mut removed);
+            let (mine, made) = self.epmem_place_results(&old, &triples, &mut removed);
             added.extend(made);
-            self.epmem.links.entry(state).or_default().results = mine;
+            let link = self.epmem.links.entry(state).or_default();
+            link.results = mine;
+            link.meta_start = meta_start;
         }
         self.decider.wme_changes += (added.len() + removed.len()) as u64;
         for &w in added.iter().rev() {
@@ -264,24 +268,24 @@ impl AgentCore {
     }
 
     /// Puts a command's results (`triples`) in working memory in place of the last
-    /// command's (`old`), as 9.6's slots decide them: the slots new to this command first,
-    /// in the order of their last triples, then those the old results held, newest first;
-    /// in a slot, the later triple first. A result whose WME is there already keeps it.
+    /// command's meta results (`old`: those on the result link and the graph match's
+    /// mapping), as 9.6's slots decide them: the slots new to this command first, in the
+    /// order of their last triples, then those the old results held, newest first; in a
+    /// slot, the later triple first. A result whose WME is there already keeps it. The old
+    /// results that go are removed slot by slot, in the order of each slot's first
+    /// result, the later first within a slot (9.6's order); the episode they linked goes
+    /// with the garbage, if nothing else links it.
     /// Returns the results' WMEs in triple order, and those made, in the order made; the
-    /// old WMEs that go are removed, and listed in `removed`.
+    /// old WMEs that go are listed in `removed`.
     fn epmem_place_results(
         &mut self,
-        res: Sym,
         old: &[WmeId],
         triples: &Triples,
         removed: &mut Vec<Wme>,
     ) -> (Vec<WmeId>, Vec<WmeId>) {
-        // Only the old results on the result link go with the command: the episode they
-        // linked goes with the garbage, if nothing else links it.
         let old_wmes: Vec<(WmeId, Wme)> = old
             .iter()
             .filter_map(|&w| Some((w, *self.wm.get(w)?)))
-            .filter(|(_, x)| x.id == res)
             .collect();
         // The slots the old results held, in the order of their triples.
         let mut held: Vec<(Sym, Sym)> = Vec::new();
@@ -313,11 +317,21 @@ impl AgentCore {
                 placed[i] = Some(w);
             }
         }
-        for &(w, x) in &old_wmes {
-            if !kept.contains(&w) {
-                removed.push(x);
-                self.remove_wme(w);
+        let mut going: Vec<(usize, usize, WmeId, Wme)> = Vec::new();
+        for (k, &(w, x)) in old_wmes.iter().enumerate() {
+            if kept.contains(&w) {
+                continue;
             }
+            let slot_first = old_wmes
+                .iter()
+                .position(|(_, y)| (y.id, y.attr) == (x.id, x.attr))
+                .unwrap_or(k);
+            going.push((slot_first, usize::MAX - k, w, x));
+        }
+        going.sort_by_key(|&(first, later, _, _)| (first, later));
+        for (_, _, w, x) in going {
+            removed.push(x);
+            self.remove_wme(w);
         }
         let mut made = Vec::new();
         for key in slots {
