@@ -135,63 +135,77 @@ impl AgentCore {
     /// made, each slot's WMEs newest first. What that walk cannot reach (a cycle whose
     /// links never all go) follows, oldest first.
     fn removal_order(&self, garbage: Vec<WmeId>, candidates: &[Sym]) -> Vec<WmeId> {
-        use rustc_hash::FxHashMap;
-        let mut by_id: FxHashMap<Sym, Vec<(u64, Sym, WmeId)>> = FxHashMap::default();
-        for &w in &garbage {
-            if let Some(x) = self.wm.get(w) {
-                by_id.entry(x.id).or_default().push((x.timetag, x.attr, w));
+        use std::cmp::Reverse;
+        // (object, attribute, timetag, WME, value), grouped by object, then by slot.
+        let mut rows: Vec<(Sym, Sym, u64, WmeId, Sym)> = garbage
+            .iter()
+            .filter_map(|&w| {
+                let x = self.wm.get(w)?;
+                Some((x.id, x.attr, x.timetag, w, x.value))
+            })
+            .collect();
+        rows.sort_unstable_by_key(|r| (r.0, r.1, r.2));
+        // Each object's rows: (object, start, end).
+        let mut objects: Vec<(Sym, usize, usize)> = Vec::new();
+        for (i, r) in rows.iter().enumerate() {
+            match objects.last_mut() {
+                Some(o) if o.0 == r.0 => o.2 = i + 1,
+                _ => objects.push((r.0, i, i + 1)),
             }
         }
+        let find = |s: Sym| objects.binary_search_by_key(&s, |o| o.0).ok();
         // The links to each collected object from collected WMEs.
-        let mut links: FxHashMap<Sym, u32> = FxHashMap::default();
-        for &w in &garbage {
-            if let Some(x) = self.wm.get(w) {
-                if by_id.contains_key(&x.value) {
-                    *links.entry(x.value).or_default() += 1;
-                }
+        let mut links = vec![0u32; objects.len()];
+        for r in &rows {
+            if let Some(k) = find(r.4) {
+                links[k] += 1;
             }
         }
         // The first unlinked by the phase on top: 9.6 makes the changes in the reverse of
         // the order it lists them in, and collects the last object unlinked first.
-        let mut stack: Vec<Sym> = candidates
+        let mut stack: Vec<usize> = candidates
             .iter()
             .rev()
-            .copied()
-            .filter(|c| by_id.contains_key(c) && !links.contains_key(c))
+            .filter_map(|&c| find(c))
+            .filter(|&k| links[k] == 0)
             .collect();
-        let mut order = Vec::with_capacity(garbage.len());
-        let mut done: rustc_hash::FxHashSet<Sym> = rustc_hash::FxHashSet::default();
-        while let Some(id) = stack.pop() {
-            if !done.insert(id) {
+        let mut done = vec![false; objects.len()];
+        let mut order = Vec::with_capacity(rows.len());
+        let mut slot_rows: Vec<(u64, Reverse<u64>, WmeId, Sym)> = Vec::new();
+        while let Some(k) = stack.pop() {
+            if std::mem::replace(&mut done[k], true) {
                 continue;
             }
-            let Some(mut wmes) = by_id.remove(&id) else {
-                continue;
-            };
             // Slots in the order of their first WME, each slot's WMEs newest first.
-            let mut first: FxHashMap<Sym, u64> = FxHashMap::default();
-            for &(tt, attr, _) in &wmes {
-                let f = first.entry(attr).or_insert(tt);
-                *f = (*f).min(tt);
+            let (_, start, end) = objects[k];
+            slot_rows.clear();
+            let mut slot = (None, 0);
+            for r in &rows[start..end] {
+                if slot.0 != Some(r.1) {
+                    slot = (Some(r.1), r.2);
+                }
+                slot_rows.push((slot.1, Reverse(r.2), r.3, r.4));
             }
-            wmes.sort_by_key(|&(tt, attr, _)| (first[&attr], std::cmp::Reverse(tt)));
-            for (_, _, w) in wmes {
+            slot_rows.sort_unstable();
+            for &(_, _, w, value) in &slot_rows {
                 order.push(w);
-                let Some(value) = self.wm.get(w).map(|x| x.value) else {
-                    continue;
-                };
-                if let Some(n) = links.get_mut(&value) {
-                    *n -= 1;
-                    if *n == 0 {
-                        stack.push(value);
+                if let Some(v) = find(value) {
+                    links[v] = links[v].saturating_sub(1);
+                    if links[v] == 0 && !done[v] {
+                        stack.push(v);
                     }
                 }
             }
         }
-        if order.len() < garbage.len() {
-            let mut rest: Vec<WmeId> = by_id.into_values().flatten().map(|(_, _, w)| w).collect();
-            rest.sort_by_key(|w| self.wm.get(*w).map(|x| x.timetag));
-            order.extend(rest);
+        if order.len() < rows.len() {
+            let mut rest: Vec<(u64, WmeId)> = objects
+                .iter()
+                .zip(&done)
+                .filter(|(_, &d)| !d)
+                .flat_map(|(o, _)| rows[o.1..o.2].iter().map(|r| (r.2, r.3)))
+                .collect();
+            rest.sort_unstable();
+            order.extend(rest.into_iter().map(|(_, w)| w));
         }
         order
     }
