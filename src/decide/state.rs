@@ -100,9 +100,10 @@ pub struct Goal {
     pub wmes: Vec<WmeId>,
     /// The operator slot's preferences changed since it was last decided.
     pub slot_changed: bool,
-    /// The preferences its firings made, oldest first, with what each says (handles are
-    /// reused): 9.6 lists the standing ones as removed when the state goes (trace 5).
-    pub made: Vec<(PrefId, (Sym, Sym, Sym))>,
+    /// The preferences its firings made, oldest first, with each one's allocation number
+    /// (handles are reused) and what it says: 9.6 lists the standing ones as removed when
+    /// the state goes (trace 5).
+    pub made: Vec<(PrefId, u64, (Sym, Sym, Sym))>,
     /// A state below this one learned a rule: with `chunk bottom-only`, this one learns no
     /// more while it lasts.
     pub learned_below: bool,

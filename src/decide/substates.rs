@@ -6,7 +6,7 @@ use super::state::{Goal, ImpasseKind, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashSet;
 
 /// A WME of an object a removed substate holds, with its handle.
 type ObjectWme = (crate::wm::WmeId, crate::wm::Wme);
@@ -416,7 +416,7 @@ impl AgentCore {
     /// and its WME stays only while the learned rule's copy supports it (Soar manual,
     /// ch. 2, "Justifications: Support for results"; 9.6 removes a goal's preferences
     /// with it). The state's own slots go with the state.
-    fn remove_goal_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
+    fn remove_goal_prefs(&mut self, state: Sym, made: &[(PrefId, u64, (Sym, Sym, Sym))]) {
         for (pid, what) in self.standing_prefs(state, made) {
             if what.0 == state {
                 continue;
@@ -445,13 +445,14 @@ impl AgentCore {
         };
         let p = &self.decider.prefs[pid];
         let what = (p.id, p.attr, p.value);
-        self.decider.goals[gi].made.push((pid, what));
+        let serial = self.decider.pref_serial(pid);
+        self.decider.goals[gi].made.push((pid, serial, what));
         // A long-lived substate keeps only the preferences that still stand (amortized).
         let n = self.decider.goals[gi].made.len();
         if n >= 64 && n.is_power_of_two() {
             let state = self.decider.goals[gi].state;
             let mut made = std::mem::take(&mut self.decider.goals[gi].made);
-            made.retain(|&(pid, what)| self.pref_stands(pid, what, state));
+            made.retain(|&(pid, serial, what)| self.made_pref_stands(pid, serial, what, state));
             self.decider.goals[gi].made = made;
         }
     }
@@ -471,7 +472,7 @@ impl AgentCore {
     /// oldest first, each one's preferences newest first, o-supported ones that outlived
     /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
     /// justification-negation).
-    pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, (Sym, Sym, Sym))]) {
+    pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, u64, (Sym, Sym, Sym))]) {
         for (pid, _) in self.standing_prefs(state, made) {
             if self.decider.prefs_traced_gone.contains(&pid) {
                 continue;
@@ -482,21 +483,20 @@ impl AgentCore {
     }
 
     /// The preferences of `made` (a goal's, oldest first) that still stand, in that order.
-    /// A handle is reused once its preference is freed: only its last entry can be the
-    /// preference it now holds.
     fn standing_prefs(
         &self,
         state: Sym,
-        made: &[(PrefId, (Sym, Sym, Sym))],
+        made: &[(PrefId, u64, (Sym, Sym, Sym))],
     ) -> Vec<(PrefId, (Sym, Sym, Sym))> {
-        let mut last: FxHashMap<PrefId, usize> = FxHashMap::default();
-        for (k, &(pid, _)) in made.iter().enumerate() {
-            last.insert(pid, k);
-        }
         made.iter()
-            .enumerate()
-            .filter(|&(k, &(pid, what))| last[&pid] == k && self.pref_stands(pid, what, state))
-            .map(|(_, &x)| x)
+            .filter(|&&(pid, serial, what)| self.made_pref_stands(pid, serial, what, state))
+            .map(|&(pid, _, what)| (pid, what))
             .collect()
+    }
+
+    /// Whether the preference `made` noted as handle `pid` with allocation number `serial`
+    /// still holds the handle and stands (a handle is reused once its preference is freed).
+    fn made_pref_stands(&self, pid: PrefId, serial: u64, what: (Sym, Sym, Sym), state: Sym) -> bool {
+        self.decider.pref_serial(pid) == serial && self.pref_stands(pid, what, state)
     }
 }
