@@ -122,3 +122,26 @@ fn wm_add_refuses_an_identifier_that_was_collected() {
     agent.execute("wm add s1 color x1").expect("wm add");
     assert_eq!(agent.check_invariants(), Ok(()));
 }
+
+/// `wm remove` of a WME a rule supports takes it out of its slot as well as out of working
+/// memory, and a later change to the slot makes it again, as 9.6 does (a fuzzed command
+/// script left the slot showing a WME that was gone).
+#[test]
+fn wm_remove_of_a_supported_wme_leaves_its_slot_agreeing() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {init (state <s> ^superstate nil) --> (<s> ^a b ^a c)}\n\
+             sp {op (state <s> ^superstate nil) --> (<s> ^operator <o> +) (<o> ^name x)}\n\
+             sp {ap (state <s> ^operator.name x) --> (<s> ^a d)}\n\
+             run 2 -p",
+        )
+        .expect("the agent runs");
+    agent.execute("wm remove 16").expect("wm remove");
+    assert_eq!(agent.check_invariants(), Ok(()));
+    agent.execute("run 3 -p").expect("the agent runs");
+    assert_eq!(agent.check_invariants(), Ok(()));
+    let printed = agent.execute("print -i s1").expect("print");
+    assert!(printed.contains("(19: S1 ^a b)"), "{printed}");
+    assert!(printed.contains("(20: S1 ^a d)"), "{printed}");
+}

@@ -68,7 +68,9 @@ impl Interpreter {
             return Err(ctx.error("Syntax: wm remove <time-tag>"));
         };
         if let Some(w) = self.agent.wm.by_timetag(tt) {
-            self.agent.remove_wme(w);
+            // Out of its slot too: a preference that still supports it makes it again when
+            // the slot next changes (checked on soar-sml 9.6.5).
+            self.agent.remove_slot_wme(w);
             // What only it linked goes at once (9.6: `wm remove` of `(S3 ^epmem E3)` leaves
             // no identifier E3).
             self.agent.collect_garbage();

@@ -391,7 +391,7 @@ impl AgentCore {
         w
     }
 
-    pub(super) fn remove_slot_wme(&mut self, w: WmeId) {
+    pub(crate) fn remove_slot_wme(&mut self, w: WmeId) {
         let Some(wme) = self.wm.get(w).copied() else {
             return;
         };
@@ -399,8 +399,11 @@ impl AgentCore {
         let key = (wme.id, wme.attr);
         if let Some(id) = self.decider.slots.id_of(&key) {
             let slots = &mut self.decider.slots;
-            slots.slot_mut(id).wmes.remove(&(wme.value, wme.acceptable));
-            slots.drop_if_empty(id);
+            // Only the slot's own WME (an input WME may say the same).
+            if slots.slot(id).wmes.get(&(wme.value, wme.acceptable)) == Some(w) {
+                slots.slot_mut(id).wmes.remove(&(wme.value, wme.acceptable));
+                slots.drop_if_empty(id);
+            }
         }
         self.decider.wme_changes += 1;
         self.remove_wme(w);
