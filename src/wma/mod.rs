@@ -36,7 +36,7 @@ const NOT_QUEUED: u64 = u64::MAX;
 /// The forgetting decision of an element found below the threshold.
 const FORGOTTEN: u64 = 0;
 
-/// A preference's (id, attr, value), and the timetags of the WMEs its support rests on.
+/// A preference's allocation number, and the timetags of the WMEs its support rests on.
 pub(crate) type OSet = (u64, Vec<u64>);
 
 /// The decay element of one o-supported WME.
@@ -74,7 +74,7 @@ pub struct Wma {
     val_refs: FxHashMap<(Sym, Sym), FxHashMap<Sym, u64>>,
     /// For an i-supported preference: the o-supported and architectural WMEs its support
     /// rests on, found once, at its first reference (9.6's `wma_o_set`), with the
-    /// preference's (id, attr, value) to tell a reused handle.
+    /// preference's allocation number to tell a reused handle.
     pub(crate) o_sets: FxHashMap<PrefId, OSet>,
     /// For a WME of a non-context slot: the preference its slot's last decision gave it
     /// (9.6's `w->preference`, set whenever the slot is decided). References made before
