@@ -755,6 +755,11 @@ impl AgentCore {
         self.symbols.is_goal(id) || self.wm.has_wmes(id) || !self.wm.parent_wmes(id).is_empty()
     }
 
+    /// The identifier a name such as `S1` names, if it is still in working memory.
+    pub(crate) fn live_id(&self, name: &str) -> Option<Sym> {
+        self.symbols.find_id(name).filter(|&id| self.id_in_memory(id))
+    }
+
     /// Takes the live justifications out of the rules' listing (`excise --all`), their
     /// instantiations left as they are; returns how many there were.
     pub fn excise_justifications(&mut self) -> usize {

@@ -33,7 +33,9 @@ impl Interpreter {
                 .at(ctx.arg_span(1))
                 .with_label("no such identifier")
         };
-        let id = find_live_id(agent, &args[0]).ok_or_else(invalid)?;
+        // One that garbage collection took is gone, as 9.6 frees its symbol (checked on
+        // soar-sml 9.6.5).
+        let id = agent.live_id(&args[0]).ok_or_else(invalid)?;
         let attr_word = args[1].strip_prefix('^').unwrap_or(&args[1]);
         // A word Soar's lexer does not read as one symbol (checked on soar-sml 9.6.5).
         if !reads_as_symbol(attr_word) {
@@ -141,15 +143,6 @@ fn reads_as_symbol(word: &str) -> bool {
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
 /// (values only), else a number or a string constant (`|...|` quoting removed).
-/// The identifier a word names, if it is still in working memory: one that garbage
-/// collection took is gone, as 9.6 frees its symbol (checked on soar-sml 9.6.5).
-fn find_live_id(agent: &crate::agent::AgentCore, word: &str) -> Option<Sym> {
-    agent
-        .symbols
-        .find_id(word)
-        .filter(|&id| agent.id_in_memory(id))
-}
-
 pub(super) fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
     if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
         return Some(agent.symbols.str(inner));

@@ -182,12 +182,7 @@ impl Interpreter {
                 Err(()) => "Expected identifier (or context variable)\n".to_string(),
             });
         }
-        if let Some(id) = self
-            .agent
-            .symbols
-            .find_id(target)
-            .filter(|&id| self.agent.id_in_memory(id))
-        {
+        if let Some(id) = self.agent.live_id(target) {
             return Ok(self.print_id(id, style));
         }
         if let Some(lti) = target.strip_prefix('@') {

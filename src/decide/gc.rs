@@ -71,14 +71,14 @@ impl AgentCore {
         }
         gc.clear();
         self.decider.gc_scratch = gc;
-        if garbage.is_empty() {
-            self.decider.gc_candidates = candidates;
-            self.decider.gc_candidates.clear();
-            return 0;
+        if !garbage.is_empty() {
+            garbage = self.removal_order(garbage, &candidates);
         }
-        let garbage = self.removal_order(garbage, &candidates);
         self.decider.gc_candidates = candidates;
         self.decider.gc_candidates.clear();
+        if garbage.is_empty() {
+            return 0;
+        }
         // 9.6 lists the removals in the reverse of the order it collects them in; they
         // happen in that order here.
         let mut removed_lines = Vec::new();
