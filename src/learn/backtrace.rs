@@ -70,8 +70,8 @@ pub struct Backtrace {
 }
 
 impl Backtrace {
-    /// Empties the tables for an episode at `level`, keeping their room.
-    pub fn reset(&mut self, level: u32) {
+    /// Empties the tables for an episode at `level`, numbered `number`, keeping their room.
+    pub fn reset(&mut self, level: u32, number: u64) {
         self.level = level;
         self.grounds.clear();
         self.ground_at.clear();
@@ -79,7 +79,7 @@ impl Backtrace {
         self.constraints.clear();
         self.parent.clear();
         self.literal.clear();
-        self.number += 1;
+        self.number = number;
         self.stack.clear();
         self.firings = 0;
         self.items.clear();

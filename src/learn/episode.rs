@@ -141,12 +141,13 @@ impl AgentCore {
         source: &InstTrace,
         new_prefs: &mut Vec<PrefId>,
     ) {
-        // One backtrace's tables serve every episode: they keep their room between them.
-        let mut bt = std::mem::take(&mut self.learn.backtrace);
-        bt.reset(level);
+        // Backtrace tables are reused from episode to episode: they keep their room.
+        let mut bt = self.learn.spare_backtraces.pop().unwrap_or_default();
+        self.learn.backtraces_begun += 1;
+        bt.reset(level, self.learn.backtraces_begun);
         self.learn_by_backtrace(&mut bt, results, source, new_prefs);
-        bt.reset(0);
-        self.learn.backtrace = bt;
+        bt.reset(0, 0);
+        self.learn.spare_backtraces.push(bt);
     }
 
     fn learn_by_backtrace(

@@ -251,8 +251,14 @@ pub struct LearnState {
     pub trace_names: FxHashMap<crate::rete::ProdId, Arc<TraceNames>>,
     /// Scratch for recording a firing: each binding's identity.
     pub binding_idents: Vec<Ident>,
-    /// The backtrace tables, emptied between learning episodes (they keep their room).
-    pub backtrace: backtrace::Backtrace,
+    /// Backtrace tables not in use, emptied between learning episodes (they keep their
+    /// room). A justification's results one level up are learned from while the episode
+    /// that made it still holds its own tables, so episodes nest.
+    pub spare_backtraces: Vec<backtrace::Backtrace>,
+    /// Backtraces begun since the agent was made: each has its own number, with which it
+    /// marks the firings it goes through (a nested episode must not take an outer one's
+    /// marks, nor an earlier nested one's, for its own).
+    pub backtraces_begun: u64,
     pub duplicates: u64,
     /// `chunk`'s counts since the last `init-soar` (9.6 resets them there): chunks,
     /// justifications, and learning episodes that got as far as building either.
