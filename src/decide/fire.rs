@@ -96,7 +96,8 @@ impl AgentCore {
         new_ids.clear();
         new_ids.resize(rule.new_vars.len(), None);
         // Substate firings are recorded for backtracing: each preference with its action.
-        let mut made: Vec<(PrefId, usize)> = Vec::new();
+        let mut made = std::mem::take(&mut self.decider.rhs_made);
+        made.clear();
         for (action_index, action) in rule.actions.iter().enumerate() {
             match action {
                 Act::Call(f) => {
@@ -187,11 +188,11 @@ impl AgentCore {
             }
         }
         self.decider.inst_by_token.insert((p, t), inst_id);
-        let own_prefs = if traced || level >= 2 {
-            inst.prefs.clone()
-        } else {
-            Vec::new()
-        };
+        let mut own_prefs = std::mem::take(&mut self.decider.rhs_own_prefs);
+        own_prefs.clear();
+        if traced || level >= 2 {
+            own_prefs.extend_from_slice(&inst.prefs);
+        }
         self.decider.insts[inst_id] = inst;
         if self.settings.trace.gds_wmes && self.grows_gds(inst_id, level) {
             self.trace_gds_growth(inst_id);
@@ -218,6 +219,8 @@ impl AgentCore {
             }
         }
         self.decider.rhs_new_ids = new_ids;
+        self.decider.rhs_made = made;
+        self.decider.rhs_own_prefs = own_prefs;
     }
 
     /// `New match of rule in state S1 (level 1).  Creating instantiation.` (`trace

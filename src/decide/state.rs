@@ -244,6 +244,12 @@ pub struct DecideState {
     pub spare_pref_lists: Vec<Vec<PrefId>>,
     /// The identifiers a firing's actions make, by new-variable slot (scratch).
     pub rhs_new_ids: Vec<Option<Sym>>,
+    /// A substate firing's preferences with the actions that made them (scratch).
+    pub rhs_made: Vec<(PrefId, usize)>,
+    /// A firing's own preferences, kept for its trace and its results (scratch).
+    pub rhs_own_prefs: Vec<PrefId>,
+    /// Emptied lists of removed goals' preferences, for new goals to reuse.
+    pub spare_goal_made: Vec<Vec<(PrefId, u64, (Sym, Sym, Sym))>>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
     /// Room for the walks that grow a goal dependency set.

@@ -359,7 +359,7 @@ impl AgentCore {
             items,
             wmes,
             slot_changed: true,
-            made: Vec::new(),
+            made: self.decider.spare_goal_made.pop().unwrap_or_default(),
                 learned_below: false,
                 osk: None,
         });
@@ -407,6 +407,9 @@ impl AgentCore {
             }
             self.decider.gc_candidates.push(g.state);
             self.decider.gds.retain(|_, goal| *goal != g.state);
+            let mut made = g.made;
+            made.clear();
+            self.decider.spare_goal_made.push(made);
         }
         self.collect_garbage();
     }

@@ -79,6 +79,10 @@ impl AgentCore {
                 l > 0 && l < level
             })
             .collect();
+        // Most firings make no preference on an object above their state.
+        if queue.is_empty() {
+            return queue;
+        }
         let mut seen: FxHashSet<PrefId> = FxHashSet::default();
         let mut results = Vec::new();
         let mut i = 0;
