@@ -47,12 +47,16 @@ impl AgentCore {
         let numeric_mode = self.settings.numeric_mode;
         let n = self.decider.goals.len();
         for gi in 0..n {
-            let goal = self.decider.goals[gi].clone();
+            let g = &self.decider.goals[gi];
             // Decidable: no installed operator and the preferences changed (a selected
             // operator is not decided again while it stays consistent).
-            if goal.operator.is_some() || !goal.slot_changed {
+            if g.operator.is_some() || !g.slot_changed {
                 continue;
             }
+            let goal = GoalKey {
+                state: g.state,
+                level: g.level,
+            };
             self.decider.goals[gi].slot_changed = false;
             let prefs = self.slot_prefs((goal.state, op));
             let forced = self.take_forced_operator(&prefs);
@@ -361,4 +365,11 @@ impl AgentCore {
             }
         }
     }
+}
+
+/// What a decision reads of its goal (a copy: the decision changes the goal list).
+#[derive(Clone, Copy)]
+struct GoalKey {
+    state: Sym,
+    level: u32,
 }

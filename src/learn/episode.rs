@@ -627,11 +627,16 @@ impl AgentCore {
             wmes.dedup();
             self.decider.traced_match_wmes.insert(id, wmes);
         }
-        let mut watched = Vec::with_capacity(bt.grounds.len());
+        let mut watched = self.learn.spare_grounds.pop().unwrap_or_default();
         for g in &bt.grounds {
             let key = (g.cond.wme_id, g.cond.wme.timetag);
             if self.wm.get(key.0).is_some_and(|w| w.timetag == key.1) {
-                let list = self.learn.justified_by_wme.entry(key).or_default();
+                let spare = &mut self.learn.spare_justified;
+                let list = self
+                    .learn
+                    .justified_by_wme
+                    .entry(key)
+                    .or_insert_with(|| spare.pop().unwrap_or_default());
                 if list.last() != Some(&(id, serial)) {
                     list.push((id, serial));
                     watched.push(key);
@@ -784,10 +789,11 @@ impl AgentCore {
         if self.learn.justified_by_wme.is_empty() {
             return;
         }
-        if let Some(list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
+        if let Some(mut list) = self.learn.justified_by_wme.remove(&(w, timetag)) {
             self.decider
                 .justification_retractions
-                .extend(list.into_iter().rev().map(|(i, s)| (i, s, at)));
+                .extend(list.drain(..).rev().map(|(i, s)| (i, s, at)));
+            self.learn.spare_justified.push(list);
         }
     }
 
@@ -799,13 +805,19 @@ impl AgentCore {
     pub(crate) fn justification_retracted(&mut self, inst: InstId, serial: u64) {
         // Its WMEs no longer retract it (those that stay would otherwise keep it listed
         // for as long as they last).
-        for key in self.learn.grounds_of.remove(&serial).unwrap_or_default() {
-            if let Some(list) = self.learn.justified_by_wme.get_mut(&key) {
-                list.retain(|&(_, s)| s != serial);
-                if list.is_empty() {
-                    self.learn.justified_by_wme.remove(&key);
+        if let Some(mut keys) = self.learn.grounds_of.remove(&serial) {
+            for &key in &keys {
+                if let Some(list) = self.learn.justified_by_wme.get_mut(&key) {
+                    list.retain(|&(_, s)| s != serial);
+                    if list.is_empty() {
+                        if let Some(list) = self.learn.justified_by_wme.remove(&key) {
+                            self.learn.spare_justified.push(list);
+                        }
+                    }
                 }
             }
+            keys.clear();
+            self.learn.spare_grounds.push(keys);
         }
         let mut held = 0;
         if self.decider.insts[inst].o_support {
