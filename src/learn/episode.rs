@@ -83,7 +83,9 @@ impl AgentCore {
         if queue.is_empty() {
             return queue;
         }
-        let mut seen: FxHashSet<PrefId> = FxHashSet::default();
+        // The set of preferences seen keeps its room from call to call.
+        let mut seen = std::mem::take(&mut self.learn.results_seen);
+        seen.clear();
         let mut results = Vec::new();
         let mut i = 0;
         while i < queue.len() {
@@ -113,6 +115,7 @@ impl AgentCore {
                 }
             }
         }
+        self.learn.results_seen = seen;
         results
     }
 

@@ -17,7 +17,7 @@ use crate::decide::ids::InstId;
 use crate::production::Production;
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 
 
@@ -251,6 +251,10 @@ pub struct LearnState {
     pub trace_names: FxHashMap<crate::rete::ProdId, Arc<TraceNames>>,
     /// Scratch for recording a firing: each binding's identity.
     pub binding_idents: Vec<Ident>,
+    /// Scratch for recording a firing: the WMEs of its match.
+    pub match_scratch: Vec<crate::wm::WmeId>,
+    /// Scratch for finding a firing's results: the preferences already seen.
+    pub results_seen: FxHashSet<crate::decide::state::PrefId>,
     /// Backtrace tables not in use, emptied between learning episodes (they keep their
     /// room). A justification's results one level up are learned from while the episode
     /// that made it still holds its own tables, so episodes nest.

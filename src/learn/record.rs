@@ -72,7 +72,9 @@ impl AgentCore {
             .get(&(p, t))
             .and_then(|&i| self.decider.insts[i].goal)
             .map_or(0, |g| self.sym_level(g));
-        let wmes = self.rete.match_wmes(p, t);
+        let mut wmes = std::mem::take(&mut self.learn.match_scratch);
+        wmes.clear();
+        wmes.extend(self.rete.match_row(p, t));
         let positives = prod
             .conditions
             .iter()
@@ -147,6 +149,7 @@ impl AgentCore {
             }));
         }
         self.learn.binding_idents = binding_idents;
+        self.learn.match_scratch = wmes;
         Some(trace)
     }
 
