@@ -86,6 +86,10 @@ impl ImpasseKind {
     }
 }
 
+/// A goal's firings' preferences, oldest first: each with its allocation number (handles
+/// are reused) and what it says.
+pub type MadePrefs = Vec<(PrefId, u64, (Sym, Sym, Sym))>;
+
 /// One state in the goal stack.
 #[derive(Debug, Clone)]
 pub struct Goal {
@@ -103,7 +107,7 @@ pub struct Goal {
     /// The preferences its firings made, oldest first, with each one's allocation number
     /// (handles are reused) and what it says: 9.6 lists the standing ones as removed when
     /// the state goes (trace 5).
-    pub made: Vec<(PrefId, u64, (Sym, Sym, Sym))>,
+    pub made: MadePrefs,
     /// A state below this one learned a rule: with `chunk bottom-only`, this one learns no
     /// more while it lasts.
     pub learned_below: bool,
@@ -249,7 +253,7 @@ pub struct DecideState {
     /// A firing's own preferences, kept for its trace and its results (scratch).
     pub rhs_own_prefs: Vec<PrefId>,
     /// Emptied lists of removed goals' preferences, for new goals to reuse.
-    pub spare_goal_made: Vec<Vec<(PrefId, u64, (Sym, Sym, Sym))>>,
+    pub spare_goal_made: Vec<MadePrefs>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
     /// Room for the walks that grow a goal dependency set.

@@ -254,7 +254,7 @@ pub struct LearnState {
     /// Scratch for recording a firing: the WMEs of its match.
     pub match_scratch: Vec<crate::wm::WmeId>,
     /// Scratch for finding a firing's results: the preferences already seen.
-    pub results_seen: FxHashSet<crate::decide::state::PrefId>,
+    pub results_seen: FxHashSet<crate::decide::ids::PrefId>,
     /// Backtrace tables not in use, emptied between learning episodes (they keep their
     /// room). A justification's results one level up are learned from while the episode
     /// that made it still holds its own tables, so episodes nest.
