@@ -53,12 +53,10 @@ impl AgentCore {
             if g.operator.is_some() || !g.slot_changed {
                 continue;
             }
-            let goal = GoalKey {
-                state: g.state,
-                level: g.level,
-            };
+            // Copies: the decision changes the goal list.
+            let (state, level) = (g.state, g.level);
             self.decider.goals[gi].slot_changed = false;
-            let prefs = self.slot_prefs((goal.state, op));
+            let prefs = self.slot_prefs((state, op));
             let forced = self.take_forced_operator(&prefs);
             let outcome = match forced {
                 Some(o) => Outcome::Winner(o),
@@ -72,8 +70,8 @@ impl AgentCore {
             // A substate's choice keeps the knowledge it rests on, for chunking; a forced
             // choice rests on none, an impasse clears it.
             self.decider.goals[gi].osk = match outcome {
-                Outcome::Winner(o) if forced.is_none() && goal.level > 1 => {
-                    self.selection_knowledge((goal.state, op), &prefs, o)
+                Outcome::Winner(o) if forced.is_none() && level > 1 => {
+                    self.selection_knowledge((state, op), &prefs, o)
                 }
                 _ => None,
             };
@@ -86,18 +84,18 @@ impl AgentCore {
                         // updates the RL rules of the state's previous RL operator.
                         let cands = procedure::candidates(&prefs).unwrap_or_else(|_| vec![o]);
                         let chosen = cands.iter().position(|c| *c == o).unwrap_or(0);
-                        let values = self.rl_candidates(goal.state, &prefs, &cands);
+                        let values = self.rl_candidates(state, &prefs, &cands);
                         self.rl_tabulate_rewards();
-                        self.rl_decided(goal.state, &values, chosen, policy);
+                        self.rl_decided(state, &values, chosen, policy);
                         decided = Some((cands, values, chosen));
                     }
                     self.remove_goals_below(gi);
                     if let Some((cands, values, chosen)) = decided {
-                        self.rl_store(goal.state, o);
-                        self.rl_trace_record(goal.state, goal.level, &cands, &values, chosen, policy);
+                        self.rl_store(state, o);
+                        self.rl_trace_record(state, level, &cands, &values, chosen, policy);
                     }
                     self.mark_queued_matches();
-                    let w = self.add_wme(goal.state, op, o, false);
+                    let w = self.add_wme(state, op, o, false);
                     if let Some(wme) = self.wm.get(w).copied() {
                         self.trace_wme(true, &wme);
                     }
@@ -109,7 +107,7 @@ impl AgentCore {
                         let names = self.name_values(o);
                         self.emit(&TraceEvent::Operator {
                             cycle: self.decider.d_cycle_count,
-                            level: goal.level,
+                            level,
                             operator: o,
                             names: &names,
                         });
@@ -365,11 +363,4 @@ impl AgentCore {
             }
         }
     }
-}
-
-/// What a decision reads of its goal (a copy: the decision changes the goal list).
-#[derive(Clone, Copy)]
-struct GoalKey {
-    state: Sym,
-    level: u32,
 }

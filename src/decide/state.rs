@@ -86,9 +86,12 @@ impl ImpasseKind {
     }
 }
 
-/// A goal's firings' preferences, oldest first: each with its allocation number (handles
-/// are reused) and what it says.
-pub type MadePrefs = Vec<(PrefId, u64, (Sym, Sym, Sym))>;
+/// A preference a goal's firing made: its handle, its allocation number (handles are
+/// reused) and what it says.
+pub type MadePref = (PrefId, u64, (Sym, Sym, Sym));
+
+/// A goal's firings' preferences, oldest first.
+pub type MadePrefs = Vec<MadePref>;
 
 /// One state in the goal stack.
 #[derive(Debug, Clone)]

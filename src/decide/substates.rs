@@ -2,7 +2,7 @@
 //! working memory"): a new state with its architecture WMEs for an impasse, and the removal
 //! of the states below a goal, with what 9.6's traces list for them.
 
-use super::state::{Goal, ImpasseKind, PrefId};
+use super::state::{Goal, ImpasseKind, MadePref, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
@@ -419,7 +419,7 @@ impl AgentCore {
     /// and its WME stays only while the learned rule's copy supports it (Soar manual,
     /// ch. 2, "Justifications: Support for results"; 9.6 removes a goal's preferences
     /// with it). The state's own slots go with the state.
-    fn remove_goal_prefs(&mut self, state: Sym, made: &[(PrefId, u64, (Sym, Sym, Sym))]) {
+    fn remove_goal_prefs(&mut self, state: Sym, made: &[MadePref]) {
         for (pid, what) in self.standing_prefs(state, made) {
             if what.0 == state {
                 continue;
@@ -475,7 +475,7 @@ impl AgentCore {
     /// oldest first, each one's preferences newest first, o-supported ones that outlived
     /// their firing too (checked on soar-sml 9.6.5: agents gds, substate-results,
     /// justification-negation).
-    pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[(PrefId, u64, (Sym, Sym, Sym))]) {
+    pub(super) fn trace_removed_prefs(&mut self, state: Sym, made: &[MadePref]) {
         for (pid, _) in self.standing_prefs(state, made) {
             if self.decider.prefs_traced_gone.contains(&pid) {
                 continue;
@@ -489,7 +489,7 @@ impl AgentCore {
     fn standing_prefs(
         &self,
         state: Sym,
-        made: &[(PrefId, u64, (Sym, Sym, Sym))],
+        made: &[MadePref],
     ) -> Vec<(PrefId, (Sym, Sym, Sym))> {
         made.iter()
             .filter(|&&(pid, serial, what)| self.made_pref_stands(pid, serial, what, state))

@@ -81,7 +81,7 @@ impl AgentCore {
             .collect();
         // Most firings make no preference on an object above their state.
         if queue.is_empty() {
-            return queue;
+            return Vec::new();
         }
         // The set of preferences seen keeps its room from call to call.
         let mut seen = std::mem::take(&mut self.learn.results_seen);

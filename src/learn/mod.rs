@@ -283,8 +283,9 @@ pub struct LearnState {
     pub justified_by_wme: FxHashMap<(WmeId, u64), Vec<(InstId, u64)>>,
     /// The WMEs each live justification is listed under in `justified_by_wme`, by serial.
     pub grounds_of: FxHashMap<u64, Vec<(WmeId, u64)>>,
-    /// Emptied lists of `justified_by_wme` and `grounds_of`, kept for their room.
+    /// Emptied lists of `justified_by_wme`, kept for their room.
     pub spare_justified: Vec<Vec<(InstId, u64)>>,
+    /// Emptied lists of `grounds_of`, kept for their room.
     pub spare_grounds: Vec<Vec<(WmeId, u64)>>,
     /// The superstate negations of live justifications: a new WME that matches one
     /// retracts it.
