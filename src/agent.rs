@@ -282,13 +282,19 @@ pub struct TraceFlags {
     pub wme_detail: WmeDetail,
     /// `-A`: assertions of rules and preferences (not printed yet).
     pub assertions: bool,
-    /// `-b`, `-G`, `-i`, `-R`, `-e`, `-s`, `-a`: kept for the listing only.
+    /// `-b`: chunking's dependency analysis (kept for the listing only).
     pub backtracing: bool,
+    /// `-G`: WMEs joining a goal dependency set.
     pub gds_wmes: bool,
+    /// `-i`: numeric preference calculations (9.6 prints nothing for them).
     pub indifferent: bool,
+    /// `-R`: reinforcement learning updates.
     pub rl: bool,
+    /// `-e`: episodic memory's queries (kept for the listing only).
     pub epmem: bool,
+    /// `-s`: augmentations as semantic memory stores them.
     pub smem: bool,
+    /// `-a`: working-memory activation and forgetting.
     pub wma: bool,
 }
 

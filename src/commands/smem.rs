@@ -151,7 +151,7 @@ impl Interpreter {
                 count(1, 1)?;
                 let (mut clauses, wrong) = text::parse_prefix(&words[0], true);
                 in_symbol_order(&mut clauses, &mut self.agent.symbols);
-                let marks = self.agent.smem.add(&clauses).map_err(db)?;
+                let marks = self.agent.smem.add(&clauses, self.agent.settings.trace.smem).map_err(db)?;
                 match wrong {
                     // The clauses before the wrong one are stored, as in 9.6.
                     Some(n) if marks.is_empty() => {

@@ -112,14 +112,16 @@ impl Smem {
     /// `smem --add`: stores the clauses, merging with the LTIs named `@N`. Variables get
     /// new LTIs in the order their clauses come (a variable seen only as a value, after
     /// them). Returns one `@` per LTI written, as 9.6 prints.
-    pub fn add(&mut self, clauses: &[Clause]) -> DbResult<String> {
+    /// `smem --add`: stores the clauses; the answer is 9.6's printed text, an `@` for each
+    /// clause and, with `trace` (`trace --smem`), a line for each augmentation.
+    pub fn add(&mut self, clauses: &[Clause], trace: bool) -> DbResult<String> {
         let t = self.timer_start(timer::STORAGE);
-        let done = self.add_untimed(clauses);
+        let done = self.add_untimed(clauses, trace);
         self.timers.stop(t);
         done
     }
 
-    fn add_untimed(&mut self, clauses: &[Clause]) -> DbResult<String> {
+    fn add_untimed(&mut self, clauses: &[Clause], trace: bool) -> DbResult<String> {
         let store = self.store()?;
         let mut vars: Vec<(String, i64)> = Vec::new();
         let mut order: Vec<&Node> = clauses.iter().map(|c| &c.id).collect();
@@ -151,16 +153,20 @@ impl Smem {
         let mut marks = String::new();
         for c in clauses {
             let id = lti_of(&c.id);
+            marks.push('@');
             for (attr, values) in &c.augs {
                 for v in values {
                     let value = match v {
                         Item::Const(k) => k.clone(),
                         Item::Node(n) => Val::Lti(lti_of(n)),
                     };
+                    // 9.6 traces an augmentation the LTI already has too.
+                    if trace {
+                        marks.push_str(&print::trace_addition(id, attr, &value));
+                    }
                     store.add_aug(id, attr, &value)?;
                 }
             }
-            marks.push('@');
         }
         let lazy = self.params.lazy_commit();
         self.store()?.commit(lazy)?;

@@ -27,6 +27,20 @@ fn export_text(v: &Val) -> String {
     }
 }
 
+/// `trace --smem`'s line for an augmentation as it is stored: `=>SMEM: (@N ^attr value)`,
+/// or `=>SMEM: (N ^attr M)` when the value is an LTI (9.6 writes both numbers bare then).
+pub fn trace_addition(lti: i64, attr: &Val, value: &Val) -> String {
+    match value {
+        Val::Lti(l) => format!("=>SMEM: ({lti} ^{} {l})\n", export_text(attr)),
+        v => format!("=>SMEM: (@{lti} ^{} {})\n", export_text(attr), export_text(v)),
+    }
+}
+
+/// `trace --smem`'s line as a store replaces an LTI's augmentations.
+pub fn trace_replacement(lti: i64) -> String {
+    format!("<=SMEM: (@{lti} ^* *)\n")
+}
+
 /// The augmentations grouped by attribute text, attributes in order, values as stored.
 fn grouped(
     store: &Store,

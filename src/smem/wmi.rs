@@ -315,7 +315,8 @@ impl AgentCore {
             self.smem_result(res, "bad-cmd", None, Some(cmd_id), &mut added);
             return added;
         };
-        for &s in &cmd.stores {
+        // Several stores go newest WME first, as 9.6 lists a slot's WMEs.
+        for &s in cmd.stores.iter().rev() {
             let t = self.smem.timer_start(super::timer::STORAGE);
             let stored = self.smem_store_object(s);
             self.smem.timers.stop(t);
@@ -547,6 +548,11 @@ impl AgentCore {
             }
         };
         self.smem.store()?.remove_augs(lti, None, None)?;
+        let trace = self.settings.trace.smem;
+        self.output.push('@');
+        if trace {
+            self.output.push_str(&super::print::trace_replacement(lti));
+        }
         // 9.6 files the object's attributes by symbol, in memory order, which is the
         // order the symbols were made in, and each attribute's values as its slot lists
         // them, the newest WME first: that order gives them their symbol numbers, and so
@@ -567,13 +573,15 @@ impl AgentCore {
                     Val::Lti(l)
                 }
             };
+            if trace {
+                self.output.push_str(&super::print::trace_addition(lti, &attr, &value));
+            }
             self.smem.store()?.add_aug(lti, &attr, &value)?;
         }
         self.smem.activate_stored(lti)?;
         self.smem.stats.stores += 1;
         let lazy = self.smem.params.lazy_commit();
         self.smem.store()?.commit(lazy)?;
-        self.output.push('@');
         Ok(())
     }
 
