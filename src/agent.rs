@@ -290,7 +290,7 @@ pub struct TraceFlags {
     pub indifferent: bool,
     /// `-R`: reinforcement learning updates.
     pub rl: bool,
-    /// `-e`: episodic memory's queries (kept for the listing only).
+    /// `-e`: each new best episode of an episodic memory query.
     pub epmem: bool,
     /// `-s`: augmentations as semantic memory stores them.
     pub smem: bool,

@@ -149,13 +149,15 @@ impl AgentCore {
     }
 
     /// Searches the episodes before `before` and after `after`, not prohibited, for the
-    /// best match of the cue.
+    /// best match of the cue. Each time the best changes, `kings` gets whether it matches
+    /// every positive leaf and whether it is graph-matched (what `trace --epmem` prints).
     pub(crate) fn epmem_search(
         &self,
         cue: &Cue,
         before: Option<i64>,
         after: Option<i64>,
         prohibit: &[i64],
+        kings: &mut Vec<(bool, bool)>,
     ) -> Option<Found> {
         let store = self.epmem.store.as_ref()?;
         let graph_match = self.epmem.params.graph_match();
@@ -211,7 +213,8 @@ impl AgentCore {
             if !better {
                 continue;
             }
-            if best.as_ref().is_none_or(|b| score > b.score) {
+            let crowned = best.as_ref().is_none_or(|b| score > b.score);
+            if crowned {
                 best = Some(Found {
                     episode: ep,
                     score,
@@ -231,8 +234,12 @@ impl AgentCore {
                     b.episode = ep;
                     b.graph_matched = true;
                     b.bindings = bindings;
+                    kings.push((true, true));
                     break;
                 }
+            }
+            if crowned {
+                kings.push((cardinality == perfect_card, false));
             }
         }
         best

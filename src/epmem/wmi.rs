@@ -472,7 +472,15 @@ impl AgentCore {
         stats.qry_pos = cue.pos_literals;
         stats.qry_neg = cue.neg_literals;
         stats.qry_lits = cue.pos_literals + cue.neg_literals;
-        let found = self.epmem_search(&cue, c.before, c.after, &c.prohibit);
+        let mut kings = Vec::new();
+        let found = self.epmem_search(&cue, c.before, c.after, &c.prohibit, &mut kings);
+        if self.settings.trace.epmem {
+            for (perfect, graph_matched) in kings {
+                self.output.push_str(&format!(
+                    "NEW KING (perfect, graph-match): ({perfect}, {graph_matched})\n"
+                ));
+            }
+        }
         let cues = [Some(q), c.neg_query];
         let Some(found) = found else {
             let a = self.symbols.str("failure");
