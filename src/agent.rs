@@ -282,7 +282,7 @@ pub struct TraceFlags {
     pub wme_detail: WmeDetail,
     /// `-A`: assertions of rules and preferences (not printed yet).
     pub assertions: bool,
-    /// `-b`: chunking's dependency analysis (kept for the listing only).
+    /// `-b`: chunking's dependency analysis.
     pub backtracing: bool,
     /// `-G`: WMEs joining a goal dependency set.
     pub gds_wmes: bool,

@@ -90,7 +90,15 @@ impl Interpreter {
                     Some(_) => Err(invalid()),
                 }
             }
-            Some("singleton") => self.chunk_singleton(ctx, &args[1..]),
+            // 9.6 answers with a result, not printed text: a sourced file's `chunk
+            // singleton` shows nothing.
+            Some("singleton") => self.chunk_singleton(ctx, &args[1..]).map(|answer| {
+                if self.source_stack.is_empty() {
+                    answer
+                } else {
+                    String::new()
+                }
+            }),
             Some("stats") => {
                 // 9.6 prints the table whatever follows `stats`; rusoar does too, and says
                 // that the rest was not used.

@@ -129,7 +129,8 @@ impl AgentCore {
             if same {
                 // 9.6 brings the items up to date at each such decision, making their
                 // instantiations anew (counted by `chunk stats`).
-                self.learn.stats.item_instantiations += 2 * items.len() as u64;
+                let non_numeric = self.non_numeric_items(state, &items).len();
+                self.learn.stats.item_instantiations += (items.len() + non_numeric) as u64;
                 if self.decider.goals[gi + 1].items != items {
                     self.update_impasse_items(gi + 1, items);
                 }
@@ -295,8 +296,13 @@ impl AgentCore {
     /// candidate goes, then each new candidate is added in candidate order. The changes
     /// are traced and matched with the phase's others ([`Self::flush_impasse_item_updates`]).
     fn update_impasse_items(&mut self, sub: usize, items: Vec<Sym>) {
-        let n = self.symbols.int(items.len() as i64);
-        for (item, count) in [("item", "item-count"), ("non-numeric", "non-numeric-count")] {
+        let above = self.decider.goals[sub - 1].state;
+        let non_numeric = self.non_numeric_items(above, &items);
+        for (item, count, items) in [
+            ("item", "item-count", &items),
+            ("non-numeric", "non-numeric-count", &non_numeric),
+        ] {
+            let n = self.symbols.int(items.len() as i64);
             let item = self.symbols.str(item);
             let count = self.symbols.str(count);
             let state = self.decider.goals[sub].state;
@@ -330,7 +336,7 @@ impl AgentCore {
                     self.decider.item_updates.1.push(w);
                 }
             }
-            for &it in &items {
+            for &it in items {
                 if !kept.contains(&it) {
                     let added = self.wm.add(state, item, it, false);
                     self.decider.goals[sub].wmes.push(added);

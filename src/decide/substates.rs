@@ -2,6 +2,7 @@
 //! working memory"): a new state with its architecture WMEs for an impasse, and the removal
 //! of the states below a goal, with what 9.6's traces list for them.
 
+use super::procedure::PrefType;
 use super::state::{Goal, ImpasseKind, MadePref, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
@@ -238,6 +239,21 @@ impl AgentCore {
         lines.into_iter().map(|(g, _, w)| (g, w)).collect()
     }
 
+    /// The items of an operator impasse of `state` that no numeric preference values:
+    /// the substate's `^non-numeric` (Soar manual, ch. 3, "Impasses in working memory").
+    pub(super) fn non_numeric_items(&self, state: Sym, items: &[Sym]) -> Vec<Sym> {
+        let slot = self.decider.slots.get(&(state, self.symbols.known.operator));
+        let numeric = |it: Sym| {
+            slot.is_some_and(|slot| {
+                slot.prefs_for(it).any(|pid| {
+                    let p = &self.decider.prefs[pid];
+                    p.kind == PrefType::NumericIndifferent && p.value == it
+                })
+            })
+        };
+        items.iter().copied().filter(|&it| !numeric(it)).collect()
+    }
+
     /// Creates (or keeps) the substate for an impasse at goal `gi`, with its architecture
     /// WMEs in 9.6's order.
     pub(super) fn impasse(
@@ -310,17 +326,19 @@ impl AgentCore {
         add(self, s, k.choices, choices);
         add(self, s, k.quiescence, k.t);
         if !items.is_empty() {
+            let non_numeric = self.non_numeric_items(parent, &items);
             // 9.6 backs each `^item` and `^non-numeric` with an instantiation of its own
             // (counted by `chunk stats`).
-            self.learn.stats.item_instantiations += 2 * items.len() as u64;
+            self.learn.stats.item_instantiations += (items.len() + non_numeric.len()) as u64;
             for &it in &items {
                 add(self, s, k.item, it);
             }
             let n = self.symbols.int(items.len() as i64);
             add(self, s, k.item_count, n);
-            for &it in &items {
+            for &it in &non_numeric {
                 add(self, s, k.non_numeric, it);
             }
+            let n = self.symbols.int(non_numeric.len() as i64);
             add(self, s, k.non_numeric_count, n);
         }
         // 9.6 prints the depth message before the new state's WMEs and line.

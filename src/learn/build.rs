@@ -392,6 +392,23 @@ impl AgentCore {
     /// warning shows them: over the symbols matched, a variable of the negation's own
     /// kept (`(S2 -^blocker <b*1>)`).
     pub(crate) fn local_negation_texts(&self, bt: &Backtrace) -> Vec<String> {
+        bt.negations
+            .iter()
+            .filter_map(|n| self.literal_negation(bt, n))
+            .filter(|&(level, _)| level != u32::MAX && level >= bt.level)
+            .map(|(_, c)| crate::printer::cond_text_with(&c, false))
+            .collect()
+    }
+
+    /// A negated condition of a backtraced firing over the symbols it matched (a variable
+    /// of the negation's own kept), with the level of the identifier it tests (`u32::MAX`
+    /// when it names none).
+    pub(crate) fn literal_negation(
+        &self,
+        bt: &Backtrace,
+        n: &super::backtrace::Negation,
+    ) -> Option<(u32, Condition)> {
+        let (level, prod) = self.negation_level(n)?;
         let mut b = Builder {
             agent: self,
             bt,
@@ -406,20 +423,9 @@ impl AgentCore {
             keep_tests: true,
             id_names: FxHashMap::default(),
         };
-        let mut out = Vec::new();
-        for n in &bt.negations {
-            let Some((level, prod)) = self.negation_level(n) else {
-                continue;
-            };
-            if level == u32::MAX || level < bt.level {
-                continue;
-            }
-            let mut locals = FxHashMap::default();
-            if let Some(c) = b.negation(&n.trace, &prod.conditions[n.cond], &mut locals) {
-                out.push(crate::printer::cond_text_with(&c, false));
-            }
-        }
-        out
+        let mut locals = FxHashMap::default();
+        let c = b.negation(&n.trace, prod.conditions.get(n.cond)?, &mut locals)?;
+        Some((level, c))
     }
 
     /// The rule a backtrace gives: a chunk (`variablize`) or a justification.

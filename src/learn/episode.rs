@@ -172,7 +172,15 @@ impl AgentCore {
                 bt.result(&o, self, quiescence, t);
             }
         }
+        let bt_text = self
+            .settings
+            .trace
+            .backtracing
+            .then(|| self.backtrace_trace(bt, &results));
         if bt.grounds.is_empty() {
+            if let Some(text) = bt_text {
+                self.output.push_str(&text);
+            }
             // No superstate knowledge tested: nothing to learn (9.6 skips it too).
             self.learn.stats.firings_backtraced += bt.firings as u64;
             self.learn.stats.no_grounds += 1;
@@ -205,6 +213,14 @@ impl AgentCore {
         // learn-local-negation-off).
         let local_negation = self.tests_local_negation(bt);
         let refused = want_chunk && local_negation && !self.settings.chunk.allow_local_negations;
+        // A result past `max-chunks` is not analyzed at all (below): 9.6 traces nothing.
+        let past_max_chunks = want_chunk
+            && !refused
+            && !bt.tested_quiescence
+            && self.learn.chunks_this_phase >= self.settings.max_chunks;
+        if let Some(text) = bt_text.filter(|_| !past_max_chunks) {
+            self.output.push_str(&text);
+        }
         if refused && self.settings.trace.chunk_warnings {
             let conditions = self.local_negation_texts(bt);
             self.emit(&TraceEvent::LocalNegationRefused {

@@ -4,6 +4,7 @@
 //! the superstate WMEs it depended on, `build.rs` turns that into a rule.
 
 mod backtrace;
+mod backtrace_trace;
 mod build;
 mod episode;
 mod negations;

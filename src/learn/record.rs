@@ -231,7 +231,7 @@ impl AgentCore {
 
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
     /// operator proposal) preference for its value that was recorded.
-    fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
+    pub(crate) fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         // A required operator, once selected, rests on its require preference (the
         // candidate 9.6 selects).
