@@ -82,6 +82,13 @@ impl AgentCore {
         let all = self.wm.all();
         let never_linked = all.iter().filter_map(|&w| self.wm.get(w)).map(|w| w.id);
         stack.extend(never_linked.filter(|&id| !self.wm.ever_pointed_at(id)));
+        // An object whose link failed stays, with what it links, as in 9.6.
+        let failed = all.iter().filter_map(|&w| self.wm.get(w));
+        stack.extend(
+            failed
+                .flat_map(|w| [w.id, w.value])
+                .filter(|&x| self.wm.had_failed_link(x)),
+        );
         while let Some(id) = stack.pop() {
             if !linked.insert(id) {
                 continue;

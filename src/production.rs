@@ -536,16 +536,21 @@ pub fn call_text(f: &FuncCall) -> String {
 
 /// One make action alone, as in Soar's ungrounded-action message: `(<x> ^a 1 +)`.
 pub fn make_text(m: &Make) -> String {
+    make_text_with(m, rhs_term_text)
+}
+
+/// A make action with each term written by `term` (a firing's bindings, say).
+pub fn make_text_with(m: &Make, term: impl Fn(&RhsTerm) -> String) -> String {
     let mut s = format!(
         "({} ^{} {} {}",
-        rhs_term_text(&m.id),
-        rhs_term_text(&m.attr),
-        rhs_term_text(&m.value),
+        term(&m.id),
+        term(&m.attr),
+        term(&m.value),
         m.pref.symbol()
     );
     if let Some(r) = &m.referent {
         s.push(' ');
-        s.push_str(&rhs_term_text(r));
+        s.push_str(&term(r));
     }
     s.push(')');
     s

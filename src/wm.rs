@@ -64,6 +64,10 @@ pub struct WorkingMemory {
     /// action whose link to it failed) stays, as in 9.6; the invariant checker tells
     /// those from objects collection missed by this.
     pointed_at: Vec<u64>,
+    /// A bit per symbol: whether an action that would have linked it failed (its
+    /// identifier was a constant). Such an object stays unlinked, as in 9.6, with whatever
+    /// it links, even when a WME of its own structure points back at it.
+    failed_link: Vec<u64>,
     /// While episodic memory keeps its record of working memory, every addition and removal
     /// in order (`true` for an addition), for it to read at its next episode.
     journal: Option<Vec<(bool, Wme)>>,
@@ -94,6 +98,7 @@ impl WorkingMemory {
             spare_id_lists: Vec::new(),
             spare_parent_lists: Vec::new(),
             pointed_at: Vec::new(),
+            failed_link: Vec::new(),
             journal: None,
         }
     }
@@ -315,15 +320,33 @@ impl WorkingMemory {
 
     /// Whether a WME has ever pointed at `x` (as its value or attribute).
     pub(crate) fn ever_pointed_at(&self, x: Sym) -> bool {
-        self.pointed_at
-            .get(x.0 as usize / 64)
-            .is_some_and(|word| word & (1 << (x.0 % 64)) != 0)
+        bit_set(&self.pointed_at, x)
+    }
+
+    /// Notes that an action that would have linked identifier `x` failed.
+    pub(crate) fn note_failed_link(&mut self, x: Sym) {
+        let word = x.0 as usize / 64;
+        if self.failed_link.len() <= word {
+            self.failed_link.resize(word + 1, 0);
+        }
+        self.failed_link[word] |= 1 << (x.0 % 64);
+    }
+
+    /// Whether an action that would have linked `x` failed.
+    pub(crate) fn had_failed_link(&self, x: Sym) -> bool {
+        bit_set(&self.failed_link, x)
     }
 
     /// `init-soar`: timetags start again at 1, as in the official kernel.
     pub fn reset_timetags(&mut self) {
         self.next_timetag = 1;
     }
+}
+
+/// Whether symbol `x`'s bit is set in a bit per symbol.
+fn bit_set(bits: &[u64], x: Sym) -> bool {
+    bits.get(x.0 as usize / 64)
+        .is_some_and(|word| word & (1 << (x.0 % 64)) != 0)
 }
 
 #[cfg(test)]

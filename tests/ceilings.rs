@@ -405,3 +405,30 @@ fn one_cycles_firings_stop_at_the_preference_ceiling() {
     let again = agent.run(1, RunUnit::Decisions).unwrap();
     assert_eq!(again.stop, StopReason::CeilingReached);
 }
+
+/// A fuzzed command line (`fuzz/` `command_line`, a timeout): an agent whose operator slot
+/// gains a proposal each decision. The preference semantics looked each candidate up in
+/// all of the slot's preferences, time quadratic in their number for each decision (6.5 s
+/// for the fuzzed input); a large slot is indexed now.
+#[test]
+fn a_slot_that_grows_each_decision_decides_in_linear_time() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {init :o-support (state <s> ^superstate nil -^count) --> (<s> ^count 1 ^step 0)}\n\
+             sp {propose (state <s> ^step <n>) --> (<s> ^operator <o> + =) (<o> ^n <n>)}\n\
+             sp {apply (state <s> ^operator <o> ^count <c>)\n\
+                 --> (<s> ^count <c> - ^count (+ <c> 1) ^step <c>)}\n\
+             watch 0",
+        )
+        .unwrap();
+    let started = std::time::Instant::now();
+    agent.run(2000, RunUnit::Decisions).unwrap();
+    // 2,001 values of `^step`, each with its proposal's operator.
+    assert!(agent.wme_count() > 6000, "{} WMEs", agent.wme_count());
+    assert!(
+        started.elapsed().as_secs_f64() < 5.0,
+        "{:?}",
+        started.elapsed()
+    );
+}

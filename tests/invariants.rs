@@ -77,6 +77,24 @@ fn an_object_whose_link_failed_stays_and_is_no_violation() {
     assert_eq!(agent.check_invariants(), Ok(()));
 }
 
+/// Found by the `production_parser` fuzz target: the object of a failed link that its own
+/// structure points back at (`(<v2> ^a <v3>) (<v3> ^c <v2>)`) stays too, as in 9.6
+/// (soar_sml 9.6.5 prints `(V2 ^c V1)` after the same decision), and is no violation.
+#[test]
+fn a_cycle_whose_link_failed_stays_and_is_no_violation() {
+    let mut agent = Agent::default();
+    agent
+        .execute(
+            "sp {link (state <s> ^type state) -(<s> ^a z) (<s> ^a <v1>) -(<v1> ^b 1) \
+             --> (<v1> ^b <v2>) (<v2> ^a <v3>) (<v3> ^c <v2>)}\n\
+             sp {number (state <s> ^type state) --> (<s> ^a (* 3.5 1))}\n\
+             watch 0\nrun 1",
+        )
+        .expect("the agent runs");
+    assert_eq!(agent.execute("print v2").expect("print"), "(V2 ^c V1)\n");
+    assert_eq!(agent.check_invariants(), Ok(()));
+}
+
 /// Found by the `command_line` fuzz target: `wm remove` of the WME that alone linked a
 /// substate's `^epmem` object left the object's WMEs in working memory, linked to no goal.
 /// 9.6 collects the object at once (`soar_sml` 9.6.5: `print e3` then says there is no

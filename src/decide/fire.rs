@@ -140,6 +140,12 @@ impl AgentCore {
                         continue;
                     };
                     if !self.symbols.is_id(id) {
+                        // The objects it would have linked stay, unlinked (as in 9.6).
+                        for x in [attr, value].into_iter().chain(referent) {
+                            if self.symbols.is_id(x) {
+                                self.wm.note_failed_link(x);
+                            }
+                        }
                         continue;
                     }
                     // A binary indifferent preference whose referent is a number is a

@@ -7,6 +7,7 @@
 //! first, so the candidate list is in reverse firing order).
 
 use crate::rng::Mt19937;
+use rustc_hash::{FxHashMap, FxHashSet};
 use crate::symbols::Sym;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -111,19 +112,83 @@ pub enum NumericMode {
     Avg,
 }
 
-fn push_unique(v: &mut Vec<Sym>, s: Sym) {
-    if !v.contains(&s) {
-        v.push(s);
-    }
-}
-
 fn has(prefs: &[Pref], kind: PrefType, value: Sym) -> bool {
     prefs.iter().any(|p| p.kind == kind && p.value == value)
+}
+
+/// Which kinds of preference each value has, and the binary indifferent pairs: a slot with
+/// many preferences (an agent proposing an operator per WME of a growing set) is read
+/// through this index, where scanning the preferences for each candidate would take time
+/// quadratic in their number (cubic for the indifference test).
+struct Index<'a> {
+    prefs: &'a [Pref],
+    kinds: Option<FxHashMap<Sym, u16>>,
+    pairs: Option<FxHashSet<(Sym, Sym)>>,
+}
+
+/// Slots with more preferences than this are indexed; fewer are scanned.
+const SCANNED: usize = 16;
+
+impl<'a> Index<'a> {
+    fn new(prefs: &'a [Pref]) -> Self {
+        if prefs.len() <= SCANNED {
+            return Index {
+                prefs,
+                kinds: None,
+                pairs: None,
+            };
+        }
+        let mut kinds: FxHashMap<Sym, u16> = FxHashMap::default();
+        let mut pairs = FxHashSet::default();
+        for p in prefs {
+            *kinds.entry(p.value).or_default() |= 1 << p.kind as u16;
+            if let (PrefType::BinaryIndifferent, Some(r)) = (p.kind, p.referent) {
+                pairs.insert((p.value, r));
+            }
+        }
+        Index {
+            prefs,
+            kinds: Some(kinds),
+            pairs: Some(pairs),
+        }
+    }
+
+    /// Whether `value` has a preference of `kind`.
+    fn has(&self, kind: PrefType, value: Sym) -> bool {
+        match &self.kinds {
+            Some(k) => k.get(&value).is_some_and(|b| b & (1 << kind as u16) != 0),
+            None => has(self.prefs, kind, value),
+        }
+    }
+
+    /// Whether a binary indifferent preference pairs `a` and `b`, either way round.
+    fn indifferent_pair(&self, a: Sym, b: Sym) -> bool {
+        match &self.pairs {
+            Some(p) => p.contains(&(a, b)) || p.contains(&(b, a)),
+            None => self.prefs.iter().any(|p| {
+                p.kind == PrefType::BinaryIndifferent
+                    && ((p.value == a && p.referent == Some(b))
+                        || (p.value == b && p.referent == Some(a)))
+            }),
+        }
+    }
 }
 
 /// The preference semantics in 9.6's order, up to the choice: the candidates to choose
 /// among (one, or several mutually indifferent ones), or the impasse.
 pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
+    let index = Index::new(prefs);
+    let mut seen: FxHashSet<Sym> = FxHashSet::default();
+    let mut push_unique = |v: &mut Vec<Sym>, s: Sym| {
+        let new = if index.kinds.is_some() {
+            seen.insert(s)
+        } else {
+            !v.contains(&s)
+        };
+        if new {
+            v.push(s);
+        }
+    };
     // Step 1: require.
     let mut required = Vec::new();
     for p in prefs.iter().filter(|p| p.kind == PrefType::Require) {
@@ -134,7 +199,7 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
             return Err(Outcome::ConstraintFailure(required));
         }
         let r = required[0];
-        if has(prefs, PrefType::Prohibit, r) {
+        if index.has(PrefType::Prohibit, r) {
             return Err(Outcome::ConstraintFailure(required));
         }
         return Ok(vec![r]);
@@ -142,7 +207,7 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     // Step 2: acceptable, minus prohibit and reject.
     let mut cands = Vec::new();
     for p in prefs.iter().filter(|p| p.kind == PrefType::Acceptable) {
-        if !has(prefs, PrefType::Prohibit, p.value) && !has(prefs, PrefType::Reject, p.value) {
+        if !index.has(PrefType::Prohibit, p.value) && !index.has(PrefType::Reject, p.value) {
             push_unique(&mut cands, p.value);
         }
     }
@@ -153,6 +218,14 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     }
     // Step 3: better/worse between current candidates. A dominated candidate is out even if
     // its dominator is dominated too.
+    let position: Option<FxHashMap<Sym, usize>> = index
+        .kinds
+        .as_ref()
+        .map(|_| cands.iter().enumerate().map(|(i, &c)| (c, i)).collect());
+    let position_of = |s: Sym| match &position {
+        Some(m) => m.get(&s).copied(),
+        None => cands.iter().position(|c| *c == s),
+    };
     let mut dominated = vec![false; cands.len()];
     for p in prefs {
         let (Some(r), true) = (
@@ -161,10 +234,7 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
         ) else {
             continue;
         };
-        let (Some(vi), Some(ri)) = (
-            cands.iter().position(|c| *c == p.value),
-            cands.iter().position(|c| *c == r),
-        ) else {
+        let (Some(vi), Some(ri)) = (position_of(p.value), position_of(r)) else {
             continue;
         };
         match p.kind {
@@ -185,31 +255,28 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
         return Ok(vec![cands[0]]);
     }
     // Step 4: best.
-    if cands.iter().any(|c| has(prefs, PrefType::Best, *c)) {
-        cands.retain(|c| has(prefs, PrefType::Best, *c));
+    if cands.iter().any(|c| index.has(PrefType::Best, *c)) {
+        cands.retain(|c| index.has(PrefType::Best, *c));
         if cands.len() == 1 {
             return Ok(vec![cands[0]]);
         }
     }
     // Step 5: worst, unless every candidate is worst.
-    if !cands.iter().all(|c| has(prefs, PrefType::Worst, *c)) {
-        cands.retain(|c| !has(prefs, PrefType::Worst, *c));
+    if !cands.iter().all(|c| index.has(PrefType::Worst, *c)) {
+        cands.retain(|c| !index.has(PrefType::Worst, *c));
         if cands.len() == 1 {
             return Ok(vec![cands[0]]);
         }
     }
     // Step 6: indifference.
     let unary = |c: Sym| {
-        has(prefs, PrefType::UnaryIndifferent, c) || has(prefs, PrefType::NumericIndifferent, c)
+        index.has(PrefType::UnaryIndifferent, c) || index.has(PrefType::NumericIndifferent, c)
     };
     let binary_with_all = |c: Sym| {
-        cands.iter().filter(|o| **o != c).all(|o| {
-            prefs.iter().any(|p| {
-                p.kind == PrefType::BinaryIndifferent
-                    && ((p.value == c && p.referent == Some(*o))
-                        || (p.value == *o && p.referent == Some(c)))
-            })
-        })
+        cands
+            .iter()
+            .filter(|o| **o != c)
+            .all(|o| index.indifferent_pair(c, *o))
     };
     let all_indifferent =
         cands.iter().all(|c| unary(*c)) || cands.iter().all(|c| binary_with_all(*c));

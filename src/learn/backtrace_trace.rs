@@ -284,24 +284,12 @@ fn made_pref_text(agent: &AgentCore, origin: &PrefOrigin) -> String {
             .trace
             .vars
             .get(v)
-            .map_or_else(|| format!("<{v}>"), |&(_, s)| agent.symbols.text(s)),
+            .map_or_else(|| v.clone(), |&(_, s)| agent.symbols.text(s)),
         RhsTerm::Const(c) => agent.symbols.find_constant(c).map_or_else(
             || crate::printer::constants::constant_text(c),
             |s| agent.symbols.text(s),
         ),
         RhsTerm::Call(_) => String::from("?"),
     };
-    let mut s = format!(
-        "({} ^{} {} {}",
-        term(&m.id),
-        term(&m.attr),
-        term(&m.value),
-        m.pref.symbol()
-    );
-    if let Some(r) = &m.referent {
-        s.push(' ');
-        s.push_str(&term(r));
-    }
-    s.push(')');
-    s
+    crate::production::make_text_with(m, term)
 }
