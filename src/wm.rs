@@ -168,11 +168,7 @@ impl WorkingMemory {
             self.link_pos.resize(w.0 as usize + 1, NOT_LINKED);
         }
         if value_is_id {
-            let (word, bit) = (value.0 as usize / 64, value.0 % 64);
-            if self.pointed_at.len() <= word {
-                self.pointed_at.resize(word + 1, 0);
-            }
-            self.pointed_at[word] |= 1 << bit;
+            set_bit(&mut self.pointed_at, value);
             let spare = &mut self.spare_parent_lists;
             let list = self
                 .parents
@@ -325,11 +321,7 @@ impl WorkingMemory {
 
     /// Notes that an action that would have linked identifier `x` failed.
     pub(crate) fn note_failed_link(&mut self, x: Sym) {
-        let word = x.0 as usize / 64;
-        if self.failed_link.len() <= word {
-            self.failed_link.resize(word + 1, 0);
-        }
-        self.failed_link[word] |= 1 << (x.0 % 64);
+        set_bit(&mut self.failed_link, x);
     }
 
     /// Whether an action that would have linked `x` failed.
@@ -341,6 +333,15 @@ impl WorkingMemory {
     pub fn reset_timetags(&mut self) {
         self.next_timetag = 1;
     }
+}
+
+/// Sets symbol `x`'s bit in a bit per symbol, growing it as needed.
+fn set_bit(bits: &mut Vec<u64>, x: Sym) {
+    let word = x.0 as usize / 64;
+    if bits.len() <= word {
+        bits.resize(word + 1, 0);
+    }
+    bits[word] |= 1 << (x.0 % 64);
 }
 
 /// Whether symbol `x`'s bit is set in a bit per symbol.

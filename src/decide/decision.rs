@@ -129,10 +129,10 @@ impl AgentCore {
             if same {
                 // 9.6 brings the items up to date at each such decision, making their
                 // instantiations anew (counted by `chunk stats`).
-                let non_numeric = self.non_numeric_items(state, &items).len();
-                self.learn.stats.item_instantiations += (items.len() + non_numeric) as u64;
+                let non_numeric = self.non_numeric_items(state, &items);
+                self.learn.stats.item_instantiations += (items.len() + non_numeric.len()) as u64;
                 if self.decider.goals[gi + 1].items != items {
-                    self.update_impasse_items(gi + 1, items);
+                    self.update_impasse_items(gi + 1, items, non_numeric);
                 }
                 continue;
             }
@@ -295,9 +295,8 @@ impl AgentCore {
     /// newest first, a count that changed is replaced at once, an item no longer a
     /// candidate goes, then each new candidate is added in candidate order. The changes
     /// are traced and matched with the phase's others ([`Self::flush_impasse_item_updates`]).
-    fn update_impasse_items(&mut self, sub: usize, items: Vec<Sym>) {
-        let above = self.decider.goals[sub - 1].state;
-        let non_numeric = self.non_numeric_items(above, &items);
+    /// `non_numeric` is the items no numeric preference values.
+    fn update_impasse_items(&mut self, sub: usize, items: Vec<Sym>, non_numeric: Vec<Sym>) {
         for (item, count, items) in [
             ("item", "item-count", &items),
             ("non-numeric", "non-numeric-count", &non_numeric),

@@ -137,8 +137,8 @@ impl Walk<'_> {
             self.through_knowledge(&passes);
         }
         if let Some(osk) = self.proposals.get(&Arc::as_ptr(trace)).filter(|_| add_osk) {
-            let passes: Vec<Arc<PrefOrigin>> = osk.to_vec();
-            self.through_knowledge(&passes);
+            let osk = osk.clone();
+            self.through_knowledge(&osk);
         }
         let mut item_of = None;
         for c in &trace.conds {

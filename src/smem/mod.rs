@@ -111,9 +111,8 @@ impl Smem {
 
     /// `smem --add`: stores the clauses, merging with the LTIs named `@N`. Variables get
     /// new LTIs in the order their clauses come (a variable seen only as a value, after
-    /// them). Returns one `@` per LTI written, as 9.6 prints.
-    /// `smem --add`: stores the clauses; the answer is 9.6's printed text, an `@` for each
-    /// clause and, with `trace` (`trace --smem`), a line for each augmentation.
+    /// them). Returns 9.6's printed text: an `@` per clause and, with `trace` (`trace
+    /// --smem`), a line for each augmentation.
     pub fn add(&mut self, clauses: &[Clause], trace: bool) -> DbResult<String> {
         let t = self.timer_start(timer::STORAGE);
         let done = self.add_untimed(clauses, trace);
