@@ -68,11 +68,13 @@ def golden_in_own_process(name, path):
 
 def stable_form(text):
     """The golden text with what `stats` prints that changes from run to run of the same
-    kernel masked: times, the date, byte sizes and pool rows (tests/command_goldens.rs masks
+    kernel masked (and the time `debug time` prints): times, the date, byte sizes and pool rows (tests/command_goldens.rs masks
     the same figures, and says why). A golden is rewritten only when this form changes, so
     that regenerating does not rewrite goldens whose counts are the same."""
     out, in_stats, in_csv, in_smem = [], False, False, False
     for line in text.splitlines():
+        # `debug time`'s wall-clock time.
+        line = re.sub(r"^\([0-9.e+-]+s\) real$", "(#s) real", line)
         if line.startswith(">>> "):
             word = (line[4:].split() or [""])[0]
             in_stats, in_csv = word in ("stats", "st"), False

@@ -112,9 +112,12 @@ pub enum Atom {
 }
 
 /// A constant symbol. Identifier-shaped lexemes are already upper-cased strings here.
+/// (Shared text: a loaded rule's strings share the symbol table's copy, see
+/// `rete::reorder::intern_in_text_order`; 100,000 rules repeat their attribute names a
+/// million times.)
 #[derive(Debug, Clone, PartialEq)]
 pub enum Constant {
-    Str(String),
+    Str(std::sync::Arc<str>),
     Int(i64),
     Float(f64),
 }

@@ -16,13 +16,13 @@ use crate::production::{
 /// An action's id: identifier-shaped constants (`S1`) print bare, as they were written.
 fn rhs_id_text(t: &RhsTerm) -> String {
     match t {
-        RhsTerm::Const(Constant::Str(s)) if crate::lexer::is_identifier_shaped(s) => s.clone(),
+        RhsTerm::Const(Constant::Str(s)) if crate::lexer::is_identifier_shaped(s) => s.to_string(),
         other => rhs_term_text(other),
     }
 }
 
 fn is_operator(t: &RhsTerm) -> bool {
-    matches!(t, RhsTerm::Const(Constant::Str(s)) if s == "operator")
+    matches!(t, RhsTerm::Const(Constant::Str(s)) if &**s == "operator")
 }
 
 /// ` ^attr value [pref [referent]]` as it appears inside a printed make action.

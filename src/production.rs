@@ -827,7 +827,7 @@ fn compile_action(
                 }
                 let attr = rhs_term(&am.path[n - 1], out, rule)?;
                 let is_operator =
-                    matches!(&attr, RhsTerm::Const(Constant::Str(s)) if s == "operator");
+                    matches!(&attr, RhsTerm::Const(Constant::Str(s)) if &**s == "operator");
                 for vm in &am.values {
                     let value = rhs_term(&vm.value, out, rule)?;
                     const ACCEPTABLE: &[Pref] = &[Pref::Acceptable];
@@ -970,7 +970,7 @@ fn compile_call(
                     .with_label(format!("read as (exec {} ...)", f.name))
                     .with_note(format!("in production {rule}")),
             );
-            args.push(RhsTerm::Const(Constant::Str(f.name.clone())));
+            args.push(RhsTerm::Const(Constant::Str(f.name.as_str().into())));
             "exec".to_string()
         }
     };

@@ -13,7 +13,7 @@ pub struct Sym(pub(crate) u32);
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum SymData {
-    Str(Box<str>),
+    Str(std::sync::Arc<str>),
     Int(i64),
     Float(f64),
     Id(IdData),
@@ -334,6 +334,11 @@ impl Symbols {
         for list in &mut self.ids {
             list.clear();
         }
+    }
+
+    /// Every symbol, in the order they were made.
+    pub fn all(&self) -> impl Iterator<Item = Sym> + '_ {
+        (0..self.table.len()).map(|i| Sym(i as u32))
     }
 
     pub fn get(&self, s: Sym) -> &SymData {

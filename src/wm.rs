@@ -304,6 +304,18 @@ impl WorkingMemory {
         self.count
     }
 
+    /// Room for `items` more in the store `memory_pools` names `pool` (`debug allocate`);
+    /// false for a name that is not working memory's.
+    pub(crate) fn reserve_pool(&mut self, pool: &str, items: usize) -> bool {
+        match pool {
+            "wme" => self.wmes.reserve(items),
+            "wme id place" => self.id_pos.reserve(items),
+            "wme link place" => self.link_pos.reserve(items),
+            _ => return false,
+        }
+        true
+    }
+
     /// Working memory's stores, for `stats --memory`, and the bytes of its hash tables.
     pub(crate) fn memory_pools(&self, pools: &mut Vec<crate::pools::Pool>) -> usize {
         use crate::pools::{hash_table_bytes, Pool};

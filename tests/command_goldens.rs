@@ -254,9 +254,24 @@ fn comparable(command: &str, text: &str) -> String {
         timers_masked(&text)
     } else if first == "smem" || first == "epmem" {
         masked_smem(&text)
+    } else if first == "debug" {
+        clock_masked(&text)
     } else {
         text
     }
+}
+
+/// The text with the wall-clock time of `debug time` (`(0.000115s) real`) as `#`.
+fn clock_masked(text: &str) -> String {
+    text.split_inclusive('\n')
+        .map(|line| {
+            let t = line.trim_end_matches('\n');
+            match t.strip_prefix('(').and_then(|r| r.strip_suffix("s) real")) {
+                Some(_) => line.replace(t, "(#s) real"),
+                None => line.to_string(),
+            }
+        })
+        .collect()
 }
 
 /// What rusoar prints for one command, in the golden's form: the repository's absolute

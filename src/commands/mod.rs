@@ -7,6 +7,7 @@ pub mod aliases;
 mod chunk;
 mod chunk_listing;
 mod chunk_stats;
+mod debug;
 mod decide;
 mod files;
 mod gp;
@@ -603,6 +604,7 @@ impl Interpreter {
             "smem" => self.cmd_smem(&ctx, args),
             "epmem" => self.cmd_epmem(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
+            "debug" => self.cmd_debug(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())

@@ -103,7 +103,7 @@ fn read_attr(agent: &AgentCore, text: &str) -> Option<Sym> {
                 .strip_prefix('|')
                 .and_then(|t| t.strip_suffix('|'))
                 .unwrap_or(text);
-            crate::ast::Constant::Str(s.to_string())
+            crate::ast::Constant::Str(s.into())
         });
     agent.symbols.find_constant(&constant)
 }

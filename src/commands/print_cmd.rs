@@ -522,7 +522,7 @@ fn field(agent: &AgentCore, tok: Option<&str>) -> Result<Field, String> {
             .strip_prefix('|')
             .and_then(|t| t.strip_suffix('|'))
             .unwrap_or(tok);
-        crate::ast::Constant::Str(s.to_string())
+        crate::ast::Constant::Str(s.into())
     });
     Ok(Field::Is(symbols.find_constant(&constant)))
 }

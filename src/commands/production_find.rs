@@ -186,7 +186,7 @@ fn test_matches(pattern: &Test, rule: &Test, bindings: &mut Bindings) -> bool {
     let Test::Equal(p) = pattern else {
         return false;
     };
-    if matches!(p, Term::Const(crate::ast::Constant::Str(s)) if s == "*") {
+    if matches!(p, Term::Const(crate::ast::Constant::Str(s)) if &**s == "*") {
         return true;
     }
     let Test::Equal(r) = rule else {

@@ -144,7 +144,12 @@ impl Interpreter {
     }
 
     /// The kernel's stores, for `--memory`.
-    fn memory_report(&self) -> MemoryReport {
+    /// The stores as `debug allocate` lists them.
+    pub(super) fn memory_pool_table(&self) -> String {
+        pool_table(&self.memory_report().pools)
+    }
+
+    pub(super) fn memory_report(&self) -> MemoryReport {
         let a = &self.agent;
         let mut report = MemoryReport::default();
         let pools = &mut report.pools;
@@ -188,10 +193,16 @@ fn memory_report(r: &MemoryReport) -> String {
     s.push_str(&format!("{:>8} bytes for hash tables\n", r.hash_table_bytes));
     s.push_str(&format!("{pool_bytes:>8} bytes for various memory pools\n"));
     s.push_str(&format!("{:>8} bytes for miscellaneous other things\n", 0));
-    s.push_str("Memory pool statistics:\n\n");
+    s.push_str(&pool_table(&r.pools));
+    s
+}
+
+/// The stores' rows of `--memory` (and of `debug allocate`).
+fn pool_table(pools: &[Pool]) -> String {
+    let mut s = String::from("Memory pool statistics:\n\n");
     s.push_str("Pool Name        Item Size  Itm/Blk  Blocks  Total Bytes\n");
     s.push_str("---------------  ---------  -------  ------  -----------\n");
-    for p in &r.pools {
+    for p in pools {
         // 9.6 shows at most 14 characters of a name.
         let name: String = p.name.chars().take(14).collect();
         s.push_str(&format!(

@@ -71,11 +71,11 @@ fn may_be_operator(t: &crate::production::Test) -> bool {
     use crate::ast::Constant;
     use crate::production::{Term as CondTerm, Test};
     match t {
-        Test::Equal(CondTerm::Const(Constant::Str(s))) => s == "operator",
+        Test::Equal(CondTerm::Const(Constant::Str(s))) => &**s == "operator",
         Test::Equal(CondTerm::Const(_)) => false,
         Test::Disjunction(cs) => cs
             .iter()
-            .any(|c| matches!(c, Constant::Str(s) if s == "operator")),
+            .any(|c| matches!(c, Constant::Str(s) if &**s == "operator")),
         Test::Conjunction(ts) => ts.iter().all(may_be_operator),
         Test::Equal(CondTerm::Var(_)) | Test::Relational(..) => true,
     }
@@ -151,7 +151,7 @@ pub(crate) fn compile(prod: &Production, info: &ProdInfo, symbols: &mut Symbols)
             })),
             Action::Make(m) => {
                 proposes |= m.pref == PrefKind::Acceptable
-                    && matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if s == "operator");
+                    && matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if &**s == "operator");
                 make_ids.push(match &m.id {
                     RhsTerm::Var(v) => info.bindings.get(v).copied(),
                     _ => None,

@@ -86,7 +86,7 @@ pub fn match_support(agent: &AgentCore, p: ProdId, t: TokId) -> MatchSupport {
     let proposes = prod.actions.iter().any(|a| match a {
         Action::Make(m) => {
             m.pref == crate::production::PrefKind::Acceptable
-                && matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if s == "operator")
+                && matches!(&m.attr, RhsTerm::Const(crate::ast::Constant::Str(s)) if &**s == "operator")
         }
         Action::Call(_) => false,
     });

@@ -66,10 +66,10 @@ fn letter_for(agent: &AgentCore, sym: Sym, under: Option<Sym>) -> char {
 
 fn constant_of(agent: &AgentCore, s: Sym) -> Constant {
     match agent.symbols.get(s) {
-        SymData::Str(x) => Constant::Str(x.to_string()),
+        SymData::Str(x) => Constant::Str(x.clone()),
         SymData::Int(i) => Constant::Int(*i),
         SymData::Float(f) => Constant::Float(*f),
-        SymData::Id(_) => Constant::Str(agent.symbols.text(s)),
+        SymData::Id(_) => Constant::Str(agent.symbols.text(s).into()),
     }
 }
 

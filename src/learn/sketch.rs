@@ -81,7 +81,7 @@ impl Sketch {
 fn term(symbols: &Symbols, s: Sym) -> Term {
     match symbols.get(s) {
         SymData::Id(_) => Term::Var(symbols.text(s).into()),
-        SymData::Str(x) => Term::Const(Constant::Str(x.to_string())),
+        SymData::Str(x) => Term::Const(Constant::Str(x.clone())),
         SymData::Int(i) => Term::Const(Constant::Int(*i)),
         SymData::Float(f) => Term::Const(Constant::Float(*f)),
     }

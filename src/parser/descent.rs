@@ -320,7 +320,7 @@ impl<'a, 'w> Parser<'a, 'w> {
         let id = match self.bump()? {
             (s, Tok::Var(v)) => RhsValue::Var(v, self.span(s)),
             (s, Tok::Ident(i)) => {
-                RhsValue::Const(Constant::Str(upcase_identifier(&i)), self.span(s))
+                RhsValue::Const(Constant::Str(upcase_identifier(&i).into()), self.span(s))
             }
             _ => return None,
         };
@@ -443,12 +443,12 @@ fn atom(t: Tok) -> R<Atom> {
 /// `Constant`: identifier-shaped lexemes are upper-cased, keywords are plain strings.
 fn constant(t: Tok) -> R<Constant> {
     Some(match t {
-        Tok::Sym(s) | Tok::Quoted(s) => Constant::Str(s),
-        Tok::Ident(s) => Constant::Str(upcase_identifier(&s)),
+        Tok::Sym(s) | Tok::Quoted(s) => Constant::Str(s.into()),
+        Tok::Ident(s) => Constant::Str(upcase_identifier(&s).into()),
         Tok::Int(i) => Constant::Int(i),
         Tok::Float(f) => Constant::Float(f),
-        Tok::KwState => Constant::Str("state".to_string()),
-        Tok::KwImpasse => Constant::Str("impasse".to_string()),
+        Tok::KwState => Constant::Str("state".into()),
+        Tok::KwImpasse => Constant::Str("impasse".into()),
         _ => return None,
     })
 }

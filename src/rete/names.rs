@@ -62,6 +62,13 @@ impl VarNames {
 }
 
 impl Rete {
+    /// The variable names loaded rules use, in name order (`debug internal-symbols`).
+    pub(crate) fn variable_names(&self) -> Vec<std::sync::Arc<str>> {
+        let mut names: Vec<_> = self.var_names.0.iter().cloned().collect();
+        names.sort_unstable();
+        names
+    }
+
     /// Points every variable of these conditions at the network's copy of its name, so that
     /// a loaded rule keeps no name of its own.
     pub fn share_var_names(&mut self, conds: &mut [Condition]) {

@@ -128,6 +128,24 @@ impl Rete {
         }
         c
     }
+    /// Room for `items` more in the store `memory_pools` names `pool` (`debug allocate`);
+    /// false for a name that is not the network's.
+    pub(crate) fn reserve_pool(&mut self, pool: &str, items: usize) -> bool {
+        match pool {
+            "rete node" => self.nodes.reserve(items),
+            "token" => self.tokens.reserve(items),
+            "token links" => self.links.reserve(items),
+            "token rows" => self.rows.reserve(items),
+            "alpha mem" => self.amems.reserve(items),
+            "right mem" => self.rm.reserve(items),
+            "rete wme" => self.wmes.reserve(items),
+            "neg result" => self.neg.reserve(items),
+            "hash entry" => self.hentries.reserve(items),
+            _ => return false,
+        }
+        true
+    }
+
     /// The network's stores, for `stats --memory`, and the bytes of its hash tables.
     pub(crate) fn memory_pools(&self, pools: &mut Vec<Pool>) -> usize {
         pools.push(Pool::of_vec::<super::Node>("rete node", self.nodes.capacity()));

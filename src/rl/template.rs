@@ -49,7 +49,7 @@ impl Binder {
                 self.names.insert(s, name.clone());
                 Term::Var(name)
             }
-            SymData::Str(x) => Term::Const(Constant::Str(x.to_string())),
+            SymData::Str(x) => Term::Const(Constant::Str(x.clone())),
             SymData::Int(i) => Term::Const(Constant::Int(*i)),
             SymData::Float(f) => Term::Const(Constant::Float(*f)),
         }

@@ -101,7 +101,7 @@ fn rel(r: u8) -> Relation {
 }
 
 fn const_of(k: usize) -> Constant {
-    Constant::Str(["x", "y", "q"][k % 3].to_string())
+    Constant::Str(["x", "y", "q"][k % 3].into())
 }
 
 /// Builds a production from the generated shape. Relational tests only name variables bound
@@ -585,8 +585,8 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
                 // The network joins conditions in the reorderer's order, as the agent adds
                 // them; the naive matcher reads the rule as written.
                 let mut joined = p.clone();
-                reorder::intern_in_text_order(&p, &mut syms);
-                joined.conditions = reorder::reorder(&p.conditions, &syms).into();
+                reorder::intern_in_text_order(&mut joined, &mut syms);
+                joined.conditions = reorder::reorder(&joined.conditions, &syms).into();
                 match rete.add_production(&joined, &mut syms, &mut sink, &|_| false) {
                     Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added, as in Soar.

@@ -1254,7 +1254,7 @@ fn load(text: &str, name: &str) -> Result<Production, String> {
 /// ranked by a fresh symbol table.
 fn as_loaded(p: &Production) -> Production {
     let mut syms = crate::symbols::Symbols::new();
-    reorder::intern_in_text_order(p, &mut syms);
+    reorder::intern_in_text_order(&mut p.clone(), &mut syms);
     let mut conditions = reorder::reorder(&p.conditions, &syms);
     if p.flags.chunk || p.flags.justification {
         reorder::equality_first(&mut conditions);

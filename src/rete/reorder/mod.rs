@@ -28,7 +28,7 @@ mod set_aside;
 
 use crate::ast::{Constant, Head};
 use crate::production::{Condition, Term, Test};
-use crate::symbols::Symbols;
+use crate::symbols::{SymData, Symbols};
 use choose::Chooser;
 pub use multi::MultiAttributes;
 use rustc_hash::FxHashSet;
@@ -93,58 +93,62 @@ pub fn equality_first(conds: &mut [Condition]) {
 }
 
 /// Interns the name and the constants of a rule in the order 9.6's parser creates them: the
-/// name, then the conditions, then the actions, left to right.
-pub fn intern_in_text_order(p: &crate::production::Production, syms: &mut Symbols) {
+/// name, then the conditions, then the actions, left to right. Each string constant then
+/// shares the symbol table's copy of its text, so that a loaded rule holds no text of its
+/// own for the attribute names and values every rule repeats.
+pub fn intern_in_text_order(p: &mut crate::production::Production, syms: &mut Symbols) {
     use crate::production::{Action, FuncCall, RhsTerm};
-    fn test(t: &Test, syms: &mut Symbols) {
+    fn constant(c: &mut Constant, syms: &mut Symbols) {
+        let s = syms.constant(c);
+        if let (Constant::Str(text), SymData::Str(shared)) = (&mut *c, syms.get(s)) {
+            *text = shared.clone();
+        }
+    }
+    fn test(t: &mut Test, syms: &mut Symbols) {
         match t {
-            Test::Equal(Term::Const(c)) => {
-                syms.constant(c);
-            }
+            Test::Equal(Term::Const(c)) => constant(c, syms),
             Test::Relational(_, r) => {
-                if let Term::Const(c) = &**r {
-                    syms.constant(c);
+                if let Term::Const(c) = &mut **r {
+                    constant(c, syms);
                 }
             }
-            Test::Disjunction(cs) => cs.iter().for_each(|c| {
-                syms.constant(c);
-            }),
-            Test::Conjunction(ts) => ts.iter().for_each(|t| test(t, syms)),
+            Test::Disjunction(cs) => cs.iter_mut().for_each(|c| constant(c, syms)),
+            Test::Conjunction(ts) => ts.iter_mut().for_each(|t| test(t, syms)),
             _ => {}
         }
     }
-    fn cond(c: &Condition, syms: &mut Symbols) {
+    fn cond(c: &mut Condition, syms: &mut Symbols) {
         match c {
             Condition::Positive(p) | Condition::Negative(p) => {
-                for t in [&p.id, &p.attr, &p.value] {
+                for t in [&mut p.id, &mut p.attr, &mut p.value] {
                     test(t, syms);
                 }
             }
-            Condition::Ncc(inner) => inner.iter().for_each(|c| cond(c, syms)),
+            Condition::Ncc(inner) => inner.iter_mut().for_each(|c| cond(c, syms)),
         }
     }
-    fn rhs(t: &RhsTerm, syms: &mut Symbols) {
+    fn rhs(t: &mut RhsTerm, syms: &mut Symbols) {
         match t {
-            RhsTerm::Const(c) => {
-                syms.constant(c);
-            }
+            RhsTerm::Const(c) => constant(c, syms),
             RhsTerm::Call(f) => call(f, syms),
             RhsTerm::Var(_) => {}
         }
     }
-    fn call(f: &FuncCall, syms: &mut Symbols) {
+    fn call(f: &mut FuncCall, syms: &mut Symbols) {
         syms.str(&f.name);
-        f.args.iter().for_each(|a| rhs(a, syms));
+        f.args.iter_mut().for_each(|a| rhs(a, syms));
     }
     syms.str(&p.name);
-    p.conditions.iter().for_each(|c| cond(c, syms));
-    for a in &p.actions {
+    std::sync::Arc::make_mut(&mut p.conditions)
+        .iter_mut()
+        .for_each(|c| cond(c, syms));
+    for a in &mut p.actions {
         match a {
             Action::Make(m) => {
-                for t in [&m.id, &m.attr, &m.value] {
+                for t in [&mut m.id, &mut m.attr, &mut m.value] {
                     rhs(t, syms);
                 }
-                if let Some(r) = &m.referent {
+                if let Some(r) = &mut m.referent {
                     rhs(r, syms);
                 }
             }
