@@ -90,6 +90,9 @@ pub struct Settings {
     /// `soar keep-all-top-oprefs`: keep every preference of an o-supported WME on the top
     /// state (9.6 frees them otherwise); kept and listed.
     pub keep_all_top_oprefs: bool,
+    /// `svs --enable-in-substates` / `--disable-in-substates` (kept; rusoar has no spatial
+    /// visual system, which stays disabled).
+    pub svs_in_substates: bool,
     /// `decide indifferent-selection --auto-reduce`: lower epsilon and the temperature
     /// after each decision phase, each by its own reduction.
     pub auto_reduce: bool,
@@ -232,6 +235,7 @@ impl Default for Settings {
             max_memory_usage: 100_000_000,
             max_gp: 20_000,
             keep_all_top_oprefs: false,
+            svs_in_substates: true,
             auto_reduce: false,
             epsilon_reduction: Reduction::default(),
             temperature_reduction: Reduction::default(),

@@ -110,3 +110,18 @@ fn a_timed_command_that_fails_prints_the_time_then_fails() {
         "{ok:?}"
     );
 }
+
+#[test]
+fn the_aliases_of_the_subcommands_reach_them() {
+    let mut a = agent();
+    let timed = a.execute("time echo hi there").unwrap();
+    assert!(timed.starts_with("hi there\n\n("), "{timed:?}");
+    assert_eq!(
+        a.execute("allocate wme 1").unwrap(),
+        "wme blocks increased by 1\n"
+    );
+    assert!(a
+        .execute("internal-symbols")
+        .unwrap()
+        .contains("--- Identifiers: ---"));
+}

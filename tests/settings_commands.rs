@@ -233,3 +233,22 @@ fn chunk_settings_without_effect_say_so() {
     let out = a.execute("chunk singleton any foo constant").unwrap();
     assert!(!out.contains("no effect"), "{out}");
 }
+
+/// rusoar has no spatial visual system: enabling it is refused with a clear error, and it
+/// stays disabled (the rest of `svs` is compared with 9.6 in the command golden `svs`).
+#[test]
+fn svs_cannot_be_enabled_and_stays_disabled() {
+    let mut a = rusoar::Agent::default();
+    for on in ["svs --enable", "svs -e", "svs --on"] {
+        let err = a.execute(on).unwrap_err();
+        assert!(
+            err.message().contains("no Spatial Visual System"),
+            "{}",
+            err.message()
+        );
+    }
+    assert_eq!(
+        a.execute("svs").unwrap().trim_end(),
+        "Spatial Visual System is disabled."
+    );
+}

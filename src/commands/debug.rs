@@ -36,7 +36,7 @@ impl Interpreter {
         };
         match sub.as_str() {
             "?" => Ok(LISTING.into()),
-            "time" => self.debug_time(ctx),
+            "time" => self.debug_time(ctx, rest.len()),
             "allocate" => match rest {
                 [] => Ok(self.memory_pool_table()),
                 [pool, blocks] => self.debug_allocate(ctx, pool, blocks),
@@ -55,14 +55,15 @@ impl Interpreter {
 
     /// `debug time COMMAND [ARGS...]`: what the command prints, then `(SECONDSs) real`,
     /// the seconds in C++'s default form (six significant digits), as 9.6 prints them.
-    fn debug_time(&mut self, ctx: &Ctx) -> CmdResult {
-        let words = &ctx.cmd.words;
-        let Some(first) = words.get(2) else {
+    /// `timed` is the number of words after `time` (the command may be an alias, `time`,
+    /// whose expansion changes only the first word).
+    fn debug_time(&mut self, ctx: &Ctx, timed: usize) -> CmdResult {
+        let words = &ctx.cmd.words[ctx.cmd.words.len().saturating_sub(timed)..];
+        let (Some(first), Some(last)) = (words.first().filter(|_| timed > 0), words.last()) else {
             return Err(ctx.error("You must submit a command that you'd like timed."));
         };
-        let last = words.last().unwrap_or(first);
         let timed = Command {
-            words: words[2..].to_vec(),
+            words: words.to_vec(),
             span: crate::source::Span::new(first.span.file, first.span.start, last.span.end),
         };
         let start = std::time::Instant::now();

@@ -33,6 +33,7 @@ mod epmem;
 mod memory_stats;
 mod smem;
 mod stats;
+mod svs;
 pub mod tokenizer;
 mod tracing;
 mod wm_activation;
@@ -605,6 +606,7 @@ impl Interpreter {
             "epmem" => self.cmd_epmem(&ctx, args),
             "help" => self.cmd_help(&ctx, args),
             "debug" => self.cmd_debug(&ctx, args),
+            "svs" => self.cmd_svs(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())
