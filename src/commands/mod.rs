@@ -660,18 +660,17 @@ impl Interpreter {
 
     /// Exact name, else a unique prefix of a real command name (aliases are not prefixes).
     /// A prefix of several commands gives them all back as the error.
+    /// `file-system` is a help topic, not a command, as in 9.6 (`fi`, `file-system`: `No
+    /// such command`).
     fn resolve_command(&self, word: &str) -> Result<&'static str, Vec<&'static str>> {
-        if let Some(c) = COMMANDS.iter().find(|c| **c == word) {
+        let runnable = || COMMANDS.iter().copied().filter(|c| *c != "file-system");
+        if let Some(c) = runnable().find(|c| *c == word) {
             return Ok(c);
         }
         if word.is_empty() {
             return Err(Vec::new());
         }
-        let matches: Vec<&'static str> = COMMANDS
-            .iter()
-            .copied()
-            .filter(|c| c.starts_with(word))
-            .collect();
+        let matches: Vec<&'static str> = runnable().filter(|c| c.starts_with(word)).collect();
         match matches.as_slice() {
             [one] => Ok(one),
             _ => Err(matches),
