@@ -667,15 +667,21 @@ impl AgentCore {
     }
 
     /// Room for `items` more in the store `stats --memory` names `pool` (`debug
-    /// allocate`); false for a store that grows a block at a time (the symbol table) or
-    /// for no store of that name.
-    pub(crate) fn reserve_pool(&mut self, pool: &str, items: usize) -> bool {
+    /// allocate`), or the allocator's refusal; `None` for a store that grows a block at a
+    /// time (the symbol table) or for no store of that name.
+    pub(crate) fn reserve_pool(
+        &mut self,
+        pool: &str,
+        items: usize,
+    ) -> Option<Result<(), std::collections::TryReserveError>> {
         match pool {
-            "instantiation" => self.decider.insts.reserve(items),
-            "preference" => self.decider.prefs.reserve(items),
-            _ => return self.wm.reserve_pool(pool, items) || self.rete.reserve_pool(pool, items),
+            "instantiation" => Some(self.decider.insts.try_reserve(items)),
+            "preference" => Some(self.decider.prefs.try_reserve(items)),
+            _ => self
+                .wm
+                .reserve_pool(pool, items)
+                .or_else(|| self.rete.reserve_pool(pool, items)),
         }
-        true
     }
 
     /// Adds a rule: a same-named rule is excised first; an identical body is ignored. The

@@ -79,16 +79,19 @@ impl AgentCore {
         let mut linked: FxHashSet<Sym> = FxHashSet::default();
         let mut stack: Vec<Sym> = self.decider.goals.iter().map(|g| g.state).collect();
         stack.push(self.top.state);
+        // Roots besides the goals: objects never linked, and an object whose link failed
+        // (it stays, with what it links, as in 9.6).
         let all = self.wm.all();
-        let never_linked = all.iter().filter_map(|&w| self.wm.get(w)).map(|w| w.id);
-        stack.extend(never_linked.filter(|&id| !self.wm.ever_pointed_at(id)));
-        // An object whose link failed stays, with what it links, as in 9.6.
-        let failed = all.iter().filter_map(|&w| self.wm.get(w));
-        stack.extend(
-            failed
-                .flat_map(|w| [w.id, w.value])
-                .filter(|&x| self.wm.had_failed_link(x)),
-        );
+        for w in all.iter().filter_map(|&w| self.wm.get(w)) {
+            if !self.wm.ever_pointed_at(w.id) {
+                stack.push(w.id);
+            }
+            stack.extend(
+                [w.id, w.value]
+                    .into_iter()
+                    .filter(|&x| self.wm.had_failed_link(x)),
+            );
+        }
         while let Some(id) = stack.pop() {
             if !linked.insert(id) {
                 continue;

@@ -305,15 +305,18 @@ impl WorkingMemory {
     }
 
     /// Room for `items` more in the store `memory_pools` names `pool` (`debug allocate`);
-    /// false for a name that is not working memory's.
-    pub(crate) fn reserve_pool(&mut self, pool: &str, items: usize) -> bool {
-        match pool {
-            "wme" => self.wmes.reserve(items),
-            "wme id place" => self.id_pos.reserve(items),
-            "wme link place" => self.link_pos.reserve(items),
-            _ => return false,
-        }
-        true
+    /// `None` for a name that is not working memory's.
+    pub(crate) fn reserve_pool(
+        &mut self,
+        pool: &str,
+        items: usize,
+    ) -> Option<Result<(), std::collections::TryReserveError>> {
+        Some(match pool {
+            "wme" => self.wmes.try_reserve(items),
+            "wme id place" => self.id_pos.try_reserve(items),
+            "wme link place" => self.link_pos.try_reserve(items),
+            _ => return None,
+        })
     }
 
     /// Working memory's stores, for `stats --memory`, and the bytes of its hash tables.

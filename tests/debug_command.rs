@@ -125,3 +125,32 @@ fn the_aliases_of_the_subcommands_reach_them() {
         .unwrap()
         .contains("--- Identifiers: ---"));
 }
+
+/// An alias may hold the timed command's first words (`alias t debug time echo`), and one
+/// that names itself (`alias t debug time t`) must end with an error, not a stack overflow.
+#[test]
+fn a_timed_alias_runs_its_own_words_and_one_naming_itself_is_an_error() {
+    let mut a = agent();
+    a.execute("alias t debug time echo").unwrap();
+    let timed = a.execute("t hi").unwrap();
+    assert!(timed.starts_with("hi\n\n("), "{timed:?}");
+    a.execute("alias t debug time t").unwrap();
+    let err = a.execute("t").unwrap_err();
+    assert!(err.message().contains("nested"), "{}", err.message());
+}
+
+#[test]
+fn room_the_machine_cannot_give_is_a_clear_error() {
+    let mut a = agent();
+    let err = a.execute("debug allocate wme 999999999999999").unwrap_err();
+    assert!(
+        err.message().starts_with("Could not allocate memory"),
+        "{}",
+        err.message()
+    );
+    // The agent goes on.
+    assert_eq!(
+        a.execute("debug allocate wme 1").unwrap(),
+        "wme blocks increased by 1\n"
+    );
+}

@@ -3,10 +3,14 @@
 //! `internal-symbols` lists the symbol table, and `port` (the SML listener's port) is
 //! answered with why rusoar has none. The texts and errors are 9.6's (soar-sml 9.6.5).
 
-use super::tokenizer::Command;
+use super::tokenizer::{Command, Word, WordKind};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::printer::constants::c_general;
+use crate::source::Span;
 use crate::symbols::SymData;
+
+/// How deep `debug time` may nest (as `source` does, a bound instead of the stack's end).
+const MAX_TIMED_DEPTH: usize = 100;
 
 /// 9.6's bytes per memory-pool block: `debug allocate POOL N` makes room for N of them.
 const BLOCK_BYTES: usize = 32 * 1024;
@@ -36,7 +40,7 @@ impl Interpreter {
         };
         match sub.as_str() {
             "?" => Ok(LISTING.into()),
-            "time" => self.debug_time(ctx, rest.len()),
+            "time" => self.debug_time(ctx, rest),
             "allocate" => match rest {
                 [] => Ok(self.memory_pool_table()),
                 [pool, blocks] => self.debug_allocate(ctx, pool, blocks),
@@ -55,19 +59,38 @@ impl Interpreter {
 
     /// `debug time COMMAND [ARGS...]`: what the command prints, then `(SECONDSs) real`,
     /// the seconds in C++'s default form (six significant digits), as 9.6 prints them.
-    /// `timed` is the number of words after `time` (the command may be an alias, `time`,
-    /// whose expansion changes only the first word).
-    fn debug_time(&mut self, ctx: &Ctx, timed: usize) -> CmdResult {
-        let words = &ctx.cmd.words[ctx.cmd.words.len().saturating_sub(timed)..];
-        let (Some(first), Some(last)) = (words.first().filter(|_| timed > 0), words.last()) else {
+    /// `timed` is the command's words as expanded: the words typed keep their places, and
+    /// those an alias put before them (`alias t debug time echo`) stand at the first word.
+    fn debug_time(&mut self, ctx: &Ctx, timed: &[String]) -> CmdResult {
+        if timed.is_empty() {
             return Err(ctx.error("You must submit a command that you'd like timed."));
-        };
-        let timed = Command {
-            words: words.to_vec(),
-            span: crate::source::Span::new(first.span.file, first.span.start, last.span.end),
+        }
+        if self.timed_depth >= MAX_TIMED_DEPTH {
+            return Err(ctx.error(format!(
+                "debug time: nested more than {MAX_TIMED_DEPTH} deep"
+            )));
+        }
+        let typed = &ctx.cmd.words[1..];
+        let typed = &typed[typed.len().saturating_sub(timed.len())..];
+        let at = ctx.cmd.words[0].span;
+        let mut words: Vec<Word> = timed[..timed.len() - typed.len()]
+            .iter()
+            .map(|text| Word {
+                text: text.clone(),
+                span: at,
+                kind: WordKind::Bare,
+            })
+            .collect();
+        words.extend_from_slice(typed);
+        let (first, last) = (words[0].span, words[words.len() - 1].span);
+        let command = Command {
+            span: Span::new(first.file, first.start, last.end),
+            words,
         };
         let start = std::time::Instant::now();
-        let result = self.execute(&timed);
+        self.timed_depth += 1;
+        let result = self.execute(&command);
+        self.timed_depth -= 1;
         let clock = format!("\n({}s) real", c_general(start.elapsed().as_secs_f64(), 6));
         match result {
             Ok(text) => Ok(text + &clock),
@@ -101,12 +124,13 @@ impl Interpreter {
             .map(|p| p.item_size)
             .ok_or_else(bad_pool)?;
         let items = n.saturating_mul(BLOCK_BYTES / item_size.max(1));
-        if !self.agent.reserve_pool(pool, items) {
-            return Err(bad_pool().with_note(format!(
+        match self.agent.reserve_pool(pool, items) {
+            Some(Ok(())) => Ok(format!("{pool} blocks increased by {n}\n")),
+            Some(Err(e)) => Err(ctx.error(format!("Could not allocate memory: {e}"))),
+            None => Err(bad_pool().with_note(format!(
                 "rusoar's store `{pool}` grows a block at a time and takes no room ahead"
-            )));
+            ))),
         }
-        Ok(format!("{pool} blocks increased by {n}\n"))
     }
 
     /// `debug internal-symbols`: the symbol table by kind, in 9.6's sections; each symbol

@@ -158,6 +158,9 @@ pub struct Interpreter {
     pub report: LoadReport,
     /// Set by `exit`.
     pub exit_requested: bool,
+    /// How many `debug time` commands are running inside one another (an alias can make
+    /// one time itself).
+    timed_depth: usize,
     /// The last thing printed was an `sp` progress mark, so other output starts a new line.
     after_star: bool,
     /// The line of marks holds only `smem --add`'s `@` marks (a nested `source` goes on on
@@ -213,6 +216,7 @@ impl Interpreter {
             events: Vec::new(),
             report: LoadReport::default(),
             exit_requested: false,
+            timed_depth: 0,
             after_star: false,
             after_at_marks: false,
             log: None,

@@ -129,21 +129,24 @@ impl Rete {
         c
     }
     /// Room for `items` more in the store `memory_pools` names `pool` (`debug allocate`);
-    /// false for a name that is not the network's.
-    pub(crate) fn reserve_pool(&mut self, pool: &str, items: usize) -> bool {
-        match pool {
-            "rete node" => self.nodes.reserve(items),
-            "token" => self.tokens.reserve(items),
-            "token links" => self.links.reserve(items),
-            "token rows" => self.rows.reserve(items),
-            "alpha mem" => self.amems.reserve(items),
-            "right mem" => self.rm.reserve(items),
-            "rete wme" => self.wmes.reserve(items),
-            "neg result" => self.neg.reserve(items),
-            "hash entry" => self.hentries.reserve(items),
-            _ => return false,
-        }
-        true
+    /// `None` for a name that is not the network's.
+    pub(crate) fn reserve_pool(
+        &mut self,
+        pool: &str,
+        items: usize,
+    ) -> Option<Result<(), std::collections::TryReserveError>> {
+        Some(match pool {
+            "rete node" => self.nodes.try_reserve(items),
+            "token" => self.tokens.try_reserve(items),
+            "token links" => self.links.try_reserve(items),
+            "token rows" => self.rows.try_reserve(items),
+            "alpha mem" => self.amems.try_reserve(items),
+            "right mem" => self.rm.try_reserve(items),
+            "rete wme" => self.wmes.try_reserve(items),
+            "neg result" => self.neg.try_reserve(items),
+            "hash entry" => self.hentries.try_reserve(items),
+            _ => return None,
+        })
     }
 
     /// The network's stores, for `stats --memory`, and the bytes of its hash tables.
