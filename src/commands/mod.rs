@@ -36,6 +36,8 @@ mod stats;
 mod svs;
 pub mod tokenizer;
 mod tracing;
+mod visualize;
+mod visualize_graph;
 mod wm_activation;
 mod wm_watch;
 
@@ -178,6 +180,8 @@ pub struct Interpreter {
     /// `print`, `matches`, `learn` and `chunk` move it, other command results do not. 9.6
     /// wraps a printed object's first line from there.
     print_col: Rc<Cell<usize>>,
+    /// `visualize`'s settings and the number of its last file.
+    viz: visualize::VizSettings,
 }
 
 /// Moves a print-stream column over `text`.
@@ -225,6 +229,7 @@ impl Interpreter {
             live: None,
             // Creating the agent printed `\n     0: ==>S: S1 ` (trace level 1).
             print_col: Rc::new(Cell::new("     0: ==>S: S1 ".len())),
+            viz: visualize::VizSettings::default(),
         }
     }
 
@@ -611,6 +616,7 @@ impl Interpreter {
             "help" => self.cmd_help(&ctx, args),
             "debug" => self.cmd_debug(&ctx, args),
             "svs" => self.cmd_svs(&ctx, args),
+            "visualize" => self.cmd_visualize(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())

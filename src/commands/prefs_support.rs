@@ -19,7 +19,7 @@ const SMEM_MODULE_ATTRS: [&str; 2] = ["command", "result"];
 
 /// Where a WME comes from, as 9.6 tells it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Origin {
+pub(super) enum Origin {
     /// Made from a slot's preferences (or the operator a state selected).
     Preference,
     /// A state's architecture WME that stands for a preference (an impasse's `^item` and
@@ -88,7 +88,7 @@ impl Interpreter {
             || agent.decider.slots.get(&(id, attr)).is_some()
     }
 
-    fn origin_of(&self, w: WmeId, wme: &Wme) -> Origin {
+    pub(super) fn origin_of(&self, w: WmeId, wme: &Wme) -> Origin {
         let agent = &self.agent;
         if agent.held_by_preferences(w, wme) {
             return Origin::Preference;

@@ -34,6 +34,13 @@ pub struct Links {
     deeper: Vec<Sym>,
 }
 
+impl Links {
+    /// Whether a command's results hold this WME.
+    pub(crate) fn made(&self, w: WmeId) -> bool {
+        self.by_link.values().any(|l| l.results.contains(&w))
+    }
+}
+
 /// A parsed `^command`.
 #[derive(Debug, Default)]
 struct Command {

@@ -44,7 +44,7 @@ const USAGE: &[(&str, &str)] = &[
     ("stats", "stats [-s|-d|-a|-m|-l|-r|-M|-R|-t|-T|-c|-C] [-S column]"),
     ("svs", "svs\nsvs -e|--enable|--on|-d|--disable|--off\nsvs --enable-in-substates|--disable-in-substates\nsvs path ..."),
     ("trace", "trace [0-5]\ntrace -l|--level 0-5\ntrace flags [remove|0]\ntrace -L|--learning 0-2\ntrace -n|-t|-f\ntrace -N|--none"),
-    ("visualize", "visualize ..."),
+    ("visualize", "visualize\nvisualize ?\nvisualize wm [id [depth]]\nvisualize smem [lti [depth]]\nvisualize epmem episode\nvisualize identity_graph|ebc_analysis\nvisualize setting [value]"),
     ("wm", "wm add id [^]attribute value [+]\nwm remove timetag\nwm watch -a|-r [-t adds|removes|both] id attribute value\nwm watch [-l|-R] [-t adds|removes|both]\nwm activation\nwm activation -g|--get parameter\nwm activation -s|--set parameter value\nwm activation -S|--stats [forgotten-wmes]\nwm activation -h|--history timetag"),
 ];
 
@@ -93,6 +93,11 @@ const ITEMS: &[(&str, &str, &str)] = &[
     ("epmem.rs", "cmd_epmem", "epmem"),
     ("running.rs", "cmd_run", "run"),
     ("svs.rs", "cmd_svs", "svs"),
+    ("visualize.rs", "switch", "visualize"),
+    ("visualize.rs", "visualization", ""),
+    ("visualize.rs", "resolve", "visualize"),
+    ("visualize.rs", "cmd_visualize", "visualize"),
+    ("visualize.rs", "visualize_setting", "visualize"),
     ("stats.rs", "SPECS", "stats"),
     ("wm_watch.rs", "cmd_wm_watch", "wm"),
     ("wm_activation.rs", "cmd_wm_activation", "wm"),
