@@ -30,6 +30,7 @@ mod save;
 mod running;
 mod settings;
 mod epmem;
+mod explain;
 mod memory_stats;
 mod smem;
 mod stats;
@@ -617,6 +618,7 @@ impl Interpreter {
             "debug" => self.cmd_debug(&ctx, args),
             "svs" => self.cmd_svs(&ctx, args),
             "visualize" => self.cmd_visualize(&ctx, args),
+            "explain" => self.cmd_explain(&ctx, args),
             "exit" => {
                 self.exit_requested = true;
                 Ok(String::new())

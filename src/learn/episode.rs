@@ -293,6 +293,7 @@ impl AgentCore {
                         {
                             chunk = Some((l.id, p));
                         }
+                        self.learn.explainer.note_learned(&name, &source.name, true);
                         self.print_learned(&name);
                         self.rule_learned_at(level);
                     }
@@ -337,6 +338,10 @@ impl AgentCore {
                     chunk.as_ref().map(|c| c.1.name.clone()).unwrap_or_default()
                 };
                 let id = self.add_justification(bt, &results, &name, named, o);
+                // 9.6's explainer records nothing while learning is off.
+                if named && self.settings.learn != LearnMode::Never {
+                    self.learn.explainer.note_learned(&name, &source.name, false);
+                }
                 (id, o, name)
             }
         };

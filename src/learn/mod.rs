@@ -7,6 +7,7 @@ mod backtrace;
 mod backtrace_trace;
 mod build;
 mod episode;
+pub mod explain;
 mod negations;
 mod record;
 pub mod settings;
@@ -295,6 +296,8 @@ pub struct LearnState {
     /// Retracted justifications kept by o-supported preferences: how many of those are
     /// still in preference memory, by serial.
     pub held_prefs: FxHashMap<u64, u32>,
+    /// `explain`'s settings and records.
+    pub explainer: explain::Explainer,
 }
 
 impl LearnState {
@@ -320,6 +323,7 @@ impl LearnState {
         self.justifications_since_init = 0;
         self.substates_analyzed = 0;
         self.stats = stats::ChunkStats::default();
+        self.explainer.reset_for_init();
     }
 
     /// Fresh identities for `n` variables: the first of them.
