@@ -2,6 +2,7 @@
 //! interrupts, the singleton patterns and the other EBC switches, with the official
 //! kernel's texts (soar-sml 9.6.5).
 
+use super::on_off;
 use super::settings::int_setting;
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::LearnMode;
@@ -188,20 +189,15 @@ impl Interpreter {
 }
 
 /// Why a `chunk` switch that rusoar accepts changes nothing, for those that do not.
+/// (`allow-opaque` is not among them: 9.6.5 learns the same rules with it off, command
+/// golden `learn-allow-opaque`.)
 fn without_effect(name: &str) -> Option<&'static str> {
     Some(match name {
-        "add-ltm-links" | "allow-opaque" => "rusoar has no long-term memories to recall knowledge from",
+        "add-ltm-links" => "a chunk whose result is a retrieved long-term identifier does not link it to semantic memory again (9.6 adds a `link-stm-to-ltm` action)",
         _ => return None,
     })
 }
 
-fn on_off(b: bool) -> &'static str {
-    if b {
-        "on"
-    } else {
-        "off"
-    }
-}
 
 /// `(<any> ^superstate <any>)`.
 fn pattern_text(p: &Singleton) -> String {

@@ -32,9 +32,11 @@ pub fn chunk_stats(agent: &AgentCore) -> String {
     heading(&mut out, "                               Work Performed");
     row(&mut out, "Sub-states analyzed", l.substates_analyzed);
     // 9.6 counts every instantiation here, wherever it matched: rule firings, learned
-    // rules' instantiations and the impasse items' stand-ins.
-    let instantiations =
-        agent.decider.firings + s.learned_instantiations + s.item_instantiations;
+    // rules' instantiations, the impasse items' stand-ins and the memories' retrievals.
+    let instantiations = agent.decider.firings
+        + s.learned_instantiations
+        + s.item_instantiations
+        + s.retrieval_instantiations;
     row(&mut out, "Number of rules fired in substates analyzed", instantiations);
     row(
         &mut out,
@@ -69,11 +71,10 @@ pub fn chunk_stats(agent: &AgentCore) -> String {
         "Chunk used negated reasoning about sub-state",
         s.local_negation_chunks,
     );
-    // rusoar has no long-term memories (smem, epmem) a rule could retrieve from.
     row(
         &mut out,
         "Chunk tested knowledge retrieved from long-term memory",
-        0,
+        s.ltm_chunks,
     );
     row(
         &mut out,
@@ -83,7 +84,7 @@ pub fn chunk_stats(agent: &AgentCore) -> String {
     row(
         &mut out,
         "Justification tested knowledge retrieved from long-term memory",
-        0,
+        s.ltm_justifications,
     );
     heading(&mut out, "                           Identity Analysis");
     row(&mut out, "Identities created", s.identities_created);

@@ -3,6 +3,7 @@
 //! operator, and the random seed. Texts and ranges are the official kernel's (soar-sml
 //! 9.6.5).
 
+use super::on_off;
 use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::{Exploration, Reduction, ReductionPolicy, Settings};
@@ -251,13 +252,6 @@ fn parameter(ctx: &Ctx, word: Option<&String>) -> Result<Parameter, Diagnostic> 
     Parameter::from_name(word).ok_or_else(|| ctx.error("Invalid parameter value."))
 }
 
-fn on_off(b: bool) -> &'static str {
-    if b {
-        "on"
-    } else {
-        "off"
-    }
-}
 
 /// `indifferent-selection --stats`.
 fn exploration_stats(s: &Settings) -> String {

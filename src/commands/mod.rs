@@ -185,6 +185,15 @@ pub struct Interpreter {
     viz: visualize::VizSettings,
 }
 
+/// A switch's value as the settings listings write it.
+fn on_off(b: bool) -> &'static str {
+    if b {
+        "on"
+    } else {
+        "off"
+    }
+}
+
 /// Moves a print-stream column over `text`.
 fn advance_col(col: &Cell<usize>, text: &str) {
     match text.rfind('\n') {

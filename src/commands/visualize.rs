@@ -4,6 +4,7 @@
 //! soar-sml 9.6.5's. The explainer's graphs (`identity_graph`, `ebc_analysis`) need the
 //! explainer, which rusoar does not have.
 
+use super::on_off;
 use super::visualize_graph::{graph_text, smem_objects, wm_objects, MemoryFormat, WmView};
 use super::prefs_support::Origin;
 use super::{CmdResult, Ctx, Interpreter};
@@ -373,13 +374,6 @@ fn switch<'a>(v: &'a mut VizSettings, name: &str) -> &'a mut bool {
     }
 }
 
-fn on_off(b: bool) -> &'static str {
-    if b {
-        "on"
-    } else {
-        "off"
-    }
-}
 
 fn format_word(f: MemoryFormat) -> &'static str {
     match f {

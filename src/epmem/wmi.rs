@@ -15,7 +15,7 @@ type Link = (Sym, Sym, Sym);
 
 /// A state with a new command: the state, its result link, its old results, and the
 /// command's WMEs (none when it was emptied).
-type NewCommand = (Sym, Sym, Vec<WmeId>, Option<Vec<Wme>>);
+type NewCommand = (Link, Sym, Vec<WmeId>, Option<Vec<Wme>>);
 
 /// A parsed `^command` (9.6's `_epmem_respond_to_cmd_parse`).
 #[derive(Debug, Default)]
@@ -196,7 +196,7 @@ impl AgentCore {
         let mut removed: Vec<Wme> = Vec::new();
         let mut work: Vec<NewCommand> = Vec::new();
         for (state, link) in self.epmem_states() {
-            let Some((_, cmd, res)) = link else { continue };
+            let Some(link @ (_, cmd, _)) = link else { continue };
             // Every WME under the command, breadth-first.
             let mut seen = vec![cmd];
             let mut queue = std::collections::VecDeque::from([cmd]);
@@ -231,20 +231,32 @@ impl AgentCore {
             wm_phase = true;
             let old = std::mem::take(&mut info.results);
             let old_meta = old.get(info.meta_start..).unwrap_or_default().to_vec();
-            work.push((state, res, old_meta, (count > 0).then(|| top_level.unwrap_or_default())));
+            work.push((link, state, old_meta, (count > 0).then(|| top_level.unwrap_or_default())));
         }
         if !wm_phase {
             return;
         }
         let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
-        for (state, res, old, cmds) in work {
+        for ((lnk, cmd, res), state, old, cmds) in work {
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
-            if let Some(cmds) = cmds {
-                self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
+            if let Some(cmds) = &cmds {
+                self.epmem_command(state, res, cmds, &mut meta, &mut retrieval);
             }
             let meta_start = retrieval.len();
             let triples: Triples = retrieval.into_iter().chain(meta).collect();
+            let gone_from = removed.len();
             let (mine, made) = self.epmem_place_results(&old, &triples, &mut removed);
+            let gone: Vec<u64> = removed[gone_from..].iter().map(|w| w.timetag).collect();
+            self.forget_memory_results(gone);
+            // Backtracing goes through the architecture's firing that made them.
+            if !made.is_empty() {
+                let conditions = self.memory_command_conditions(
+                    (state, lnk, cmd, res),
+                    cmds.as_deref().unwrap_or_default(),
+                );
+                let level = self.sym_level(state);
+                self.note_memory_results(level, res, &made, &conditions);
+            }
             added.extend(made);
             let link = self.epmem.links.entry(state).or_default();
             link.results = mine;

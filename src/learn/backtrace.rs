@@ -67,6 +67,8 @@ pub struct Backtrace {
     pub literal_constraints: usize,
     /// A local WME `^quiescence t` was tested (9.6 then learns no chunk).
     pub tested_quiescence: bool,
+    /// The reasoning went through a memory's retrieval (`chunk stats` counts it).
+    pub tested_ltm: bool,
 }
 
 impl Backtrace {
@@ -89,6 +91,7 @@ impl Backtrace {
         self.joins = 0;
         self.merged = 0;
         self.tested_quiescence = false;
+        self.tested_ltm = false;
         self.literal_constraints = 0;
     }
 
@@ -134,6 +137,7 @@ impl Backtrace {
             }
             self.firings += 1;
             self.identities += trace.vars.len();
+            self.tested_ltm |= super::memory_results::is_retrieval(&trace);
             let locals_at = stack.len();
             for c in &trace.conds {
                 if c.via_item && self.items.insert(c.wme.timetag) {

@@ -264,6 +264,9 @@ impl AgentCore {
             } else {
                 let name = self.chunk_name(source, level);
                 let prod = self.build_learned_rule(bt, &results, name.clone(), true);
+                if bt.tested_ltm {
+                    self.learn.stats.ltm_chunks += 1;
+                }
                 let constraints = super::stats::operational_constraints(&prod);
                 self.learn.stats.note_identities(bt);
                 // The learned rule's match that its own instantiation takes over below is
@@ -688,6 +691,9 @@ impl AgentCore {
             self.learn.justifications_since_init += 1;
             if self.tests_local_negation(bt) {
                 self.learn.stats.local_negation_justifications += 1;
+            }
+            if bt.tested_ltm {
+                self.learn.stats.ltm_justifications += 1;
             }
             // With learning off and no rule text to trace, the justification is kept as its
             // sketch until something shows it.

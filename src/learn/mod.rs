@@ -8,6 +8,7 @@ mod backtrace_trace;
 mod build;
 mod episode;
 pub mod explain;
+mod memory_results;
 mod negations;
 mod record;
 pub mod settings;
@@ -298,6 +299,9 @@ pub struct LearnState {
     pub held_prefs: FxHashMap<u64, u32>,
     /// `explain`'s settings and records.
     pub explainer: explain::Explainer,
+    /// The architecture's firings behind memory retrievals in substates, by the timetag
+    /// of each WME they made (see `memory_results.rs`).
+    pub memory_results: FxHashMap<u64, Arc<PrefOrigin>>,
 }
 
 impl LearnState {
@@ -324,6 +328,7 @@ impl LearnState {
         self.substates_analyzed = 0;
         self.stats = stats::ChunkStats::default();
         self.explainer.reset_for_init();
+        self.memory_results.clear();
     }
 
     /// Fresh identities for `n` variables: the first of them.

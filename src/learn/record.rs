@@ -232,7 +232,10 @@ impl AgentCore {
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
     /// operator proposal) preference for its value that was recorded.
     pub(crate) fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
-        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+            // A memory's retrieval: the architecture's firing that made it.
+            return self.learn.memory_results.get(&wme.timetag).cloned();
+        };
         // A required operator, once selected, rests on its require preference (the
         // candidate 9.6 selects).
         if !wme.acceptable && wme.attr == self.symbols.known.operator {

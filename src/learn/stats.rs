@@ -26,6 +26,11 @@ pub struct ChunkStats {
     /// Chunks and justifications whose reasoning tested the absence of substate knowledge.
     pub local_negation_chunks: u64,
     pub local_negation_justifications: u64,
+    /// The architecture's instantiations behind memories' retrievals.
+    pub retrieval_instantiations: u64,
+    /// Rules built from reasoning that went through a memory's retrieval.
+    pub ltm_chunks: u64,
+    pub ltm_justifications: u64,
     /// Identities of the firings backtraced for chunks (one per variable of each firing).
     pub identities_created: u64,
     /// Fields where an action's identity met the condition that tested its result.

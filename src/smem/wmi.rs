@@ -180,6 +180,8 @@ impl AgentCore {
             self.smem.links.reusable.clear();
             let fresh: Vec<WmeId> = added.iter().copied().filter(|w| !gone.contains(w)).collect();
             let gone: Vec<WmeId> = gone.into_iter().filter(|w| !added.contains(w)).collect();
+            let gone_timetags: Vec<u64> = gone.iter().filter_map(|&w| self.wm.get(w).map(|x| x.timetag)).collect();
+            self.forget_memory_results(gone_timetags);
             if !fresh.is_empty() || !gone.is_empty() {
                 if let Some(o_support) = header.take() {
                     self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
@@ -200,6 +202,10 @@ impl AgentCore {
                     .collect();
                 conditions.extend(cmd_wmes.iter().filter_map(|w| self.wm.by_timetag(w.timetag)));
                 self.wma_memory_results(&fresh, &conditions);
+            }
+            if !fresh.is_empty() {
+                let conditions = self.memory_command_conditions((state, link, cmd, res), &cmd_wmes);
+                self.note_memory_results(level, res, &fresh, &conditions);
             }
             self.smem.links.by_link.entry(link).or_default().results = added;
             // The old results go as 9.6 removes them: what was retrieved and nothing else

@@ -1,0 +1,161 @@
+//! Backtracing through a memory retrieval (Soar manual, ch. 4, "Procedural Knowledge
+//! Learning"): 9.6 makes the WMEs a semantic memory command retrieves in a substate
+//! through instantiations of the architecture's own, named "Architecture", whose conditions
+//! are the command's: the link to the memory, its command and result WMEs, the command and
+//! the cue's WMEs. One instantiation makes what goes on the result link (`^retrieved`,
+//! `^success`, ...), another, with the same conditions, the retrieved objects' WMEs
+//! (checked with `trace --backtracing` on soar-sml 9.6.5). Backtracing goes on through the
+//! cue into the firings that built it, so a chunk tests what the cue came from.
+
+use super::{InstTrace, PrefOrigin, TraceCond, TraceVars};
+use crate::agent::AgentCore;
+use crate::symbols::Sym;
+use crate::wm::{Wme, WmeId};
+use std::sync::Arc;
+
+/// The architecture's instantiations' name, as `trace --backtracing` prints it.
+const ARCHITECTURE: &str = "Architecture";
+
+/// The command attributes whose value is a cue, whose WMEs the conditions include.
+const CUES: [&str; 3] = ["query", "neg-query", "math-query"];
+
+/// Whether a firing is the architecture's, behind a memory's retrieval.
+pub(crate) fn is_retrieval(trace: &InstTrace) -> bool {
+    trace.prod.is_none() && &*trace.name == ARCHITECTURE
+}
+
+impl AgentCore {
+    /// The conditions of the architecture's firing that makes a command's results: the
+    /// link, command and result WMEs of `(state, link, command, result)`, then the
+    /// command's WMEs and each cue's, each in timetag order (soar-sml 9.6.5, both
+    /// memories).
+    pub(crate) fn memory_command_conditions(
+        &self,
+        (state, link, cmd, res): (Sym, Sym, Sym, Sym),
+        cmd_wmes: &[Wme],
+    ) -> Vec<WmeId> {
+        let mut conditions: Vec<WmeId> = [(state, link), (link, cmd), (link, res)]
+            .into_iter()
+            .filter_map(|(id, value)| self.wme_linking(id, value))
+            .collect();
+        let mut cmd_wmes = cmd_wmes.to_vec();
+        cmd_wmes.sort_by_key(|w| w.timetag);
+        conditions.extend(cmd_wmes.iter().filter_map(|w| self.wm.by_timetag(w.timetag)));
+        let cues = CUES.map(|a| self.symbols.find_str(a));
+        for w in &cmd_wmes {
+            if !(cues.contains(&Some(w.attr)) && self.symbols.is_id(w.value)) {
+                continue;
+            }
+            let mut cue: Vec<(u64, WmeId)> = self
+                .wm
+                .of_id(w.value)
+                .filter_map(|x| self.wm.get(x).map(|c| (c.timetag, x)))
+                .collect();
+            cue.sort_unstable();
+            conditions.extend(cue.into_iter().map(|(_, x)| x));
+        }
+        conditions
+    }
+
+    /// Gives the WMEs a command on `link` (of a state at `level`) just made their origins:
+    /// `results` are the new WMEs, `conditions` the command's WMEs in order.
+    pub(crate) fn note_memory_results(
+        &mut self,
+        level: u32,
+        res: Sym,
+        results: &[WmeId],
+        conditions: &[WmeId],
+    ) {
+        // `chunk stats` counts the instantiations at any level (one for what goes on the
+        // result link, one for the retrieved objects' WMEs).
+        let on_link_made = results
+            .iter()
+            .filter(|&&w| self.wm.get(w).is_some_and(|x| x.id == res))
+            .count();
+        self.learn.stats.retrieval_instantiations +=
+            u64::from(on_link_made > 0) + u64::from(on_link_made < results.len());
+        // Top-state firings are never backtraced.
+        if level < 2 || results.is_empty() {
+            return;
+        }
+        // Each identifier the conditions test has an identity of its own, shared by the
+        // conditions that test it (9.6 variablizes identifiers); constants have none, so a
+        // cue's constant stays in the chunk as a literal. With learning off, as for rules'
+        // firings, nothing has an identity.
+        let learning = self.settings.learn != crate::agent::LearnMode::Never;
+        let mut idents: rustc_hash::FxHashMap<Sym, super::Ident> = Default::default();
+        let mut ident_of = |agent: &mut AgentCore, s: Sym| -> super::Ident {
+            if !learning || !agent.symbols.is_id(s) {
+                return 0;
+            }
+            *idents
+                .entry(s)
+                .or_insert_with(|| agent.learn.new_idents(1))
+        };
+        let mut fields = Vec::with_capacity(conditions.len());
+        for &w in conditions {
+            if let Some(wme) = self.wm.get(w).copied() {
+                let ids = [
+                    ident_of(self, wme.id),
+                    ident_of(self, wme.attr),
+                    ident_of(self, wme.value),
+                ];
+                fields.push((w, wme, ids));
+            }
+        }
+        let conds: Vec<TraceCond> = fields
+            .into_iter()
+            .map(|(w, wme, ids)| {
+                let wme_level = self.symbols.id_data(wme.id).map_or(0, |d| d.level);
+                let support = if wme_level >= 2 {
+                    self.supporting_origin(&wme)
+                } else {
+                    None
+                };
+                TraceCond {
+                    wme,
+                    wme_id: w,
+                    level: wme_level,
+                    ids,
+                    cond: None,
+                    support,
+                    via_item: false,
+                    osk: None,
+                }
+            })
+            .collect();
+        let instantiation = || {
+            Arc::new(PrefOrigin {
+                trace: Arc::new(InstTrace {
+                    name: ARCHITECTURE.into(),
+                    prod: None,
+                    conds: conds.clone(),
+                    vars: TraceVars::new(Arc::default(), Box::default()),
+                    base: ARCHITECTURE.into(),
+                    generation: 0,
+                    level,
+                    backtraced: Default::default(),
+                }),
+                ids: [0; 4],
+                action: None,
+            })
+        };
+        let (on_link, below) = (instantiation(), instantiation());
+        for &w in results {
+            if let Some(wme) = self.wm.get(w).copied() {
+                let origin = if wme.id == res { &on_link } else { &below };
+                self.learn.memory_results.insert(wme.timetag, origin.clone());
+            }
+        }
+    }
+
+    /// The results of a command that went: they no longer need their origins.
+    pub(crate) fn forget_memory_results(&mut self, timetags: impl IntoIterator<Item = u64>) {
+        if self.learn.memory_results.is_empty() {
+            return;
+        }
+        for t in timetags {
+            self.learn.memory_results.remove(&t);
+        }
+    }
+}
