@@ -98,14 +98,18 @@ fn wm_object(agent: &AgentCore, view: &WmView, id: Sym) -> (Object, Vec<Sym>) {
     let symbols = &agent.symbols;
     let mut children = Vec::new();
     let mut augs = Vec::new();
+    let handles: std::collections::HashMap<u64, WmeId> = agent
+        .wm
+        .of_id(id)
+        .filter_map(|x| agent.wm.get(x).map(|w| (w.timetag, x)))
+        .collect();
     for w in sorted_wmes(agent, id) {
         if symbols.is_id(w.value) {
             children.push(w.value);
         }
-        let shown = agent
-            .wm
-            .by_timetag(w.timetag)
-            .is_some_and(|x| (view.shown)(x, &w));
+        let shown = handles
+            .get(&w.timetag)
+            .is_some_and(|&x| (view.shown)(x, &w));
         if !shown {
             continue;
         }

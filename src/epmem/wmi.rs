@@ -239,8 +239,8 @@ impl AgentCore {
         let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
         for ((lnk, cmd, res), state, old, cmds) in work {
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
-            if let Some(cmds) = &cmds {
-                self.epmem_command(state, res, cmds, &mut meta, &mut retrieval);
+            if let Some(cmds) = cmds {
+                self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
             }
             let meta_start = retrieval.len();
             let triples: Triples = retrieval.into_iter().chain(meta).collect();
@@ -250,10 +250,7 @@ impl AgentCore {
             self.forget_memory_results(gone);
             // Backtracing goes through the architecture's firing that made them.
             if !made.is_empty() {
-                let conditions = self.memory_command_conditions(
-                    (state, lnk, cmd, res),
-                    cmds.as_deref().unwrap_or_default(),
-                );
+                let conditions = self.memory_command_conditions((state, lnk, cmd, res));
                 let level = self.sym_level(state);
                 self.note_memory_results(level, res, &made, &conditions);
             }

@@ -29,30 +29,27 @@ impl AgentCore {
     /// link, command and result WMEs of `(state, link, command, result)`, then the
     /// command's WMEs and each cue's, each in timetag order (soar-sml 9.6.5, both
     /// memories).
-    pub(crate) fn memory_command_conditions(
-        &self,
-        (state, link, cmd, res): (Sym, Sym, Sym, Sym),
-        cmd_wmes: &[Wme],
-    ) -> Vec<WmeId> {
+    pub(crate) fn memory_command_conditions(&self, (state, link, cmd, res): (Sym, Sym, Sym, Sym)) -> Vec<WmeId> {
         let mut conditions: Vec<WmeId> = [(state, link), (link, cmd), (link, res)]
             .into_iter()
             .filter_map(|(id, value)| self.wme_linking(id, value))
             .collect();
-        let mut cmd_wmes = cmd_wmes.to_vec();
-        cmd_wmes.sort_by_key(|w| w.timetag);
-        conditions.extend(cmd_wmes.iter().filter_map(|w| self.wm.by_timetag(w.timetag)));
-        let cues = CUES.map(|a| self.symbols.find_str(a));
-        for w in &cmd_wmes {
-            if !(cues.contains(&Some(w.attr)) && self.symbols.is_id(w.value)) {
-                continue;
-            }
-            let mut cue: Vec<(u64, WmeId)> = self
+        let by_timetag = |id: Sym| {
+            let mut ws: Vec<(Wme, WmeId)> = self
                 .wm
-                .of_id(w.value)
-                .filter_map(|x| self.wm.get(x).map(|c| (c.timetag, x)))
+                .of_id(id)
+                .filter_map(|x| self.wm.get(x).map(|w| (*w, x)))
                 .collect();
-            cue.sort_unstable();
-            conditions.extend(cue.into_iter().map(|(_, x)| x));
+            ws.sort_unstable_by_key(|(w, _)| w.timetag);
+            ws
+        };
+        let command = by_timetag(cmd);
+        conditions.extend(command.iter().map(|&(_, x)| x));
+        let cues = CUES.map(|a| self.symbols.find_str(a));
+        for (w, _) in &command {
+            if cues.contains(&Some(w.attr)) && self.symbols.is_id(w.value) {
+                conditions.extend(by_timetag(w.value).into_iter().map(|(_, x)| x));
+            }
         }
         conditions
     }
@@ -74,6 +71,15 @@ impl AgentCore {
             .count();
         self.learn.stats.retrieval_instantiations +=
             u64::from(on_link_made > 0) + u64::from(on_link_made < results.len());
+        // The origins of results that left working memory some other way (with their
+        // substate) go now, so that a long run keeps only the live ones and the firings
+        // they hold.
+        if !self.learn.memory_results.is_empty() {
+            let wm = &self.wm;
+            self.learn
+                .memory_results
+                .retain(|&t, (w, _)| wm.get(*w).is_some_and(|x| x.timetag == t));
+        }
         // Top-state firings are never backtraced.
         if level < 2 || results.is_empty() {
             return;
@@ -144,7 +150,7 @@ impl AgentCore {
         for &w in results {
             if let Some(wme) = self.wm.get(w).copied() {
                 let origin = if wme.id == res { &on_link } else { &below };
-                self.learn.memory_results.insert(wme.timetag, origin.clone());
+                self.learn.memory_results.insert(wme.timetag, (w, origin.clone()));
             }
         }
     }
@@ -157,5 +163,41 @@ impl AgentCore {
         for t in timetags {
             self.learn.memory_results.remove(&t);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::commands::Interpreter;
+
+    /// Each decision an operator meets a no-change impasse whose substate queries semantic
+    /// memory, and the substate goes with the next decision. The retrievals' origins go with
+    /// their WMEs: however long the run, only the live substate's are kept.
+    #[test]
+    fn the_origins_of_retrievals_go_with_their_substates() {
+        let mut i = Interpreter::new();
+        i.run_text(
+            "t",
+            "smem --enable
+             smem --add {(<x> ^name alpha ^color red)}
+             sp {init :o-support (state <s> ^superstate nil -^count) --> (<s> ^count 0)}
+             sp {propose (state <s> ^superstate nil ^count <c>) --> (<s> ^operator <o> +) (<o> ^name go ^n <c>)}
+             sp {query (state <s> ^superstate <ss> ^smem.command <c>) (<ss> ^operator.name go)
+                --> (<c> ^query <q>) (<q> ^name alpha)}
+             sp {count (state <s> ^superstate <ss> ^smem.result.retrieved <r>)
+                (<ss> ^operator <o> ^count <c>) (<o> ^name go)
+                --> (<ss> ^count <c> - (+ <c> 1))}
+             watch 0",
+        )
+        .unwrap();
+        i.run_text("t", "run 40").unwrap();
+        let kept = i.agent.learn.memory_results.len();
+        assert!(kept > 0, "the live substate's retrieval has its origins");
+        i.run_text("t", "run 400").unwrap();
+        assert!(
+            i.agent.learn.memory_results.len() <= kept,
+            "{} origins kept after 440 decisions, {kept} after 40",
+            i.agent.learn.memory_results.len()
+        );
     }
 }

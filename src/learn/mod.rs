@@ -301,7 +301,7 @@ pub struct LearnState {
     pub explainer: explain::Explainer,
     /// The architecture's firings behind memory retrievals in substates, by the timetag
     /// of each WME they made (see `memory_results.rs`).
-    pub memory_results: FxHashMap<u64, Arc<PrefOrigin>>,
+    pub memory_results: FxHashMap<u64, (WmeId, Arc<PrefOrigin>)>,
 }
 
 impl LearnState {

@@ -234,7 +234,7 @@ impl AgentCore {
     pub(crate) fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
         let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
             // A memory's retrieval: the architecture's firing that made it.
-            return self.learn.memory_results.get(&wme.timetag).cloned();
+            return self.learn.memory_results.get(&wme.timetag).map(|(_, o)| o.clone());
         };
         // A required operator, once selected, rests on its require preference (the
         // candidate 9.6 selects).

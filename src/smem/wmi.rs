@@ -204,7 +204,7 @@ impl AgentCore {
                 self.wma_memory_results(&fresh, &conditions);
             }
             if !fresh.is_empty() {
-                let conditions = self.memory_command_conditions((state, link, cmd, res), &cmd_wmes);
+                let conditions = self.memory_command_conditions((state, link, cmd, res));
                 self.note_memory_results(level, res, &fresh, &conditions);
             }
             self.smem.links.by_link.entry(link).or_default().results = added;
