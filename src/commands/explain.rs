@@ -148,14 +148,7 @@ impl Interpreter {
 
 /// The word's sub-command or setting: an exact name, or the prefix of just one.
 fn resolve(word: &str) -> Result<&'static str, Vec<&'static str>> {
-    if let Some(n) = NAMES.iter().find(|n| **n == word) {
-        return Ok(n);
-    }
-    let found: Vec<&str> = NAMES.iter().copied().filter(|n| n.starts_with(word)).collect();
-    match found.as_slice() {
-        [one] => Ok(one),
-        _ => Err(found),
-    }
+    super::resolve_prefix(&NAMES, word)
 }
 
 /// `all`, `justifications`, `only-chunk-identities`: shown, or set to `on` or `off`.

@@ -185,6 +185,19 @@ pub struct Interpreter {
     viz: visualize::VizSettings,
 }
 
+/// A sub-command or setting `word` names among `names`: the exact name, or the prefix of
+/// just one; otherwise the names it is a prefix of (none, or several).
+fn resolve_prefix(names: &[&'static str], word: &str) -> Result<&'static str, Vec<&'static str>> {
+    if let Some(n) = names.iter().find(|n| **n == word) {
+        return Ok(n);
+    }
+    let found: Vec<&'static str> = names.iter().copied().filter(|n| n.starts_with(word)).collect();
+    match found.as_slice() {
+        [one] => Ok(one),
+        _ => Err(found),
+    }
+}
+
 /// A switch's value as the settings listings write it.
 fn on_off(b: bool) -> &'static str {
     if b {

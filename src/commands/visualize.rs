@@ -95,14 +95,7 @@ fn resolve(word: &str) -> Result<&'static str, Vec<&'static str>> {
         "print-debug" => return Ok("print"),
         _ => {}
     }
-    if let Some(n) = NAMES.iter().find(|n| **n == word) {
-        return Ok(n);
-    }
-    let found: Vec<&str> = NAMES.iter().copied().filter(|n| n.starts_with(word)).collect();
-    match found.as_slice() {
-        [one] => Ok(one),
-        _ => Err(found),
-    }
+    super::resolve_prefix(&NAMES, word)
 }
 
 impl Interpreter {
