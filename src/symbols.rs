@@ -11,6 +11,11 @@ use std::cmp::Ordering;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Sym(pub(crate) u32);
 
+impl Sym {
+    /// Marks a number an identifier letter skipped (see `Symbols::new_id_numbered`).
+    const UNNAMED: Sym = Sym(u32::MAX);
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub enum SymData {
     Str(std::sync::Arc<str>),
@@ -108,6 +113,9 @@ pub struct Symbols {
     /// from 1 per letter, so a list serves where a hash map would cost every new id an
     /// insert; a learning or SLAM run makes hundreds of thousands).
     ids: [Vec<Sym>; 26],
+    /// Identifiers named far past their letter's list (a `wm add` of `Z99999`), by letter
+    /// index and number.
+    far_ids: FxHashMap<(usize, u64), Sym>,
     counters: [u64; 26],
     /// The constants the decision cycle itself writes and reads, looked up once.
     pub known: Known,
@@ -288,7 +296,7 @@ impl Symbols {
         };
         let slot = (l - b'A') as usize;
         let number = self.counters[slot];
-        self.counters[slot] += 1;
+        self.counters[slot] = number.saturating_add(1);
         let x = self.push(SymData::Id(IdData {
             letter: l,
             number,
@@ -297,9 +305,56 @@ impl Symbols {
             is_impasse: false,
             lti: 0,
         }));
-        debug_assert_eq!(self.ids[slot].len() as u64 + 1, number);
-        self.ids[slot].push(x);
+        if self.ids[slot].len() as u64 + 1 == number {
+            self.ids[slot].push(x);
+        } else {
+            self.name_id(slot, number, x);
+        }
         x
+    }
+
+    /// A new identifier named by `letter` and `number` (the `wm add` of an identifier-shaped
+    /// value that names none, as 9.6 makes one): the letter's counter moves past `number`, so
+    /// the identifiers made next do not take the name again. Numbers skipped stay unnamed.
+    pub fn new_id_numbered(&mut self, letter: char, number: u64, level: u32) -> Sym {
+        let l = letter.to_ascii_uppercase();
+        let l = if l.is_ascii_uppercase() {
+            l as u8
+        } else {
+            b'I'
+        };
+        let slot = (l - b'A') as usize;
+        let x = self.push(SymData::Id(IdData {
+            letter: l,
+            number,
+            level,
+            is_goal: false,
+            is_impasse: false,
+            lti: 0,
+        }));
+        self.name_id(slot, number, x);
+        if number >= self.counters[slot] {
+            self.counters[slot] = number.saturating_add(1);
+        }
+        x
+    }
+
+    /// Files identifier `x` as number `number` of letter index `slot`: in the letter's
+    /// list (numbers skipped on the way unnamed), or, far past its end, in `far_ids`.
+    fn name_id(&mut self, slot: usize, number: u64, x: Sym) {
+        /// How many numbers a name may skip and still be listed.
+        const MAX_SKIP: u64 = 1 << 16;
+        let list = &mut self.ids[slot];
+        let len = list.len() as u64;
+        let index = number.saturating_sub(1);
+        if index < len {
+            list[index as usize] = x;
+        } else if index - len <= MAX_SKIP {
+            list.resize(index as usize, Sym::UNNAMED);
+            list.push(x);
+        } else {
+            self.far_ids.insert((slot, number), x);
+        }
     }
 
     /// Gives an existing identifier the next number for its letter (after `init-soar`, the
@@ -308,12 +363,11 @@ impl Symbols {
         let Some(d) = self.id_data(id) else { return };
         let slot = (d.letter - b'A') as usize;
         let number = self.counters[slot];
-        self.counters[slot] += 1;
+        self.counters[slot] = number.saturating_add(1);
         if let Some(d) = self.id_data_mut(id) {
             d.number = number;
         }
-        debug_assert_eq!(self.ids[slot].len() as u64 + 1, number);
-        self.ids[slot].push(id);
+        self.name_id(slot, number, id);
     }
 
     /// The identifier named `S1`, `i2`... if it exists.
@@ -325,7 +379,10 @@ impl Symbols {
         let n: u64 = name[1..].parse().ok()?;
         let slot = (b[0].to_ascii_uppercase() - b'A') as usize;
         let index = usize::try_from(n.checked_sub(1)?).ok()?;
-        self.ids[slot].get(index).copied()
+        match self.ids[slot].get(index) {
+            Some(&x) => Some(x).filter(|&x| x != Sym::UNNAMED),
+            None => self.far_ids.get(&(slot, n)).copied(),
+        }
     }
 
     /// `init-soar`: identifier counters start again at 1, as in the official kernel.
@@ -334,6 +391,7 @@ impl Symbols {
         for list in &mut self.ids {
             list.clear();
         }
+        self.far_ids.clear();
     }
 
     /// Every symbol, in the order they were made.
@@ -469,6 +527,30 @@ mod tests {
         s.reset_id_counters();
         let again = s.new_id('s', 1);
         assert_eq!(s.text(again), "S1");
+    }
+
+    #[test]
+    fn named_ids_skip_numbers_and_move_the_counter() {
+        let mut s = Symbols::new();
+        let z9 = s.new_id_numbered('z', 9, 1);
+        assert_eq!(s.text(z9), "Z9");
+        assert_eq!(s.find_id("Z9"), Some(z9));
+        assert_eq!(s.find_id("Z3"), None);
+        let z10 = s.new_id('z', 1);
+        assert_eq!(s.text(z10), "Z10");
+        let z3 = s.new_id_numbered('z', 3, 1);
+        assert_eq!(s.find_id("z3"), Some(z3));
+        // Far past the list: kept apart, and the counter still moves past it.
+        let far = s.new_id_numbered('z', 1 << 40, 1);
+        assert_eq!(s.find_id(&format!("Z{}", 1u64 << 40)), Some(far));
+        let next = s.new_id('z', 1);
+        assert_eq!(s.find_id(&format!("Z{}", (1u64 << 40) + 1)), Some(next));
+        let max = s.new_id_numbered('z', u64::MAX, 1);
+        assert_eq!(s.find_id(&format!("Z{}", u64::MAX)), Some(max));
+        s.reset_id_counters();
+        assert_eq!(s.find_id("Z9"), None);
+        let z1 = s.new_id('z', 1);
+        assert_eq!(s.text(z1), "Z1");
     }
 
     #[test]

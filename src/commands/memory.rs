@@ -44,14 +44,34 @@ impl Interpreter {
         if args[2] != "*" && !reads_as_symbol(&args[2]) {
             return Err(ctx.error("Unknown value type."));
         }
-        let attr = symbol_for_word(agent, attr_word, false).ok_or_else(|| {
-            Diagnostic::error("Invalid identifier")
+        // An identifier-shaped attribute names an identifier, which must exist.
+        let attr = if is_identifier_shaped(attr_word) {
+            agent.live_id(attr_word).ok_or_else(|| {
+                let name = attr_word.to_ascii_uppercase();
+                Diagnostic::error(format!(
+                    "There is no identifier {name}.\nInvalid attribute."
+                ))
                 .at(ctx.arg_span(2))
                 .with_label("no such identifier")
-        })?;
+            })?
+        } else {
+            symbol_for_word(agent, attr_word, false).ok_or_else(|| {
+                Diagnostic::error("Invalid identifier")
+                    .at(ctx.arg_span(2))
+                    .with_label("no such identifier")
+            })?
+        };
+        let level = agent.symbols.id_data(id).map_or(1, |d| d.level);
         let value = if args[2] == "*" {
-            let level = agent.symbols.id_data(id).map_or(1, |d| d.level);
             agent.symbols.new_id('I', level)
+        } else if is_identifier_shaped(&args[2]) && agent.live_id(&args[2]).is_none() {
+            // An identifier-shaped value that names none makes one of that name, `S`
+            // written `I` as a rule's new identifiers are (checked on soar-sml 9.6.5).
+            new_named_id(agent, &args[2], level).ok_or_else(|| {
+                Diagnostic::error("Invalid identifier")
+                    .at(ctx.arg_span(3))
+                    .with_label("no such identifier")
+            })?
         } else {
             symbol_for_word(agent, &args[2], true).ok_or_else(|| {
                 Diagnostic::error("Invalid identifier")
@@ -143,6 +163,19 @@ fn reads_as_symbol(word: &str) -> bool {
 
 /// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
 /// (values only), else a number or a string constant (`|...|` quoting removed).
+/// A new identifier named as `word` (`Z9`) says, `S` written `I`, as 9.6 makes it: a
+/// number too large for 64 bits is the largest, and 0 takes the letter's next number.
+fn new_named_id(agent: &mut crate::agent::AgentCore, word: &str, level: u32) -> Option<Sym> {
+    let letter = word.chars().next()?.to_ascii_uppercase();
+    let letter = if letter == 'S' { 'I' } else { letter };
+    let number: u64 = word[1..].parse().unwrap_or(u64::MAX);
+    Some(if number == 0 {
+        agent.symbols.new_id(letter, level)
+    } else {
+        agent.symbols.new_id_numbered(letter, number, level)
+    })
+}
+
 pub(super) fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
     if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
         return Some(agent.symbols.str(inner));
