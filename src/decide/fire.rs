@@ -73,6 +73,7 @@ impl AgentCore {
             prefs: self.decider.spare_pref_lists.pop().unwrap_or_default(),
             alive: true,
             serial: 0,
+            gds_walked: None,
         };
         if rule.flags.i_support {
             inst.o_support = false;

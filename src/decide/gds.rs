@@ -94,20 +94,20 @@ impl AgentCore {
         if level <= 1 {
             return;
         }
-        // The firings gone through, the ones waiting, and the superstate WMEs found: few
-        // in each walk, kept for their room.
-        let mut seen = std::mem::take(&mut self.decider.gds_scratch.seen);
+        // The firings waiting and the superstate WMEs found: few in each walk, kept for
+        // their room. A firing is walked once per goal (as 9.6 marks an instantiation
+        // whose dependencies it has gathered): its match, and so what it adds, never
+        // changes.
         let mut stack = std::mem::take(&mut self.decider.gds_scratch.stack);
         let mut found = std::mem::take(&mut self.decider.gds_scratch.found);
         stack.push(inst);
         while let Some(i) = stack.pop() {
-            if !seen.insert(i) {
+            let x = &mut self.decider.insts[i];
+            if !x.alive || x.gds_walked == Some(goal) {
                 continue;
             }
+            x.gds_walked = Some(goal);
             let x = &self.decider.insts[i];
-            if !x.alive {
-                continue;
-            }
             for w in self.rete.match_row(x.prod, x.token) {
                 let Some(wme) = self.wm.get(w) else { continue };
                 let l = self.sym_level(wme.id);
@@ -130,9 +130,8 @@ impl AgentCore {
                 self.decider.gds.insert(w, goal);
             }
         }
-        seen.clear();
         found.clear();
-        self.decider.gds_scratch = super::state::GdsScratch { seen, stack, found };
+        self.decider.gds_scratch = super::state::GdsScratch { stack, found };
     }
 
     /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with

@@ -41,6 +41,9 @@ pub struct Instantiation {
     /// A learned rule's instantiation not matched by the network (a justification): its
     /// serial in the learner's list; 0 for rule firings.
     pub serial: u64,
+    /// The goal whose dependency set a walk through this firing already grew (see
+    /// `elaborate_gds`): walking it again for that goal would find nothing new.
+    pub gds_walked: Option<Sym>,
 }
 
 #[derive(Debug, Clone)]
@@ -417,7 +420,6 @@ impl DecideState {
 /// The tables a walk that grows a goal dependency set uses, kept between walks.
 #[derive(Debug, Default, Clone)]
 pub struct GdsScratch {
-    pub seen: rustc_hash::FxHashSet<InstId>,
     pub stack: Vec<InstId>,
     pub found: Vec<WmeId>,
 }

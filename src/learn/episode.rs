@@ -324,6 +324,7 @@ impl AgentCore {
                     prefs: Vec::new(),
                     alive: true,
                     serial: 0,
+                    gds_walked: None,
                 };
                 let id = self.decider.alloc_inst(inst);
                 self.learn.stats.learned_instantiations += 1;
@@ -643,6 +644,7 @@ impl AgentCore {
             prefs: Vec::new(),
             alive: true,
             serial,
+            gds_walked: None,
         };
         let id = self.decider.alloc_inst(inst);
         self.learn.stats.learned_instantiations += 1;
