@@ -155,15 +155,26 @@ impl Rete {
             self.succ_scratch.push(*s);
         }
         for i in base..self.succ_scratch.len() {
-            let n = self.succ_scratch[i].node;
-            if self.nodes[n].alive {
-                self.right_activation(n, w, syms, sink);
+            let s = self.succ_scratch[i];
+            if self.nodes[s.node].alive {
+                // A linked join passed its prefilter above: with no other test of the WME
+                // alone, checking them again would change nothing.
+                let checked = !s.left_unlinked && !s.wme_tests;
+                self.right_activation(s.node, w, checked, syms, sink);
             }
         }
         self.succ_scratch.truncate(base);
     }
 
-    fn right_activation(&mut self, n: NodeId, w: WmeId, syms: &Symbols, sink: &mut dyn MatchSink) {
+    /// `checked`: the node's tests of the WME alone are known to pass.
+    fn right_activation(
+        &mut self,
+        n: NodeId,
+        w: WmeId,
+        checked: bool,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
         self.right_activations += 1;
         match self.nodes[n].kind {
             Kind::Join { left_unlinked, .. } => {
@@ -176,7 +187,7 @@ impl Rete {
                     return;
                 }
                 let depth = self.nodes[parent].depth + 1;
-                if !self.wme_tests_pass(n, w, depth, syms) {
+                if !checked && !self.wme_tests_pass(n, w, depth, syms) {
                     return;
                 }
                 let blockable = matches!(
@@ -205,7 +216,7 @@ impl Rete {
             }
             Kind::Negative { .. } => {
                 let depth = self.nodes[n].depth + 1;
-                if !self.wme_tests_pass(n, w, depth, syms) {
+                if !checked && !self.wme_tests_pass(n, w, depth, syms) {
                     return;
                 }
                 let base = self.scratch.len();

@@ -89,6 +89,7 @@ pub(crate) struct AlphaKey {
     pub acceptable: bool,
 }
 
+
 /// See `Rete::attr_amems`.
 #[derive(Debug, Clone, Copy)]
 struct AttrAmems {
@@ -131,6 +132,9 @@ pub(crate) struct Succ {
     /// The node's `left_unlinked`, mirrored: a left-unlinked join must relink on every
     /// right activation (Rete/UL), so only a linked one may be skipped.
     pub left_unlinked: bool,
+    /// Whether the node tests the new WME alone (see `wme_tests_pass`) beyond `pre`: when
+    /// not, a linked join whose prefilter passed has nothing more to check on the WME.
+    pub wme_tests: bool,
 }
 
 /// A successor's test of one field of the new WME against a constant (see [`Succ`]).
@@ -1060,16 +1064,40 @@ impl Rete {
                 ..
             }
         );
-        let pre = match self.succ_links.known(n) {
-            Some(s) => s.pre,
-            None => self.prefilter(n, syms),
+        let (pre, wme_tests) = match self.succ_links.known(n) {
+            Some(s) => (s.pre, s.wme_tests),
+            None => {
+                let pre = self.prefilter(n, syms);
+                let alone = self.wme_test_count(n);
+                (pre, alone > usize::from(pre.is_some()))
+            }
         };
         let s = Succ {
             node: n,
             pre,
             left_unlinked,
+            wme_tests,
         };
         self.succ_links.insert(&mut self.amems[amem].successors, s, a);
+    }
+
+    /// How many tests of join or negative node `n` read the new WME alone (those
+    /// `wme_tests_pass` runs).
+    fn wme_test_count(&self, n: NodeId) -> usize {
+        let new_depth = match self.nodes[n].kind {
+            Kind::Join { .. } => self.nodes[self.nodes[n].parent].depth + 1,
+            _ => self.nodes[n].depth + 1,
+        };
+        self.join_tests(n)
+            .iter()
+            .filter(|t| match t {
+                JoinTest::Compare {
+                    operand: tests::Operand::Bound { depth, .. },
+                    ..
+                } => *depth == new_depth,
+                _ => true,
+            })
+            .count()
     }
 
     /// The first test of join or negative node `n` on a field of the new WME against a
