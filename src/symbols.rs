@@ -11,6 +11,16 @@ use std::cmp::Ordering;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Sym(pub(crate) u32);
 
+/// An identifier letter's index (upper-cased; non-letters read as `I`).
+fn letter_index(letter: char) -> usize {
+    let l = letter.to_ascii_uppercase();
+    if l.is_ascii_uppercase() {
+        (l as u8 - b'A') as usize
+    } else {
+        (b'I' - b'A') as usize
+    }
+}
+
 impl Sym {
     /// Marks a number an identifier letter skipped (see `Symbols::new_id_numbered`).
     const UNNAMED: Sym = Sym(u32::MAX);
@@ -288,17 +298,18 @@ impl Symbols {
 
     /// A new identifier with the next number for `letter` (upper-cased; non-letters use `I`).
     pub fn new_id(&mut self, letter: char, level: u32) -> Sym {
-        let l = letter.to_ascii_uppercase();
-        let l = if l.is_ascii_uppercase() {
-            l as u8
-        } else {
-            b'I'
-        };
-        let slot = (l - b'A') as usize;
-        let number = self.counters[slot];
-        self.counters[slot] = number.saturating_add(1);
+        let number = self.counters[letter_index(letter)];
+        self.new_id_numbered(letter, number, level)
+    }
+
+    /// A new identifier named by `letter` and `number` (also the `wm add` of an
+    /// identifier-shaped value that names none, as 9.6 makes one): the letter's counter
+    /// moves past `number`, so the identifiers made next do not take the name again.
+    /// Numbers skipped stay unnamed.
+    pub fn new_id_numbered(&mut self, letter: char, number: u64, level: u32) -> Sym {
+        let slot = letter_index(letter);
         let x = self.push(SymData::Id(IdData {
-            letter: l,
+            letter: b'A' + slot as u8,
             number,
             level,
             is_goal: false,
@@ -310,29 +321,6 @@ impl Symbols {
         } else {
             self.name_id(slot, number, x);
         }
-        x
-    }
-
-    /// A new identifier named by `letter` and `number` (the `wm add` of an identifier-shaped
-    /// value that names none, as 9.6 makes one): the letter's counter moves past `number`, so
-    /// the identifiers made next do not take the name again. Numbers skipped stay unnamed.
-    pub fn new_id_numbered(&mut self, letter: char, number: u64, level: u32) -> Sym {
-        let l = letter.to_ascii_uppercase();
-        let l = if l.is_ascii_uppercase() {
-            l as u8
-        } else {
-            b'I'
-        };
-        let slot = (l - b'A') as usize;
-        let x = self.push(SymData::Id(IdData {
-            letter: l,
-            number,
-            level,
-            is_goal: false,
-            is_impasse: false,
-            lti: 0,
-        }));
-        self.name_id(slot, number, x);
         if number >= self.counters[slot] {
             self.counters[slot] = number.saturating_add(1);
         }

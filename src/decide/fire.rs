@@ -99,6 +99,8 @@ impl AgentCore {
         // Substate firings are recorded for backtracing: each preference with its action.
         let mut made = std::mem::take(&mut self.decider.rhs_made);
         made.clear();
+        // New identifiers a failed action would have linked (see below).
+        let mut unlinked_new: Vec<usize> = Vec::new();
         for (action_index, action) in rule.actions.iter().enumerate() {
             match action {
                 Act::Call(f) => {
@@ -124,7 +126,34 @@ impl AgentCore {
                     referent,
                     kind,
                 } => {
-                    let id = self.term_value(&rule, &wmes, id, level, &mut new_ids, &mut args);
+                    // The identifier first: an action whose identifier is not one stops
+                    // there, before its other terms make anything (as 9.6 does).
+                    let Some(id_sym) =
+                        self.term_value(&rule, &wmes, id, level, &mut new_ids, &mut args)
+                    else {
+                        continue;
+                    };
+                    if !self.symbols.is_id(id_sym) {
+                        self.report_non_identifier(action, id_sym);
+                        // The objects it would have linked stay, unlinked (as in 9.6); a
+                        // new one is noted if a later action makes it.
+                        for t in [attr, value].into_iter().chain(referent) {
+                            match t {
+                                Term::Bound(depth, field) => {
+                                    match self.rete.field_at(&wmes, *depth, *field) {
+                                        Some(x) if self.symbols.is_id(x) => {
+                                            self.wm.note_failed_link(x)
+                                        }
+                                        _ => {}
+                                    }
+                                }
+                                Term::New(slot) => unlinked_new.push(*slot),
+                                _ => {}
+                            }
+                        }
+                        continue;
+                    }
+                    let id = Some(id_sym);
                     let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids, &mut args);
                     let value =
                         self.term_value(&rule, &wmes, value, level, &mut new_ids, &mut args);
@@ -140,15 +169,6 @@ impl AgentCore {
                     let (Some(id), Some(attr), Some(value)) = (id, attr, value) else {
                         continue;
                     };
-                    if !self.symbols.is_id(id) {
-                        // The objects it would have linked stay, unlinked (as in 9.6).
-                        for x in [attr, value].into_iter().chain(referent) {
-                            if self.symbols.is_id(x) {
-                                self.wm.note_failed_link(x);
-                            }
-                        }
-                        continue;
-                    }
                     // A binary indifferent preference whose referent is a number is a
                     // numeric one (`= <v>` with <v> bound to a number, as 9.6 reads it).
                     let kind = match (*kind, referent.map(|r| self.symbols.get(r))) {
@@ -185,6 +205,11 @@ impl AgentCore {
                         made.push((pid, action_index));
                     }
                 }
+            }
+        }
+        for slot in unlinked_new {
+            if let Some(x) = new_ids.get(slot).copied().flatten() {
+                self.wm.note_failed_link(x);
             }
         }
         self.decider.rhs_wmes = wmes;
@@ -355,6 +380,55 @@ impl AgentCore {
 
     /// A built-in or registered RHS function (Soar manual, chapter 3, "Right-hand side
     /// Functions").
+    /// 9.6's error for a make action whose identifier evaluated to `id`, not an identifier:
+    /// the action as 9.6 prints it, a variable the conditions bind as `[RETE-loc]` and one
+    /// they do not as `<unbound-variable>`.
+    fn report_non_identifier(&mut self, action: &Act, id: Sym) {
+        let Act::Make {
+            id: id_term,
+            attr,
+            value,
+            referent,
+            kind,
+        } = action
+        else {
+            return;
+        };
+        let mut line = String::from("Error: RHS of action           (");
+        self.push_term_text(id_term, &mut line);
+        line.push_str(" ^");
+        self.push_term_text(attr, &mut line);
+        line.push(' ');
+        self.push_term_text(value, &mut line);
+        line.push(' ');
+        line.push(crate::trace_text::pref_type_char(*kind));
+        if let Some(r) = referent {
+            line.push(' ');
+            self.push_term_text(r, &mut line);
+        }
+        line.push_str(") makes a preference for ");
+        line.push_str(&self.symbols.text(id));
+        line.push_str(" (not an identifier)\n");
+        self.output.push_str(&line);
+    }
+
+    fn push_term_text(&self, t: &Term, out: &mut String) {
+        match t {
+            Term::Sym(s) => out.push_str(&self.symbols.text(*s)),
+            Term::Bound(..) => out.push_str("[RETE-loc]"),
+            Term::New(_) => out.push_str("<unbound-variable>"),
+            Term::Call(c) => {
+                out.push('(');
+                out.push_str(&c.name);
+                for a in &c.args {
+                    out.push(' ');
+                    self.push_term_text(a, out);
+                }
+                out.push(')');
+            }
+        }
+    }
+
     fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
         crate::decide::functions::call(self, name, args)
     }
