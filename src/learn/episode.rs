@@ -229,6 +229,7 @@ impl AgentCore {
         }
         let want_chunk = want_chunk && !refused;
         let mut chunk: Option<(ProdId, Arc<Production>)> = None;
+        let mut duplicate = false;
         // The rule whose firing made the result: max-dupes counts per rule, per phase.
         let dupes_of = source.name.clone();
         let dupes = self
@@ -278,6 +279,11 @@ impl AgentCore {
                     // A learned rule's conditions are connected to its state.
                     Added::Rejected { .. } => {}
                     Added::Duplicate { .. } => {
+                        duplicate = true;
+                        // 9.6 makes the rule's instantiation, and counts its constraints,
+                        // before it finds the rule known.
+                        self.learn.stats.learned_instantiations += 1;
+                        self.learn.stats.operational_constraints += constraints;
                         self.learn.duplicates += 1;
                         self.learn.stats.duplicates += 1;
                         *self.learn.dupes_this_phase.entry(dupes_of).or_default() += 1;
@@ -302,6 +308,17 @@ impl AgentCore {
                     }
                 }
             }
+        }
+        if duplicate {
+            // 9.6 keeps nothing of results whose rule it has already learned: no
+            // justification, and the results are not asserted, the rule learned before
+            // making them (checked on soar-sml 9.6.5: agent learn-except after
+            // `init-soar`, where `preferences` lists only the earlier chunk's).
+            new_prefs.retain(|p| !results.contains(p));
+            for &r in &results {
+                self.decider.free_pref(r);
+            }
+            return;
         }
         let ground_wmes: Vec<_> = bt.grounds.iter().map(|g| g.cond.wme_id).collect();
         let owner_level = bt.grounds.iter().map(|g| g.cond.level).max().unwrap_or(1);
