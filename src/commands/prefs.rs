@@ -197,10 +197,13 @@ impl Interpreter {
         Ok(out)
     }
 
-    /// The live preferences of a slot as 9.6 lists it from its head: newest first.
+    /// The live preferences of a slot as 9.6 lists it from its head: 9.6 keeps them by
+    /// the level of their firings' match goals, the highest goal first (a result's
+    /// justification before the substate firing that made it), newest first within a
+    /// level.
     pub(super) fn slot_prefs(&self, id: Sym, attr: Sym) -> Vec<Preference> {
         let agent = &self.agent;
-        agent
+        let mut prefs: Vec<Preference> = agent
             .decider
             .slots
             .get(&(id, attr))
@@ -212,7 +215,19 @@ impl Interpreter {
                     .filter(|p| p.alive)
                     .collect()
             })
-            .unwrap_or_default()
+            .unwrap_or_default();
+        prefs.sort_by_key(|p| self.pref_level(p));
+        prefs
+    }
+
+    /// The level of the match goal of the firing that made `p` (of its identifier, once
+    /// the firing is gone).
+    fn pref_level(&self, p: &Preference) -> u32 {
+        let agent = &self.agent;
+        match p.inst.and_then(|i| agent.decider.insts[i].goal) {
+            Some(g) => agent.symbols.id_data(g).map_or(1, |d| d.level),
+            None => agent.symbols.id_data(p.id).map_or(1, |d| d.level),
+        }
     }
 
     /// `  A1 (alpha) +  :I ` / `  E2 (e) = A1 (a) :I ` / `  (S1 ^thing x)  :I `, with
@@ -248,7 +263,7 @@ impl Interpreter {
     }
 
     fn level_mark(&self, p: &Preference) -> String {
-        let level = self.agent.symbols.id_data(p.id).map_or(1, |d| d.level);
+        let level = self.pref_level(p);
         if level > 1 {
             format!(" [level {level}] ")
         } else {
