@@ -67,11 +67,7 @@ impl Interpreter {
         } else if is_identifier_shaped(&args[2]) && agent.live_id(&args[2]).is_none() {
             // An identifier-shaped value that names none makes one of that name, `S`
             // written `I` as a rule's new identifiers are (checked on soar-sml 9.6.5).
-            new_named_id(agent, &args[2], level).ok_or_else(|| {
-                Diagnostic::error("Invalid identifier")
-                    .at(ctx.arg_span(3))
-                    .with_label("no such identifier")
-            })?
+            new_named_id(agent, &args[2], level)
         } else {
             symbol_for_word(agent, &args[2], true).ok_or_else(|| {
                 Diagnostic::error("Invalid identifier")
@@ -161,21 +157,23 @@ fn reads_as_symbol(word: &str) -> bool {
             .all(|c| c == '|' || crate::lexer::is_constituent(c))
 }
 
-/// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
-/// (values only), else a number or a string constant (`|...|` quoting removed).
-/// A new identifier named as `word` (`Z9`) says, `S` written `I`, as 9.6 makes it: a
-/// number too large for 64 bits is the largest, and 0 takes the letter's next number.
-fn new_named_id(agent: &mut crate::agent::AgentCore, word: &str, level: u32) -> Option<Sym> {
-    let letter = word.chars().next()?.to_ascii_uppercase();
-    let letter = if letter == 'S' { 'I' } else { letter };
-    let number: u64 = word[1..].parse().unwrap_or(u64::MAX);
-    Some(if number == 0 {
-        agent.symbols.new_id(letter, level)
-    } else {
-        agent.symbols.new_id_numbered(letter, number, level)
-    })
+/// A new identifier named as the identifier-shaped `word` (`Z9`) says, `S` written `I`,
+/// as 9.6 makes it: a number too large for 64 bits is the largest, and 0 takes the
+/// letter's next number.
+fn new_named_id(agent: &mut crate::agent::AgentCore, word: &str, level: u32) -> Sym {
+    let (letter, digits) = word.split_at(1);
+    let letter = match letter.to_ascii_uppercase().as_str() {
+        "S" => 'I',
+        l => l.chars().next().unwrap_or('I'),
+    };
+    match digits.parse::<u64>().unwrap_or(u64::MAX) {
+        0 => agent.symbols.new_id(letter, level),
+        number => agent.symbols.new_id_numbered(letter, number, level),
+    }
 }
 
+/// The symbol a `wm add` word names: an existing identifier for identifier-shaped words
+/// (values only), else a number or a string constant (`|...|` quoting removed).
 pub(super) fn symbol_for_word(agent: &mut crate::agent::AgentCore, word: &str, allow_id: bool) -> Option<Sym> {
     if let Some(inner) = word.strip_prefix('|').and_then(|w| w.strip_suffix('|')) {
         return Some(agent.symbols.str(inner));

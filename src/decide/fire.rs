@@ -153,7 +153,7 @@ impl AgentCore {
                         }
                         continue;
                     }
-                    let id = Some(id_sym);
+                    let id = id_sym;
                     let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids, &mut args);
                     let value =
                         self.term_value(&rule, &wmes, value, level, &mut new_ids, &mut args);
@@ -166,7 +166,7 @@ impl AgentCore {
                         }
                         None => None,
                     };
-                    let (Some(id), Some(attr), Some(value)) = (id, attr, value) else {
+                    let (Some(attr), Some(value)) = (attr, value) else {
                         continue;
                     };
                     // A binary indifferent preference whose referent is a number is a
@@ -378,8 +378,6 @@ impl AgentCore {
         self.decider.free_inst(inst_id);
     }
 
-    /// A built-in or registered RHS function (Soar manual, chapter 3, "Right-hand side
-    /// Functions").
     /// 9.6's error for a make action whose identifier evaluated to `id`, not an identifier:
     /// the action as 9.6 prints it, a variable the conditions bind as `[RETE-loc]` and one
     /// they do not as `<unbound-variable>`.
@@ -429,6 +427,8 @@ impl AgentCore {
         }
     }
 
+    /// A built-in or registered RHS function (Soar manual, chapter 3, "Right-hand side
+    /// Functions").
     fn call_rhs(&mut self, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
         crate::decide::functions::call(self, name, args)
     }

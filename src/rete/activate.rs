@@ -77,24 +77,39 @@ impl Rete {
     /// impasse tests, fields of the WME itself): when one fails, no token can pair with the
     /// WME, so a right activation ends before it looks for tokens.
     fn wme_tests_pass(&self, n: NodeId, w: WmeId, new_depth: u32, syms: &Symbols) -> bool {
-        self.join_tests(n).iter().all(|test| match test {
-            JoinTest::Compare {
-                field,
-                op,
-                operand: Operand::Const(c),
-            } => relation_holds(syms, *op, self.field(w, *field), *c),
-            JoinTest::Compare {
-                field,
-                op,
-                operand: Operand::Bound { depth, field: bf },
-            } if *depth == new_depth => {
-                relation_holds(syms, *op, self.field(w, *field), self.field(w, *bf))
-            }
-            JoinTest::Compare { .. } => true,
-            JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
-            JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
-            JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
-        })
+        self.join_tests(n)
+            .iter()
+            .filter(|test| reads_wme_alone(test, new_depth))
+            .all(|test| match test {
+                JoinTest::Compare {
+                    field,
+                    op,
+                    operand: Operand::Const(c),
+                } => relation_holds(syms, *op, self.field(w, *field), *c),
+                JoinTest::Compare {
+                    field,
+                    op,
+                    operand: Operand::Bound { field: bf, .. },
+                } => relation_holds(syms, *op, self.field(w, *field), self.field(w, *bf)),
+                JoinTest::Disjunction { field, items } => {
+                    items.contains(&self.field(w, *field))
+                }
+                JoinTest::IsGoal => syms.is_goal(self.wme(w).id),
+                JoinTest::IsImpasse => syms.is_impasse(self.wme(w).id),
+            })
+    }
+
+    /// How many tests of join or negative node `n` read the new WME alone (those
+    /// `wme_tests_pass` runs), for its alpha-memory successor entry.
+    pub(crate) fn wme_test_count(&self, n: NodeId) -> usize {
+        let new_depth = match self.nodes[n].kind {
+            Kind::Join { .. } => self.nodes[self.nodes[n].parent].depth + 1,
+            _ => self.nodes[n].depth + 1,
+        };
+        self.join_tests(n)
+            .iter()
+            .filter(|test| reads_wme_alone(test, new_depth))
+            .count()
     }
 
     /// The tests of join or negative node `n` (read in place, not cloned) on a pair its
@@ -499,6 +514,19 @@ impl Rete {
         }
         None
     }
+}
+
+/// Whether a join test reads the new WME alone: a constant, a disjunction, a goal or
+/// impasse test, or a comparison with another field of the WME itself (the token that
+/// would hold it is at `new_depth`).
+fn reads_wme_alone(test: &JoinTest, new_depth: u32) -> bool {
+    !matches!(
+        test,
+        JoinTest::Compare {
+            operand: Operand::Bound { depth, .. },
+            ..
+        } if *depth != new_depth
+    )
 }
 
 /// A left activation on the matcher's `pending` stack.

@@ -89,7 +89,6 @@ pub(crate) struct AlphaKey {
     pub acceptable: bool,
 }
 
-
 /// See `Rete::attr_amems`.
 #[derive(Debug, Clone, Copy)]
 struct AttrAmems {
@@ -1079,25 +1078,6 @@ impl Rete {
             wme_tests,
         };
         self.succ_links.insert(&mut self.amems[amem].successors, s, a);
-    }
-
-    /// How many tests of join or negative node `n` read the new WME alone (those
-    /// `wme_tests_pass` runs).
-    fn wme_test_count(&self, n: NodeId) -> usize {
-        let new_depth = match self.nodes[n].kind {
-            Kind::Join { .. } => self.nodes[self.nodes[n].parent].depth + 1,
-            _ => self.nodes[n].depth + 1,
-        };
-        self.join_tests(n)
-            .iter()
-            .filter(|t| match t {
-                JoinTest::Compare {
-                    operand: tests::Operand::Bound { depth, .. },
-                    ..
-                } => *depth == new_depth,
-                _ => true,
-            })
-            .count()
     }
 
     /// The first test of join or negative node `n` on a field of the new WME against a
