@@ -120,17 +120,7 @@ impl Interpreter {
                     None => Ok(format!("{name} is {}\n", on_off(*switch))),
                     Some(v @ ("on" | "off")) => {
                         *switch = v == "on";
-                        let out = format!("{name} is now {v}\n");
-                        if let Some(why) = without_effect(name) {
-                            self.warn(
-                                Diagnostic::warning(format!(
-                                    "`chunk {name}` is accepted and listed but has no effect in rusoar yet: {why}"
-                                ))
-                                .at(ctx.arg_span(0))
-                                .with_label("no effect yet"),
-                            );
-                        }
-                        Ok(out)
+                        Ok(format!("{name} is now {v}\n"))
                     }
                     Some(_) => Err(invalid()),
                 }
@@ -187,17 +177,6 @@ impl Interpreter {
         Ok(out)
     }
 }
-
-/// Why a `chunk` switch that rusoar accepts changes nothing, for those that do not.
-/// (`allow-opaque` is not among them: 9.6.5 learns the same rules with it off, command
-/// golden `learn-allow-opaque`.)
-fn without_effect(name: &str) -> Option<&'static str> {
-    Some(match name {
-        "add-ltm-links" => "a chunk whose result is a retrieved long-term identifier does not link it to semantic memory again (9.6 adds a `link-stm-to-ltm` action)",
-        _ => return None,
-    })
-}
-
 
 /// `(<any> ^superstate <any>)`.
 fn pattern_text(p: &Singleton) -> String {

@@ -8,6 +8,11 @@ use crate::trace_events::TraceEvent;
 
 pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sym>, String> {
     let trace_level = agent.settings.trace.level_number();
+    let ltm_exists = name == "link-stm-to-ltm"
+        && match args.get(1).map(|&a| agent.symbols.get(a)) {
+            Some(crate::symbols::SymData::Int(n)) => agent.smem.lti_exists(*n),
+            _ => false,
+        };
     let mut ctx = crate::rhs::RhsContext::new(
         &mut agent.symbols,
         &agent.wm,
@@ -20,6 +25,7 @@ pub fn call(agent: &mut AgentCore, name: &str, args: &[Sym]) -> Result<Option<Sy
     ctx.agent_writes = agent.settings.agent_writes;
     ctx.trace_flags = crate::rhs::trace_flags_for_level(trace_level);
     ctx.log_channels_off = agent.settings.log_channels_off;
+    ctx.ltm_exists = ltm_exists;
     let result = crate::rhs::call(name, args, &mut ctx);
     let (halt, interrupt) = (ctx.halt, ctx.interrupt);
     let (dont_learn, force_learn) = (ctx.dont_learn, ctx.force_learn);

@@ -621,10 +621,17 @@ impl AgentCore {
             }
         }
         let mut actions = Vec::new();
+        // The identities of the long-term identifiers' instances among the results.
+        let mut instance_idents: FxHashMap<Sym, Ident> = FxHashMap::default();
         for &r in results {
             let p = &self.decider.prefs[r];
             let origin = p.origin.as_ref();
             let ids = origin.as_ref().map_or([0; 4], |o| o.ids);
+            for (s, i) in [(p.id, ids[0]), (p.value, ids[2])] {
+                if self.symbols.lti(s).is_some() {
+                    instance_idents.entry(s).or_insert(i);
+                }
+            }
             let make = origin.as_ref().and_then(|o| {
                 let prod = o.trace.prod.as_ref()?;
                 match prod.actions.get(o.action?)? {
@@ -659,6 +666,27 @@ impl AgentCore {
                 referent,
                 span: make.map(|m| m.span).unwrap_or_default(),
             })));
+        }
+        // `chunk add-ltm-links`: each instance the rule makes anew is linked to its
+        // long-term identifier, as the memory's retrieval linked it.
+        if variablize && self.settings.chunk.add_ltm_links {
+            for s in self.ltm_instances_in_results(results) {
+                let (Some(&ident), Some(lti)) = (instance_idents.get(&s), self.symbols.lti(s)) else {
+                    continue;
+                };
+                if b.ground_ids.contains_key(&s) || b.bound.contains(&bt.find(ident)) {
+                    continue;
+                }
+                let var = match b.term(s, ident, None) {
+                    Term::Var(v) => RhsTerm::Var(v.to_string()),
+                    Term::Const(_) => continue,
+                };
+                actions.push(Action::Call(Box::new(FuncCall {
+                    name: "link-stm-to-ltm".into(),
+                    args: vec![var, RhsTerm::Const(Constant::Int(lti))],
+                    span: Default::default(),
+                })));
+            }
         }
         Production {
             name,

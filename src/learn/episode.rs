@@ -15,7 +15,7 @@ use crate::production::Production;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::trace_events::TraceEvent;
-use rustc_hash::FxHashSet;
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 
 /// A rule name's base and generation: `chunkx2*foo*t6-2` was learned from a chunk of
@@ -87,6 +87,9 @@ impl AgentCore {
         let mut seen = std::mem::take(&mut self.learn.results_seen);
         seen.clear();
         let mut results = Vec::new();
+        // The identities of the retrieved objects that results link (see
+        // `retrieved_result_prefs`).
+        let mut retrieved_idents: FxHashMap<Sym, super::Ident> = FxHashMap::default();
         let mut i = 0;
         while i < queue.len() {
             let r = queue[i];
@@ -97,8 +100,13 @@ impl AgentCore {
             results.push(r);
             let p = &self.decider.prefs[r];
             let target = self.sym_level(p.id);
-            let linked: Vec<Sym> = [Some(p.value), p.referent].into_iter().flatten().collect();
-            for x in linked {
+            let ids = p.origin.as_ref().map_or([0; 4], |o| o.ids);
+            let linked: Vec<(Sym, super::Ident)> = [Some((p.value, ids[2])), p.referent.map(|x| (x, ids[3]))]
+                .into_iter()
+                .flatten()
+                .collect();
+            for (x, ident) in linked {
+                retrieved_idents.entry(x).or_insert(ident);
                 for y in self.promote(x, target) {
                     queue.extend(
                         made.iter()
@@ -112,6 +120,8 @@ impl AgentCore {
                             queue.extend(slot.prefs.iter().copied());
                         }
                     }
+                    let retrieved = self.retrieved_result_prefs(y, level, &mut retrieved_idents);
+                    queue.extend(retrieved);
                 }
             }
         }
@@ -152,7 +162,16 @@ impl AgentCore {
         let mut bt = self.learn.spare_backtraces.pop().unwrap_or_default();
         self.learn.backtraces_begun += 1;
         bt.reset(level, self.learn.backtraces_begun);
+        let retrieved: Vec<PrefId> = results
+            .iter()
+            .copied()
+            .filter(|&r| self.is_retrieved_result(r))
+            .collect();
         self.learn_by_backtrace(&mut bt, results, source, new_prefs);
+        // What a retrieval made stays as it is: its results served the rule alone.
+        for r in retrieved {
+            self.decider.free_pref(r);
+        }
         bt.reset(0, 0);
         self.learn.spare_backtraces.push(bt);
     }
@@ -416,6 +435,9 @@ impl AgentCore {
         }
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
+            if self.is_retrieved_result(r) {
+                continue;
+            }
             let mut p = self.decider.prefs[r].clone();
             let ids = match &recorded {
                 Some((t, prod)) => action_idents(t, prod, k),

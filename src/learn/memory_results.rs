@@ -7,10 +7,13 @@
 //! (checked with `trace --backtracing` on soar-sml 9.6.5). Backtracing goes on through the
 //! cue into the firings that built it, so a chunk tests what the cue came from.
 
-use super::{InstTrace, PrefOrigin, TraceCond, TraceVars};
+use super::{Ident, InstTrace, PrefOrigin, TraceCond, TraceVars};
 use crate::agent::AgentCore;
+use crate::decide::procedure::PrefType;
+use crate::decide::state::{PrefId, Preference};
 use crate::symbols::Sym;
 use crate::wm::{Wme, WmeId};
+use rustc_hash::{FxHashMap, FxHashSet};
 use std::sync::Arc;
 
 /// The architecture's instantiations' name, as `trace --backtracing` prints it.
@@ -153,6 +156,144 @@ impl AgentCore {
                 self.learn.memory_results.insert(wme.timetag, (w, origin.clone()));
             }
         }
+    }
+
+    /// The WMEs a memory retrieval in the substate at `level` put on `id`, as results: 9.6
+    /// makes them through preferences of its architecture instantiation, so a result that
+    /// links the retrieved object brings its WMEs along (`(<a1> ^color red ^name alpha)`
+    /// in the chunk; checked on soar-sml 9.6.5). Here they are preferences
+    /// made for the learned rule's actions alone: the WMEs stay as the memory made them,
+    /// and the learned rule's instantiation takes no copy of them. `idents` holds the
+    /// identity of each retrieved object a result links, so that the rule's actions name
+    /// it with one variable; an object they link in turn gets an identity of its own.
+    pub(crate) fn retrieved_result_prefs(
+        &mut self,
+        id: Sym,
+        level: u32,
+        idents: &mut FxHashMap<Sym, Ident>,
+    ) -> Vec<PrefId> {
+        if self.learn.memory_results.is_empty() {
+            return Vec::new();
+        }
+        let mut retrieved: Vec<(Wme, Arc<PrefOrigin>)> = self
+            .wm
+            .of_id(id)
+            .filter_map(|w| {
+                let wme = self.wm.get(w)?;
+                let (_, origin) = self.learn.memory_results.get(&wme.timetag)?;
+                (origin.trace.level == level).then(|| (*wme, origin.clone()))
+            })
+            .collect();
+        // 9.6 walks the object's slots newest first, and a slot's preferences oldest first
+        // (a slot is as old as its attribute's first WME).
+        let mut slot_age: FxHashMap<Sym, u64> = FxHashMap::default();
+        for w in self.wm.of_id(id) {
+            if let Some(wme) = self.wm.get(w) {
+                let age = slot_age.entry(wme.attr).or_insert(wme.timetag);
+                *age = (*age).min(wme.timetag);
+            }
+        }
+        retrieved.sort_by_key(|(w, _)| (std::cmp::Reverse(slot_age[&w.attr]), w.timetag));
+        let learning = self.settings.learn != crate::agent::LearnMode::Never;
+        let mut ident_of = |agent: &mut AgentCore, s: Sym| -> Ident {
+            if !learning || !agent.symbols.is_id(s) {
+                return 0;
+            }
+            *idents.entry(s).or_insert_with(|| agent.learn.new_idents(1))
+        };
+        retrieved
+            .into_iter()
+            .map(|(w, origin)| {
+                let ids = [ident_of(self, w.id), 0, ident_of(self, w.value), 0];
+                let origin = Arc::new(PrefOrigin {
+                    trace: origin.trace.clone(),
+                    ids,
+                    action: None,
+                });
+                self.decider.alloc_pref(Preference {
+                    kind: PrefType::Acceptable,
+                    id: w.id,
+                    attr: w.attr,
+                    value: w.value,
+                    referent: None,
+                    number: None,
+                    o_support: false,
+                    inst: None,
+                    rule: None,
+                    alive: true,
+                    freed: false,
+                    origin: Some(origin),
+                    matched: None,
+                })
+            })
+            .collect()
+    }
+
+    /// The long-term identifiers' short-term instances among a learned rule's results, in
+    /// the order 9.6's `chunk add-ltm-links` links them: 9.6 gathers results depth first
+    /// (an object's slots oldest first, a slot's preferences newest first), each at the
+    /// head of its list, and takes each instance the first time that list names it.
+    pub(crate) fn ltm_instances_in_results(&self, results: &[PrefId]) -> Vec<Sym> {
+        let prefs = &self.decider.prefs;
+        let values = |r: PrefId| [Some(prefs[r].value), prefs[r].referent].into_iter().flatten();
+        // An object's results, in the order 9.6 walks them.
+        let mut on: FxHashMap<Sym, Vec<PrefId>> = FxHashMap::default();
+        for &r in results {
+            on.entry(prefs[r].id).or_default().push(r);
+        }
+        for list in on.values_mut() {
+            let retrieved: Vec<PrefId> = list.iter().copied().filter(|&r| self.is_retrieved_result(r)).collect();
+            if retrieved.len() > 1 {
+                // `retrieved_result_prefs` gave them slots newest first, each oldest first.
+                let mut slots: Vec<Vec<PrefId>> = Vec::new();
+                for r in retrieved {
+                    match slots.last_mut() {
+                        Some(s) if prefs[s[0]].attr == prefs[r].attr => s.push(r),
+                        _ => slots.push(vec![r]),
+                    }
+                }
+                list.retain(|&r| !self.is_retrieved_result(r));
+                for mut s in slots.into_iter().rev() {
+                    s.reverse();
+                    list.extend(s);
+                }
+            }
+        }
+        let linked: FxHashSet<Sym> = results.iter().flat_map(|&r| values(r)).collect();
+        let mut found = Vec::with_capacity(results.len());
+        let mut walked: FxHashSet<Sym> = FxHashSet::default();
+        let mut stack: Vec<PrefId> = results
+            .iter()
+            .copied()
+            .filter(|&r| !linked.contains(&prefs[r].id))
+            .rev()
+            .collect();
+        while let Some(r) = stack.pop() {
+            found.push(r);
+            for v in values(r) {
+                if walked.insert(v) {
+                    if let Some(list) = on.get(&v) {
+                        stack.extend(list.iter().rev());
+                    }
+                }
+            }
+        }
+        let mut instances = Vec::new();
+        for &r in found.iter().rev() {
+            let p = &prefs[r];
+            for s in [Some(p.id), Some(p.attr), Some(p.value), p.referent].into_iter().flatten() {
+                if self.symbols.lti(s).is_some() && !instances.contains(&s) {
+                    instances.push(s);
+                }
+            }
+        }
+        instances
+    }
+
+    /// Whether a result is one of `retrieved_result_prefs`.
+    pub(crate) fn is_retrieved_result(&self, r: PrefId) -> bool {
+        let p = &self.decider.prefs[r];
+        p.inst.is_none() && p.origin.as_ref().is_some_and(|o| is_retrieval(&o.trace))
     }
 
     /// The results of a command that went: they no longer need their origins.

@@ -211,6 +211,9 @@ pub struct RhsContext<'a> {
     pub error_fresh_line: bool,
     /// The `log` channels turned off (`output agent-logs N off`), as bits 1 to 100.
     pub log_channels_off: u128,
+    /// For `link-stm-to-ltm`: whether semantic memory holds the long-term identifier its
+    /// second argument names (the caller, which holds the memory, looks it up).
+    pub ltm_exists: bool,
 }
 
 impl<'a> RhsContext<'a> {
@@ -242,6 +245,7 @@ impl<'a> RhsContext<'a> {
             module_wmes: Vec::new(),
             error_fresh_line: false,
             log_channels_off: 0,
+            ltm_exists: false,
         }
     }
 
@@ -751,7 +755,12 @@ fn link_stm_to_ltm(args: &[Sym], ctx: &mut RhsContext) -> Result<Option<Sym>, St
             return fresh(ctx, &msg);
         }
     };
-    // No semantic memory: no long-term identifier exists.
+    if ctx.ltm_exists {
+        if let Some(d) = ctx.symbols.id_data_mut(sym) {
+            d.lti = n;
+        }
+        return Ok(None);
+    }
     let msg = format!(
         "Warning: Long-term memory @{} does not exist.  Could not link short-term memory {}.",
         n as u64,

@@ -86,6 +86,17 @@ impl Smem {
         self.store.is_some()
     }
 
+    /// Whether long-term identifier `@lti` exists (the store is opened if semantic memory
+    /// is on; a memory never opened holds none).
+    pub fn lti_exists(&mut self, lti: i64) -> bool {
+        if !self.enabled && !self.is_open() {
+            return false;
+        }
+        self.store()
+            .and_then(|s| s.lti_exists(lti))
+            .unwrap_or(false)
+    }
+
     /// Writes what lazy-commit holds back to the file, if the store is open.
     pub fn commit(&mut self) -> DbResult<()> {
         let lazy = self.params.lazy_commit();

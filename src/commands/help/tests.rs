@@ -59,7 +59,6 @@ fn usage(command: &str) -> Option<&'static str> {
 const ITEMS: &[(&str, &str, &str)] = &[
     ("chunk.rs", "cmd_chunk", "chunk"),
     ("chunk.rs", "chunk_singleton", "chunk"),
-    ("chunk.rs", "without_effect", "chunk"),
     ("debug.rs", "cmd_debug", "debug"),
     ("decide.rs", "from_name", "decide"),
     ("decide.rs", "cmd_decide", "decide"),
