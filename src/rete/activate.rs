@@ -329,10 +329,31 @@ impl Rete {
                         && self.tokens[t].alive
                         && self.node_tests_pass(n, t, wm, depth, syms)
                     {
-                        self.push_children(n, t, wm);
+                        self.pass_down(n, t, wm, syms, sink);
                     }
                 }
             }
+        }
+    }
+
+    /// The left activations of the children of `n` with (`t`, `w`): a lone child's runs at
+    /// once, as it would if pushed (it would be popped next); several are queued. The
+    /// child's own activation queues what lies below it, so the call stack stays shallow.
+    #[inline(always)]
+    fn pass_down(
+        &mut self,
+        n: NodeId,
+        t: TokId,
+        w: WmeId,
+        syms: &Symbols,
+        sink: &mut dyn MatchSink,
+    ) {
+        if let &[c] = self.nodes[n].children.as_slice() {
+            if self.child_may_activate(c, t, w) {
+                self.left_activation_one(c, t, w, syms, sink);
+            }
+        } else {
+            self.push_children(n, t, w);
         }
     }
 
@@ -358,7 +379,7 @@ impl Rete {
             Kind::Root => {}
             Kind::Memory => {
                 let nt = self.new_token(n, t, w);
-                self.push_children(n, nt, NIL_WME);
+                self.pass_down(n, nt, NIL_WME, syms, sink);
             }
             Kind::Join {
                 amem,
