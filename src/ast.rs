@@ -117,7 +117,7 @@ pub enum Atom {
 /// million times.)
 #[derive(Debug, Clone, PartialEq)]
 pub enum Constant {
-    Str(std::sync::Arc<str>),
+    Str(arcstr::ArcStr),
     Int(i64),
     Float(f64),
 }

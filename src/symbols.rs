@@ -28,7 +28,7 @@ impl Sym {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum SymData {
-    Str(std::sync::Arc<str>),
+    Str(arcstr::ArcStr),
     Int(i64),
     Float(f64),
     Id(IdData),

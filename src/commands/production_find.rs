@@ -5,7 +5,6 @@ use super::options::{self, opt};
 use super::{CmdResult, Ctx, Interpreter};
 use crate::production::{Cond, Condition, Term, Test};
 use crate::source::Diagnostic;
-use std::sync::Arc;
 
 impl Interpreter {
     /// `production find [-lrcns] CONDITIONS`: the rules, newest first, with conditions the
@@ -154,7 +153,7 @@ fn find_pattern(text: &str) -> Result<Vec<Cond>, String> {
 }
 
 /// Bindings from the pattern's variables to the rule's, oldest first.
-type Bindings = Vec<(Arc<str>, Arc<str>)>;
+type Bindings = Vec<(arcstr::ArcStr, arcstr::ArcStr)>;
 
 /// A way for every pattern condition to match one of the rule's conditions, with the
 /// bindings it makes (backtracking over the choices).

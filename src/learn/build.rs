@@ -87,7 +87,7 @@ struct Builder<'a> {
     /// chunk then, without variables).
     keep_tests: bool,
     /// A justification's identifiers by name, each named once per rule.
-    id_names: FxHashMap<Sym, std::sync::Arc<str>>,
+    id_names: FxHashMap<Sym, arcstr::ArcStr>,
 }
 
 impl Builder<'_> {
@@ -165,10 +165,10 @@ impl Builder<'_> {
     /// The non-equality tests of a rule's test, carried over to the chunk.
     fn extra_tests(&mut self, trace: &InstTrace, t: &Test, out: &mut Vec<Test>) {
         match t {
-            Test::Relational(r, referent) => match &**referent {
+            Test::Relational(rt) => match &rt.term {
                 Term::Var(v) => {
                     if let Some(term) = self.var_term(trace, v) {
-                        out.push(Test::Relational(*r, Box::new(term)));
+                        out.push(Test::relational(rt.op, term));
                     }
                 }
                 Term::Const(_) => out.push(t.clone()),
@@ -272,7 +272,7 @@ impl Builder<'_> {
         };
         Some(match t {
             Test::Equal(x) => Test::Equal(term(self, x, locals)?),
-            Test::Relational(r, x) => Test::Relational(*r, Box::new(term(self, x, locals)?)),
+            Test::Relational(rt) => Test::relational(rt.op, term(self, &rt.term, locals)?),
             Test::Disjunction(cs) => Test::Disjunction(cs.clone()),
             Test::Conjunction(ts) => {
                 let mut out = Vec::with_capacity(ts.len());

@@ -269,7 +269,7 @@ fn ptests(
     };
     match t {
         Test::Equal(x) => out.push(PTest::Eq(term(x))),
-        Test::Relational(r, x) => out.push(PTest::Rel(*r, term(x))),
+        Test::Relational(rt) => out.push(PTest::Rel(rt.op, term(&rt.term))),
         Test::Disjunction(cs) => out.push(PTest::AnyOf(
             cs.iter().filter_map(|k| syms.find_constant(k)).collect(),
         )),

@@ -183,7 +183,7 @@ impl AgentCore {
             })
             .collect();
         let binding_names: Vec<Arc<str>> = bindings
-            .map(|b| b.iter().map(|(v, _)| v.clone()).collect())
+            .map(|b| b.iter().map(|(v, _)| Arc::from(v.as_str())).collect())
             .unwrap_or_default();
         let vars = Arc::new(var_table(&binding_names, &new_vars, prod));
         let names = Arc::new(TraceNames {

@@ -63,8 +63,8 @@ fn unbound_relational(conds: &[Condition], bound: &mut FxHashSet<String>) -> Opt
                             Test::Equal(Term::Var(v)) if equality => {
                                 local.insert(v.to_string());
                             }
-                            Test::Relational(_, r) if !equality => {
-                                if let Term::Var(v) = &**r {
+                            Test::Relational(rt) if !equality => {
+                                if let Term::Var(v) = &rt.term {
                                     if !local.contains(&**v) && missing.is_none() {
                                         missing = Some(v.to_string());
                                     }
@@ -865,7 +865,7 @@ fn add_test<'a>(
                 bindings.insert(v, (depth, field));
             }
         },
-        Test::Relational(r, referent) => match &**referent {
+        Test::Relational(rt) => match &rt.term {
             Term::Var(v) => {
                 // A rule whose variable is bound nowhere does not load, the reorderer
                 // moves a positive condition's relational tests to where their referents
@@ -874,7 +874,7 @@ fn add_test<'a>(
                 if let Some(&(d, f)) = bindings.get(&**v) {
                     tests.push(JoinTest::Compare {
                         field,
-                        op: Op::Rel(*r),
+                        op: Op::Rel(rt.op),
                         operand: Operand::Bound { depth: d, field: f },
                     });
                 }
@@ -883,7 +883,7 @@ fn add_test<'a>(
                 let s = syms.constant(k);
                 tests.push(JoinTest::Compare {
                     field,
-                    op: Op::Rel(*r),
+                    op: Op::Rel(rt.op),
                     operand: Operand::Const(s),
                 });
             }

@@ -14,7 +14,7 @@ use rustc_hash::FxHashMap;
 pub struct VarBindings(Box<[Binding]>);
 
 /// A variable's name and where it is bound.
-type Binding = (std::sync::Arc<str>, (u32, Field));
+type Binding = (arcstr::ArcStr, (u32, Field));
 
 impl VarBindings {
     pub fn get(&self, var: &str) -> Option<&(u32, Field)> {
@@ -30,7 +30,7 @@ impl VarBindings {
     }
 
     /// Each variable (its shared name) with where it is bound, in name order.
-    pub fn iter(&self) -> impl Iterator<Item = (&std::sync::Arc<str>, (u32, Field))> {
+    pub fn iter(&self) -> impl Iterator<Item = (&arcstr::ArcStr, (u32, Field))> {
         self.0.iter().map(|(k, b)| (k, *b))
     }
 
@@ -48,14 +48,14 @@ impl VarBindings {
 
 /// The variable names of the rules in the network, each stored once.
 #[derive(Debug, Default)]
-pub(crate) struct VarNames(rustc_hash::FxHashSet<std::sync::Arc<str>>);
+pub(crate) struct VarNames(rustc_hash::FxHashSet<arcstr::ArcStr>);
 
 impl VarNames {
-    pub(super) fn get(&mut self, name: &str) -> std::sync::Arc<str> {
+    pub(super) fn get(&mut self, name: &str) -> arcstr::ArcStr {
         if let Some(n) = self.0.get(name) {
             return n.clone();
         }
-        let n: std::sync::Arc<str> = name.into();
+        let n: arcstr::ArcStr = name.into();
         self.0.insert(n.clone());
         n
     }
@@ -63,7 +63,7 @@ impl VarNames {
 
 impl Rete {
     /// The variable names loaded rules use, in name order (`debug internal-symbols`).
-    pub(crate) fn variable_names(&self) -> Vec<std::sync::Arc<str>> {
+    pub(crate) fn variable_names(&self) -> Vec<arcstr::ArcStr> {
         let mut names: Vec<_> = self.var_names.0.iter().cloned().collect();
         names.sort_unstable();
         names
@@ -75,8 +75,8 @@ impl Rete {
         fn test(t: &mut Test, names: &mut VarNames) {
             match t {
                 Test::Equal(Term::Var(v)) => *v = names.get(v),
-                Test::Relational(_, r) => {
-                    if let Term::Var(v) = &mut **r {
+                Test::Relational(rt) => {
+                    if let Term::Var(v) = &mut rt.term {
                         *v = names.get(v);
                     }
                 }

@@ -23,14 +23,13 @@ use crate::production::{
 use crate::rete::{ProdId, TokId};
 use crate::symbols::{Sym, SymData};
 use rustc_hash::FxHashMap;
-use std::sync::Arc;
 
 /// The symbols a template's variables were bound to, and the variables that stand for
 /// identifiers in the new rule.
 #[derive(Default)]
 struct Binder {
-    bound: FxHashMap<Arc<str>, Sym>,
-    names: FxHashMap<Sym, Arc<str>>,
+    bound: FxHashMap<arcstr::ArcStr, Sym>,
+    names: FxHashMap<Sym, arcstr::ArcStr>,
     counters: FxHashMap<char, u32>,
 }
 
@@ -45,7 +44,7 @@ impl Binder {
                 let letter = (d.letter as char).to_ascii_lowercase();
                 let n = self.counters.entry(letter).or_insert(0);
                 *n += 1;
-                let name: Arc<str> = format!("<{letter}{n}>").into();
+                let name: arcstr::ArcStr = format!("<{letter}{n}>").into();
                 self.names.insert(s, name.clone());
                 Term::Var(name)
             }
@@ -69,7 +68,7 @@ impl Binder {
     fn subst_test(&mut self, agent: &AgentCore, t: &Test) -> Test {
         match t {
             Test::Equal(x) => Test::Equal(self.subst(agent, x)),
-            Test::Relational(r, x) => Test::Relational(*r, Box::new(self.subst(agent, x))),
+            Test::Relational(rt) => Test::relational(rt.op, self.subst(agent, &rt.term)),
             Test::Disjunction(_) => t.clone(),
             Test::Conjunction(ts) => {
                 Test::conjunction(ts.iter().map(|x| self.subst_test(agent, x)).collect())
@@ -113,7 +112,7 @@ impl Binder {
 }
 
 /// The variables a field's test binds by equality.
-fn equality_vars(t: &Test, out: &mut Vec<Arc<str>>) {
+fn equality_vars(t: &Test, out: &mut Vec<arcstr::ArcStr>) {
     match t {
         Test::Equal(Term::Var(v)) => out.push(v.clone()),
         Test::Conjunction(ts) => ts.iter().for_each(|x| equality_vars(x, out)),

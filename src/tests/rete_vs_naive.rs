@@ -130,7 +130,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
                     ValGen::Int(i) => Term::Const(Constant::Int(*i)),
                     _ => Term::Const(Constant::Float(1.5)),
                 };
-                Test::Relational(rel(*r), Box::new(t))
+                Test::relational(rel(*r), t)
             }
             ValGen::Disj(ks) => {
                 Test::Disjunction(Box::new(ks.iter().map(|k| const_of(*k)).collect()))
@@ -138,10 +138,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
             ValGen::ConjNe(a, b) => {
                 let mut ts = Vec::new();
                 if bound.contains(VARS[*b]) && a != b {
-                    ts.push(Test::Relational(
-                        Relation::Ne,
-                        Box::new(Term::Var(VARS[*b].into())),
-                    ));
+                    ts.push(Test::relational(Relation::Ne, Term::Var(VARS[*b].into())));
                 }
                 ts.push(Test::Equal(Term::Var(VARS[*a].into())));
                 if ts.len() == 1 {
@@ -256,8 +253,9 @@ impl Naive<'_> {
                     true
                 }
             },
-            Test::Relational(r, term) => {
-                let b = match &**term {
+            Test::Relational(rt) => {
+                let r = &rt.op;
+                let b = match &rt.term {
                     Term::Const(c) => self.k(c),
                     Term::Var(v) => match env.get(&**v) {
                         Some(&b) => b,
@@ -399,8 +397,8 @@ fn negation_before_its_binding(conds: &[Condition]) -> bool {
     fn vars<'a>(t: &'a Test, out: &mut Vec<&'a str>) {
         match t {
             Test::Equal(Term::Var(v)) => out.push(v),
-            Test::Relational(_, t) => {
-                if let Term::Var(v) = &**t {
+            Test::Relational(rt) => {
+                if let Term::Var(v) = &rt.term {
                     out.push(v);
                 }
             }
@@ -470,8 +468,8 @@ fn naive_relation(syms: &Symbols, r: Relation, a: Sym, b: Sym) -> bool {
 fn has_ordering_test_between_variables(conds: &[Condition]) -> bool {
     fn test(t: &Test) -> bool {
         match t {
-            Test::Relational(r, t) if matches!(**t, Term::Var(_)) => {
-                !matches!(r, Relation::Ne | Relation::SameType)
+            Test::Relational(rt) if matches!(rt.term, Term::Var(_)) => {
+                !matches!(rt.op, Relation::Ne | Relation::SameType)
             }
             Test::Conjunction(ts) => ts.iter().any(test),
             _ => false,

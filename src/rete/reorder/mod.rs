@@ -107,8 +107,8 @@ pub fn intern_in_text_order(p: &mut crate::production::Production, syms: &mut Sy
     fn test(t: &mut Test, syms: &mut Symbols) {
         match t {
             Test::Equal(Term::Const(c)) => constant(c, syms),
-            Test::Relational(_, r) => {
-                if let Term::Const(c) = &mut **r {
+            Test::Relational(rt) => {
+                if let Term::Const(c) = &mut rt.term {
                     constant(c, syms);
                 }
             }
@@ -190,8 +190,8 @@ fn tested_vars<'a>(c: &'a Condition, out: &mut Vec<&'a str>) {
     fn test<'a>(t: &'a Test, out: &mut Vec<&'a str>) {
         match t {
             Test::Equal(Term::Var(v)) => out.push(v),
-            Test::Relational(_, r) => {
-                if let Term::Var(v) = &**r {
+            Test::Relational(rt) => {
+                if let Term::Var(v) = &rt.term {
                     out.push(v);
                 }
             }
@@ -378,7 +378,7 @@ mod tests {
             pos(
                 "<s>",
                 attr("a"),
-                Test::Relational(Relation::Lt, Box::new(Term::Var("<z>".into()))),
+                Test::relational(Relation::Lt, Term::Var("<z>".into())),
                 Head::None,
             ),
         ];

@@ -37,9 +37,9 @@ impl SetAside {
         for (slot, t) in self.tests.iter().enumerate() {
             let Some((index, test)) = t else { continue };
             self.by_term.entry(key(index)).or_default().push(slot);
-            if let Test::Relational(_, referent) = test {
-                if **referent != *index {
-                    self.by_term.entry(key(referent)).or_default().push(slot);
+            if let Test::Relational(rt) = test {
+                if rt.term != *index {
+                    self.by_term.entry(key(&rt.term)).or_default().push(slot);
                 }
             }
         }
@@ -150,13 +150,14 @@ fn restore_field(field: &mut Test, bound: &Bound, saved: &mut SetAside) {
             continue;
         };
         let restored = match test {
-            Test::Relational(r, referent) => {
+            Test::Relational(rt) => {
+                let referent = &rt.term;
                 if *index == eq {
-                    (is_bound(referent, bound) || **referent == *index)
-                        .then(|| Test::Relational(*r, referent.clone()))
-                } else if **referent == eq {
-                    (is_bound(index, bound) || *index == **referent)
-                        .then(|| Test::Relational(reversed(*r), Box::new(index.clone())))
+                    (is_bound(referent, bound) || *referent == *index)
+                        .then(|| Test::relational(rt.op, referent.clone()))
+                } else if *referent == eq {
+                    (is_bound(index, bound) || *index == *referent)
+                        .then(|| Test::relational(reversed(rt.op), index.clone()))
                 } else {
                     None
                 }
