@@ -705,6 +705,7 @@ impl AgentCore {
             crate::rete::reorder::equality_first(&mut conds);
         }
         self.rete.share_var_names(&mut conds);
+        self.rete.share_action_var_names(&mut p.actions);
         // Kept for the rule's lifetime: no spare room (100,000 rules, 10 % less memory).
         conds.shrink_to_fit();
         p.actions.shrink_to_fit();

@@ -197,7 +197,7 @@ pub struct Make {
 
 #[derive(Debug, Clone, PartialEq)]
 pub enum RhsTerm {
-    Var(String),
+    Var(arcstr::ArcStr),
     Const(Constant),
     /// (Boxed: a call is rare, and inline it would double the size of every action.)
     Call(Box<FuncCall>),
@@ -526,7 +526,7 @@ pub fn test_text(t: &Test) -> String {
 
 pub fn rhs_term_text(t: &RhsTerm) -> String {
     match t {
-        RhsTerm::Var(v) => v.clone(),
+        RhsTerm::Var(v) => v.to_string(),
         RhsTerm::Const(c) => constant_text(c),
         RhsTerm::Call(f) => call_text(f),
     }
@@ -828,7 +828,7 @@ fn compile_action(
                 let n = am.path.len();
                 for step in &am.path[..n - 1] {
                     let step_attr = rhs_term(step, out, rule)?;
-                    let v = RhsTerm::Var(ph.fresh(ph.letter_of_rhs(&step_attr)));
+                    let v = RhsTerm::Var(ph.fresh(ph.letter_of_rhs(&step_attr)).into());
                     dest.push(Action::Make(Box::new(Make {
                         id: cur.clone(),
                         attr: step_attr,
@@ -929,7 +929,7 @@ fn compile_action(
 
 fn rhs_term(v: &ast::RhsValue, out: &mut CompileOutput, rule: &str) -> Result<RhsTerm, Diagnostic> {
     Ok(match v {
-        ast::RhsValue::Var(name, _) => RhsTerm::Var(name.clone()),
+        ast::RhsValue::Var(name, _) => RhsTerm::Var(name.as_str().into()),
         ast::RhsValue::Const(c, _) => RhsTerm::Const(c.clone()),
         ast::RhsValue::Call(f) => RhsTerm::Call(Box::new(compile_call(f, false, out, rule)?)),
     })

@@ -121,7 +121,7 @@ impl Builder<'_> {
                     .map(|c| c.to_ascii_uppercase())
                     .unwrap_or('I');
                 let letter = if letter == 'S' { 'I' } else { letter };
-                self.new_vars.push((v.clone(), letter));
+                self.new_vars.push((v.to_string(), letter));
                 Term::New(self.new_vars.len() - 1)
             }
             RhsTerm::Call(f) => Term::Call(Call {

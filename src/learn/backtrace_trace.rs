@@ -284,7 +284,7 @@ fn made_pref_text(agent: &AgentCore, origin: &PrefOrigin) -> String {
             .trace
             .vars
             .get(v)
-            .map_or_else(|| v.clone(), |&(_, s)| agent.symbols.text(s)),
+            .map_or_else(|| v.to_string(), |&(_, s)| agent.symbols.text(s)),
         RhsTerm::Const(c) => agent.symbols.find_constant(c).map_or_else(
             || crate::printer::constants::constant_text(c),
             |s| agent.symbols.text(s),

@@ -311,7 +311,7 @@ impl Builder<'_> {
             }
         }
         match self.term(sym, ident, under) {
-            Term::Var(v) => RhsTerm::Var(v.to_string()),
+            Term::Var(v) => RhsTerm::Var(v),
             Term::Const(c) => RhsTerm::Const(c),
         }
     }
@@ -321,7 +321,7 @@ impl Builder<'_> {
         for a in &f.args {
             args.push(match a {
                 RhsTerm::Var(v) => match self.var_term(trace, v)? {
-                    Term::Var(x) => RhsTerm::Var(x.to_string()),
+                    Term::Var(x) => RhsTerm::Var(x),
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 RhsTerm::Const(c) => RhsTerm::Const(c.clone()),
@@ -678,7 +678,7 @@ impl AgentCore {
                     continue;
                 }
                 let var = match b.term(s, ident, None) {
-                    Term::Var(v) => RhsTerm::Var(v.to_string()),
+                    Term::Var(v) => RhsTerm::Var(v),
                     Term::Const(_) => continue,
                 };
                 actions.push(Action::Call(Box::new(FuncCall {

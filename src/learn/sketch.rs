@@ -45,7 +45,7 @@ impl Sketch {
             })
             .collect();
         let rhs = |s: Sym| match term(symbols, s) {
-            Term::Var(v) => RhsTerm::Var(v.to_string()),
+            Term::Var(v) => RhsTerm::Var(v),
             Term::Const(c) => RhsTerm::Const(c),
         };
         let actions = self

@@ -464,6 +464,9 @@ pub struct Rete {
     test_buf: Vec<JoinTest>,
     /// The variable names of every rule's [`VarBindings`].
     pub(crate) var_names: VarNames,
+    /// The names of the variables only actions use (those a rule's actions make), each
+    /// stored once; kept apart, so that `debug internal-symbols` lists what it did.
+    pub(crate) action_var_names: VarNames,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -538,6 +541,7 @@ impl Rete {
             ncc_buffers: FxHashMap::default(),
             test_buf: Vec::new(),
             var_names: VarNames::default(),
+            action_var_names: VarNames::default(),
             amem_by_id: id_index::IdIndex::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),

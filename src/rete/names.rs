@@ -4,7 +4,7 @@
 
 use super::tests::Field;
 use super::Rete;
-use crate::production::{Condition, Term, Test};
+use crate::production::{Action, Condition, RhsTerm, Term, Test};
 use rustc_hash::FxHashMap;
 
 /// Variables and where they are bound, sorted by name: kept for every rule, where a hash
@@ -92,6 +92,36 @@ impl Rete {
                     }
                 }
                 Condition::Ncc(inner) => self.share_var_names(inner),
+            }
+        }
+    }
+
+    /// Points every variable of these actions at a shared copy of its name: the
+    /// conditions' when they bind it.
+    pub fn share_action_var_names(&mut self, actions: &mut [Action]) {
+        fn term(t: &mut RhsTerm, rete: &mut Rete) {
+            match t {
+                RhsTerm::Var(v) => {
+                    *v = match rete.var_names.0.get(v.as_str()) {
+                        Some(n) => n.clone(),
+                        None => rete.action_var_names.get(v),
+                    }
+                }
+                RhsTerm::Call(f) => f.args.iter_mut().for_each(|a| term(a, rete)),
+                RhsTerm::Const(_) => {}
+            }
+        }
+        for a in actions {
+            match a {
+                Action::Make(m) => {
+                    for t in [&mut m.id, &mut m.attr, &mut m.value] {
+                        term(t, self);
+                    }
+                    if let Some(r) = &mut m.referent {
+                        term(r, self);
+                    }
+                }
+                Action::Call(f) => f.args.iter_mut().for_each(|x| term(x, self)),
             }
         }
     }

@@ -96,7 +96,7 @@ impl Binder {
         match t {
             RhsTerm::Var(v) => match self.bound.get(v.as_str()) {
                 Some(&s) => match self.term(agent, s) {
-                    Term::Var(n) => RhsTerm::Var(n.to_string()),
+                    Term::Var(n) => RhsTerm::Var(n.clone()),
                     Term::Const(c) => RhsTerm::Const(c),
                 },
                 None => t.clone(),
