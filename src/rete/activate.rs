@@ -393,15 +393,13 @@ impl Rete {
                         return;
                     }
                 }
+                // Pushed last first, so that the stack pops them in the order found.
                 let base = self.scratch.len();
                 self.push_amem_candidates(amem, n, t);
-                let from = self.pending.len();
-                for i in base..self.scratch.len() {
-                    self.pending
-                        .push(Pending::Candidate(n, t, WmeId(self.scratch[i])));
+                while self.scratch.len() > base {
+                    let w = WmeId(self.scratch.pop().expect("above base"));
+                    self.pending.push(Pending::Candidate(n, t, w));
                 }
-                self.pending[from..].reverse();
-                self.scratch.truncate(base);
             }
             Kind::Negative { .. } | Kind::Ncc { .. } | Kind::NccPartner { .. } => {
                 self.left_activation_cold(n, t, w, syms, sink)
