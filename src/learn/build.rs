@@ -627,7 +627,8 @@ impl AgentCore {
             let p = &self.decider.prefs[r];
             let origin = p.origin.as_ref();
             let ids = origin.as_ref().map_or([0; 4], |o| o.ids);
-            for (s, i) in [(p.id, ids[0]), (p.value, ids[2])] {
+            let links = variablize && self.settings.chunk.add_ltm_links;
+            for (s, i) in [(p.id, ids[0]), (p.value, ids[2])].into_iter().filter(|_| links) {
                 if self.symbols.lti(s).is_some() {
                     instance_idents.entry(s).or_insert(i);
                 }

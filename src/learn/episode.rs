@@ -106,7 +106,10 @@ impl AgentCore {
                 .flatten()
                 .collect();
             for (x, ident) in linked {
-                retrieved_idents.entry(x).or_insert(ident);
+                // Only an object a memory retrieved needs its identity here.
+                if !self.learn.memory_results.is_empty() {
+                    retrieved_idents.entry(x).or_insert(ident);
+                }
                 for y in self.promote(x, target) {
                     queue.extend(
                         made.iter()

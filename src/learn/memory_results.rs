@@ -91,23 +91,14 @@ impl AgentCore {
         // conditions that test it (9.6 variablizes identifiers); constants have none, so a
         // cue's constant stays in the chunk as a literal. With learning off, as for rules'
         // firings, nothing has an identity.
-        let learning = self.settings.learn != crate::agent::LearnMode::Never;
-        let mut idents: rustc_hash::FxHashMap<Sym, super::Ident> = Default::default();
-        let mut ident_of = |agent: &mut AgentCore, s: Sym| -> super::Ident {
-            if !learning || !agent.symbols.is_id(s) {
-                return 0;
-            }
-            *idents
-                .entry(s)
-                .or_insert_with(|| agent.learn.new_idents(1))
-        };
+        let mut idents: FxHashMap<Sym, Ident> = Default::default();
         let mut fields = Vec::with_capacity(conditions.len());
         for &w in conditions {
             if let Some(wme) = self.wm.get(w).copied() {
                 let ids = [
-                    ident_of(self, wme.id),
-                    ident_of(self, wme.attr),
-                    ident_of(self, wme.value),
+                    self.retrieval_ident(&mut idents, wme.id),
+                    self.retrieval_ident(&mut idents, wme.attr),
+                    self.retrieval_ident(&mut idents, wme.value),
                 ];
                 fields.push((w, wme, ids));
             }
@@ -194,17 +185,15 @@ impl AgentCore {
             }
         }
         retrieved.sort_by_key(|(w, _)| (std::cmp::Reverse(slot_age[&w.attr]), w.timetag));
-        let learning = self.settings.learn != crate::agent::LearnMode::Never;
-        let mut ident_of = |agent: &mut AgentCore, s: Sym| -> Ident {
-            if !learning || !agent.symbols.is_id(s) {
-                return 0;
-            }
-            *idents.entry(s).or_insert_with(|| agent.learn.new_idents(1))
-        };
         retrieved
             .into_iter()
             .map(|(w, origin)| {
-                let ids = [ident_of(self, w.id), 0, ident_of(self, w.value), 0];
+                let ids = [
+                    self.retrieval_ident(idents, w.id),
+                    0,
+                    self.retrieval_ident(idents, w.value),
+                    0,
+                ];
                 let origin = Arc::new(PrefOrigin {
                     trace: origin.trace.clone(),
                     ids,
@@ -288,6 +277,16 @@ impl AgentCore {
             }
         }
         instances
+    }
+
+    /// The identity of a symbol in the architecture's firing behind a retrieval: each
+    /// identifier has one of its own, kept in `idents` so that every field naming it shares
+    /// it; constants have none, and with learning off, as for rules' firings, nothing has.
+    fn retrieval_ident(&mut self, idents: &mut FxHashMap<Sym, Ident>, s: Sym) -> Ident {
+        if self.settings.learn == crate::agent::LearnMode::Never || !self.symbols.is_id(s) {
+            return 0;
+        }
+        *idents.entry(s).or_insert_with(|| self.learn.new_idents(1))
     }
 
     /// Whether a result is one of `retrieved_result_prefs`.
