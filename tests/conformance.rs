@@ -113,12 +113,7 @@ fn golden_text(output: &str, stats: &str) -> String {
 
 /// Learning agents whose learned rules (`tests/golden/NAME.rules.txt`) still differ from
 /// the official kernel's, with the reason.
-const KNOWN_RULE_DIFFERENCES: &[(&str, &str)] = &[(
-    "learn-lookahead",
-    "condition order and variable numbering: 9.6 orders a chunk's conditions with its \
-         reorderer and numbers variables in its own backtrace order (`<s2>`/`<s3>`, \
-         `<t1>` vs `<d1>` for the same identity); the rules are the same up to renaming",
-)];
+const KNOWN_RULE_DIFFERENCES: &[(&str, &str)] = &[];
 
 /// The number in run's `N new rule(s) learned.`, 0 without it.
 fn learned_count(run: &str) -> String {

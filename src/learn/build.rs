@@ -1,8 +1,9 @@
 //! Building the learned rule from a backtrace (Soar manual, ch. 4, "Procedural Knowledge
 //! Learning"): its conditions are the grounds (plus the negations on superstate objects the
 //! reasoning used), its actions the results. A chunk gets one variable per joined identity,
-//! named after the attribute it first sits under (`<o1>` for `^operator`), counted per
-//! letter; literals stay literals. A justification keeps the symbols themselves.
+//! named after the attribute it first sits under in join order (`<o1>` for `^operator`,
+//! see `var_order.rs`), counted per letter; literals stay literals. A justification keeps
+//! the symbols themselves.
 
 use super::backtrace::Backtrace;
 use super::record::equality_var;
@@ -35,18 +36,34 @@ fn pref_kind(t: PrefType) -> PrefKind {
 }
 
 /// Variable names for a chunk: one per identity set, `<letter><n>` counted per letter.
+#[derive(Default)]
 struct Namer {
     variablize: bool,
     by_ident: FxHashMap<Ident, String>,
     by_sym: FxHashMap<Sym, String>,
     counters: FxHashMap<char, u32>,
+    /// Every name made, in order, and the own letter of those that stand for an
+    /// identifier: the names are given again in join order once the rule is built.
+    created: Vec<String>,
+    own: FxHashMap<String, char>,
 }
 
 impl Namer {
     fn fresh(&mut self, letter: char) -> String {
         let n = self.counters.entry(letter).or_insert(0);
         *n += 1;
-        format!("<{letter}{n}>")
+        let name = format!("<{letter}{n}>");
+        self.created.push(name.clone());
+        name
+    }
+
+    /// A new name for `sym`, noting an identifier's own letter.
+    fn fresh_for(&mut self, agent: &AgentCore, sym: Sym, under: Option<Sym>) -> String {
+        let n = self.fresh(letter_for(agent, sym, under));
+        if let SymData::Id(d) = agent.symbols.get(sym) {
+            self.own.insert(n.clone(), (d.letter as char).to_ascii_lowercase());
+        }
+        n
     }
 }
 
@@ -124,7 +141,7 @@ impl Builder<'_> {
             if let Some(n) = self.namer.by_ident.get(&root) {
                 return Term::Var(n.as_str().into());
             }
-            let n = self.namer.fresh(letter_for(self.agent, sym, under));
+            let n = self.namer.fresh_for(self.agent, sym, under);
             self.namer.by_ident.insert(root, n.clone());
             return Term::Var(n.into());
         }
@@ -132,7 +149,7 @@ impl Builder<'_> {
             if let Some(n) = self.namer.by_sym.get(&sym) {
                 return Term::Var(n.as_str().into());
             }
-            let n = self.namer.fresh(letter_for(self.agent, sym, under));
+            let n = self.namer.fresh_for(self.agent, sym, under);
             self.namer.by_sym.insert(sym, n.clone());
             return Term::Var(n.into());
         }
@@ -412,12 +429,7 @@ impl AgentCore {
         let mut b = Builder {
             agent: self,
             bt,
-            namer: Namer {
-                variablize: false,
-                by_ident: FxHashMap::default(),
-                by_sym: FxHashMap::default(),
-                counters: FxHashMap::default(),
-            },
+            namer: Namer::default(),
             bound: FxHashSet::default(),
             ground_ids: FxHashMap::default(),
             keep_tests: true,
@@ -492,9 +504,7 @@ impl AgentCore {
             bt,
             namer: Namer {
                 variablize,
-                by_ident: FxHashMap::default(),
-                by_sym: FxHashMap::default(),
-                counters: FxHashMap::default(),
+                ..Namer::default()
             },
             bound: FxHashSet::default(),
             ground_ids: FxHashMap::default(),
@@ -515,7 +525,8 @@ impl AgentCore {
             }
         }
         // Variables are named where they are first tested for equality (9.6: `^to <t1>`,
-        // even when a relational test elsewhere names it first). A justification has none.
+        // even when a relational test elsewhere names it first), here in the grounds'
+        // order, and again in join order once the rule is built. A justification has none.
         for g in bt.grounds.iter().filter(|_| variablize) {
             let w = g.cond.wme;
             b.term(w.id, g.cond.ids[0], None);
@@ -688,6 +699,20 @@ impl AgentCore {
                     span: Default::default(),
                 })));
             }
+        }
+        if variablize {
+            let ordered = crate::rete::reorder::reorder_owned(
+                conditions.clone(),
+                &self.symbols,
+                &self.multi_attributes,
+            );
+            super::var_order::rename_in_join_order(
+                &mut conditions,
+                &mut actions,
+                &ordered,
+                &b.namer.own,
+                &b.namer.created,
+            );
         }
         Production {
             name,

@@ -15,6 +15,7 @@ pub mod settings;
 mod singletons;
 pub(crate) mod sketch;
 pub mod stats;
+mod var_order;
 
 use crate::decide::ids::InstId;
 use crate::production::Production;
