@@ -397,6 +397,48 @@ impl AgentCore {
         self.output = out;
     }
 
+    /// The preferences of a memory's retrieval, one `+ (R3 ^retrieved L3 +) (|Memory System
+    /// Recall|)` line for each WME it made, in the order given: 9.6 makes those WMEs through
+    /// an instantiation of its own and lists its preferences with the preferences trace
+    /// (checked on soar-sml 9.6.5: agents epmem-count, smem-query at trace 5). They are
+    /// o-supported when the apply phase's last firings were.
+    pub(crate) fn trace_memory_recall(&mut self, wmes: &[crate::wm::WmeId]) {
+        if !self.settings.trace.preferences {
+            return;
+        }
+        let o_support = self.decider.last_wave_o_support;
+        let mut out = std::mem::take(&mut self.output);
+        for &w in wmes {
+            let Some(wme) = self.wm.get(w).copied() else {
+                continue;
+            };
+            let pref = crate::decide::state::Preference {
+                kind: crate::decide::procedure::PrefType::Acceptable,
+                id: wme.id,
+                attr: wme.attr,
+                value: wme.value,
+                referent: None,
+                number: None,
+                o_support,
+                inst: None,
+                rule: None,
+                alive: true,
+                freed: false,
+                origin: None,
+                matched: None,
+            };
+            let event = TraceEvent::Preference {
+                added: true,
+                pref: &pref,
+                level: self.sym_level(wme.id),
+                rule: Some("|Memory System Recall|"),
+            };
+            self.trace_text
+                .write(&mut out, self.output_line_start, &self.symbols, &event);
+        }
+        self.output = out;
+    }
+
     /// `+ ... ALREADY SUPPORTED ON TOP LEVEL.  IGNORING.` for a preference not added.
     pub(crate) fn trace_ignored_pref(&mut self, pid: crate::decide::state::PrefId) {
         if !self.settings.trace.preferences {
@@ -523,22 +565,26 @@ impl AgentCore {
                     self.emit_match_wmes(&wmes, true);
                 }
             }
-            let prefs = self.decider.insts[inst].prefs.clone();
-            self.trace_instantiation_prefs(&prefs);
         }
-        self.trace_retracted_prefs(inst);
+        let listed = traced && self.settings.trace.wme_detail != crate::agent::WmeDetail::None;
+        self.trace_retracted_prefs(inst, listed);
     }
 
-    /// The `-` lines of a retracting instantiation's i-supported preferences, newest first
-    /// (preferences trace).
-    fn trace_retracted_prefs(&mut self, inst: crate::decide::state::InstId) {
-        if !self.settings.trace.preferences {
+    /// A retracting instantiation's preferences, newest first: each listed (with
+    /// `--timetags` or `--fullwmes`, when `listed`), then its `-` line if it is i-supported
+    /// (preferences trace), one preference after the other as 9.6 prints them.
+    fn trace_retracted_prefs(&mut self, inst: crate::decide::state::InstId, listed: bool) {
+        let removals = self.settings.trace.preferences;
+        if !listed && !removals {
             return;
         }
         let prefs = self.decider.insts[inst].prefs.clone();
         for pid in prefs.into_iter().rev() {
+            if listed {
+                self.trace_instantiation_prefs(&[pid]);
+            }
             let p = &self.decider.prefs[pid];
-            if p.alive && !p.o_support {
+            if removals && p.alive && !p.o_support {
                 self.trace_pref('-', pid);
             }
         }
@@ -561,12 +607,14 @@ impl AgentCore {
         else {
             return;
         };
-        if self.settings.trace.firings_of(&j.flags()) {
+        let traced = self.settings.trace.firings_of(&j.flags());
+        let listed = traced && self.settings.trace.wme_detail != crate::agent::WmeDetail::None;
+        if traced {
             let mut out = std::mem::take(&mut self.output);
             let event = TraceEvent::Retraction { rule: j.name() };
             self.write_event(&mut out, &event);
             self.output = out;
-            if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {
+            if listed {
                 // The WMEs it was built on (kept when it was made), then its preferences.
                 let wmes = self
                     .decider
@@ -574,11 +622,9 @@ impl AgentCore {
                     .remove(&inst)
                     .unwrap_or_default();
                 self.emit_match_wmes(&wmes, true);
-                let prefs = self.decider.insts[inst].prefs.clone();
-                self.trace_instantiation_prefs(&prefs);
             }
         }
-        self.trace_retracted_prefs(inst);
+        self.trace_retracted_prefs(inst, listed);
     }
 
     /// The removals the o-supported rejects of one elaboration cycle's firings make, in
@@ -672,7 +718,7 @@ impl AgentCore {
     }
 
     /// The WMEs of a match that are still in working memory, in the rule's order.
-    fn match_wme_list(&self, p: crate::rete::ProdId, t: crate::rete::TokId) -> Vec<Wme> {
+    pub(crate) fn match_wme_list(&self, p: crate::rete::ProdId, t: crate::rete::TokId) -> Vec<Wme> {
         self.rete
             .match_wmes(p, t)
             .into_iter()

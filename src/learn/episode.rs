@@ -368,6 +368,12 @@ impl AgentCore {
                 let id = self.decider.alloc_inst(inst);
                 self.learn.stats.learned_instantiations += 1;
                 self.decider.inst_by_token.insert((*pid, tok), id);
+                if self.settings.trace.wme_detail != crate::agent::WmeDetail::None {
+                    // What its retraction lists (`trace --timetags`): the WMEs of its match,
+                    // those gone by then too, as for a rule's firing.
+                    let wmes = self.match_wme_list(*pid, tok);
+                    self.decider.traced_match_wmes.insert(id, wmes);
+                }
                 (id, o, prod.name.clone())
             }
             _ => {

@@ -189,6 +189,8 @@ impl AgentCore {
             }
             changed |= !fresh.is_empty();
             self.decider.wme_changes += fresh.len() as u64;
+            let made: Vec<WmeId> = fresh.iter().rev().copied().collect();
+            self.trace_memory_recall(&made);
             for &w in fresh.iter().rev() {
                 if let Some(wme) = self.wm.get(w).copied() {
                     self.trace_wme(true, &wme);
