@@ -182,6 +182,9 @@ impl AgentCore {
             let gone: Vec<WmeId> = gone.into_iter().filter(|w| !added.contains(w)).collect();
             let gone_timetags: Vec<u64> = gone.iter().filter_map(|&w| self.wm.get(w).map(|x| x.timetag)).collect();
             self.forget_memory_results(gone_timetags);
+            // 9.6 lists the retrieval's preferences before the working-memory header.
+            let made: Vec<WmeId> = fresh.iter().rev().copied().collect();
+            self.trace_memory_recall(&made);
             if !fresh.is_empty() || !gone.is_empty() {
                 if let Some(o_support) = header.take() {
                     self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
@@ -189,8 +192,6 @@ impl AgentCore {
             }
             changed |= !fresh.is_empty();
             self.decider.wme_changes += fresh.len() as u64;
-            let made: Vec<WmeId> = fresh.iter().rev().copied().collect();
-            self.trace_memory_recall(&made);
             for &w in fresh.iter().rev() {
                 if let Some(wme) = self.wm.get(w).copied() {
                     self.trace_wme(true, &wme);
