@@ -486,11 +486,13 @@ impl AgentCore {
         // Nor does it queue the matches the removals make (`trace --assertions`).
         let wma_traced = std::mem::replace(&mut self.settings.trace.wma, false);
         let assertions_traced = std::mem::replace(&mut self.settings.trace.assertions, false);
-        // The goals' selected operators go last (9.6 takes them out of their slots first,
-        // and its buffered removals run last taken first): a join on an operator whose
-        // memory empties before the operator goes is unlinked from its alpha memory, and
-        // relinked in the order matches come back, which decides the order of the first
-        // matches after init-soar.
+        // The goals' selected operators go last. A join on an operator whose parent memory
+        // empties before the operator goes is unlinked from its alpha memory and relinked
+        // in the order matches come back, and that order decides which of several rules
+        // built while they matched (chunks among them) matches first after init-soar:
+        // 9.6's order (soar-sml 9.6.5: agent learn-negation-order, command golden
+        // init-soar-order). Joins below a memory that several rules share (agent
+        // learn-conjunctions) still differ, see conformance.md.
         let operators: Vec<crate::wm::WmeId> = self.decider.goals.iter().filter_map(|g| g.operator.map(|o| o.1)).collect();
         for w in all.into_iter().rev().filter(|w| !operators.contains(w)) {
             self.remove_wme(w);
