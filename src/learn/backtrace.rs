@@ -27,6 +27,14 @@ pub struct Constraint {
     pub trace: Arc<InstTrace>,
 }
 
+/// What the backtrace goes through next: a firing, or an impasse's `^item`, whose
+/// architecture instantiation tested the acceptable preference WME it stands for.
+#[derive(Debug)]
+enum Pending {
+    Firing(Arc<InstTrace>),
+    Item(TraceCond, Arc<InstTrace>),
+}
+
 /// A negated condition (or conjunctive negation) of a backtraced firing.
 #[derive(Debug, Clone)]
 pub struct Negation {
@@ -47,7 +55,7 @@ pub struct Backtrace {
     /// This backtrace's number: a firing marked with it has been gone through.
     number: u64,
     /// Firings waiting to be gone through (kept for its room).
-    stack: Vec<Arc<InstTrace>>,
+    stack: Vec<Pending>,
     /// Firings backtraced (for `chunk stats`), and the impasse items gone through (9.6
     /// backtraces each through an instantiation of its own).
     pub firings: usize,
@@ -130,21 +138,33 @@ impl Backtrace {
 
     fn firing(&mut self, trace: &Arc<InstTrace>, agent: &AgentCore, quiescence: Sym, t: Sym) {
         let mut stack = std::mem::take(&mut self.stack);
-        stack.push(trace.clone());
-        while let Some(trace) = stack.pop() {
+        stack.push(Pending::Firing(trace.clone()));
+        // The local WMEs are gone through last found first, as 9.6 takes them off the
+        // head of its list of locals: the grounds come in the order 9.6 finds them.
+        while let Some(next) = stack.pop() {
+            let trace = match next {
+                Pending::Firing(trace) => trace,
+                Pending::Item(c, trace) => {
+                    self.add_ground(&c, &trace, agent);
+                    continue;
+                }
+            };
             if trace.backtraced.swap(self.number, Relaxed) == self.number {
                 continue;
             }
             self.firings += 1;
             self.identities += trace.vars.len();
             self.tested_ltm |= super::memory_results::is_retrieval(&trace);
-            let locals_at = stack.len();
             for c in &trace.conds {
                 if c.via_item && self.items.insert(c.wme.timetag) {
                     self.firings += 1;
                 }
                 if c.level > 0 && c.level < self.level {
-                    self.add_ground(c, &trace, agent);
+                    if c.via_item {
+                        stack.push(Pending::Item(c.clone(), trace.clone()));
+                    } else {
+                        self.add_ground(c, &trace, agent);
+                    }
                     continue;
                 }
                 if c.wme.attr == quiescence && c.wme.value == t {
@@ -157,14 +177,14 @@ impl Backtrace {
                     }
                     // A firing already gone through would be passed over when popped.
                     if origin.trace.backtraced.load(Relaxed) != self.number {
-                        stack.push(origin.trace.clone());
+                        stack.push(Pending::Firing(origin.trace.clone()));
                     }
                     // The knowledge that selected a tested operator goes with its
                     // proposal, without joining identities (`chunk add-osk`).
                     if let Some(osk) = &c.osk {
                         for o in osk.iter() {
                             if o.trace.backtraced.load(Relaxed) != self.number {
-                                stack.push(o.trace.clone());
+                                stack.push(Pending::Firing(o.trace.clone()));
                             }
                         }
                     }
@@ -180,8 +200,6 @@ impl Backtrace {
                     }
                 }
             }
-            // Depth first, in condition order.
-            stack[locals_at..].reverse();
         }
         self.stack = stack;
     }
