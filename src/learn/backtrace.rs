@@ -47,6 +47,9 @@ pub struct Backtrace {
     /// The learning goal's level: WMEs whose id is above it are grounds.
     pub level: u32,
     pub grounds: Vec<Ground>,
+    /// The tests of a ground WME after its first, merged into it, each with the number of
+    /// grounds found before it: a justification built with learning on lists them all.
+    pub merged_grounds: Vec<(usize, Ground)>,
     ground_at: FxHashMap<u64, usize>,
     pub negations: Vec<Negation>,
     pub constraints: Vec<Constraint>,
@@ -84,6 +87,7 @@ impl Backtrace {
     pub fn reset(&mut self, level: u32, number: u64) {
         self.level = level;
         self.grounds.clear();
+        self.merged_grounds.clear();
         self.ground_at.clear();
         self.negations.clear();
         self.constraints.clear();
@@ -307,6 +311,13 @@ impl Backtrace {
         // each with its own identities (9.6; equal ones merge when the rule is built).
         if let Some(g) = first.filter(|_| agent.is_singleton(&c.wme)) {
             self.merged += 1;
+            self.merged_grounds.push((
+                self.grounds.len(),
+                Ground {
+                    cond: c.clone(),
+                    trace: trace.clone(),
+                },
+            ));
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);

@@ -534,9 +534,26 @@ impl AgentCore {
             b.term(w.value, g.cond.ids[2], Some(w.attr));
         }
         let mut constrained: FxHashSet<Ident> = FxHashSet::default();
+        // A justification built with learning on tests a WME once for each condition
+        // behind it that tested it, as 9.6 lists it (`^flag on ^flag on`).
+        let all_tests = !variablize && b.keep_tests && !bt.merged_grounds.is_empty();
+        let grounds: Vec<&super::backtrace::Ground> = if all_tests {
+            let mut merged = bt.merged_grounds.iter().peekable();
+            let mut out = Vec::with_capacity(bt.grounds.len() + bt.merged_grounds.len());
+            for (i, g) in bt.grounds.iter().enumerate() {
+                while let Some((_, m)) = merged.next_if(|(at, _)| *at <= i) {
+                    out.push(m);
+                }
+                out.push(g);
+            }
+            out.extend(merged.map(|(_, m)| m));
+            out
+        } else {
+            bt.grounds.iter().collect()
+        };
         let mut conditions = Vec::new();
         let mut goal_tested: FxHashSet<Sym> = FxHashSet::default();
-        for g in &bt.grounds {
+        for &g in &grounds {
             let w = g.cond.wme;
             let orig =
                 g.cond
@@ -611,7 +628,7 @@ impl AgentCore {
             // `(state S2 ^superstate S1)`) on the first condition of it.
             conditions.reverse();
             let mut marked: FxHashSet<Sym> = FxHashSet::default();
-            for (c, g) in conditions.iter_mut().zip(bt.grounds.iter().rev()) {
+            for (c, g) in conditions.iter_mut().zip(grounds.iter().rev()) {
                 if let Condition::Positive(c) = c {
                     let id = g.cond.wme.id;
                     c.goal = if self.symbols.is_goal(id) && marked.insert(id) {
