@@ -12,8 +12,11 @@ For each agent both kernels get, in a fresh agent:
 
 then `print NAME` for every chunk the official kernel lists (`print --chunks`). The texts
 of the rules are compared whole, so variable names, condition order and tests all count.
+An agent either kernel does not finish in --timeout seconds (one whose working memory grows
+without end, say) is reported and skipped.
 
-usage: python3 scripts/chunk_compare.py [--learn 'chunk always'] [--run 'run 200'] [AGENT ...]
+usage: python3 scripts/chunk_compare.py [--learn 'chunk always'] [--run 'run 200']
+                                        [--timeout 60] [AGENT ...]
   AGENT   names in tests/agents/ or tests/commands/agents/, or paths to .soar files
           (default: every agent of both folders)
 The exit status is 1 if an agent's rules differ.
@@ -21,6 +24,7 @@ The exit status is 1 if an agent's rules differ.
 import argparse
 import difflib
 import glob
+import json
 import os
 import subprocess
 import sys
@@ -32,8 +36,8 @@ FOLDERS = [os.path.join(ROOT, "tests", "agents"), os.path.join(ROOT, "tests", "c
 BINARY = os.path.join(ROOT, "target", "release", "rusoar")
 
 
-def official(path, learn, run):
-    """The official kernel's chunk names and the text of each, printed."""
+def official_here(path, learn, run):
+    """The official kernel's chunk names and the text of each, printed (in this process)."""
     kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
     agent = kernel.CreateAgent("soar1")
     for command in ["srand 1", learn, "source {%s}" % path, "watch 0", run]:
@@ -44,11 +48,20 @@ def official(path, learn, run):
     return names, text
 
 
-def ours(path, learn, run, names):
+def official(path, learn, run, timeout):
+    """`official_here` in a child process, so that an agent that never finishes is given up."""
+    args = [sys.executable, os.path.abspath(__file__), "--official-child", path, "--learn", learn,
+            "--run", run]
+    out = subprocess.run(args, capture_output=True, text=True, timeout=timeout).stdout
+    found = json.loads(out)
+    return found["names"], found["text"]
+
+
+def ours(path, learn, run, names, timeout):
     """rusoar's text of the same chunks, printed after the same commands."""
     commands = ["srand 1", learn, "source {%s}" % path, "watch 0", run] + ["print " + n for n in names]
     out = subprocess.run([BINARY], input="\n".join(commands) + "\n", capture_output=True,
-                         text=True, timeout=300).stdout
+                         text=True, timeout=timeout).stdout
     start = out.find("sp {")
     return out[start:] if start >= 0 else ""
 
@@ -77,15 +90,25 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--learn", default="chunk always")
     parser.add_argument("--run", default="run 200")
+    parser.add_argument("--timeout", type=float, default=60)
+    parser.add_argument("--official-child", help=argparse.SUPPRESS)
     parser.add_argument("agents", nargs="*")
     args = parser.parse_args()
+    if args.official_child:
+        names, text = official_here(args.official_child, args.learn, args.run)
+        print(json.dumps({"names": names, "text": text}))
+        return
     differ = 0
     for path in agent_paths(args.agents):
         name = os.path.splitext(os.path.basename(path))[0]
-        names, theirs = official(path, args.learn, args.run)
-        if not names:
+        try:
+            names, theirs = official(path, args.learn, args.run, args.timeout)
+            if not names:
+                continue
+            mine = ours(path, args.learn, args.run, names, args.timeout)
+        except subprocess.TimeoutExpired:
+            print("%-28s skipped: not finished in %g s" % (name, args.timeout))
             continue
-        mine = ours(path, args.learn, args.run, names)
         same = rules(theirs) == rules(mine)
         differ += not same
         print("%-28s %2d rules: %s" % (name, len(names), "same" if same else "DIFFER"))
