@@ -68,7 +68,7 @@ def ours(path, learn, run, names, timeout):
 
 def rules(text):
     """The rules of a text, blank lines dropped."""
-    return [line for line in text.splitlines() if line.strip() and not line.startswith(">")]
+    return [line for line in text.splitlines() if line.strip()]
 
 
 def agent_paths(names):

@@ -398,17 +398,18 @@ impl AgentCore {
     }
 
     /// The preferences of a memory's retrieval, one `+ (R3 ^retrieved L3 +) (|Memory System
-    /// Recall|)` line for each WME it made, in the order given: 9.6 makes those WMEs through
+    /// Recall|)` line for each WME it made (`made`, in the order made), newest first, as the
+    /// `=>WM:` lines that follow: 9.6 makes those WMEs through
     /// an instantiation of its own and lists its preferences with the preferences trace
     /// (checked on soar-sml 9.6.5: agents epmem-count, smem-query at trace 5). They are
     /// o-supported when the apply phase's last firings were.
-    pub(crate) fn trace_memory_recall(&mut self, wmes: &[crate::wm::WmeId]) {
+    pub(crate) fn trace_memory_recall(&mut self, made: &[crate::wm::WmeId]) {
         if !self.settings.trace.preferences {
             return;
         }
         let o_support = self.decider.last_wave_o_support;
         let mut out = std::mem::take(&mut self.output);
-        for &w in wmes {
+        for &w in made.iter().rev() {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };

@@ -493,7 +493,8 @@ impl AgentCore {
         // 9.6's order (soar-sml 9.6.5: agent learn-negation-order, command golden
         // init-soar-order). Joins below a memory that several rules share (agent
         // learn-conjunctions) still differ, see conformance.md.
-        let operators: Vec<crate::wm::WmeId> = self.decider.goals.iter().filter_map(|g| g.operator.map(|o| o.1)).collect();
+        let operators: Vec<crate::wm::WmeId> =
+            self.decider.goals.iter().filter_map(|g| g.operator.map(|o| o.1)).collect();
         for w in all.into_iter().rev().filter(|w| !operators.contains(w)) {
             self.remove_wme(w);
         }

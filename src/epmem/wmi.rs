@@ -260,8 +260,7 @@ impl AgentCore {
             link.meta_start = meta_start;
         }
         self.decider.wme_changes += (added.len() + removed.len()) as u64;
-        let made: Vec<WmeId> = added.iter().rev().copied().collect();
-        self.trace_memory_recall(&made);
+        self.trace_memory_recall(&added);
         for &w in added.iter().rev() {
             if let Some(wme) = self.wm.get(w).copied() {
                 self.trace_wme(true, &wme);

@@ -311,13 +311,16 @@ impl Backtrace {
         // each with its own identities (9.6; equal ones merge when the rule is built).
         if let Some(g) = first.filter(|_| agent.is_singleton(&c.wme)) {
             self.merged += 1;
-            self.merged_grounds.push((
-                self.grounds.len(),
-                Ground {
-                    cond: c.clone(),
-                    trace: trace.clone(),
-                },
-            ));
+            // Only a justification built with learning on lists them (see `merged_grounds`).
+            if agent.settings.learn != crate::agent::LearnMode::Never {
+                self.merged_grounds.push((
+                    self.grounds.len(),
+                    Ground {
+                        cond: c.clone(),
+                        trace: trace.clone(),
+                    },
+                ));
+            }
             let ids = self.grounds[g].cond.ids;
             for (a, b) in ids.into_iter().zip(c.ids) {
                 self.join(a, b);

@@ -183,8 +183,7 @@ impl AgentCore {
             let gone_timetags: Vec<u64> = gone.iter().filter_map(|&w| self.wm.get(w).map(|x| x.timetag)).collect();
             self.forget_memory_results(gone_timetags);
             // 9.6 lists the retrieval's preferences before the working-memory header.
-            let made: Vec<WmeId> = fresh.iter().rev().copied().collect();
-            self.trace_memory_recall(&made);
+            self.trace_memory_recall(&fresh);
             if !fresh.is_empty() || !gone.is_empty() {
                 if let Some(o_support) = header.take() {
                     self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
