@@ -178,14 +178,10 @@ impl AgentCore {
             .partition(|c| c.0 == added);
         self.epmem.present_trace = rest;
         self.decider.wme_changes += mine.len() as u64;
-        if added {
-            for (_, w) in mine.iter().rev() {
-                self.trace_wme(true, w);
-            }
-        } else {
-            for (_, w) in &mine {
-                self.trace_wme(false, w);
-            }
+        // Both lists go top state first: 9.6 moves the states bottom first and
+        // head-inserts its changes (observed on soar-sml 9.6.5: epmem-count's substates).
+        for (_, w) in mine.iter().rev() {
+            self.trace_wme(added, w);
         }
     }
 
