@@ -338,6 +338,9 @@ pub(crate) fn pref_rule<'a>(
     if let Some(name) = justification {
         return Some(name.as_str());
     }
+    if p.recall {
+        return Some("|Memory System Recall|");
+    }
     if let Some(o) = p.origin.as_ref().filter(|o| p.inst.is_none() && o.trace.prod.is_none()) {
         return Some(&o.trace.name);
     }
@@ -394,49 +397,6 @@ impl AgentCore {
         }
         let mut out = std::mem::take(&mut self.output);
         self.write_pref_event(&mut out, self.output_line_start, sign == '+', pid);
-        self.output = out;
-    }
-
-    /// The preferences of a memory's retrieval, one `+ (R3 ^retrieved L3 +) (|Memory System
-    /// Recall|)` line for each WME it made (`made`, in the order made), newest first, as the
-    /// `=>WM:` lines that follow: 9.6 makes those WMEs through
-    /// an instantiation of its own and lists its preferences with the preferences trace
-    /// (checked on soar-sml 9.6.5: agents epmem-count, smem-query at trace 5). They are
-    /// o-supported when the apply phase's last firings were.
-    pub(crate) fn trace_memory_recall(&mut self, made: &[crate::wm::WmeId]) {
-        if !self.settings.trace.preferences {
-            return;
-        }
-        let o_support = self.decider.last_wave_o_support;
-        let mut out = std::mem::take(&mut self.output);
-        for &w in made.iter().rev() {
-            let Some(wme) = self.wm.get(w).copied() else {
-                continue;
-            };
-            let pref = crate::decide::state::Preference {
-                kind: crate::decide::procedure::PrefType::Acceptable,
-                id: wme.id,
-                attr: wme.attr,
-                value: wme.value,
-                referent: None,
-                number: None,
-                o_support,
-                inst: None,
-                rule: None,
-                alive: true,
-                freed: false,
-                origin: None,
-                matched: None,
-            };
-            let event = TraceEvent::Preference {
-                added: true,
-                pref: &pref,
-                level: self.sym_level(wme.id),
-                rule: Some("|Memory System Recall|"),
-            };
-            self.trace_text
-                .write(&mut out, self.output_line_start, &self.symbols, &event);
-        }
         self.output = out;
     }
 
@@ -815,7 +775,8 @@ impl AgentCore {
                 } else if decided.contains(i) {
                     (10, *i as i64, 0)
                 } else {
-                    (2, -(w.timetag as i64), 0)
+                    // The garbage, as its collection listed it.
+                    (2, *i as i64, 0)
                 }
             } else {
                 let tt = plus
@@ -847,7 +808,7 @@ impl AgentCore {
             };
             lines.push((r, w));
         }
-        // Within a slot, oldest first.
+        // Within a slot, oldest first (a stable sort: the rest keep the order listed).
         lines.sort_by_key(|(r, w)| (*r, if r.0 == 4 && by_gds { w.timetag } else { 0 }));
         for (_, w) in lines {
             self.trace_wme(false, &w);

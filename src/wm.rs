@@ -253,6 +253,11 @@ impl WorkingMemory {
 
     /// The WME with timetag `tt` (a scan: only commands ask, and keeping an index would
     /// cost every WME change a hash insert and remove).
+    /// The timetag the next WME will get.
+    pub fn next_timetag(&self) -> u64 {
+        self.next_timetag
+    }
+
     pub fn by_timetag(&self, tt: u64) -> Option<WmeId> {
         self.wmes
             .iter()

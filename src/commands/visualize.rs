@@ -201,8 +201,7 @@ impl Interpreter {
             all || matches!(
                 self.origin_of(w, wme),
                 Origin::Preference | Origin::ArchWithPreference
-            ) || self.agent.smem.links.made(w)
-                || self.agent.epmem.made(w).is_some()
+            ) || self.agent.epmem.made(w).is_some()
         };
         let view = WmView {
             root,

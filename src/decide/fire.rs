@@ -197,6 +197,7 @@ impl AgentCore {
                         freed: false,
                         origin: None,
                         matched: matched.clone(),
+                        recall: false,
                     };
                     let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);

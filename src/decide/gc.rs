@@ -98,7 +98,11 @@ impl AgentCore {
                         self.write_pref_event(&mut pref_lines, true, false, pid);
                     }
                 }
-                self.discard_slot(slot, w);
+                // The slot's other WMEs are garbage too, and follow in the order above.
+                for &pid in &slot.prefs {
+                    self.decider.free_pref(pid);
+                }
+                self.decider.slots.recycle(slot);
             }
             if self.wm.get(w).is_some() {
                 if !wmes_traced.contains(&wme.timetag) {
@@ -131,8 +135,9 @@ impl AgentCore {
     /// The order 9.6 collects unlinked WMEs in: an object's links are counted, and an
     /// object whose last link goes is collected next (the last one to lose its last link
     /// first), starting with the objects the phase's changes unlinked (in the order the
-    /// trace lists the changes). An object gives up its slots in the order they were
-    /// made, each slot's WMEs newest first. What that walk cannot reach (a cycle whose
+    /// trace lists the changes). An object gives up its WMEs without a slot first, then
+    /// its slots newest first (9.6 puts a new slot at the head of its object's list),
+    /// each slot's WMEs newest first. What that walk cannot reach (a cycle whose
     /// links never all go) follows, oldest first.
     fn removal_order(&self, garbage: Vec<WmeId>, candidates: &[Sym]) -> Vec<WmeId> {
         use std::cmp::Reverse;
@@ -176,15 +181,22 @@ impl AgentCore {
             if std::mem::replace(&mut done[k], true) {
                 continue;
             }
-            // Slots in the order of their first WME, each slot's WMEs newest first.
-            let (_, start, end) = objects[k];
+            // The WMEs without a slot first, by attribute in the order of each one's
+            // first WME; then the slots newest first; each attribute's WMEs newest first.
+            let (object, start, end) = objects[k];
+            let slots = self.decider.slots.attrs_of(object);
             slot_rows.clear();
-            let mut slot = (None, 0);
+            let mut first = (None, 0);
             for r in &rows[start..end] {
-                if slot.0 != Some(r.1) {
-                    slot = (Some(r.1), r.2);
+                if first.0 != Some(r.1) {
+                    first = (Some(r.1), r.2);
                 }
-                slot_rows.push((slot.1, Reverse(r.2), r.3, r.4));
+                const SLOTTED: u64 = 1 << 63;
+                let rank = match slots.iter().position(|&a| a == r.1) {
+                    Some(i) => SLOTTED + (slots.len() - i) as u64,
+                    None => first.1,
+                };
+                slot_rows.push((rank, Reverse(r.2), r.3, r.4));
             }
             slot_rows.sort_unstable();
             for &(_, _, w, value) in &slot_rows {

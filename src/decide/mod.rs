@@ -22,6 +22,7 @@ pub mod limits;
 mod osk;
 pub(crate) mod ids;
 pub mod procedure;
+pub(crate) mod recall;
 mod scratch;
 mod slot;
 pub mod state;

@@ -401,6 +401,11 @@ impl Slots {
         }
     }
 
+    /// The attributes of `id`'s slots, in the order the slots were made.
+    pub fn attrs_of(&self, id: Sym) -> &[Sym] {
+        self.attrs.get(&id).map_or(&[], |l| l.as_slice())
+    }
+
     /// The keys of `id`'s slots, in the order they were made.
     pub fn keys_of(&self, id: Sym) -> Vec<(Sym, Sym)> {
         self.attrs

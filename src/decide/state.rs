@@ -68,6 +68,9 @@ pub struct Preference {
     /// For an o-supported preference made on the top level: the WMEs its firing matched,
     /// which `preferences --timetags`/`--wmes` lists after the firing has retracted.
     pub matched: Option<std::sync::Arc<[crate::wm::Wme]>>,
+    /// Made by a memory's retrieval (9.6's `|Memory System Recall|` instantiation): no
+    /// rule's firing holds it; the memory removes it when its next command comes.
+    pub recall: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,6 +91,10 @@ impl ImpasseKind {
         }
     }
 }
+
+/// A memory's recall preference (see `recall.rs`): its handle with its allocation number
+/// (handles are reused: a preference freed with its slot leaves a handle another may take).
+pub(crate) type RecallPref = (PrefId, u64);
 
 /// A preference a goal's firing made: its handle, its allocation number (handles are
 /// reused) and what it says.

@@ -87,7 +87,7 @@ impl AgentCore {
 
     /// One new preference into its slot (`+` traced when `tracing`), unless it is gone or
     /// its value's top-level o-support is there already.
-    fn assert_preference(&mut self, pid: PrefId, tracing: bool) {
+    pub(super) fn assert_preference(&mut self, pid: PrefId, tracing: bool) {
         let p = &self.decider.prefs[pid];
         if !p.alive {
             return;
@@ -106,11 +106,13 @@ impl AgentCore {
         }
         let slot = self.decider.slots.entry_id(key);
         self.decider.slots.slot_mut(slot).push(pid, value);
-        if self.wma.on() && !self.decider.slots.slot(slot).changed {
+        // A memory's retrieval references nothing (its WMEs' activation starts apart).
+        let wma = self.wma.on() && !self.decider.prefs[pid].recall;
+        if wma && !self.decider.slots.slot(slot).changed {
             self.wma.clear_slot_references(key);
         }
         self.mark_changed(key, Some(slot));
-        if self.wma.on() {
+        if wma {
             self.wma_preference_added(pid);
         }
     }
@@ -118,7 +120,13 @@ impl AgentCore {
     /// Whether `pid` is a top-level o-supported acceptable preference for a non-context
     /// slot that already holds a top-level o-supported preference for its value.
     fn already_top_o_supported(&mut self, pid: PrefId) -> bool {
-        let top_level = |p: &Preference| p.o_support && p.matched.is_some();
+        // A memory's retrieval keeps its command's WMEs as `matched` at any level.
+        let symbols = &self.symbols;
+        let top_level = |p: &Preference| {
+            p.o_support
+                && p.matched.is_some()
+                && (!p.recall || symbols.id_data(p.id).is_some_and(|d| d.level <= 1))
+        };
         let p = &self.decider.prefs[pid];
         if p.kind != PrefType::Acceptable || !top_level(p) {
             return false;
@@ -292,22 +300,23 @@ impl AgentCore {
         for &w in &added {
             self.gds_for_new_wme(w);
         }
-        // A substate removed just above may still get this wave's WMEs (9.6 adds them too,
-        // removing the goal only at its next consistency check): with the goal gone they
-        // are unlinked, and go with the garbage below instead of staying for good.
-        if self.decider.goals.len() < goals_before {
-            for &w in &added {
-                if let Some(wme) = self.wm.get(w) {
-                    self.decider.gc_candidates.push(wme.id);
-                }
-            }
-        }
         let before_decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
         for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
             if self.wm.get(w).is_some_and(|x| x.timetag == tt) {
                 self.remove_slot_wme(w);
+            }
+        }
+        // A substate removed just above may still get this wave's WMEs (9.6 adds them too,
+        // removing the goal only at its next consistency check): with the goal gone they
+        // are unlinked, and go with the garbage below instead of staying for good, after
+        // what the slot decisions unlinked.
+        if self.decider.goals.len() < goals_before {
+            for &w in &added {
+                if let Some(wme) = self.wm.get(w) {
+                    self.decider.gc_candidates.push(wme.id);
+                }
             }
         }
         if !decided.is_empty() {

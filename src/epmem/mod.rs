@@ -77,8 +77,9 @@ pub(crate) struct LinkState {
     /// The results' WMEs, in the order of their triples (the episode's, then the meta
     /// results).
     pub results: Vec<WmeId>,
-    /// Where the meta results start in `results`.
-    pub meta_start: usize,
+    /// The preferences of the results on the result link, in the order made: the next
+    /// command takes them out, last first.
+    pub meta: Vec<crate::decide::state::RecallPref>,
 }
 
 /// Episodic memory's timers and their levels (9.6's names). The level-three timers of

@@ -7,15 +7,16 @@
 
 use super::retrieve::Triples;
 use crate::agent::AgentCore;
+use crate::decide::recall::RecallPref;
 use crate::symbols::{Sym, SymData};
 use crate::wm::{Wme, WmeId};
 
 /// A state's `^epmem` link: the link, its `^command` and its `^result`.
 type Link = (Sym, Sym, Sym);
 
-/// A state with a new command: the state, its result link, its old results, and the
-/// command's WMEs (none when it was emptied).
-type NewCommand = (Link, Sym, Vec<WmeId>, Option<Vec<Wme>>);
+/// A state with a new command: its link, the state, and the command's WMEs (none when it
+/// was emptied).
+type NewCommand = (Link, Sym, Option<Vec<Wme>>);
 
 /// A parsed `^command` (9.6's `_epmem_respond_to_cmd_parse`).
 #[derive(Debug, Default)]
@@ -185,11 +186,11 @@ impl AgentCore {
         }
     }
 
-    /// 9.6's `epmem_respond_to_cmd`.
+    /// 9.6's `epmem_respond_to_cmd`: each state whose command changed has its last
+    /// results on the result link taken out, then gets its command's results as the
+    /// preferences of 9.6's `|Memory System Recall|` instantiation; one working-memory
+    /// phase then brings them in (the old episode goes with the garbage).
     fn epmem_respond(&mut self) {
-        let mut wm_phase = false;
-        let mut added: Vec<WmeId> = Vec::new();
-        let mut removed: Vec<Wme> = Vec::new();
         let mut work: Vec<NewCommand> = Vec::new();
         for (state, link) in self.epmem_states() {
             let Some(link @ (_, cmd, _)) = link else { continue };
@@ -224,135 +225,61 @@ impl AgentCore {
             if !new_cue {
                 continue;
             }
-            wm_phase = true;
-            let old = std::mem::take(&mut info.results);
-            let old_meta = old.get(info.meta_start..).unwrap_or_default().to_vec();
-            work.push((link, state, old_meta, (count > 0).then(|| top_level.unwrap_or_default())));
+            work.push((link, state, (count > 0).then(|| top_level.unwrap_or_default())));
         }
-        if !wm_phase {
+        if work.is_empty() {
             return;
         }
         let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
-        for ((lnk, cmd, res), state, old, cmds) in work {
+        let mut made: Vec<(Sym, Link, Vec<RecallPref>)> = Vec::new();
+        for ((lnk, cmd, res), state, cmds) in work {
+            let link = self.epmem.links.entry(state).or_default();
+            let gone = std::mem::take(&mut link.meta);
+            link.results.clear();
+            self.forget_recall_results(&gone);
+            self.remove_recall_prefs(&gone.iter().rev().copied().collect::<Vec<_>>());
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
             if let Some(cmds) = cmds {
                 self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
             }
-            let meta_start = retrieval.len();
-            let triples: Triples = retrieval.into_iter().chain(meta).collect();
-            let gone_from = removed.len();
-            let (mine, made) = self.epmem_place_results(&old, &triples, &mut removed);
-            let gone: Vec<u64> = removed[gone_from..].iter().map(|w| w.timetag).collect();
-            self.forget_memory_results(gone);
+            // 9.6's instantiation lists its preferences in the reverse of its buffers.
+            let triples: Triples = meta.iter().rev().chain(retrieval.iter().rev()).copied().collect();
+            let conditions = self.memory_command_conditions((state, lnk, cmd, res));
+            let prefs = self.add_recall_prefs(&triples, &conditions);
+            self.epmem.links.entry(state).or_default().meta = prefs[..meta.len()].to_vec();
+            made.push((state, (lnk, cmd, res), prefs));
+        }
+        let newest_before = self.wm.next_timetag();
+        self.update_slots();
+        for (state, (lnk, cmd, res), prefs) in made {
+            // The results in the order of their triples: the episode's, then the meta
+            // results (`print` lists them so).
+            let wmes: Vec<WmeId> = prefs.iter().rev().filter_map(|&p| self.recall_wme(p)).collect();
+            let fresh: Vec<WmeId> = wmes
+                .iter()
+                .copied()
+                .filter(|&x| self.wm.get(x).is_some_and(|x| x.timetag >= newest_before))
+                .collect();
+            self.epmem.links.entry(state).or_default().results = wmes;
             // Backtracing goes through the architecture's firing that made them.
-            if !made.is_empty() {
+            if !fresh.is_empty() {
                 let conditions = self.memory_command_conditions((state, lnk, cmd, res));
                 let level = self.sym_level(state);
-                self.note_memory_results(level, res, &made, &conditions);
-            }
-            added.extend(made);
-            let link = self.epmem.links.entry(state).or_default();
-            link.results = mine;
-            link.meta_start = meta_start;
-        }
-        self.decider.wme_changes += (added.len() + removed.len()) as u64;
-        self.trace_memory_recall(&added);
-        for &w in added.iter().rev() {
-            if let Some(wme) = self.wm.get(w).copied() {
-                self.trace_wme(true, &wme);
+                self.note_memory_results(level, res, &fresh, &conditions);
             }
         }
-        self.epmem_trace_present_adds();
-        // The episode the old results linked goes first, then those results, then the old
-        // `^present-id` (9.6's order).
-        self.collect_garbage();
-        for wme in &removed {
-            self.trace_wme(false, wme);
-        }
-        self.epmem_trace_present_removals();
         self.epmem.timers.stop(wm_phase);
     }
 
-    /// Puts a command's results (`triples`) in working memory in place of the last
-    /// command's meta results (`old`: those on the result link and the graph match's
-    /// mapping), as 9.6's slots decide them: the slots new to this command first, in the
-    /// order of their last triples, then those the old results held, newest first; in a
-    /// slot, the later triple first. A result whose WME is there already keeps it. The old
-    /// results that go are removed slot by slot, in the order of each slot's first
-    /// result, the later first within a slot (9.6's order); the episode they linked goes
-    /// with the garbage, if nothing else links it.
-    /// Returns the results' WMEs in triple order, and those made, in the order made; the
-    /// old WMEs that go are listed in `removed`.
-    fn epmem_place_results(
-        &mut self,
-        old: &[WmeId],
-        triples: &Triples,
-        removed: &mut Vec<Wme>,
-    ) -> (Vec<WmeId>, Vec<WmeId>) {
-        let old_wmes: Vec<(WmeId, Wme)> = old
+    /// The results on a result link that go: they no longer need their origins.
+    fn forget_recall_results(&mut self, gone: &[RecallPref]) {
+        let timetags: Vec<u64> = gone
             .iter()
-            .filter_map(|&w| Some((w, *self.wm.get(w)?)))
+            .filter(|&&p| self.is_live_recall_pref(p))
+            .filter_map(|&p| self.recall_wme(p))
+            .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
             .collect();
-        // The slots the old results held, in the order of their triples.
-        let mut held: Vec<(Sym, Sym)> = Vec::new();
-        for (_, x) in &old_wmes {
-            if !held.contains(&(x.id, x.attr)) {
-                held.push((x.id, x.attr));
-            }
-        }
-        let mut fresh: Vec<(Sym, Sym)> = Vec::new();
-        for (i, &(id, attr, _)) in triples.iter().enumerate() {
-            let key = (id, attr);
-            let last = !triples[i + 1..].iter().any(|t| (t.0, t.1) == key);
-            if last && !held.contains(&key) {
-                fresh.push(key);
-            }
-        }
-        let slots: Vec<(Sym, Sym)> = fresh
-            .into_iter()
-            .chain(held.iter().rev().copied().filter(|k| triples.iter().any(|t| (t.0, t.1) == *k)))
-            .collect();
-        let mut kept: Vec<WmeId> = Vec::new();
-        let mut placed: Vec<Option<WmeId>> = vec![None; triples.len()];
-        for (i, t) in triples.iter().enumerate() {
-            let reuse = old_wmes.iter().find(|(w, x)| {
-                (x.id, x.attr, x.value) == *t && !kept.contains(w)
-            });
-            if let Some(&(w, _)) = reuse {
-                kept.push(w);
-                placed[i] = Some(w);
-            }
-        }
-        let mut going: Vec<(usize, usize, WmeId, Wme)> = Vec::new();
-        for (k, &(w, x)) in old_wmes.iter().enumerate() {
-            if kept.contains(&w) {
-                continue;
-            }
-            let slot_first = old_wmes
-                .iter()
-                .position(|(_, y)| (y.id, y.attr) == (x.id, x.attr))
-                .unwrap_or(k);
-            going.push((slot_first, usize::MAX - k, w, x));
-        }
-        going.sort_by_key(|&(first, later, _, _)| (first, later));
-        for (_, _, w, x) in going {
-            removed.push(x);
-            self.remove_wme(w);
-        }
-        let mut made = Vec::new();
-        for key in slots {
-            for i in (0..triples.len()).rev() {
-                let (id, attr, value) = triples[i];
-                if (id, attr) != key || placed[i].is_some() {
-                    continue;
-                }
-                let w = self.wm.add(id, attr, value, false);
-                self.match_wme_now(w, (id, attr, value), false);
-                placed[i] = Some(w);
-                made.push(w);
-            }
-        }
-        (placed.into_iter().flatten().collect(), made)
+        self.forget_memory_results(timetags);
     }
 
     /// Reads and carries out one state's command.

@@ -119,8 +119,10 @@ impl AgentCore {
                     let mut on_y = self.decider.slots.keys_of(y);
                     on_y.sort();
                     for k in on_y {
+                        // A retrieval's own preferences come as `retrieved_result_prefs`.
                         if let Some(slot) = self.decider.slots.get(&k) {
-                            queue.extend(slot.prefs.iter().copied());
+                            let prefs = &self.decider.prefs;
+                            queue.extend(slot.prefs.iter().copied().filter(|&q| !prefs[q].recall));
                         }
                     }
                     let retrieved = self.retrieved_result_prefs(y, level, &mut retrieved_idents);

@@ -213,6 +213,7 @@ impl AgentCore {
                     freed: false,
                     origin: Some(origin),
                     matched: None,
+                    recall: false,
                 })
             })
             .collect()

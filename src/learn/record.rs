@@ -232,10 +232,11 @@ impl AgentCore {
     /// The preference behind a WME of a substate: the oldest acceptable (or require, for an
     /// operator proposal) preference for its value that was recorded.
     pub(crate) fn supporting_origin(&self, wme: &crate::wm::Wme) -> Option<Arc<PrefOrigin>> {
-        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
-            // A memory's retrieval: the architecture's firing that made it.
-            return self.learn.memory_results.get(&wme.timetag).map(|(_, o)| o.clone());
-        };
+        // A memory's retrieval: the architecture's firing that made it.
+        if let Some((_, o)) = self.learn.memory_results.get(&wme.timetag) {
+            return Some(o.clone());
+        }
+        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
         // A required operator, once selected, rests on its require preference (the
         // candidate 9.6 selects).
         if !wme.acceptable && wme.attr == self.symbols.known.operator {

@@ -9,6 +9,7 @@ use super::query::{Cue, Math, Want};
 use super::store::Val;
 use crate::agent::AgentCore;
 use crate::symbols::{Sym, SymData};
+use crate::decide::recall::RecallPref;
 use crate::wm::{Wme, WmeId};
 use rustc_hash::FxHashMap;
 
@@ -17,8 +18,9 @@ use rustc_hash::FxHashMap;
 struct LinkState {
     /// The command's WMEs (and those of the objects it names), by timetag.
     signature: Vec<u64>,
-    /// The WMEs the results added.
-    results: Vec<WmeId>,
+    /// The preferences of the results on the result link, in the order made: the next
+    /// command takes them out, last first (9.6's list of a state's memory results).
+    results: Vec<RecallPref>,
     /// The command processed last had a `^store`.
     had_store: bool,
 }
@@ -27,18 +29,30 @@ struct LinkState {
 #[derive(Debug, Default)]
 pub struct Links {
     by_link: FxHashMap<Sym, LinkState>,
-    /// While a command is processed, the results of the one before it: a result that is
-    /// made again is the same WME.
-    reusable: Vec<WmeId>,
     /// The identifiers a retrieval deeper than one level filled, for `^depth-retrieved`.
     deeper: Vec<Sym>,
 }
 
-impl Links {
-    /// Whether a command's results hold this WME.
-    pub(crate) fn made(&self, w: WmeId) -> bool {
-        self.by_link.values().any(|l| l.results.contains(&w))
-    }
+/// A command's results as 9.6 buffers them before making its instantiation: those on
+/// the result link, and the retrieved objects' WMEs.
+#[derive(Debug, Default)]
+struct Buffered {
+    meta: Vec<(Sym, Sym, Sym)>,
+    retrieval: Vec<(Sym, Sym, Sym)>,
+}
+
+/// A link whose command changed, for the bookkeeping after its results are in working
+/// memory.
+struct Work {
+    state: Sym,
+    level: u32,
+    link: Sym,
+    cmd: Sym,
+    res: Sym,
+    cmd_wmes: Vec<Wme>,
+    made: Vec<RecallPref>,
+    /// The timetags of the WMEs of the last command's results on the result link.
+    gone_wmes: Vec<u64>,
 }
 
 /// A parsed `^command`.
@@ -113,7 +127,7 @@ impl AgentCore {
         self.smem.timers.reset();
     }
 
-    fn smem_go_untimed(&mut self, store_only: bool, mut header: Option<bool>) {
+    fn smem_go_untimed(&mut self, store_only: bool, header: Option<bool>) {
         let states: Vec<(Sym, u32)> = self
             .decider
             .goals
@@ -126,7 +140,7 @@ impl AgentCore {
         } else {
             states
         };
-        let mut changed = false;
+        let mut work: Vec<Work> = Vec::new();
         for (state, level) in states {
             let Some(link) = self.child_of(state, "smem") else {
                 continue;
@@ -169,96 +183,77 @@ impl AgentCore {
                 old.had_store = false;
             }
             let gone = std::mem::take(&mut old.results);
-            // The new results come in before the old ones go; a result that is already
-            // there stays (observed on soar-sml 9.6.5).
-            self.smem.links.reusable = gone.clone();
-            let added = if process && !cmd_wmes.is_empty() {
-                self.smem_process(cmd, res, level, &cmd_wmes, !gone.is_empty())
-            } else {
-                Vec::new()
-            };
-            self.smem.links.reusable.clear();
-            let fresh: Vec<WmeId> = added.iter().copied().filter(|w| !gone.contains(w)).collect();
-            let gone: Vec<WmeId> = gone.into_iter().filter(|w| !added.contains(w)).collect();
-            let gone_timetags: Vec<u64> = gone.iter().filter_map(|&w| self.wm.get(w).map(|x| x.timetag)).collect();
-            self.forget_memory_results(gone_timetags);
-            // 9.6 lists the retrieval's preferences before the working-memory header.
-            self.trace_memory_recall(&fresh);
-            if !fresh.is_empty() || !gone.is_empty() {
-                if let Some(o_support) = header.take() {
-                    self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
-                }
+            // The last command's results on the result link go first, last made first;
+            // then the new command's preferences come in (9.6's `smem_clear_result`,
+            // then its instantiation).
+            let gone_wmes: Vec<u64> = gone
+                .iter()
+                .filter(|&&p| self.is_live_recall_pref(p))
+                .filter_map(|&p| self.recall_wme(p))
+                .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
+                .collect();
+            let live_before = gone.iter().filter(|&&p| self.is_live_recall_pref(p)).count();
+            self.remove_recall_prefs(&gone.iter().rev().copied().collect::<Vec<_>>());
+            let mut buffered = Buffered::default();
+            if process && !cmd_wmes.is_empty() {
+                self.smem_process(cmd, res, level, &cmd_wmes, &mut buffered);
             }
-            changed |= !fresh.is_empty();
-            self.decider.wme_changes += fresh.len() as u64;
-            for &w in fresh.iter().rev() {
-                if let Some(wme) = self.wm.get(w).copied() {
-                    self.trace_wme(true, &wme);
-                    self.match_wme_now(w, (wme.id, wme.attr, wme.value), false);
-                }
+            // 9.6's instantiation lists its preferences in the reverse of its buffers.
+            let triples: Vec<(Sym, Sym, Sym)> = buffered
+                .meta
+                .iter()
+                .rev()
+                .chain(buffered.retrieval.iter().rev())
+                .copied()
+                .collect();
+            let conditions = self.memory_command_conditions((state, link, cmd, res));
+            let made = self.add_recall_prefs(&triples, &conditions);
+            let meta = made[..buffered.meta.len()].to_vec();
+            if !made.is_empty() || live_before > 0 {
+                work.push(Work {
+                    state,
+                    level,
+                    link,
+                    cmd,
+                    res,
+                    cmd_wmes,
+                    made,
+                    gone_wmes,
+                });
             }
-            if self.wma.on() && !fresh.is_empty() {
-                let mut conditions: Vec<WmeId> = [(state, link), (link, cmd), (link, res)]
+            self.smem.links.by_link.entry(link).or_default().results = meta;
+        }
+        if work.is_empty() {
+            return;
+        }
+        if let Some(o_support) = header {
+            self.emit(&crate::trace_events::TraceEvent::ChangeWorkingMemory { o_support });
+        }
+        let newest_before = self.wm.next_timetag();
+        self.update_slots();
+        for w in work {
+            // What the command's results took the place of no longer needs its origins.
+            let still: Vec<u64> = w.gone_wmes.iter().copied().filter(|&t| self.wm.by_timetag(t).is_none()).collect();
+            self.forget_memory_results(still);
+            let fresh: Vec<WmeId> = w
+                .made
+                .iter()
+                .filter_map(|&p| self.recall_wme(p))
+                .filter(|&x| self.wm.get(x).is_some_and(|x| x.timetag >= newest_before))
+                .collect();
+            if fresh.is_empty() {
+                continue;
+            }
+            if self.wma.on() {
+                let mut conditions: Vec<WmeId> = [(w.state, w.link), (w.link, w.cmd), (w.link, w.res)]
                     .into_iter()
                     .filter_map(|(id, value)| self.wme_linking(id, value))
                     .collect();
-                conditions.extend(cmd_wmes.iter().filter_map(|w| self.wm.by_timetag(w.timetag)));
+                conditions.extend(w.cmd_wmes.iter().filter_map(|x| self.wm.by_timetag(x.timetag)));
                 self.wma_memory_results(&fresh, &conditions);
             }
-            if !fresh.is_empty() {
-                let conditions = self.memory_command_conditions((state, link, cmd, res));
-                self.note_memory_results(level, res, &fresh, &conditions);
-            }
-            self.smem.links.by_link.entry(link).or_default().results = added;
-            // The old results go as 9.6 removes them: what was retrieved and nothing else
-            // links, newest first, then the result link's own WMEs, oldest first; what
-            // something else links stays (observed on soar-sml 9.6.5).
-            let (mut on_result, below): (Vec<WmeId>, Vec<WmeId>) = gone
-                .into_iter()
-                .partition(|&w| self.wm.get(w).is_some_and(|x| x.id == res));
-            // The `^success`es go first, then `^retrieved`, whatever their timetags.
-            let (success, retrieved) = (
-                self.symbols.find_str("success"),
-                self.symbols.find_str("retrieved"),
-            );
-            on_result.sort_by_key(|&w| {
-                let attr = self.wm.get(w).map(|x| x.attr);
-                let rank = if attr == success {
-                    0
-                } else if attr == retrieved {
-                    1
-                } else {
-                    2
-                };
-                (rank, self.wm.get(w).map_or(0, |x| x.timetag))
-            });
-            // The identifiers something off the result link links, found in one pass over
-            // working memory.
-            let linked: rustc_hash::FxHashSet<Sym> = if below.is_empty() {
-                Default::default()
-            } else {
-                self.wm
-                    .all()
-                    .into_iter()
-                    .filter(|w| !on_result.contains(w))
-                    .filter_map(|w| self.wm.get(w).map(|x| x.value))
-                    .collect()
-            };
-            let below: Vec<WmeId> = below
-                .into_iter()
-                .filter(|&w| self.wm.get(w).is_some_and(|x| !linked.contains(&x.id)))
-                .collect();
-            for w in below.into_iter().rev().chain(on_result) {
-                if let Some(wme) = self.wm.get(w).copied() {
-                    self.trace_wme(false, &wme);
-                    self.remove_wme(w);
-                    self.decider.wme_changes += 1;
-                    changed = true;
-                }
-            }
-        }
-        if changed {
-            self.collect_garbage();
+            let conditions = self.memory_command_conditions((w.state, w.link, w.cmd, w.res));
+            self.note_memory_results(w.level, w.res, &fresh, &conditions);
         }
     }
 
@@ -312,32 +307,36 @@ impl AgentCore {
         Some(c)
     }
 
-    /// Carries a command out; the WMEs of its results, in the order they are made.
+    /// Carries a command out: its results go into `out`, in the order 9.6 buffers them.
     fn smem_process(
         &mut self,
         cmd_id: Sym,
         res: Sym,
         level: u32,
         wmes: &[Wme],
-        replacing: bool,
-    ) -> Vec<WmeId> {
-        let mut added = Vec::new();
+        out: &mut Buffered,
+    ) {
         // 9.6.5 answers a malformed command with `^bad-cmd <command>` (observed).
         let t = self.smem.timer_start(super::timer::API);
         let cmd = self.smem_command(wmes);
         self.smem.timers.stop(t);
         let Some(cmd) = cmd else {
-            self.smem_result(res, "bad-cmd", None, Some(cmd_id), &mut added);
-            return added;
+            self.smem_result(res, "bad-cmd", cmd_id, out);
+            return;
         };
-        // Several stores go newest WME first, as 9.6 lists a slot's WMEs.
+        // Several stores go newest WME first, as 9.6 lists a slot's WMEs; their
+        // `^success`es are buffered the other way round.
+        let mut stored = Vec::new();
         for &s in cmd.stores.iter().rev() {
             let t = self.smem.timer_start(super::timer::STORAGE);
-            let stored = self.smem_store_object(s);
+            let done = self.smem_store_object(s);
             self.smem.timers.stop(t);
-            match stored {
-                Ok(()) => self.smem_result(res, "success", None, Some(s), &mut added),
-                Err(e) => self.smem_error(res, s, &e, &mut added),
+            stored.push((s, done));
+        }
+        for (s, done) in stored.into_iter().rev() {
+            match done {
+                Ok(()) => self.smem_result(res, "success", s, out),
+                Err(e) => self.smem_error(res, s, &e, out),
             }
         }
         let depth = cmd.depth.unwrap_or(1);
@@ -357,35 +356,21 @@ impl AgentCore {
                     if let Some(d) = self.symbols.id_data_mut(sti) {
                         d.lti = lti;
                     }
-                    let installed = activate.and_then(|()| {
-                        self.smem_install(sti, lti, level, depth, &mut added)
-                    });
+                    let installed = activate.and_then(|()| self.smem_install(sti, lti, level, depth, out));
                     match installed {
-                        // 9.6 gives `^retrieved` the later timetag on a fresh result and
-                        // `^success` on one that replaces an earlier command's (observed
-                        // on soar-sml 9.6.5).
-                        // The negative cue's `^success` comes before the cue's.
+                        // The cue's `^success`, the negative cue's, then `^retrieved`.
                         Ok(()) => {
-                            if replacing {
-                                // The `^depth-retrieved` slot is new, where the others
-                                // are still marked from the old results' removal: it is
-                                // decided first.
-                                self.smem_depth_results(res, &mut added);
-                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
+                            for x in [Some(q), cmd.neg_query].into_iter().flatten() {
+                                self.smem_result(res, "success", x, out);
                             }
-                            for x in [cmd.neg_query, Some(q)].into_iter().flatten() {
-                                self.smem_result(res, "success", None, Some(x), &mut added);
-                            }
-                            if !replacing {
-                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
-                            }
-                            self.smem_depth_results(res, &mut added);
+                            self.smem_result(res, "retrieved", sti, out);
+                            self.smem_depth_results(res, out);
                         }
-                        Err(e) => self.smem_error(res, q, &e, &mut added),
+                        Err(e) => self.smem_error(res, q, &e, out),
                     }
                 }
-                Ok(None) => self.smem_result(res, "failure", None, Some(q), &mut added),
-                Err(e) => self.smem_error(res, q, &e, &mut added),
+                Ok(None) => self.smem_result(res, "failure", q, out),
+                Err(e) => self.smem_error(res, q, &e, out),
             }
         }
         if let Some(r) = cmd.retrieve {
@@ -408,70 +393,43 @@ impl AgentCore {
                     let done = self
                         .smem
                         .activate(lti)
-                        .and_then(|()| self.smem_install(sti, lti, level, depth, &mut added));
+                        .and_then(|()| self.smem_install(sti, lti, level, depth, out));
                     match done {
                         Ok(()) => {
-                            if replacing {
-                                self.smem_depth_results(res, &mut added);
-                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
-                            }
-                            self.smem_result(res, "success", None, Some(r), &mut added);
-                            if !replacing {
-                                self.smem_result(res, "retrieved", None, Some(sti), &mut added);
-                            }
-                            self.smem_depth_results(res, &mut added);
+                            self.smem_result(res, "success", r, out);
+                            self.smem_result(res, "retrieved", sti, out);
+                            self.smem_depth_results(res, out);
                         }
-                        Err(e) => self.smem_error(res, r, &e, &mut added),
+                        Err(e) => self.smem_error(res, r, &e, out),
                     }
                 }
-                Ok(false) => self.smem_result(res, "failure", None, Some(r), &mut added),
-                Err(e) => self.smem_error(res, r, &e, &mut added),
+                Ok(false) => self.smem_result(res, "failure", r, out),
+                Err(e) => self.smem_error(res, r, &e, out),
             }
         }
-        added
     }
 
     /// A database failure: the message on the print stream and `^failure` of what was
     /// asked.
-    fn smem_error(&mut self, res: Sym, asked: Sym, e: &str, added: &mut Vec<WmeId>) {
+    fn smem_error(&mut self, res: Sym, asked: Sym, e: &str, out: &mut Buffered) {
         self.fresh_line();
         self.output.push_str(e);
         self.output.push('\n');
-        self.smem_result(res, "failure", None, Some(asked), added);
+        self.smem_result(res, "failure", asked, out);
     }
 
     /// `(res ^depth-retrieved X)` for each identifier a deeper retrieval filled (observed
     /// on soar-sml 9.6.5).
-    fn smem_depth_results(&mut self, res: Sym, added: &mut Vec<WmeId>) {
-        for x in std::mem::take(&mut self.smem.links.deeper).into_iter().rev() {
-            self.smem_result(res, "depth-retrieved", None, Some(x), added);
+    fn smem_depth_results(&mut self, res: Sym, out: &mut Buffered) {
+        for x in std::mem::take(&mut self.smem.links.deeper) {
+            self.smem_result(res, "depth-retrieved", x, out);
         }
     }
 
-    /// `(res ^attr value)` into working memory (matched later, with the others).
-    fn smem_result(
-        &mut self,
-        res: Sym,
-        attr: &str,
-        word: Option<&str>,
-        value: Option<Sym>,
-        added: &mut Vec<WmeId>,
-    ) {
+    /// `(res ^attr value)` among the results on the result link.
+    fn smem_result(&mut self, res: Sym, attr: &str, value: Sym, out: &mut Buffered) {
         let a = self.symbols.str(attr);
-        let v = match (word, value) {
-            (_, Some(v)) => v,
-            (Some(w), None) => self.symbols.str(w),
-            (None, None) => return,
-        };
-        let again = self.smem.links.reusable.iter().position(|&w| {
-            self.wm
-                .get(w)
-                .is_some_and(|x| (x.id, x.attr, x.value) == (res, a, v))
-        });
-        match again {
-            Some(i) => added.push(self.smem.links.reusable.swap_remove(i)),
-            None => added.push(self.wm.add(res, a, v, false)),
-        }
+        out.meta.push((res, a, value));
     }
 
     fn smem_sym(&mut self, v: &Val) -> Sym {
@@ -501,10 +459,10 @@ impl AgentCore {
         lti: i64,
         level: u32,
         depth: i64,
-        added: &mut Vec<WmeId>,
+        out: &mut Buffered,
     ) -> Result<(), String> {
         let t = self.smem.timer_start(super::timer::NCB_RETRIEVAL);
-        let done = self.smem_install_below(sti, lti, level, depth, added);
+        let done = self.smem_install_below(sti, lti, level, depth, out);
         self.smem.timers.stop(t);
         done
     }
@@ -516,13 +474,9 @@ impl AgentCore {
         lti: i64,
         level: u32,
         depth: i64,
-        added: &mut Vec<WmeId>,
+        out: &mut Buffered,
     ) -> Result<(), String> {
-        let mut augs = self.smem.store()?.augs(lti)?;
-        // 9.6 makes an attribute's values last first (observed on soar-sml 9.6.5).
-        for run in augs.chunk_by_mut(|x, y| x.0 == y.0) {
-            run.reverse();
-        }
+        let augs = self.smem.store()?.augs(lti)?;
         let mut children = Vec::new();
         for (a, v) in augs {
             let attr = self.smem_sym(&a);
@@ -537,12 +491,12 @@ impl AgentCore {
                 }
                 v => self.smem_sym(&v),
             };
-            added.push(self.wm.add(sti, attr, value, false));
+            out.retrieval.push((sti, attr, value));
         }
         if depth > 1 {
             for (child, l) in children {
                 self.smem.links.deeper.push(child);
-                self.smem_install_below(child, l, level, depth - 1, added)?;
+                self.smem_install_below(child, l, level, depth - 1, out)?;
             }
         }
         Ok(())

@@ -174,7 +174,8 @@ impl AgentCore {
         let mut best: Option<(u32, PrefId)> = None;
         for pid in slot.prefs_for(wme.value) {
             let p = &self.decider.prefs[pid];
-            if p.alive && p.kind == PrefType::Acceptable {
+            // A memory's retrieval is not a decision's: its WMEs keep their own support.
+            if p.alive && p.kind == PrefType::Acceptable && !p.recall {
                 let level = p
                     .inst
                     .and_then(|i| self.decider.insts[i].goal)
