@@ -72,6 +72,32 @@ impl AgentCore {
         }
     }
 
+    /// Takes a command's last results on the result link out, last made first (9.6's
+    /// `clear_result`); returns the timetags of their WMEs, for
+    /// [`forget_gone_results`](Self::forget_gone_results) once the slots are decided.
+    pub(crate) fn clear_recall_results(&mut self, gone: &[RecallPref]) -> Vec<u64> {
+        let timetags = gone
+            .iter()
+            .filter(|&&p| self.is_live_recall_pref(p))
+            .filter_map(|&p| self.recall_wme(p))
+            .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
+            .collect();
+        let last_first: Vec<RecallPref> = gone.iter().rev().copied().collect();
+        self.remove_recall_prefs(&last_first);
+        timetags
+    }
+
+    /// The results among `timetags` that left working memory no longer need their
+    /// origins (a result made again keeps its WME, and its origin).
+    pub(crate) fn forget_gone_results(&mut self, timetags: &[u64]) {
+        let gone: Vec<u64> = timetags
+            .iter()
+            .copied()
+            .filter(|&t| self.wm.by_timetag(t).is_none())
+            .collect();
+        self.forget_memory_results(gone);
+    }
+
     /// Whether a recall preference still stands.
     pub(crate) fn is_live_recall_pref(&self, (pid, serial): RecallPref) -> bool {
         pid.index() < self.decider.prefs.len()

@@ -231,13 +231,12 @@ impl AgentCore {
             return;
         }
         let wm_phase = self.epmem_timer(super::timer::WM_PHASE);
-        let mut made: Vec<(Sym, Link, Vec<RecallPref>)> = Vec::new();
+        let mut made: Vec<(Sym, Link, Vec<RecallPref>, Vec<u64>)> = Vec::new();
         for ((lnk, cmd, res), state, cmds) in work {
             let link = self.epmem.links.entry(state).or_default();
             let gone = std::mem::take(&mut link.meta);
             link.results.clear();
-            self.forget_recall_results(&gone);
-            self.remove_recall_prefs(&gone.iter().rev().copied().collect::<Vec<_>>());
+            let gone_wmes = self.clear_recall_results(&gone);
             let (mut meta, mut retrieval) = (Triples::new(), Triples::new());
             if let Some(cmds) = cmds {
                 self.epmem_command(state, res, &cmds, &mut meta, &mut retrieval);
@@ -247,11 +246,12 @@ impl AgentCore {
             let conditions = self.memory_command_conditions((state, lnk, cmd, res));
             let prefs = self.add_recall_prefs(&triples, &conditions);
             self.epmem.links.entry(state).or_default().meta = prefs[..meta.len()].to_vec();
-            made.push((state, (lnk, cmd, res), prefs));
+            made.push((state, (lnk, cmd, res), prefs, gone_wmes));
         }
         let newest_before = self.wm.next_timetag();
         self.update_slots();
-        for (state, (lnk, cmd, res), prefs) in made {
+        for (state, (lnk, cmd, res), prefs, gone_wmes) in made {
+            self.forget_gone_results(&gone_wmes);
             // The results in the order of their triples: the episode's, then the meta
             // results (`print` lists them so).
             let wmes: Vec<WmeId> = prefs.iter().rev().filter_map(|&p| self.recall_wme(p)).collect();
@@ -269,17 +269,6 @@ impl AgentCore {
             }
         }
         self.epmem.timers.stop(wm_phase);
-    }
-
-    /// The results on a result link that go: they no longer need their origins.
-    fn forget_recall_results(&mut self, gone: &[RecallPref]) {
-        let timetags: Vec<u64> = gone
-            .iter()
-            .filter(|&&p| self.is_live_recall_pref(p))
-            .filter_map(|&p| self.recall_wme(p))
-            .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
-            .collect();
-        self.forget_memory_results(timetags);
     }
 
     /// Reads and carries out one state's command.

@@ -186,14 +186,7 @@ impl AgentCore {
             // The last command's results on the result link go first, last made first;
             // then the new command's preferences come in (9.6's `smem_clear_result`,
             // then its instantiation).
-            let gone_wmes: Vec<u64> = gone
-                .iter()
-                .filter(|&&p| self.is_live_recall_pref(p))
-                .filter_map(|&p| self.recall_wme(p))
-                .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
-                .collect();
-            let live_before = gone.iter().filter(|&&p| self.is_live_recall_pref(p)).count();
-            self.remove_recall_prefs(&gone.iter().rev().copied().collect::<Vec<_>>());
+            let gone_wmes = self.clear_recall_results(&gone);
             let mut buffered = Buffered::default();
             if process && !cmd_wmes.is_empty() {
                 self.smem_process(cmd, res, level, &cmd_wmes, &mut buffered);
@@ -209,7 +202,7 @@ impl AgentCore {
             let conditions = self.memory_command_conditions((state, link, cmd, res));
             let made = self.add_recall_prefs(&triples, &conditions);
             let meta = made[..buffered.meta.len()].to_vec();
-            if !made.is_empty() || live_before > 0 {
+            if !made.is_empty() || !gone_wmes.is_empty() {
                 work.push(Work {
                     state,
                     level,
@@ -232,9 +225,7 @@ impl AgentCore {
         let newest_before = self.wm.next_timetag();
         self.update_slots();
         for w in work {
-            // What the command's results took the place of no longer needs its origins.
-            let still: Vec<u64> = w.gone_wmes.iter().copied().filter(|&t| self.wm.by_timetag(t).is_none()).collect();
-            self.forget_memory_results(still);
+            self.forget_gone_results(&w.gone_wmes);
             let fresh: Vec<WmeId> = w
                 .made
                 .iter()
@@ -347,27 +338,9 @@ impl AgentCore {
             let found = self.smem.query_first(&cue, 1).map(|f| f.first().copied());
             match found {
                 Ok(Some(lti)) => {
-                    let activate = if self.smem.params.activate_on_query() {
-                        self.smem.activate(lti)
-                    } else {
-                        Ok(())
-                    };
-                    let sti = self.symbols.new_id('L', level);
-                    if let Some(d) = self.symbols.id_data_mut(sti) {
-                        d.lti = lti;
-                    }
-                    let installed = activate.and_then(|()| self.smem_install(sti, lti, level, depth, out));
-                    match installed {
-                        // The cue's `^success`, the negative cue's, then `^retrieved`.
-                        Ok(()) => {
-                            for x in [Some(q), cmd.neg_query].into_iter().flatten() {
-                                self.smem_result(res, "success", x, out);
-                            }
-                            self.smem_result(res, "retrieved", sti, out);
-                            self.smem_depth_results(res, out);
-                        }
-                        Err(e) => self.smem_error(res, q, &e, out),
-                    }
+                    let activate = self.smem.params.activate_on_query();
+                    let successes: Vec<Sym> = [Some(q), cmd.neg_query].into_iter().flatten().collect();
+                    self.smem_answer(res, lti, (level, depth), activate, &successes, out);
                 }
                 Ok(None) => self.smem_result(res, "failure", q, out),
                 Err(e) => self.smem_error(res, q, &e, out),
@@ -383,29 +356,42 @@ impl AgentCore {
             }
             let exists = self.smem.store().and_then(|s| s.lti_exists(lti));
             match exists {
-                Ok(true) => {
-                    let sti = self.symbols.new_id('L', level);
-                    if let Some(d) = self.symbols.id_data_mut(sti) {
-                        d.lti = lti;
-                    }
-                    // A retrieve activates the LTI, as a query does (9.6's
-                    // `install_memory` with activation; observed on soar-sml 9.6.5).
-                    let done = self
-                        .smem
-                        .activate(lti)
-                        .and_then(|()| self.smem_install(sti, lti, level, depth, out));
-                    match done {
-                        Ok(()) => {
-                            self.smem_result(res, "success", r, out);
-                            self.smem_result(res, "retrieved", sti, out);
-                            self.smem_depth_results(res, out);
-                        }
-                        Err(e) => self.smem_error(res, r, &e, out),
-                    }
-                }
+                // A retrieve activates the LTI, as a query does (9.6's `install_memory`
+                // with activation; observed on soar-sml 9.6.5).
+                Ok(true) => self.smem_answer(res, lti, (level, depth), true, &[r], out),
                 Ok(false) => self.smem_result(res, "failure", r, out),
                 Err(e) => self.smem_error(res, r, &e, out),
             }
+        }
+    }
+
+    /// A query's or retrieve's answer: a new identifier for the LTI (activated first if
+    /// `activate`), its augmentations down to `depth`, then a `^success` for each of
+    /// `successes` (a query's cue, then its negative cue), `^retrieved` and the deeper
+    /// levels' `^depth-retrieved`.
+    fn smem_answer(
+        &mut self,
+        res: Sym,
+        lti: i64,
+        (level, depth): (u32, i64),
+        activate: bool,
+        successes: &[Sym],
+        out: &mut Buffered,
+    ) {
+        let sti = self.symbols.new_id('L', level);
+        if let Some(d) = self.symbols.id_data_mut(sti) {
+            d.lti = lti;
+        }
+        let activated = if activate { self.smem.activate(lti) } else { Ok(()) };
+        match activated.and_then(|()| self.smem_install(sti, lti, level, depth, out)) {
+            Ok(()) => {
+                for &x in successes {
+                    self.smem_result(res, "success", x, out);
+                }
+                self.smem_result(res, "retrieved", sti, out);
+                self.smem_depth_results(res, out);
+            }
+            Err(e) => self.smem_error(res, successes[0], &e, out),
         }
     }
 
