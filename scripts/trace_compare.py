@@ -33,7 +33,15 @@ BINARY = os.path.join(ROOT, "target", "release", "rusoar")
 MARK = "@@trace-compare@@"
 
 
-def official(kernel, path, trace_cmd, run_cmd):
+def official(path, trace_cmd, run_cmd):
+    """The official kernel's text, from a process of its own: 9.6 orders some structures
+    by memory address, so an agent run after others in one process can list them in
+    another order than it does alone."""
+    args = [sys.executable, os.path.abspath(__file__), "--official-one", path, trace_cmd, run_cmd]
+    return subprocess.run(args, capture_output=True, text=True, cwd=ROOT).stdout
+
+
+def official_here(kernel, path, trace_cmd, run_cmd):
     agent = kernel.CreateAgent("compare")
     printed = []
     cb = agent.RegisterForPrintEvent(
@@ -65,7 +73,18 @@ def agent_path(name):
     return os.path.join(AGENTS, name + ".soar")
 
 
+def official_one(path, trace_cmd, run_cmd):
+    kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
+    try:
+        sys.stdout.write(official_here(kernel, path, trace_cmd, run_cmd))
+    finally:
+        kernel.Shutdown()
+
+
 def main():
+    if sys.argv[1:2] == ["--official-one"]:
+        official_one(*sys.argv[2:5])
+        return 0
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("agents", nargs="*")
     p.add_argument("--levels", default="2,3,4,5")
@@ -82,44 +101,40 @@ def main():
         if args.trace
         else ["trace %s" % l for l in args.levels.split(",")]
     )
-    kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
     bad = 0
-    try:
-        for name in names:
-            path = agent_path(name)
-            row = []
-            for t in traces:
-                a = official(kernel, path, t, args.run)
-                b = ours(path, t, args.run)
-                if args.show:
-                    print("=== official: %s, %s" % (name, t))
-                    sys.stdout.write(a)
-                    print("=== rusoar: %s, %s" % (name, t))
-                    sys.stdout.write(b)
-                if a == b:
-                    row.append("%s: same" % t)
-                    continue
-                bad += 1
-                la, lb = a.splitlines(True), b.splitlines(True)
-                first = next(
-                    (i for i, (x, y) in enumerate(zip(la, lb)) if x != y),
-                    min(len(la), len(lb)),
+    for name in names:
+        path = agent_path(name)
+        row = []
+        for t in traces:
+            a = official(path, t, args.run)
+            b = ours(path, t, args.run)
+            if args.show:
+                print("=== official: %s, %s" % (name, t))
+                sys.stdout.write(a)
+                print("=== rusoar: %s, %s" % (name, t))
+                sys.stdout.write(b)
+            if a == b:
+                row.append("%s: same" % t)
+                continue
+            bad += 1
+            la, lb = a.splitlines(True), b.splitlines(True)
+            first = next(
+                (i for i, (x, y) in enumerate(zip(la, lb)) if x != y),
+                min(len(la), len(lb)),
+            )
+            row.append("%s: differs at line %d" % (t, first + 1))
+            if not args.show:
+                lo = max(0, first - args.context)
+                diff = difflib.unified_diff(
+                    la[lo : first + 8],
+                    lb[lo : first + 8],
+                    "official",
+                    "rusoar",
+                    n=args.context,
                 )
-                row.append("%s: differs at line %d" % (t, first + 1))
-                if not args.show:
-                    lo = max(0, first - args.context)
-                    diff = difflib.unified_diff(
-                        la[lo : first + 8],
-                        lb[lo : first + 8],
-                        "official",
-                        "rusoar",
-                        n=args.context,
-                    )
-                    sys.stdout.write("--- %s, %s\n" % (name, t))
-                    sys.stdout.writelines(diff)
-            print("%-28s %s" % (name, "; ".join(row)))
-    finally:
-        kernel.Shutdown()
+                sys.stdout.write("--- %s, %s\n" % (name, t))
+                sys.stdout.writelines(diff)
+        print("%-28s %s" % (name, "; ".join(row)))
     return 1 if bad else 0
 
 

@@ -167,11 +167,15 @@ impl AgentCore {
             }
         }
         // The first unlinked by the phase on top: 9.6 makes the changes in the reverse of
-        // the order it lists them in, and collects the last object unlinked first.
+        // the order it lists them in, and collects the last object unlinked first. An
+        // object is unlinked when its last link goes: of the removals that name it, the
+        // last counts (a selected operator's object goes with its `+` WME, not before).
+        let mut named = vec![false; objects.len()];
         let mut stack: Vec<usize> = candidates
             .iter()
             .rev()
             .filter_map(|&c| find(c))
+            .filter(|&k| !std::mem::replace(&mut named[k], true))
             .filter(|&k| links[k] == 0)
             .collect();
         let mut done = vec![false; objects.len()];
