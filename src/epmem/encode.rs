@@ -168,6 +168,11 @@ impl AgentCore {
                 let mut gone = VecDeque::new();
                 self.epmem_unstore(&w, &mut gone);
                 while let Some(id) = gone.pop_front() {
+                    // The top state is the episode's root: a substate's `^superstate`
+                    // pointed at it, but nothing stored needs to for it to stay.
+                    if id == self.top.state {
+                        continue;
+                    }
                     if self.epmem.encoder.node_of.remove(&id).is_some() {
                         for x in self.epmem_augs_of(id) {
                             self.epmem_unstore(&x, &mut gone);
