@@ -10,7 +10,7 @@ For each agent and level, both kernels get, in a fresh agent:
     run RUN              (default: run 50)
 
 The official kernel's text of the run is what its print callback received during `run`
-followed by run's result; rusoar's is what the binary (target/release/rusoar) printed for
+followed by run's result, in a process of its own for each agent and level; rusoar's is what the binary (target/release/rusoar) printed for
 that command. They are compared line for line; the first difference is shown.
 
 usage: python3 scripts/trace_compare.py [--levels 2,3,4,5] [--run 'run 50']
