@@ -23,6 +23,9 @@ pub(crate) enum TraceEvent<'a> {
     /// The firings of one goal in an elaboration cycle begin (`trace --waterfall`); no
     /// goal when only the retractions of goals that are gone are pending.
     InnerElaboration { level: u32, goal: Option<Sym> },
+    /// A match below the active goal waits: an action of it adds to `id`, at `level`, on
+    /// or above the elaboration cycle's change level (`trace --waterfall`).
+    WaterfallAbort { id: Sym, level: u32, change_level: u32 },
     /// A WME enters (`added`) or leaves working memory (`trace --wmes`).
     /// With working-memory activation on, the WME's activation (printed after it).
     Wme {

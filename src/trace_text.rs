@@ -47,6 +47,18 @@ impl TraceText96 {
                     "\n--- Inner Elaboration Phase, active level {level} goal {goal} ---"
                 );
             }
+            TraceEvent::WaterfallAbort {
+                id,
+                level,
+                change_level,
+            } => {
+                let _ = writeln!(
+                    out,
+                    "*** Waterfall: aborting firing because ({} * *) level {level} is on or \
+                     higher (lower int) than change level {change_level}",
+                    symbols.text(id)
+                );
+            }
             TraceEvent::Wme {
                 added,
                 wme,

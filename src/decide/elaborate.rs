@@ -413,7 +413,7 @@ impl AgentCore {
         };
         let mut wmes = std::mem::take(&mut self.decider.rhs_wmes);
         self.rete.token_wmes(t, &mut wmes);
-        let mut waits = false;
+        let mut waits = None;
         for action in rule.actions.iter() {
             let Act::Make { id, .. } = action else {
                 continue;
@@ -423,15 +423,23 @@ impl AgentCore {
                 Term::Bound(depth, field) => self.rete.field_at(&wmes, *depth, *field),
                 _ => None,
             };
-            if sym
-                .and_then(|s| self.symbols.id_data(s))
-                .is_some_and(|d| d.level <= change_level)
-            {
-                waits = true;
+            let level = sym.and_then(|s| Some((s, self.symbols.id_data(s)?.level)));
+            if let Some((s, l)) = level.filter(|&(_, l)| l <= change_level) {
+                waits = Some((s, l));
                 break;
             }
         }
         self.decider.rhs_wmes = wmes;
-        waits
+        // 9.6 tries the firing and aborts it, saying so (checked on soar-sml 9.6.5).
+        if let Some((id, level)) = waits {
+            if self.settings.trace.waterfall {
+                self.emit(&crate::trace_events::TraceEvent::WaterfallAbort {
+                    id,
+                    level,
+                    change_level,
+                });
+            }
+        }
+        waits.is_some()
     }
 }
