@@ -1,9 +1,9 @@
-//! The memories' retrievals as preferences. 9.6 puts what semantic memory retrieves into
-//! working memory through an instantiation of its own, `|Memory System Recall|`, whose
-//! acceptable preferences join their slots as a rule's do: the slots decide the WMEs (and
-//! so their timetags), the next command's retrieval removes the preferences on the result
-//! link, and the retrieved objects go with the garbage once nothing links them (Soar
-//! manual, ch. 6, "Semantic Memory", "Working Memory Interface").
+//! The memories' retrievals as preferences. 9.6 puts what semantic and episodic memory
+//! retrieve into working memory through an instantiation of its own, `|Memory System
+//! Recall|`, whose acceptable preferences join their slots as a rule's do: the slots
+//! decide the WMEs (and so their timetags), the next command's retrieval removes the
+//! preferences on the result link, and the retrieved objects go with the garbage once
+//! nothing links them (Soar manual, ch. 6 and 7, "Working Memory Interface").
 
 use super::procedure::PrefType;
 pub(crate) use super::state::RecallPref;
