@@ -367,6 +367,7 @@ impl AgentCore {
             let value = pref.value;
             if let Some(slot) = self.decider.slots.id_of(&key) {
                 self.decider.slots.slot_mut(slot).remove(pid, value);
+                self.pref_link_removed(pid);
                 self.mark_changed(key, Some(slot));
                 self.decider.slots.drop_if_empty(slot);
             } else {

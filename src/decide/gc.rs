@@ -3,6 +3,7 @@
 //! link are searched upward for a goal, and the structure below one that has none goes.
 
 use super::scratch::GcScratch;
+use super::state::PrefId;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
@@ -20,6 +21,20 @@ impl AgentCore {
             }
         }
         self.decider.slots.recycle(slot);
+    }
+
+    /// A preference left its slot. 9.6 counts a preference's identifier value (and a
+    /// binary preference's referent) as a link to that object, as it counts a WME's: the
+    /// object may now be unlinked, and the first link to go places it in the collection
+    /// order.
+    pub(crate) fn pref_link_removed(&mut self, pid: PrefId) {
+        let p = &self.decider.prefs[pid];
+        let linked = [Some(p.value), p.referent];
+        for s in linked.into_iter().flatten() {
+            if self.symbols.is_id(s) {
+                self.decider.gc_candidates.push(s);
+            }
+        }
     }
 
     /// Removes WMEs no longer linked to a goal or the io link. Only identifiers that lost a
@@ -166,18 +181,17 @@ impl AgentCore {
                 links[k] += 1;
             }
         }
-        // The first unlinked by the phase on top: 9.6 makes the changes in the reverse of
-        // the order it lists them in, and collects the last object unlinked first. An
-        // object is unlinked when its last link goes: of the removals that name it, the
-        // last counts (a selected operator's object goes with its `+` WME, not before).
+        // The first unlinked by the phase on top: 9.6 notes an object when the first of
+        // its links (a WME or a preference) goes, and collects the objects it noted in
+        // that order.
         let mut named = vec![false; objects.len()];
         let mut stack: Vec<usize> = candidates
             .iter()
-            .rev()
             .filter_map(|&c| find(c))
             .filter(|&k| !std::mem::replace(&mut named[k], true))
             .filter(|&k| links[k] == 0)
             .collect();
+        stack.reverse();
         let mut done = vec![false; objects.len()];
         let mut order = Vec::with_capacity(rows.len());
         let mut slot_rows: Vec<(u64, Reverse<u64>, WmeId, Sym)> = Vec::new();
@@ -185,20 +199,16 @@ impl AgentCore {
             if std::mem::replace(&mut done[k], true) {
                 continue;
             }
-            // The WMEs without a slot first, by attribute in the order of each one's
-            // first WME; then the slots newest first; each attribute's WMEs newest first.
+            // The WMEs without a slot (input and architecture WMEs) first, newest first,
+            // as 9.6 keeps its input WMEs; then the slots newest first, each slot's WMEs
+            // newest first.
             let (object, start, end) = objects[k];
             let slots = self.decider.slots.attrs_of(object);
             slot_rows.clear();
-            let mut first = (None, 0);
             for r in &rows[start..end] {
-                if first.0 != Some(r.1) {
-                    first = (Some(r.1), r.2);
-                }
-                const SLOTTED: u64 = 1 << 63;
                 let rank = match slots.iter().position(|&a| a == r.1) {
-                    Some(i) => SLOTTED + (slots.len() - i) as u64,
-                    None => first.1,
+                    Some(i) => 1 + (slots.len() - i) as u64,
+                    None => 0,
                 };
                 slot_rows.push((rank, Reverse(r.2), r.3, r.4));
             }

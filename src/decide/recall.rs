@@ -17,9 +17,11 @@ impl AgentCore {
     /// 9.6's preferences trace lists them in), into their slots; o-supported when the last
     /// wave of firings was, as 9.6 prints them. `conditions` are the command's WMEs that
     /// 9.6's instantiation tests (`preferences --wmes` lists them). The WMEs come at the
-    /// next [`update_slots`](Self::update_slots).
+    /// next [`update_slots`](Self::update_slots). They belong to `state`'s firings: a
+    /// substate's go with it, listed among its rules' preferences in the order made.
     pub(crate) fn add_recall_prefs(
         &mut self,
+        state: Sym,
         triples: &[(Sym, Sym, Sym)],
         conditions: &[crate::wm::WmeId],
     ) -> Vec<RecallPref> {
@@ -48,6 +50,7 @@ impl AgentCore {
             });
             made.push((pid, self.decider.pref_serial(pid)));
             self.assert_preference(pid, tracing);
+            self.note_goal_pref(Some(state), pid);
         }
         made
     }
@@ -67,6 +70,7 @@ impl AgentCore {
             };
             self.trace_pref('-', pid);
             self.decider.slots.slot_mut(slot).remove(pid, value);
+            self.pref_link_removed(pid);
             self.decider.free_pref(pid);
             self.mark_changed(key, Some(slot));
         }

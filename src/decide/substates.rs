@@ -440,11 +440,14 @@ impl AgentCore {
     fn remove_goal_prefs(&mut self, state: Sym, made: &[MadePref]) {
         for (pid, what) in self.standing_prefs(state, made) {
             if what.0 == state {
+                // It goes with the state's slots; its links go now, in this order.
+                self.pref_link_removed(pid);
                 continue;
             }
             let key = (what.0, what.1);
             if let Some(slot) = self.decider.slots.id_of(&key) {
                 if self.decider.slots.slot_mut(slot).remove(pid, what.2) {
+                    self.pref_link_removed(pid);
                     self.mark_changed(key, Some(slot));
                     self.decider.slots.drop_if_empty(slot);
                     self.decider.free_pref(pid);

@@ -61,6 +61,7 @@ impl AgentCore {
                         .remove_value(value, &mut removed);
                 }
                 for &r in &removed {
+                    self.pref_link_removed(r);
                     self.decider.free_pref(r);
                 }
                 self.decider.free_pref(pid);

@@ -244,7 +244,7 @@ impl AgentCore {
             // 9.6's instantiation lists its preferences in the reverse of its buffers.
             let triples: Triples = meta.iter().rev().chain(retrieval.iter().rev()).copied().collect();
             let conditions = self.memory_command_conditions((state, lnk, cmd, res));
-            let prefs = self.add_recall_prefs(&triples, &conditions);
+            let prefs = self.add_recall_prefs(state, &triples, &conditions);
             self.epmem.links.entry(state).or_default().meta = prefs[..meta.len()].to_vec();
             made.push((state, (lnk, cmd, res), prefs, gone_wmes));
         }

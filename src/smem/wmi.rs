@@ -200,7 +200,7 @@ impl AgentCore {
                 .copied()
                 .collect();
             let conditions = self.memory_command_conditions((state, link, cmd, res));
-            let made = self.add_recall_prefs(&triples, &conditions);
+            let made = self.add_recall_prefs(state, &triples, &conditions);
             let meta = made[..buffered.meta.len()].to_vec();
             if !made.is_empty() || !gone_wmes.is_empty() {
                 work.push(Work {

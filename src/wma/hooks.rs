@@ -584,6 +584,7 @@ impl AgentCore {
             .collect();
         for &pid in &gone {
             self.decider.slots.slot_mut(slot).remove(pid, wme.value);
+            self.pref_link_removed(pid);
             self.decider.free_pref(pid);
         }
         if gone.is_empty() {
