@@ -199,18 +199,12 @@ impl AgentCore {
             if std::mem::replace(&mut done[k], true) {
                 continue;
             }
-            // The WMEs without a slot (input and architecture WMEs) first, newest first,
-            // as 9.6 keeps its input WMEs; then the slots newest first, each slot's WMEs
-            // newest first.
+            // In 9.6's order for the object's WMEs.
             let (object, start, end) = objects[k];
             let slots = self.decider.slots.attrs_of(object);
             slot_rows.clear();
             for r in &rows[start..end] {
-                let rank = match slots.iter().position(|&a| a == r.1) {
-                    Some(i) => 1 + (slots.len() - i) as u64,
-                    None => 0,
-                };
-                slot_rows.push((rank, Reverse(r.2), r.3, r.4));
+                slot_rows.push((collection_rank(slots, r.1), Reverse(r.2), r.3, r.4));
             }
             slot_rows.sort_unstable();
             for &(_, _, w, value) in &slot_rows {
@@ -234,6 +228,16 @@ impl AgentCore {
             order.extend(rest.into_iter().map(|(_, w)| w));
         }
         order
+    }
+
+    /// The WMEs of `object` in the order 9.6's garbage collection removes them (see
+    /// [`collection_rank`]).
+    pub(super) fn object_in_collection_order(&self, object: Sym) -> Vec<crate::wm::Wme> {
+        let slots = self.decider.slots.attrs_of(object);
+        let mut wmes: Vec<crate::wm::Wme> =
+            self.wm.of_id(object).filter_map(|w| self.wm.get(w).copied()).collect();
+        wmes.sort_by_key(|w| (collection_rank(slots, w.attr), std::cmp::Reverse(w.timetag)));
+        wmes
     }
 
     /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a
@@ -293,5 +297,17 @@ impl AgentCore {
             }
         }
         found
+    }
+}
+
+/// Where an object's WME with attribute `attr` goes when 9.6's garbage collection takes the
+/// object (`slots`: the object's slot attributes, oldest first): the WMEs without a slot
+/// (input and architecture WMEs) first, as 9.6 keeps its input WMEs, then the slots newest
+/// first (9.6 puts a new slot at the head of its object's list); a slot's WMEs go newest
+/// first.
+fn collection_rank(slots: &[Sym], attr: Sym) -> u64 {
+    match slots.iter().position(|&a| a == attr) {
+        Some(i) => 1 + (slots.len() - i) as u64,
+        None => 0,
     }
 }

@@ -132,7 +132,8 @@ pub struct Goal {
 /// Where a removed substate's WME goes in a phase's `<=WM:` listing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) enum SubstateLine {
-    /// The `^smem`/`^epmem`/`^reward-link` structure.
+    /// The `^smem`/`^epmem`/`^reward-link` structure, with the cues and retrievals that
+    /// go with it.
     Memories,
     /// Its slots' other WMEs.
     Other,

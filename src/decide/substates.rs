@@ -34,7 +34,8 @@ impl AgentCore {
         for (_, wme) in &held {
             self.trace_wme(false, wme);
         }
-        for (_, wme) in &lines[..memories] {
+        let links = self.memory_link_lines(gi);
+        for wme in &links {
             self.trace_wme(false, wme);
         }
         // The WMEs rules made on the substates (their slots' WMEs) go with them too: after
@@ -57,6 +58,7 @@ impl AgentCore {
             self.trace_wme(false, wme);
         }
         let traced = held.iter().chain(&proposed).map(|(_, w)| w.timetag);
+        let traced = traced.chain(links.iter().map(|w| w.timetag));
         self.decider.wmes_traced_gone.extend(traced);
     }
 
@@ -129,13 +131,13 @@ impl AgentCore {
     pub(crate) fn collect_substate_removals(&mut self, gi: usize) {
         use super::state::SubstateLine;
         let mut out = Vec::new();
+        let memories = self.memory_link_lines(gi);
+        self.decider.wmes_traced_gone.extend(memories.iter().map(|w| w.timetag));
+        out.extend(memories.into_iter().map(|w| (SubstateLine::Memories, w)));
         for (group, wme) in self.substate_lines(gi) {
-            let place = if group <= 2 {
-                SubstateLine::Memories
-            } else {
-                SubstateLine::Impasse
-            };
-            out.push((place, wme));
+            if group > 2 {
+                out.push((SubstateLine::Impasse, wme));
+            }
         }
         for (plus, wme) in self.substate_slot_wmes(gi) {
             let place = if plus {
@@ -194,6 +196,59 @@ impl AgentCore {
                     }
                 }
             }
+        }
+        out
+    }
+
+    /// The `<=WM:` lines of the memories' links of the goals below `gi` (`^smem`, `^epmem`,
+    /// `^reward-link` and the links' WMEs) and of the objects that go with them (the
+    /// commands' cues, the retrievals), in the order 9.6 lists them. 9.6 holds the links
+    /// in the state's slots and collects them with the state's garbage: the state's link
+    /// WMEs newest first, then each object whose last link went, the last one first (its
+    /// WMEs in [`Self::object_in_collection_order`]); the listing runs in reverse, the
+    /// shallowest goal's first. Seen on soar-sml 9.6.5, agent
+    /// `tests/commands/agents/epmem-superstate-link.soar` at trace 4.
+    fn memory_link_lines(&self, gi: usize) -> Vec<crate::wm::Wme> {
+        let k = self.symbols.known;
+        let mut out = Vec::new();
+        for g in &self.decider.goals[gi + 1..] {
+            let mut links: Vec<crate::wm::Wme> = g
+                .wmes
+                .iter()
+                .filter_map(|&w| self.wm.get(w).copied())
+                .filter(|w| {
+                    w.id == g.state
+                        && (w.attr == k.smem || w.attr == k.epmem || w.attr == k.reward_link)
+                })
+                .collect();
+            links.sort_by_key(|w| std::cmp::Reverse(w.timetag));
+            // What the state's other WMEs link goes with them, before the links.
+            let mut gone: FxHashSet<u64> =
+                self.wm.of_id(g.state).filter_map(|w| self.wm.get(w)).map(|w| w.timetag).collect();
+            let mut removal = Vec::new();
+            let mut stack: Vec<Sym> = Vec::new();
+            let mut taken = FxHashSet::default();
+            let mut next = links;
+            loop {
+                for w in next {
+                    removal.push(w);
+                    gone.insert(w.timetag);
+                    let v = w.value;
+                    let unlinked = self.symbols.is_id(v)
+                        && !self.symbols.is_goal(v)
+                        && self.wm.parent_wmes(v).iter().all(|&p| {
+                            self.wm.get(p).is_none_or(|x| gone.contains(&x.timetag))
+                        });
+                    if unlinked && taken.insert(v) {
+                        stack.push(v);
+                    }
+                }
+                let Some(x) = stack.pop() else {
+                    break;
+                };
+                next = self.object_in_collection_order(x);
+            }
+            out.extend(removal.into_iter().rev());
         }
         out
     }
