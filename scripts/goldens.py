@@ -53,8 +53,10 @@ Conventions (tests/conformance.rs follows the same ones):
             "srand 1\nwatch 1\nsource PATH\nrun 1000" with run_text, takes the output
             (trace and run summary together), then runs `stats`, and builds the same text.
 
-  Traces    for the agents in TRACE_AGENTS and each trace level
-            in TRACE_LEVELS, in a fresh agent of the official kernel:
+  Traces    for every agent in tests/agents/ and the long-run agents in LONG_TRACE_AGENTS,
+            and each trace level in TRACE_LEVELS, in a fresh agent of the official kernel
+            in a process of its own (9.6 orders some structures by memory address, so an
+            agent run after others in one process may list them in another order):
                 srand 1
                 source /abs/path/tests/agents/NAME.soar
                 trace LEVEL
@@ -62,9 +64,8 @@ Conventions (tests/conformance.rs follows the same ones):
             The print callback's text during `run 50`, then run's result text, go to
             tests/golden/traces/NAME.LEVEL.txt, whole (a newline added if the text does not
             end with one). tests/trace_goldens.rs runs the same commands in rusoar and
-            compares the text line for line. TRACE_AGENTS may name long-run agents
-            (`long/NAME`, tests/agents/long/NAME.soar): their traces go to
-            tests/golden/traces/long/.
+            compares the text line for line. The long-run agents (`long/NAME`,
+            tests/agents/long/NAME.soar) have their traces in tests/golden/traces/long/.
 
   Long runs for the agents in tests/agents/long/ (each with its number of decisions in
             LONG_RUNS), in a fresh agent of the official kernel:
@@ -98,6 +99,7 @@ import argparse
 import difflib
 import os
 import re
+import subprocess
 import sys
 import tempfile
 
@@ -110,39 +112,9 @@ AGENTS = os.path.join(ROOT, "tests", "agents")
 GOLDEN = os.path.join(ROOT, "tests", "golden")
 RUN = "run 1000"
 
-# Agents whose whole trace at levels 2 to 5 is kept as a golden (tests/trace_goldens.rs).
-TRACE_AGENTS = [
-    "blocks-world",
-    "float-negative-zero",
-    "gds",
-    "halt",
-    "impasse-conflict",
-    "impasse-state-no-change",
-    "justification-negation",
-    "learn-conjunctions",
-    "learn-except",
-    "learn-impasse-names",
-    "learn-justification",
-    "learn-lookahead",
-    "learn-local-negation-off",
-    "learn-max-chunks",
-    "learn-negation",
-    "learn-negation-order",
-    "learn-only",
-    "learn-only-substates",
-    "learn-tie-result",
-    "missionaries-cannibals",
-    "o-reject",
-    "prefs-binary",
-    "random-tokens",
-    "substate-removed-same-wave",
-    "substate-results",
-    "substates",
-    "support-declared",
-    "support-retraction",
-    "wait-snc",
-    "vs-sort",
-    "water-jug",
+# Long-run agents whose whole trace at levels 2 to 5 (of `run 50`) is kept as a golden too
+# (tests/trace_goldens.rs); every agent of tests/agents/ has its traces kept.
+LONG_TRACE_AGENTS = [
     "long/factorization",
     "long/fifteen-puzzle",
 ]
@@ -262,8 +234,26 @@ def run_agent(kernel, path, raw=False):
         kernel.DestroyAgent(agent)
 
 
-def trace_agent(kernel, path, level):
-    """The whole text the official kernel prints for `trace LEVEL` and `run 50`."""
+def trace_agent(path, level):
+    """The whole text the official kernel prints for `trace LEVEL` and `run 50`, from a
+    process of its own."""
+    args = [sys.executable, os.path.abspath(__file__), "--trace-one", path, str(level)]
+    done = subprocess.run(args, capture_output=True, text=True, cwd=ROOT)
+    if done.returncode != 0:
+        raise AgentError("%s: trace %d failed:\n%s" % (path, level, done.stderr))
+    return done.stdout
+
+
+def trace_agent_here(path, level):
+    """trace_agent's text, in this process's own kernel."""
+    kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
+    try:
+        return trace_agent_in(kernel, path, level)
+    finally:
+        kernel.Shutdown()
+
+
+def trace_agent_in(kernel, path, level):
     agent = kernel.CreateAgent("traces")
     printed = []
     cb = agent.RegisterForPrintEvent(
@@ -377,11 +367,11 @@ def generate(out_dir):
         traces = os.path.join(out_dir, "traces")
         os.makedirs(os.path.join(traces, "long"), exist_ok=True)
         wanted = set()
-        for name in TRACE_AGENTS:
+        for name in agent_names() + LONG_TRACE_AGENTS:
             for level in TRACE_LEVELS:
                 f = "%s.%d.txt" % (name, level)
                 wanted.add(f)
-                text = trace_agent(kernel, os.path.join(AGENTS, name + ".soar"), level)
+                text = trace_agent(os.path.join(AGENTS, name + ".soar"), level)
                 with open(os.path.join(traces, f), "w", newline="\n") as out:
                     out.write(text)
         for sub in ["", "long/"]:
@@ -456,6 +446,9 @@ def main():
         help="regenerate into a temporary folder and fail if tests/golden differs",
     )
     p.add_argument("--trace", metavar="NAME", help="print one agent's whole trace")
+    if sys.argv[1:2] == ["--trace-one"]:
+        sys.stdout.write(trace_agent_here(sys.argv[2], int(sys.argv[3])))
+        return 0
     args = p.parse_args()
     try:
         if args.trace:
