@@ -82,6 +82,7 @@ impl AgentCore {
     /// preferences, with 9.6's trace (`remove_current_decision`; the `REMOVING CONTEXT
     /// SLOT` line only when no operator was selected).
     fn remove_inconsistent_decision(&mut self, gi: usize, key: (Sym, Sym), empty_slot: bool) {
+        self.decider.decision_inconsistent = true;
         if self.settings.trace.consistency {
             self.emit(&TraceEvent::InconsistentDecision {
                 goal: key.0,

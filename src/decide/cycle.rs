@@ -306,9 +306,14 @@ impl AgentCore {
                     self.decider.e_cycles_this_phase = 0;
                     self.decider.phase_started = true;
                     self.decider.last_wave_o_support = false;
+                    self.decider.decision_inconsistent = false;
                 }
                 while self.has_pending(false) && !self.decider.halted {
                     if !self.elaboration_cycle() {
+                        break;
+                    }
+                    // An inconsistent decision sends the phase on to the decision.
+                    if std::mem::take(&mut self.decider.decision_inconsistent) {
                         break;
                     }
                     if self.has_pending(false) && self.max_elaborations_reached(Phase::Decide) {
@@ -347,9 +352,14 @@ impl AgentCore {
                     self.trace_phase(TraceEvent::PhaseBegin(Phase::Apply));
                     self.decider.phase_started = true;
                     self.decider.last_wave_o_support = true;
+                    self.decider.decision_inconsistent = false;
                 }
                 while self.has_pending_in_apply() && !self.decider.halted {
                     if !self.elaboration_cycle() {
+                        break;
+                    }
+                    // An inconsistent decision sends the phase on to the output phase.
+                    if std::mem::take(&mut self.decider.decision_inconsistent) {
                         break;
                     }
                     if self.has_pending_in_apply() && self.max_elaborations_reached(Phase::Output) {

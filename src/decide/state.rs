@@ -281,6 +281,10 @@ pub struct DecideState {
     /// impasses are checked for consistency at the next one (9.6 keeps a slot's changed
     /// flag until it is checked).
     pub consistency_pending: Vec<(Sym, Sym)>,
+    /// A consistency check found a goal's decision inconsistent and removed what was below
+    /// it: the propose or apply phase ends with the elaboration cycle, for the decision
+    /// procedure to run again (9.6's `determine_highest_active_production_level`).
+    pub decision_inconsistent: bool,
     /// Impasse WMEs the decision phase added and removed to bring an impasse's items up to
     /// date, in that order: they reach the trace and the matcher with the phase's other
     /// changes (see `update_impasse_items`).
