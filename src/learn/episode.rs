@@ -456,7 +456,12 @@ impl AgentCore {
                     .as_ref()
                     .map_or([0; 4], |o| o.ids.map(|i| bt.find(i))),
             };
-            p.o_support = o_support;
+            // A reject the substate made o-supported stays an o-reject in the copy: 9.6
+            // applies it as one (no `+` line), and the learned instantiation keeps nothing
+            // of it to retract (checked on soar-sml 9.6.5:
+            // tests/commands/agents/gds-first-result.soar, traces 3 and 5, with learning
+            // off and under `chunk always`).
+            p.o_support = o_support || (p.kind == PrefType::Reject && p.o_support);
             p.inst = Some(inst_id);
             if chunk_rule.is_some() {
                 p.rule = chunk_rule;
