@@ -55,9 +55,9 @@ impl AgentCore {
                     "goal dependency set: {shown} is charged to {}, which is not a substate",
                     self.symbols.text(goal)
                 ));
-            } else if self.sym_level(wme.id) > self.sym_level(goal) {
+            } else if self.sym_level(wme.id) >= self.sym_level(goal) {
                 out.push(format!(
-                    "goal dependency set of {}: {shown} is from a goal below it",
+                    "goal dependency set of {}: {shown} is not from a goal above it",
                     self.symbols.text(goal)
                 ));
             }

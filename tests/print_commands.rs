@@ -123,7 +123,7 @@ fn print_wraps_from_the_stream_column_as_9_6_does() {
 }
 
 /// What is not golden-able: the absolute path `--filename` shows, the GDS listing in
-/// rusoar's order (9.6 lists the same WMEs in orders of its own structures), and `production memory-usage` with
+/// rusoar's order (9.6 lists it in its rete's order), and `production memory-usage` with
 /// a live justification.
 #[test]
 fn filename_gds_and_production_commands() {
@@ -142,7 +142,7 @@ fn filename_gds_and_production_commands() {
     assert!(full.starts_with(&format!("# source file: {path}\nsp {{gds*propose*work\n")));
     let gds = output(&mut i, "print --gds -T");
     assert!(
-        gds.contains("  For Goal  S2  (19: O2 ^name work)\n  For Goal  S2  (18: S1 ^flag on)\n"),
+        gds.contains("  For Goal  S2  (18: S1 ^flag on)\n  For Goal  S2  (19: O2 ^name work)\n"),
         "{gds}"
     );
     assert!(gds.contains("  For Goal  S1  : No GDS for this goal.\n  For Goal  S2  \n                (18: S1 ^flag on)\n"), "{gds}");

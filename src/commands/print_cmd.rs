@@ -527,8 +527,8 @@ fn field(agent: &AgentCore, tok: Option<&str>) -> Result<Field, String> {
     Ok(Field::Is(symbols.find_constant(&constant)))
 }
 
-/// `print --gds`: each WME of a goal dependency set, newest first, then each goal's set,
-/// oldest first (9.6 lists the same WMEs in orders of its own structures).
+/// `print --gds`: each WME of a goal dependency set, then each goal's set (9.6 lists both in
+/// its rete's order; rusoar by timetag).
 fn gds_listing(agent: &AgentCore) -> String {
     let mut s = String::from(
         "********************* Current GDS **************************\nstepping thru all wmes in rete, looking for any that are in a gds...\n",
@@ -539,7 +539,7 @@ fn gds_listing(agent: &AgentCore) -> String {
         .iter()
         .filter_map(|(w, g)| agent.wm.get(*w).map(|x| (*x, *g)))
         .collect();
-    members.sort_by_key(|(w, _)| std::cmp::Reverse(w.timetag));
+    members.sort_by_key(|(w, _)| w.timetag);
     for (w, g) in &members {
         s.push_str(&format!(
             "  For Goal  {}  {}\n",
@@ -554,12 +554,11 @@ fn gds_listing(agent: &AgentCore) -> String {
         agent.decider.goals.iter().map(|g| g.state).collect()
     };
     for g in goals {
-        let mut mine: Vec<&Wme> = members
+        let mine: Vec<&Wme> = members
             .iter()
             .filter(|(_, x)| *x == g)
             .map(|(w, _)| w)
             .collect();
-        mine.sort_by_key(|w| w.timetag);
         let name = agent.symbols.text(g);
         if mine.is_empty() {
             s.push_str(&format!("  For Goal  {name}  : No GDS for this goal.\n"));

@@ -73,6 +73,7 @@ impl AgentCore {
             prefs: self.decider.spare_pref_lists.pop().unwrap_or_default(),
             alive: true,
             serial: 0,
+            gds_walked: None,
         };
         if rule.flags.i_support {
             inst.o_support = false;
@@ -226,8 +227,8 @@ impl AgentCore {
             own_prefs.extend_from_slice(&inst.prefs);
         }
         self.decider.insts[inst_id] = inst;
-        if self.makes_gds(inst_id, level) {
-            self.make_gds(inst_id);
+        if self.settings.trace.gds_wmes && self.grows_gds(inst_id, level) {
+            self.trace_gds_growth(inst_id);
         }
         if traced {
             self.trace_instantiation_prefs(&own_prefs);

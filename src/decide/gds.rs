@@ -1,7 +1,9 @@
 //! The goal dependency set (Soar manual, chapter 2, "Removal of Substates: The Goal Dependency
-//! Set"): `gds_trace.rs` makes a substate's set with its first o-supported WME. When a WME
-//! in a goal's GDS leaves working memory, that goal and every goal below it go, and the
-//! next decision can make the impasse again.
+//! Set"): when a substate makes an o-supported WME, the superstate WMEs its reasoning
+//! tested join that substate's GDS, following local i-supported WMEs back through the
+//! instantiations that made them (local o-supported WMEs stop the search). When a WME in a
+//! goal's GDS leaves working memory, that goal and every goal below it go, and the next
+//! decision can make the impasse again.
 
 use super::procedure::PrefType;
 use super::state::InstId;
@@ -62,6 +64,74 @@ impl AgentCore {
         } else {
             Vec::new()
         }
+    }
+
+    /// A WME just added: if an o-supported preference of an instantiation that matched in a
+    /// substate made it, that substate's GDS grows.
+    pub(crate) fn gds_for_new_wme(&mut self, w: WmeId) {
+        let Some(wme) = self.wm.get(w).copied() else {
+            return;
+        };
+        let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+            return;
+        };
+        let inst = slot.prefs_for(wme.value).find_map(|pid| {
+            let p = &self.decider.prefs[pid];
+            (p.alive && p.o_support && p.kind == PrefType::Acceptable && p.value == wme.value)
+                .then_some(p.inst)
+                .flatten()
+        });
+        if let Some(i) = inst {
+            self.elaborate_gds(i);
+        }
+    }
+
+    fn elaborate_gds(&mut self, inst: InstId) {
+        let Some(goal) = self.decider.insts[inst].goal else {
+            return;
+        };
+        let level = self.sym_level(goal);
+        if level <= 1 {
+            return;
+        }
+        // The firings waiting and the superstate WMEs found: few in each walk, kept for
+        // their room. A firing is walked once per goal (as 9.6 marks an instantiation
+        // whose dependencies it has gathered): its match, and so what it adds, never
+        // changes.
+        let mut stack = std::mem::take(&mut self.decider.gds_scratch.stack);
+        let mut found = std::mem::take(&mut self.decider.gds_scratch.found);
+        stack.push(inst);
+        while let Some(i) = stack.pop() {
+            let x = &mut self.decider.insts[i];
+            if !x.alive || x.gds_walked == Some(goal) {
+                continue;
+            }
+            x.gds_walked = Some(goal);
+            let x = &self.decider.insts[i];
+            for w in self.rete.match_row(x.prod, x.token) {
+                let Some(wme) = self.wm.get(w) else { continue };
+                let l = self.sym_level(wme.id);
+                if l < level {
+                    found.push(w);
+                } else if let Some(j) = self.i_support_of(w) {
+                    stack.push(j);
+                }
+            }
+        }
+        for &w in &found {
+            // A WME is charged to the highest goal that depends on it: removing that goal
+            // removes the lower ones too.
+            let keep = self
+                .decider
+                .gds
+                .get(&w)
+                .is_some_and(|&g| self.sym_level(g) <= level);
+            if !keep {
+                self.decider.gds.insert(w, goal);
+            }
+        }
+        found.clear();
+        self.decider.gds_scratch = super::state::GdsScratch { stack, found };
     }
 
     /// Removes the highest goal whose GDS holds one of `removes` (WMEs about to go, with

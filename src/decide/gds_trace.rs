@@ -1,10 +1,7 @@
-//! The goal dependency set's making (Soar manual, chapter 2, "Removal of Substates: The Goal
-//! Dependency Set"), and its listing by `trace --gds-wmes` (`trace -G`). 9.6 makes a
-//! substate's set when the substate's firings make their first o-supported WME, and fills
-//! it then with what that WME depends on: the WMEs of higher goals its match tested,
-//! following local i-supported WMEs back through the instantiations that made them, and
-//! the substate's own architecture WMEs tested on the way. Later o-supported WMEs add
-//! nothing (9.6's `decide_non_context_slot` elaborates only a goal without a set).
+//! `trace --gds-wmes` (`trace -G`): the WMEs that join a substate's goal dependency set, as
+//! 9.6 lists them when an o-supported preference for a substate's own WME is made (the Soar
+//! manual, chapter 2, "Removal of Substates: The Goal Dependency Set"). The listing keeps its
+//! own record of the sets it has listed: the set that decides removals is `gds.rs`'s.
 
 use super::state::InstId;
 use crate::agent::AgentCore;
@@ -29,29 +26,26 @@ enum LocalSupport {
 }
 
 impl AgentCore {
-    /// Whether firing `inst` (at goal `level`) makes its goal's GDS: the goal has none yet,
-    /// and the firing made an o-supported acceptable preference for a WME of the goal's
-    /// level.
-    pub(crate) fn makes_gds(&self, inst: InstId, level: u32) -> bool {
+    /// Whether firing `inst` (at goal `level`) grows its goal's GDS: it made an o-supported
+    /// acceptable preference for a WME of its own goal's level.
+    pub(crate) fn grows_gds(&self, inst: InstId, level: u32) -> bool {
         let i = &self.decider.insts[inst];
         level >= 2
             && i.o_support
-            && i.goal.is_some_and(|g| !self.decider.gds_made.contains(&g))
             && i.prefs.iter().any(|&pid| {
                 let p = &self.decider.prefs[pid];
                 p.kind == super::procedure::PrefType::Acceptable && self.sym_level(p.id) >= level
             })
     }
 
-    /// Makes the GDS of the goal `inst` fired in: the WMEs of higher goals its match tested,
-    /// following local i-supported WMEs back through the instantiations that made them, in
-    /// the order they are reached (each match's WMEs in condition order), with the goal's
-    /// own architecture WMEs; each is listed as it joins when `trace --gds-wmes` is on.
-    pub(crate) fn make_gds(&mut self, inst: InstId) {
+    /// Lists the WMEs that firing `inst` adds to its goal's GDS: the WMEs of higher goals
+    /// its match tested, following local i-supported WMEs back through the instantiations
+    /// that made them, in the order they are reached (each match's WMEs in condition
+    /// order), with the goal's own architecture WMEs.
+    pub(crate) fn trace_gds_growth(&mut self, inst: InstId) {
         let Some(goal) = self.decider.insts[inst].goal else {
             return;
         };
-        self.decider.gds_made.insert(goal);
         let level = self.sym_level(goal);
         // Entries of goals that are gone list nothing more.
         if self.decider.gds_listed.len() > 4096 {
@@ -69,7 +63,6 @@ impl AgentCore {
                     continue;
                 };
                 if self.sym_level(wme.id) < level {
-                    self.join_gds(w, goal, level);
                     self.list_gds_member(&wme, goal, level);
                     continue;
                 }
@@ -77,16 +70,11 @@ impl AgentCore {
                     LocalSupport::Instantiation(j) => queue.push_back(j),
                     LocalSupport::Candidate(a) => {
                         if let Some(acc) = self.wm.get(a).copied() {
-                            self.join_gds(a, goal, level);
                             self.list_gds_member(&acc, goal, level);
                         }
                     }
                     LocalSupport::OSupported => {}
                     LocalSupport::Architecture => {
-                        self.join_gds(w, goal, level);
-                        if !self.settings.trace.gds_wmes {
-                            continue;
-                        }
                         let listed = self.decider.gds_listed.get(&wme.timetag);
                         if listed.is_none_or(|g| !self.decider.goals.iter().any(|x| x.state == *g)) {
                             self.decider.gds_listed.insert(wme.timetag, goal);
@@ -98,26 +86,9 @@ impl AgentCore {
         }
     }
 
-    /// `w` joins `goal`'s set, unless the set of `goal` or of a goal above it has it already:
-    /// a WME is charged to the highest goal that depends on it, as removing that goal
-    /// removes the lower ones too.
-    fn join_gds(&mut self, w: WmeId, goal: Sym, level: u32) {
-        let keep = self
-            .decider
-            .gds
-            .get(&w)
-            .is_some_and(|&g| self.sym_level(g) <= level);
-        if !keep {
-            self.decider.gds.insert(w, goal);
-        }
-    }
-
-    /// Lists a WME of a higher goal as joining `goal`'s set (`trace --gds-wmes`), unless the
-    /// set of `goal` or of a goal above it has it already.
+    /// Lists a WME of a higher goal as joining `goal`'s set, unless the set of `goal` or of
+    /// a goal above it has it already.
     fn list_gds_member(&mut self, wme: &Wme, goal: Sym, level: u32) {
-        if !self.settings.trace.gds_wmes {
-            return;
-        }
         let listed = self
             .decider
             .gds_listed

@@ -6,7 +6,7 @@ pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashMap;
 
 /// A state's WMEs that the architecture makes (9.6's impasse WMEs, kept out of slots).
 pub(crate) const STATE_ARCH_ATTRS: [&str; 10] = [
@@ -41,6 +41,9 @@ pub struct Instantiation {
     /// A learned rule's instantiation not matched by the network (a justification): its
     /// serial in the learner's list; 0 for rule firings.
     pub serial: u64,
+    /// The goal whose dependency set a walk through this firing already grew (see
+    /// `elaborate_gds`): walking it again for that goal would find nothing new.
+    pub gds_walked: Option<Sym>,
 }
 
 #[derive(Debug, Clone)]
@@ -267,11 +270,11 @@ pub struct DecideState {
     pub spare_goal_made: Vec<MadePrefs>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
+    /// Room for the walks that grow a goal dependency set.
+    pub gds_scratch: GdsScratch,
     /// `trace --gds-wmes`: the WMEs (by timetag) listed as joining a goal's GDS, with that
     /// goal (`gds_trace.rs`).
     pub gds_listed: FxHashMap<u64, Sym>,
-    /// The goals whose GDS is made (see `gds_trace.rs`): later o-supported WMEs add nothing.
-    pub gds_made: FxHashSet<Sym>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
     /// Operator slots changed since the last quiescent working-memory phase: their
@@ -426,3 +429,9 @@ impl DecideState {
     }
 }
 
+/// The tables a walk that grows a goal dependency set uses, kept between walks.
+#[derive(Debug, Default, Clone)]
+pub struct GdsScratch {
+    pub stack: Vec<InstId>,
+    pub found: Vec<WmeId>,
+}

@@ -480,7 +480,6 @@ impl AgentCore {
             }
             self.decider.gc_candidates.push(g.state);
             self.decider.gds.retain(|_, goal| *goal != g.state);
-            self.decider.gds_made.remove(&g.state);
             let mut made = g.made;
             made.clear();
             self.decider.spare_goal_made.push(made);

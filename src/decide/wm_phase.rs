@@ -298,6 +298,9 @@ impl AgentCore {
             }
         }
         self.epmem_trace_present_adds();
+        for &w in &added {
+            self.gds_for_new_wme(w);
+        }
         let before_decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
         for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle

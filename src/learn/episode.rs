@@ -365,6 +365,7 @@ impl AgentCore {
                     prefs: Vec::new(),
                     alive: true,
                     serial: 0,
+                    gds_walked: None,
                 };
                 let id = self.decider.alloc_inst(inst);
                 self.learn.stats.learned_instantiations += 1;
@@ -698,6 +699,7 @@ impl AgentCore {
             prefs: Vec::new(),
             alive: true,
             serial,
+            gds_walked: None,
         };
         let id = self.decider.alloc_inst(inst);
         self.learn.stats.learned_instantiations += 1;
