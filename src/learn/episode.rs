@@ -460,7 +460,7 @@ impl AgentCore {
             // A reject the substate made o-supported stays an o-reject in the copy: 9.6
             // applies it as one (no `+` line), and the learned instantiation keeps nothing
             // of it to retract (checked on soar-sml 9.6.5:
-            // tests/commands/agents/gds-first-result.soar, traces 3 and 5, with learning
+            // tests/commands/agents/o-reject-result.soar, traces 3 and 5, with learning
             // off and under `chunk always`).
             p.o_support = o_support || (p.kind == PrefType::Reject && p.o_support);
             p.inst = Some(inst_id);
