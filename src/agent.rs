@@ -984,7 +984,10 @@ impl AgentCore {
         // Most removals happen with no substate, so with an empty GDS: no hash probe then.
         if !self.decider.gds.is_empty() {
             if let Some(goal) = self.decider.gds.remove(&w) {
-                self.decider.gds_invalid.push(goal);
+                self.leave_gds(goal);
+                if self.gds_watches_removal(&wme) {
+                    self.decider.gds_invalid.push(goal);
+                }
             }
         }
         // What it pointed at may now be unlinked: garbage collection looks there.

@@ -55,9 +55,13 @@ impl AgentCore {
                     "goal dependency set: {shown} is charged to {}, which is not a substate",
                     self.symbols.text(goal)
                 ));
-            } else if self.sym_level(wme.id) >= self.sym_level(goal) {
+            } else if self.sym_level(wme.id) > self.sym_level(goal)
+                || (self.sym_level(wme.id) == self.sym_level(goal)
+                    && self.held_by_preferences(w, wme))
+            {
                 out.push(format!(
-                    "goal dependency set of {}: {shown} is not from a goal above it",
+                    "goal dependency set of {}: {shown} is neither from a goal above it nor \
+                     the architecture's",
                     self.symbols.text(goal)
                 ));
             }

@@ -641,7 +641,12 @@ impl AgentCore {
     pub(crate) fn trace_gds_removals(&mut self, removes: &[(crate::wm::WmeId, u64)]) {
         let mut reported: Option<u32> = None;
         for &(w, tt) in removes.iter() {
-            let Some(wme) = self.wm.get(w).copied().filter(|x| x.timetag == tt) else {
+            let Some(wme) = self
+                .wm
+                .get(w)
+                .copied()
+                .filter(|x| x.timetag == tt && self.gds_watches_removal(x))
+            else {
                 continue;
             };
             let Some(&goal) = self.decider.gds.get(&w) else {

@@ -528,7 +528,8 @@ fn field(agent: &AgentCore, tok: Option<&str>) -> Result<Field, String> {
 }
 
 /// `print --gds`: each WME of a goal dependency set, then each goal's set (9.6 lists both in
-/// its rete's order; rusoar by timetag).
+/// its rete's order; rusoar by timetag). A goal whose set is made but empty gets its header
+/// alone.
 fn gds_listing(agent: &AgentCore) -> String {
     let mut s = String::from(
         "********************* Current GDS **************************\nstepping thru all wmes in rete, looking for any that are in a gds...\n",
@@ -560,7 +561,7 @@ fn gds_listing(agent: &AgentCore) -> String {
             .map(|(w, _)| w)
             .collect();
         let name = agent.symbols.text(g);
-        if mine.is_empty() {
+        if !agent.decider.gds_sizes.contains_key(&g) {
             s.push_str(&format!("  For Goal  {name}  : No GDS for this goal.\n"));
         } else {
             s.push_str(&format!("  For Goal  {name}  \n"));

@@ -18,13 +18,11 @@ impl AgentCore {
     pub(super) fn check_operator_consistency(&mut self, key: (Sym, Sym)) -> Option<WmeId> {
         let gi = self.decider.goals.iter().position(|g| g.state == key.0)?;
         let (op, w) = self.decider.goals[gi].operator?;
-        let prefs = self.slot_prefs(key);
-        let still = prefs
-            .iter()
-            .any(|p| p.kind == PrefType::Acceptable && p.value == op)
-            && !prefs
-                .iter()
-                .any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
+        // Read in place: this runs for every changed operator slot.
+        let prefs = self.decider.slots.get(&key).map_or(&[][..], |s| s.prefs.as_slice());
+        let all = || prefs.iter().map(|&pid| &self.decider.prefs[pid]);
+        let still = all().any(|p| p.kind == PrefType::Acceptable && p.value == op)
+            && !all().any(|p| matches!(p.kind, PrefType::Reject | PrefType::Prohibit) && p.value == op);
         if still {
             return None;
         }

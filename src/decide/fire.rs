@@ -73,20 +73,22 @@ impl AgentCore {
             prefs: self.decider.spare_pref_lists.pop().unwrap_or_default(),
             alive: true,
             serial: 0,
-            gds_walked: None,
+            gds_evaluated: false,
         };
         if rule.flags.i_support {
             inst.o_support = false;
         }
         // An o-supported preference outlives its firing's match: keep what the match held
         // (a substate firing's record keeps it already).
+        // (Gathered in a buffer kept for its room: one allocation, the record's own.)
         let matched: Option<std::sync::Arc<[crate::wm::Wme]>> = (inst.o_support && level < 2)
             .then(|| {
-                self.rete
-                    .match_wmes(p, t)
-                    .into_iter()
-                    .filter_map(|w| self.wm.get(w).copied())
-                    .collect()
+                let mut held = std::mem::take(&mut self.decider.matched_scratch);
+                held.clear();
+                held.extend(self.rete.match_row(p, t).filter_map(|w| self.wm.get(w).copied()));
+                let record = std::sync::Arc::from(held.as_slice());
+                self.decider.matched_scratch = held;
+                record
             });
         // The slot is taken now: the preferences name it.
         let inst_id = self.decider.alloc_inst(inst.clone());

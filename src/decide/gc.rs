@@ -50,11 +50,14 @@ impl AgentCore {
     /// support-retraction, an operator elaboration's `^to` on an operator that went), or
     /// where the output is now. Returns how many bytes of text went in at `at`.
     pub(super) fn collect_garbage_traced_at(&mut self, at: Option<usize>) -> usize {
-        let traced_gone = std::mem::take(&mut self.decider.prefs_traced_gone);
-        let wmes_traced = std::mem::take(&mut self.decider.wmes_traced_gone);
         if self.decider.gc_candidates.is_empty() {
+            // What was traced as gone is forgotten with each collection, also an empty one.
+            self.decider.prefs_traced_gone.clear();
+            self.decider.wmes_traced_gone.clear();
             return 0;
         }
+        let traced_gone = std::mem::take(&mut self.decider.prefs_traced_gone);
+        let wmes_traced = std::mem::take(&mut self.decider.wmes_traced_gone);
         let candidates = std::mem::take(&mut self.decider.gc_candidates);
         // The sets live between calls (emptied), so that a collection allocates nothing.
         let mut gc = std::mem::take(&mut self.decider.gc_scratch);
@@ -123,7 +126,9 @@ impl AgentCore {
                 if !wmes_traced.contains(&wme.timetag) {
                     removed_lines.push(wme);
                 }
+                self.decider.collecting_garbage = true;
                 self.remove_wme(w);
+                self.decider.collecting_garbage = false;
             }
         }
         let mut inserted = 0;
@@ -165,6 +170,9 @@ impl AgentCore {
             })
             .collect();
         rows.sort_unstable_by_key(|r| (r.0, r.1, r.2));
+        if let Some(order) = self.lone_object_order(&rows, candidates) {
+            return order;
+        }
         // Each object's rows: (object, start, end).
         let mut objects: Vec<(Sym, usize, usize)> = Vec::new();
         for (i, r) in rows.iter().enumerate() {
@@ -228,6 +236,31 @@ impl AgentCore {
             order.extend(rest.into_iter().map(|(_, w)| w));
         }
         order
+    }
+
+    /// [`Self::removal_order`] of the garbage of one object the phase unlinked, that
+    /// points at nothing else collected (an operator's attributes, a memory's command
+    /// link): the object's WMEs in collection order, without the general walk's tables.
+    /// `None` when the garbage is not of that shape. `rows` are sorted by object.
+    fn lone_object_order(
+        &self,
+        rows: &[(Sym, Sym, u64, WmeId, Sym)],
+        candidates: &[Sym],
+    ) -> Option<Vec<WmeId>> {
+        let object = rows.first()?.0;
+        let lone = rows.last()?.0 == object
+            && candidates.contains(&object)
+            && rows.iter().all(|r| r.4 != object);
+        if !lone {
+            return None;
+        }
+        let slots = self.decider.slots.attrs_of(object);
+        let mut ranked: Vec<(u64, std::cmp::Reverse<u64>, WmeId)> = rows
+            .iter()
+            .map(|r| (collection_rank(slots, r.1), std::cmp::Reverse(r.2), r.3))
+            .collect();
+        ranked.sort_unstable();
+        Some(ranked.into_iter().map(|r| r.2).collect())
     }
 
     /// The WMEs of `object` in the order 9.6's garbage collection removes them (see

@@ -202,7 +202,7 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
         if index.has(PrefType::Prohibit, r) {
             return Err(Outcome::ConstraintFailure(required));
         }
-        return Ok(vec![r]);
+        return Ok(required);
     }
     // Step 2: acceptable, minus prohibit and reject.
     let mut cands = Vec::new();
@@ -213,7 +213,7 @@ pub fn candidates(prefs: &[Pref]) -> Result<Vec<Sym>, Outcome> {
     }
     match cands.len() {
         0 => return Err(Outcome::NoCandidates),
-        1 => return Ok(vec![cands[0]]),
+        1 => return Ok(cands),
         _ => {}
     }
     // Step 3: better/worse between current candidates. A dominated candidate is out even if

@@ -41,9 +41,9 @@ pub struct Instantiation {
     /// A learned rule's instantiation not matched by the network (a justification): its
     /// serial in the learner's list; 0 for rule firings.
     pub serial: u64,
-    /// The goal whose dependency set a walk through this firing already grew (see
-    /// `elaborate_gds`): walking it again for that goal would find nothing new.
-    pub gds_walked: Option<Sym>,
+    /// A goal dependency set's walk went through this firing (see `gds.rs`): no walk goes
+    /// through it again (9.6's `GDS_evaluated_already`).
+    pub gds_evaluated: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -270,8 +270,12 @@ pub struct DecideState {
     pub spare_goal_made: Vec<MadePrefs>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
-    /// Room for the walks that grow a goal dependency set.
-    pub gds_scratch: GdsScratch,
+    /// Garbage collection is taking WMEs out (9.6 checks no goal dependency set then).
+    pub collecting_garbage: bool,
+    /// The goals with a goal dependency set, with the number of WMEs in it.
+    pub gds_sizes: FxHashMap<Sym, u32>,
+    /// The firings a goal dependency set's walk has still to go through (kept for its room).
+    pub gds_parents: Vec<InstId>,
     /// `trace --gds-wmes`: the WMEs (by timetag) listed as joining a goal's GDS, with that
     /// goal (`gds_trace.rs`).
     pub gds_listed: FxHashMap<u64, Sym>,
@@ -281,6 +285,10 @@ pub struct DecideState {
     /// impasses are checked for consistency at the next one (9.6 keeps a slot's changed
     /// flag until it is checked).
     pub consistency_pending: Vec<(Sym, Sym)>,
+    /// The WMEs of an o-supported firing's match, gathered before they are recorded.
+    pub matched_scratch: Vec<crate::wm::Wme>,
+    /// The preferences an o-supported reject takes out, kept for its room.
+    pub o_reject_removed: Vec<PrefId>,
     /// A consistency check found a goal's decision inconsistent and removed what was below
     /// it: the propose or apply phase ends with the elaboration cycle, for the decision
     /// procedure to run again (9.6's `determine_highest_active_production_level`).
@@ -429,9 +437,3 @@ impl DecideState {
     }
 }
 
-/// The tables a walk that grows a goal dependency set uses, kept between walks.
-#[derive(Debug, Default, Clone)]
-pub struct GdsScratch {
-    pub stack: Vec<InstId>,
-    pub found: Vec<WmeId>,
-}

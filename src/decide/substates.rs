@@ -480,6 +480,7 @@ impl AgentCore {
             }
             self.decider.gc_candidates.push(g.state);
             self.decider.gds.retain(|_, goal| *goal != g.state);
+            self.decider.gds_sizes.remove(&g.state);
             let mut made = g.made;
             made.clear();
             self.decider.spare_goal_made.push(made);

@@ -47,7 +47,7 @@ impl AgentCore {
         for &pid in &taken {
             self.decider.free_pref(pid);
         }
-        let mut removed = Vec::new();
+        let mut removed = std::mem::take(&mut self.decider.o_reject_removed);
         for &pid in new_prefs {
             let p = &self.decider.prefs[pid];
             let (kind, o_support, key, value) = (p.kind, p.o_support, (p.id, p.attr), p.value);
@@ -68,6 +68,8 @@ impl AgentCore {
                 self.mark_changed(key, slot);
             }
         }
+        removed.clear();
+        self.decider.o_reject_removed = removed;
         // Instantiations newest first, each one's preferences newest first; `trace
         // --assertions` names each instantiation before its preferences.
         let made = std::mem::take(&mut self.decider.instantiations_made);
@@ -274,6 +276,12 @@ impl AgentCore {
                 self.wma_wme_created(w);
             }
         }
+        // Goal dependency sets grow from the new WMEs before the matcher sees them (as 9.6
+        // does it while deciding the slots): the firings behind them still hold their
+        // matches.
+        for &w in &added {
+            self.gds_for_new_wme(w);
+        }
         // Where the `=>WM:` lines start: 9.6 warns there of a WME this phase adds and
         // removes (see below).
         let adds_at = self.output.len();
@@ -298,9 +306,6 @@ impl AgentCore {
             }
         }
         self.epmem_trace_present_adds();
-        for &w in &added {
-            self.gds_for_new_wme(w);
-        }
         let before_decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
         for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
@@ -349,9 +354,14 @@ impl AgentCore {
             }
         }
         if !self.decider.consistency_pending.is_empty() && !self.has_pending(false) {
-            for key in std::mem::take(&mut self.decider.consistency_pending) {
+            let mut pending = std::mem::take(&mut self.decider.consistency_pending);
+            for &key in &pending {
                 self.check_impasse_consistency(key);
             }
+            // The list's room serves the next phase (a check may have noted keys anew).
+            pending.clear();
+            pending.append(&mut self.decider.consistency_pending);
+            self.decider.consistency_pending = pending;
         }
         adds.clear();
         removes.clear();

@@ -365,7 +365,7 @@ impl AgentCore {
                     prefs: Vec::new(),
                     alive: true,
                     serial: 0,
-                    gds_walked: None,
+                    gds_evaluated: false,
                 };
                 let id = self.decider.alloc_inst(inst);
                 self.learn.stats.learned_instantiations += 1;
@@ -699,7 +699,7 @@ impl AgentCore {
             prefs: Vec::new(),
             alive: true,
             serial,
-            gds_walked: None,
+            gds_evaluated: false,
         };
         let id = self.decider.alloc_inst(inst);
         self.learn.stats.learned_instantiations += 1;
