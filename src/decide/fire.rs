@@ -229,9 +229,6 @@ impl AgentCore {
             own_prefs.extend_from_slice(&inst.prefs);
         }
         self.decider.insts[inst_id] = inst;
-        if self.settings.trace.gds_wmes && self.grows_gds(inst_id, level) {
-            self.trace_gds_growth(inst_id);
-        }
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }

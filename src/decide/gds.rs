@@ -17,29 +17,6 @@ impl AgentCore {
         self.symbols.id_data(s).map_or(0, |d| d.level)
     }
 
-    /// The live instantiation behind a WME, if an i-supported preference makes it: `None`
-    /// for o-supported and architecture WMEs (the search stops there).
-    pub(crate) fn i_support_of(&self, w: WmeId) -> Option<InstId> {
-        let wme = self.wm.get(w)?;
-        // A selected operator stands on its acceptable preference (its proposal), like any
-        // other WME on its slot's acceptable preferences.
-        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        let mut found = None;
-        for pid in slot.prefs_for(wme.value) {
-            let p = &self.decider.prefs[pid];
-            if !p.alive || p.kind != PrefType::Acceptable || p.value != wme.value {
-                continue;
-            }
-            if p.o_support {
-                return None;
-            }
-            if found.is_none() {
-                found = p.inst;
-            }
-        }
-        found
-    }
-
     /// Whether a WME stands on its slot's preferences, or is the operator a state
     /// selected (rather than the architecture's or input).
     pub(crate) fn held_by_preferences(&self, w: WmeId, wme: &crate::wm::Wme) -> bool {
@@ -175,6 +152,8 @@ impl AgentCore {
                 }
             }
         }
+        // 9.6 puts each at the head of its list of firings to walk.
+        parents.reverse();
         self.elaborate_gds(&mut parents);
         self.decider.gds_parents = parents;
     }
@@ -183,56 +162,71 @@ impl AgentCore {
     /// i-supported WMEs, the firings that made those), each into its own goal's set: the
     /// WMEs of higher goals its match tested and the architecture's WMEs it tested join the
     /// set; a local o-supported WME stops the walk (9.6's `elaborate_gds`). Each firing is
-    /// walked once, ever.
+    /// walked once, ever. The walk goes as 9.6's does (and `trace --gds-wmes` lists the
+    /// WMEs in that order): `parents` in order, then the firings they led to, the last
+    /// found first, and so on.
     fn elaborate_gds(&mut self, parents: &mut Vec<InstId>) {
-        while let Some(inst) = parents.pop() {
-            let Some(goal) = self.decider.insts[inst].goal else {
+        let mut found = std::mem::take(&mut self.decider.gds_found);
+        while !parents.is_empty() {
+            found.clear();
+            for &inst in parents.iter() {
+                self.walk_gds_firing(inst, &mut found);
+            }
+            parents.clear();
+            parents.extend(found.iter().rev());
+        }
+        self.decider.gds_found = found;
+    }
+
+    /// One firing of [`Self::elaborate_gds`]'s walk: its WMEs join its goal's set, and the
+    /// firings behind its local i-supported WMEs go onto `found`.
+    fn walk_gds_firing(&mut self, inst: InstId, found: &mut Vec<InstId>) {
+        let Some(goal) = self.decider.insts[inst].goal else {
+            return;
+        };
+        let level = self.sym_level(goal);
+        if level <= 1 || !self.decider.gds_sizes.contains_key(&goal) {
+            return;
+        }
+        let matched = self.live_match_wmes(inst);
+        for w in matched {
+            let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };
-            let level = self.sym_level(goal);
-            if level <= 1 || !self.decider.gds_sizes.contains_key(&goal) {
+            let local = self.sym_level(wme.id) >= level;
+            if !local || !self.held_by_preferences(w, &wme) {
+                // A higher goal's WME, or the architecture's (a local impasse item
+                // stands for the acceptable-preference WME above it).
+                let item = local.then(|| self.impasse_item_support(w, &wme)).flatten();
+                self.join_gds(item.unwrap_or(w), goal, level);
                 continue;
             }
-            let matched = self.live_match_wmes(inst);
-            for w in matched {
-                let Some(wme) = self.wm.get(w).copied() else {
+            // A local WME: an o-supported one ends the walk; an i-supported one leads
+            // to the firings that make it (none when its preference went this cycle).
+            let pref = self.wme_preference(w, &wme);
+            if pref.is_some_and(|p| self.decider.prefs[p].o_support) {
+                continue;
+            }
+            let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
+                continue;
+            };
+            let makers: Vec<PrefId> = self
+                .prefs_in_order(slot, PrefType::Acceptable)
+                .into_iter()
+                .filter(|&pid| self.decider.prefs[pid].value == wme.value)
+                .collect();
+            for pid in makers {
+                let Some(i) = self.decider.prefs[pid].inst else {
                     continue;
                 };
-                let local = self.sym_level(wme.id) >= level;
-                if !local || !self.held_by_preferences(w, &wme) {
-                    // A higher goal's WME, or the architecture's (a local impasse item
-                    // stands for the acceptable-preference WME above it).
-                    let item = local.then(|| self.impasse_item_support(w, &wme)).flatten();
-                    self.join_gds(item.unwrap_or(w), goal, level);
+                if self.decider.insts[i].gds_evaluated {
                     continue;
                 }
-                // A local WME: an o-supported one ends the walk; an i-supported one leads
-                // to the firings that make it (none when its preference went this cycle).
-                let pref = self.wme_preference(w, &wme);
-                if pref.is_some_and(|p| self.decider.prefs[p].o_support) {
-                    continue;
-                }
-                let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
-                    continue;
-                };
-                let makers: Vec<PrefId> = self
-                    .prefs_in_order(slot, PrefType::Acceptable)
-                    .into_iter()
-                    .filter(|&pid| self.decider.prefs[pid].value == wme.value)
-                    .collect();
-                for pid in makers {
-                    let Some(i) = self.decider.prefs[pid].inst else {
-                        continue;
-                    };
-                    if self.decider.insts[i].gds_evaluated {
-                        continue;
-                    }
-                    self.decider.insts[i].gds_evaluated = true;
-                    // A preference from a lower goal's firing (a result's) is left to the
-                    // learned rule's firing at this level.
-                    if self.pref_level(pid) <= level && !parents.contains(&i) {
-                        parents.push(i);
-                    }
+                self.decider.insts[i].gds_evaluated = true;
+                // A preference from a lower goal's firing (a result's) is left to the
+                // learned rule's firing at this level.
+                if self.pref_level(pid) <= level && !found.contains(&i) {
+                    found.push(i);
                 }
             }
         }
@@ -265,6 +259,11 @@ impl AgentCore {
         }
         self.decider.gds.insert(w, goal);
         *self.decider.gds_sizes.entry(goal).or_insert(0) += 1;
+        if self.settings.trace.gds_wmes {
+            if let Some(wme) = self.wm.get(w).copied() {
+                self.emit(&crate::trace_events::TraceEvent::GdsAdd { goal, wme: &wme });
+            }
+        }
     }
 
     /// Whether taking `wme` out of working memory removes the goal whose set holds it: 9.6

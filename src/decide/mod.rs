@@ -17,7 +17,6 @@ mod fire;
 pub mod functions;
 mod gc;
 mod gds;
-mod gds_trace;
 pub mod limits;
 mod osk;
 pub(crate) mod ids;

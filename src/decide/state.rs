@@ -274,11 +274,10 @@ pub struct DecideState {
     pub collecting_garbage: bool,
     /// The goals with a goal dependency set, with the number of WMEs in it.
     pub gds_sizes: FxHashMap<Sym, u32>,
-    /// The firings a goal dependency set's walk has still to go through (kept for its room).
+    /// The firings a goal dependency set's walk has still to go through, and those it
+    /// found for its next round (kept for their room).
     pub gds_parents: Vec<InstId>,
-    /// `trace --gds-wmes`: the WMEs (by timetag) listed as joining a goal's GDS, with that
-    /// goal (`gds_trace.rs`).
-    pub gds_listed: FxHashMap<u64, Sym>,
+    pub gds_found: Vec<InstId>,
     /// Goals whose GDS lost a WME, to be removed after the current WM changes.
     pub gds_invalid: Vec<Sym>,
     /// Operator slots changed since the last quiescent working-memory phase: their
