@@ -53,12 +53,38 @@ impl AgentCore {
             return None;
         }
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        let first = |kind: PrefType| {
-            self.prefs_in_order(slot, kind)
-                .into_iter()
-                .find(|&pid| self.decider.prefs[pid].value == wme.value)
-        };
-        first(PrefType::Require).or_else(|| first(PrefType::Acceptable))
+        // The first of each kind in 9.6's order: the lowest (level, newest) key.
+        let mut best: [Option<(u32, usize, PrefId)>; 2] = [None, None];
+        for (k, pid) in slot.prefs_for(wme.value).enumerate() {
+            let p = &self.decider.prefs[pid];
+            let kind = match p.kind {
+                _ if !p.alive => continue,
+                PrefType::Require => 0,
+                PrefType::Acceptable => 1,
+                _ => continue,
+            };
+            let key = (self.pref_level(pid), usize::MAX - k, pid);
+            if best[kind].is_none_or(|b| key < b) {
+                best[kind] = Some(key);
+            }
+        }
+        best[0].or(best[1]).map(|b| b.2)
+    }
+
+    /// [`Self::prefs_in_order`] for one value alone (read through the slot's index of
+    /// values, where it has one).
+    fn value_prefs_in_order(&self, slot: &super::slot::Slot, kind: PrefType, value: Sym) -> Vec<PrefId> {
+        let mut found: Vec<(u32, usize, PrefId)> = slot
+            .prefs_for(value)
+            .enumerate()
+            .filter(|&(_, pid)| {
+                let p = &self.decider.prefs[pid];
+                p.alive && p.kind == kind
+            })
+            .map(|(k, pid)| (self.pref_level(pid), usize::MAX - k, pid))
+            .collect();
+        found.sort_unstable();
+        found.into_iter().map(|x| x.2).collect()
     }
 
     /// A slot's live preferences of one kind in the order of 9.6's list: by the goal level
@@ -210,11 +236,7 @@ impl AgentCore {
             let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
                 continue;
             };
-            let makers: Vec<PrefId> = self
-                .prefs_in_order(slot, PrefType::Acceptable)
-                .into_iter()
-                .filter(|&pid| self.decider.prefs[pid].value == wme.value)
-                .collect();
+            let makers = self.value_prefs_in_order(slot, PrefType::Acceptable, wme.value);
             for pid in makers {
                 let Some(i) = self.decider.prefs[pid].inst else {
                     continue;
