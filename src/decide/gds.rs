@@ -71,35 +71,22 @@ impl AgentCore {
         best[0].or(best[1]).map(|b| b.2)
     }
 
-    /// [`Self::prefs_in_order`] for one value alone (read through the slot's index of
-    /// values, where it has one).
-    fn value_prefs_in_order(&self, slot: &super::slot::Slot, kind: PrefType, value: Sym) -> Vec<PrefId> {
-        let mut found: Vec<(u32, usize, PrefId)> = slot
-            .prefs_for(value)
+    /// Live preferences of one kind from a slot's list (all of it, or one value's, oldest
+    /// first) in the order of 9.6's list: by the goal level they were made at, the highest
+    /// goal first (so a result's copy in a learned rule's firing comes before the substate
+    /// firing's own), the newest first within a level.
+    fn prefs_in_order(
+        &self,
+        prefs: impl Iterator<Item = PrefId>,
+        kind: PrefType,
+    ) -> Vec<PrefId> {
+        let mut found: Vec<(u32, usize, PrefId)> = prefs
             .enumerate()
             .filter(|&(_, pid)| {
                 let p = &self.decider.prefs[pid];
                 p.alive && p.kind == kind
             })
             .map(|(k, pid)| (self.pref_level(pid), usize::MAX - k, pid))
-            .collect();
-        found.sort_unstable();
-        found.into_iter().map(|x| x.2).collect()
-    }
-
-    /// A slot's live preferences of one kind in the order of 9.6's list: by the goal level
-    /// they were made at, the highest goal first (so a result's copy in a learned rule's
-    /// firing comes before the substate firing's own), the newest first within a level.
-    fn prefs_in_order(&self, slot: &super::slot::Slot, kind: PrefType) -> Vec<PrefId> {
-        let mut found: Vec<(u32, usize, PrefId)> = slot
-            .prefs
-            .iter()
-            .enumerate()
-            .filter(|&(_, &pid)| {
-                let p = &self.decider.prefs[pid];
-                p.alive && p.kind == kind
-            })
-            .map(|(k, &pid)| (self.pref_level(pid), usize::MAX - k, pid))
             .collect();
         found.sort_unstable();
         found.into_iter().map(|x| x.2).collect()
@@ -161,7 +148,7 @@ impl AgentCore {
         };
         // The slot's acceptable preferences in 9.6's order, from the WME's own on.
         let acceptable: Vec<PrefId> = self
-            .prefs_in_order(slot, PrefType::Acceptable)
+            .prefs_in_order(slot.prefs.iter().copied(), PrefType::Acceptable)
             .into_iter()
             .skip_while(|&pid| pid != win)
             .collect();
@@ -236,7 +223,7 @@ impl AgentCore {
             let Some(slot) = self.decider.slots.get(&(wme.id, wme.attr)) else {
                 continue;
             };
-            let makers = self.value_prefs_in_order(slot, PrefType::Acceptable, wme.value);
+            let makers = self.prefs_in_order(slot.prefs_for(wme.value), PrefType::Acceptable);
             for pid in makers {
                 let Some(i) = self.decider.prefs[pid].inst else {
                     continue;
@@ -324,9 +311,11 @@ impl AgentCore {
         let top_index = removes
             .iter()
             .filter(|&&(w, tt)| {
-                self.wm
-                    .get(w)
-                    .is_some_and(|x| x.timetag == tt && self.gds_watches_removal(x))
+                self.decider.gds.contains_key(&w)
+                    && self
+                        .wm
+                        .get(w)
+                        .is_some_and(|x| x.timetag == tt && self.gds_watches_removal(x))
             })
             .filter_map(|(w, _)| self.decider.gds.get(w))
             .filter_map(|g| self.decider.goals.iter().position(|x| x.state == *g))
