@@ -968,12 +968,25 @@ impl AgentCore {
     }
 
     pub fn remove_wme(&mut self, w: WmeId) -> Option<Wme> {
-        self.wm.get(w)?;
+        let timetag = self.wm.get(w)?.timetag;
+        self.unmatch_wme(w, timetag);
+        self.remove_wme_leaving_matcher(w)
+    }
+
+    /// Takes a WME out of the matcher, after [`Self::remove_wme_leaving_matcher`] took it
+    /// out of working memory (or as part of [`Self::remove_wme`]): its matches retract.
+    pub(crate) fn unmatch_wme(&mut self, w: WmeId, timetag: u64) {
         let rule_retractions = self.matches.retractions.len();
         self.rete.remove_wme(w, &self.symbols, &mut self.matches);
-        let wme = self.wm.remove(w)?;
         self.trace_queued_matches_now();
-        self.justification_wme_removed(w, wme.timetag, rule_retractions);
+        self.justification_wme_removed(w, timetag, rule_retractions);
+    }
+
+    /// Takes a WME out of working memory but leaves it in the matcher, for a caller that
+    /// calls [`Self::unmatch_wme`] for it before anything is added: 9.6 hands a phase's
+    /// removals to its matcher in an order of their own (see `wm_phase.rs`).
+    pub(crate) fn remove_wme_leaving_matcher(&mut self, w: WmeId) -> Option<Wme> {
+        let wme = self.wm.remove(w)?;
         if self.wma.on() {
             self.wma_wme_removed(&wme);
         }

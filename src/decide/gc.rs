@@ -100,6 +100,7 @@ impl AgentCore {
         // 9.6 lists the removals in the reverse of the order it collects them in; they
         // happen in that order here.
         let mut removed_lines = Vec::new();
+        let mut unmatched = Vec::new();
         let mut pref_lines = String::new();
         for w in garbage {
             let Some(wme) = self.wm.get(w).copied() else {
@@ -127,9 +128,14 @@ impl AgentCore {
                     removed_lines.push(wme);
                 }
                 self.decider.collecting_garbage = true;
-                self.remove_wme(w);
+                self.remove_wme_leaving_matcher(w);
                 self.decider.collecting_garbage = false;
+                unmatched.push((w, wme.timetag));
             }
+        }
+        // The matcher hears of them in the order they are listed, 9.6's order.
+        for &(w, timetag) in unmatched.iter().rev() {
+            self.unmatch_wme(w, timetag);
         }
         let mut inserted = 0;
         if !pref_lines.is_empty() {

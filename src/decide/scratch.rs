@@ -101,5 +101,7 @@ pub(crate) struct SlotScratch {
     pub(super) removes: Vec<(WmeId, u64)>,
     pub(super) context: Vec<(Sym, Sym)>,
     pub(super) added: Vec<WmeId>,
+    /// Removed WMEs the matcher has still to hear of, with their timetags.
+    pub(super) unmatched: Vec<(WmeId, u64)>,
     pub(super) want: Wanted,
 }

@@ -307,11 +307,17 @@ impl AgentCore {
         }
         self.epmem_trace_present_adds();
         let before_decided = self.removed_wmes.as_ref().map_or(0, Vec::len);
+        // The matcher hears of these removals after the garbage's (below): 9.6 collects
+        // the objects they unlink before its matcher sees the phase's changes, and hands it
+        // the removals newest first (its buffer is head-inserted). That order is the order
+        // of the retractions they cause.
+        let mut unmatched = std::mem::take(&mut sc.unmatched);
         for &(w, tt) in removes.iter().rev() {
             // A WME already gone (with a substate removed above) may have lent its handle
             // to one just added: only the WME with the timetag seen is removed.
             if self.wm.get(w).is_some_and(|x| x.timetag == tt) {
-                self.remove_slot_wme(w);
+                self.remove_slot_wme_leaving_matcher(w);
+                unmatched.push((w, tt));
             }
         }
         // A substate removed just above may still get this wave's WMEs (9.6 adds them too,
@@ -329,15 +335,24 @@ impl AgentCore {
             self.wma_slots_decided(&decided);
         }
         let decided = before_decided..self.removed_wmes.as_ref().map_or(0, Vec::len);
+        if !self.decider.gds_invalid.is_empty() {
+            // A substate leaves with a matcher that has seen the phase's removals.
+            self.unmatch_removed(&mut unmatched);
+        }
         self.remove_invalid_gds_goals();
-        // The `RETE: putting` lines so far stand before the `=>WM:` lines; the garbage's
-        // `-` lines go before them, and 9.6's warning after them.
+        // The `RETE: putting` lines stand before the `=>WM:` lines; the garbage's `-` lines
+        // go before them, and 9.6's warning after them.
+        let gc_lines = self.collect_garbage_traced_at(Some(adds_at));
+        if let Some(at) = self.decider.queued_matches_at.as_mut() {
+            *at += gc_lines;
+        }
+        self.unmatch_removed(&mut unmatched);
+        sc.unmatched = unmatched;
         let queued_len = self
             .decider
             .queued_matches_at
-            .map_or(0, |at| at.saturating_sub(adds_at));
+            .map_or(0, |at| at.saturating_sub(adds_at + gc_lines));
         self.end_queued_matches();
-        let gc_lines = self.collect_garbage_traced_at(Some(adds_at));
         if self.settings.trace.wmes {
             self.warn_added_and_removed(&traced_adds, adds_at + gc_lines + queued_len);
         }
@@ -370,6 +385,14 @@ impl AgentCore {
         (sc.adds, sc.removes, sc.context, sc.added, sc.want) =
             (adds, removes, context, added, want);
         self.decider.slot_scratch = sc;
+    }
+
+    /// Tells the matcher of removals [`Self::remove_slot_wme_leaving_matcher`] made, in
+    /// their order, and empties the list.
+    fn unmatch_removed(&mut self, unmatched: &mut Vec<(WmeId, u64)>) {
+        for (w, timetag) in unmatched.drain(..) {
+            self.unmatch_wme(w, timetag);
+        }
     }
 
     /// Takes the first `count` WMEs of `added`, which the matcher has not seen, back out of
@@ -412,6 +435,15 @@ impl AgentCore {
     }
 
     pub(crate) fn remove_slot_wme(&mut self, w: WmeId) {
+        if let Some(timetag) = self.wm.get(w).map(|x| x.timetag) {
+            self.unmatch_wme(w, timetag);
+            self.remove_slot_wme_leaving_matcher(w);
+        }
+    }
+
+    /// [`Self::remove_slot_wme`] but for the matcher, which the caller tells later
+    /// ([`AgentCore::unmatch_wme`]).
+    fn remove_slot_wme_leaving_matcher(&mut self, w: WmeId) {
         let Some(wme) = self.wm.get(w).copied() else {
             return;
         };
@@ -426,7 +458,7 @@ impl AgentCore {
             }
         }
         self.decider.wme_changes += 1;
-        self.remove_wme(w);
+        self.remove_wme_leaving_matcher(w);
     }
 
     /// 9.6's `WARNING: WME added and removed in same phase : (31: S2 ^note hello)`, before
