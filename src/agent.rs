@@ -1003,8 +1003,9 @@ impl AgentCore {
                 }
             }
         }
-        // What it pointed at may now be unlinked: garbage collection looks there.
-        if self.symbols.is_id(wme.value) {
+        // What it pointed at may now be unlinked: garbage collection looks there. A WME
+        // is no link to a goal, which only its own removal unlinks (as in 9.6).
+        if self.symbols.is_id(wme.value) && !self.symbols.is_goal(wme.value) {
             self.decider.gc_candidates.push(wme.value);
         }
         Some(wme)

@@ -491,28 +491,11 @@ impl AgentCore {
         }
         // Input changes not applied yet go with the rest of working memory.
         self.inputs.queue.clear();
-        let all = self.wm.all();
-        // 9.6 clears the decay elements without the WMA trace's `remove` lines.
-        // Nor does it queue the matches the removals make (`trace --assertions`).
-        let wma_traced = std::mem::replace(&mut self.settings.trace.wma, false);
-        let assertions_traced = std::mem::replace(&mut self.settings.trace.assertions, false);
-        // The goals' selected operators go last. A join on an operator whose parent memory
-        // empties before the operator goes is unlinked from its alpha memory and relinked
-        // in the order matches come back, and that order decides which of several rules
-        // built while they matched (chunks among them) matches first after init-soar:
-        // 9.6's order (soar-sml 9.6.5: agent learn-negation-order, command golden
-        // init-soar-order). Joins below a memory that several rules share (agent
-        // learn-conjunctions) still differ, see conformance.md.
-        let operators: Vec<crate::wm::WmeId> =
-            self.decider.goals.iter().filter_map(|g| g.operator.map(|o| o.1)).collect();
-        for w in all.into_iter().rev().filter(|w| !operators.contains(w)) {
-            self.remove_wme(w);
-        }
-        for w in operators {
-            self.remove_wme(w);
-        }
-        self.settings.trace.wma = wma_traced;
-        self.settings.trace.assertions = assertions_traced;
+        // 9.6 traces none of it: no `<=WM:` lines, no WMA `remove` lines, no matches queued
+        // by the removals (`trace --assertions`).
+        let traced = std::mem::take(&mut self.settings.trace);
+        self.clear_goal_stack();
+        self.settings.trace = traced;
         self.matches.clear();
         // Tracking stays on (its rows go), as in 9.6.
         let tracking = self.decider.cycle_stats.tracking;

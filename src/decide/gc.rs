@@ -44,12 +44,23 @@ impl AgentCore {
         self.collect_garbage_traced_at(None);
     }
 
+    /// Garbage collection with no goal left: everything the removed goals held goes
+    /// (`init-soar`).
+    pub(super) fn collect_all_garbage(&mut self) {
+        self.collect_garbage_rooted(None, false);
+    }
+
     /// Garbage collection; the preferences it takes with the slots of unlinked identifiers
     /// are traced as `- pref` lines (`trace -r`) at `at` in the output, where the phase's
     /// `=>WM:` lines start, as 9.6 prints them (checked on soar-sml 9.6.5: agent
     /// support-retraction, an operator elaboration's `^to` on an operator that went), or
     /// where the output is now. Returns how many bytes of text went in at `at`.
     pub(super) fn collect_garbage_traced_at(&mut self, at: Option<usize>) -> usize {
+        self.collect_garbage_rooted(at, true)
+    }
+
+    /// [`Self::collect_garbage_traced_at`], the top state a root while `top_is_root`.
+    fn collect_garbage_rooted(&mut self, at: Option<usize>, top_is_root: bool) -> usize {
         if self.decider.gc_candidates.is_empty() {
             // What was traced as gone is forgotten with each collection, also an empty one.
             self.decider.prefs_traced_gone.clear();
@@ -62,7 +73,9 @@ impl AgentCore {
         // The sets live between calls (emptied), so that a collection allocates nothing.
         let mut gc = std::mem::take(&mut self.decider.gc_scratch);
         gc.roots.extend(self.decider.goals.iter().map(|g| g.state));
-        gc.roots.insert(self.top.state);
+        if top_is_root {
+            gc.roots.insert(self.top.state);
+        }
         let mut garbage: Vec<WmeId> = Vec::new();
         for &c in &candidates {
             if gc.dead.contains(&c) || !self.wm.has_wmes(c) || self.linked(c, &mut gc) {

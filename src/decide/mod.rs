@@ -6,6 +6,7 @@
 
 mod breaks;
 mod ceilings;
+mod clear;
 pub mod by_token;
 pub(crate) mod compiled;
 mod consistency;

@@ -493,7 +493,7 @@ impl AgentCore {
     /// and its WME stays only while the learned rule's copy supports it (Soar manual,
     /// ch. 2, "Justifications: Support for results"; 9.6 removes a goal's preferences
     /// with it). The state's own slots go with the state.
-    fn remove_goal_prefs(&mut self, state: Sym, made: &[MadePref]) {
+    pub(super) fn remove_goal_prefs(&mut self, state: Sym, made: &[MadePref]) {
         for (pid, what) in self.standing_prefs(state, made) {
             if what.0 == state {
                 // It goes with the state's slots; its links go now, in this order.
