@@ -44,8 +44,8 @@ fn make_item(m: &Make) -> String {
 }
 
 /// Appends `items` after `head`, wrapping before an item that would make the line reach
-/// `limit` columns (79 for conditions and actions alike, observed on soar-sml 9.6.5); with
-/// `wrap_first` even the first item goes to a new line when it does not fit after the head.
+/// `limit` columns (79 for conditions and actions alike, observed on soar-sml 9.6.5); even
+/// the first item goes to a new line when it does not fit after the head.
 fn wrap_items_at(
     out: &mut String,
     head: &str,
@@ -53,13 +53,12 @@ fn wrap_items_at(
     indent: usize,
     close: &str,
     limit: usize,
-    wrap_first: bool,
 ) {
     let mut line = head.to_string();
     let mut first = true;
     for it in items {
         let sep = if first { "" } else { " " };
-        if (!first || wrap_first) && line.len() + sep.len() + it.len() >= limit {
+        if line.len() + sep.len() + it.len() >= limit {
             out.push_str(line.trim_end());
             out.push('\n');
             line = " ".repeat(indent);
@@ -117,8 +116,13 @@ fn cond_item(c: &Cond, negated: bool) -> String {
 }
 
 /// Prints a list of conditions, grouping those on the same id (at this level) into one
-/// parenthesised condition at the place of the first, as Soar prints them.
-fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
+/// parenthesised condition at the place of the first, as Soar prints them; `internal`
+/// (`print --internal`) prints each condition alone, as the matcher holds it.
+fn print_conditions(out: &mut String, conds: &[Condition], indent: usize, internal: bool) {
+    if internal {
+        print_conditions_internal(out, conds, indent);
+        return;
+    }
     enum Item<'a> {
         Group(String, Head, Vec<(&'a Cond, bool)>),
         Ncc(&'a [Condition]),
@@ -158,10 +162,8 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
                 out.push_str(&" ".repeat(indent.saturating_sub(1)));
                 out.push_str("-{ ");
                 let mut body = String::new();
-                print_conditions(&mut body, inner, indent + 2);
-                // The first line sits after "-{ ", the rest keep their own indent.
-                out.push_str(body.trim_start().trim_end_matches('\n'));
-                out.push_str("}\n");
+                print_conditions(&mut body, inner, indent + 2, false);
+                push_ncc_body(out, &body);
             }
             Item::Group(id, key, members) => {
                 let goal = members
@@ -183,16 +185,55 @@ fn print_conditions(out: &mut String, conds: &[Condition], indent: usize) {
                 head.push(' ');
                 // Continuation lines start 6 past the indent, whatever the id (observed).
                 let cont = indent + 6;
-                wrap_items_at(out, &head, &texts, cont, ")", 79, false);
+                wrap_items_at(out, &head, &texts, cont, ")", 79);
                 out.push('\n');
             }
         }
     }
 }
 
+/// A negated conjunction's conditions printed at `indent + 2`, after `-{ ` (the first line
+/// sits after it, the rest keep their own indent).
+fn push_ncc_body(out: &mut String, body: &str) {
+    out.push_str(body.trim_start().trim_end_matches('\n'));
+    out.push_str("}\n");
+}
+
+/// `print --internal`: one condition a line in the matcher's order. A state or impasse
+/// test is printed on the first condition of its identifier that carries it, as 9.6 keeps
+/// it on one condition.
+fn print_conditions_internal(out: &mut String, conds: &[Condition], indent: usize) {
+    let mut headed: Vec<(String, Head)> = Vec::new();
+    for c in conds {
+        let (cc, neg) = match c {
+            Condition::Ncc(inner) => {
+                out.push_str(&" ".repeat(indent.saturating_sub(1)));
+                out.push_str("-{ ");
+                let mut body = String::new();
+                print_conditions_internal(&mut body, inner, indent + 2);
+                push_ncc_body(out, &body);
+                continue;
+            }
+            Condition::Positive(cc) => (cc, false),
+            Condition::Negative(cc) => (cc, true),
+        };
+        let id = test_text(&cc.id);
+        let mut head = " ".repeat(indent);
+        head.push('(');
+        if cc.goal != Head::None && !headed.iter().any(|(i, g)| *i == id && *g == cc.goal) {
+            headed.push((id.clone(), cc.goal));
+            head.push_str(if cc.goal == Head::State { "state " } else { "impasse " });
+        }
+        head.push_str(&id);
+        head.push(' ');
+        wrap_items_at(out, &head, &[cond_item(cc, neg)], indent + 6, ")", 79);
+        out.push('\n');
+    }
+}
+
 /// Prints the actions, each make action grouped with every later one on the same id (at the
 /// place of the first, as 9.6 prints them), function calls where they stand.
-fn print_actions(out: &mut String, actions: &[Action]) {
+fn print_actions(out: &mut String, actions: &[Action], internal: bool) {
     let mut printed = vec![false; actions.len()];
     for i in 0..actions.len() {
         if printed[i] {
@@ -209,6 +250,10 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                 let mut items = Vec::new();
                 for (j, a) in actions.iter().enumerate().skip(i) {
                     if let Action::Make(mm) = a {
+                        // `--internal` keeps each action alone.
+                        if internal && j > i {
+                            break;
+                        }
                         if !printed[j] && rhs_id_text(&mm.id) == id {
                             items.push(make_item(mm));
                             printed[j] = true;
@@ -219,7 +264,7 @@ fn print_actions(out: &mut String, actions: &[Action]) {
                 // Continuation lines of an action start in column 12, whatever the id; an
                 // action wraps even before its first item (observed on soar-sml 9.6.5).
                 let cont = 11;
-                wrap_items_at(out, &head, &items, cont, ")", 79, true);
+                wrap_items_at(out, &head, &items, cont, ")", 79);
                 out.push('\n');
             }
         }
@@ -228,6 +273,12 @@ fn print_actions(out: &mut String, actions: &[Action]) {
 
 /// `print <rule>` text (without the trailing blank line Soar adds after the brace).
 pub fn production_text(p: &Production) -> String {
+    production_text_as(p, false)
+}
+
+/// [`production_text`], or with `internal` (`print --internal`) each condition and each
+/// action on a line of its own, in the matcher's order.
+pub fn production_text_as(p: &Production, internal: bool) -> String {
     let mut out = format!("sp {{{}\n", rereadable(&p.name));
     if let Some(doc) = &p.doc {
         out.push_str(&format!(
@@ -254,13 +305,13 @@ pub fn production_text(p: &Production) -> String {
             out.push('\n');
         }
     }
-    print_conditions(&mut out, &p.conditions, 4);
+    print_conditions(&mut out, &p.conditions, 4, internal);
     out.push_str("    -->\n");
     if p.actions.is_empty() {
         // Soar prints an indented empty line for an empty right-hand side.
         out.push_str("    \n");
     }
-    print_actions(&mut out, &p.actions);
+    print_actions(&mut out, &p.actions, internal);
     out.push_str("}\n");
     out
 }

@@ -29,6 +29,8 @@ struct WmStyle {
 struct RuleStyle {
     full: Option<bool>,
     filename: bool,
+    /// `--internal`: each condition and action on a line of its own.
+    internal: bool,
 }
 
 impl Interpreter {
@@ -113,6 +115,7 @@ impl Interpreter {
                 })
                 .or(parsed.has("internal").then_some(true)),
             filename: parsed.has("filename"),
+            internal: parsed.has("internal"),
         };
         let kinds = ["all", "user", "chunks", "defaults", "justifications", "rl", "template"];
         let listing = kinds.iter().any(|k| parsed.has(k));
@@ -269,22 +272,23 @@ impl Interpreter {
     }
 
     /// The rules of the kinds `wanted` selects, kind by kind in 9.6's order (default
-    /// rules, user rules, templates, chunks), each kind newest first; then the
-    /// justifications.
+    /// rules, user rules, templates, justifications, chunks), each kind newest first
+    /// (observed on soar-sml 9.6.5, whatever order the options name the kinds in).
     fn rule_listing(&self, wanted: &dyn Fn(&str) -> bool, style: RuleStyle) -> String {
         let mut s = String::new();
-        for kind in ["defaults", "user", "template", "chunks"] {
+        for kind in ["defaults", "user", "template", "justifications", "chunks"] {
             if !wanted(kind) {
+                continue;
+            }
+            if kind == "justifications" {
+                for j in self.agent.learn.justifications.iter().rev() {
+                    let production = j.production(&self.agent.symbols);
+                    s.push_str(&self.rule_text(&production, style, false));
+                }
                 continue;
             }
             for p in self.agent.productions().rev().filter(|p| p.kind_word() == kind) {
                 s.push_str(&self.rule_text(p, style, false));
-            }
-        }
-        if wanted("justifications") {
-            for j in self.agent.learn.justifications.iter().rev() {
-                let production = j.production(&self.agent.symbols);
-                s.push_str(&self.rule_text(&production, style, false));
             }
         }
         s
@@ -341,7 +345,7 @@ impl Interpreter {
             if style.filename {
                 s.push_str(&format!("# source file: {}\n", file()));
             }
-            s.push_str(&crate::printer::production_text(p));
+            s.push_str(&crate::printer::production_text_as(p, style.internal));
             s.push('\n');
             s
         } else {
