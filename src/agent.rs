@@ -1003,6 +1003,9 @@ impl AgentCore {
                 }
             }
         }
+        if !self.decider.gds_orphans.is_empty() {
+            self.decider.gds_orphans.remove(&w);
+        }
         // What it pointed at may now be unlinked: garbage collection looks there. A WME
         // is no link to a goal, which only its own removal unlinks (as in 9.6).
         if self.symbols.is_id(wme.value) && !self.symbols.is_goal(wme.value) {
@@ -1058,9 +1061,15 @@ pub(crate) fn create_top_state(
         (io, s(symbols, "input-link"), input_link),
         (io, s(symbols, "output-link"), output_link),
     ];
-    for (i, a, v) in triples {
-        let w = wm.add(i, a, v, false);
-        rete.add_wme(w, (i, a, v), false, symbols, sink);
+    let added: Vec<(WmeId, (Sym, Sym, Sym))> = triples
+        .into_iter()
+        .map(|t| (wm.add(t.0, t.1, t.2, false), t))
+        .collect();
+    // The matcher takes them as 9.6 buffers them: the state's WMEs, then the io link's,
+    // each group newest first (9.6's `=>WM:` lines show that order).
+    let (state_wmes, io_wmes) = added.split_at(added.len() - 3);
+    for &(w, t) in state_wmes.iter().rev().chain(io_wmes.iter().rev()) {
+        rete.add_wme(w, t, false, symbols, sink);
     }
     TopState {
         state,

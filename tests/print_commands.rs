@@ -122,9 +122,8 @@ fn print_wraps_from_the_stream_column_as_9_6_does() {
     }
 }
 
-/// What is not golden-able: the absolute path `--filename` shows, the GDS listing in
-/// rusoar's order (9.6 lists it in its rete's order), and `production memory-usage` with
-/// a live justification.
+/// What is not golden-able: the absolute path `--filename` shows, and `production
+/// memory-usage` with a live justification; and `print --gds` with a kind of rule.
 #[test]
 fn filename_gds_and_production_commands() {
     let dir = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/agents");
@@ -141,11 +140,12 @@ fn filename_gds_and_production_commands() {
     let full = output(&mut i, "print -F gds*propose*work");
     assert!(full.starts_with(&format!("# source file: {path}\nsp {{gds*propose*work\n")));
     let gds = output(&mut i, "print --gds -T");
+    // The GDS listing in 9.6's order (command golden `print-gds-old-values`), with `-T`.
     assert!(
-        gds.contains("  For Goal  S2  (18: S1 ^flag on)\n  For Goal  S2  (19: O2 ^name work)\n"),
+        gds.contains("  For Goal  S2  (19: O2 ^name work)\n  For Goal  S2  (18: S1 ^flag on)\n"),
         "{gds}"
     );
-    assert!(gds.contains("  For Goal  S1  : No GDS for this goal.\n  For Goal  S2  \n                (18: S1 ^flag on)\n"), "{gds}");
+    assert!(gds.contains("  For Goal  S1  : No GDS for this goal.\n  For Goal  S2  \n                (19: O2 ^name work)\n"), "{gds}");
     // A live justification (one more decision makes one) is not counted: asked for
     // alone, it is refused by name; in the whole listing, left out (see docs/commands.md).
     let none = i.source_text("t", "memories -j").unwrap_err();

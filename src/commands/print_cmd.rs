@@ -7,8 +7,8 @@ use super::{CmdResult, Ctx, Interpreter};
 use crate::agent::AgentCore;
 use crate::production::Production;
 use crate::symbols::Sym;
-use crate::trace::{print_object_at, wme_line};
-use crate::wm::Wme;
+use crate::trace::{print_object_at, sym_shown, wme_line};
+use crate::wm::{Wme, WmeId};
 
 const NO_ARGUMENT: &str =
     "No argument allowed when printing all/chunks/defaults/GDS/justifications/rl/template/user/stack.";
@@ -226,6 +226,11 @@ impl Interpreter {
     /// An object: `--exact` and `--internal` show one WME per line, `--tree` one WME per
     /// line under the WME leading to it, else the object with `--depth` levels below it.
     fn print_id(&self, id: Sym, style: WmStyle) -> String {
+        self.print_id_at(id, style, self.print_column())
+    }
+
+    /// [`Self::print_id`] starting at column `col` of the print stream.
+    fn print_id_at(&self, id: Sym, style: WmStyle, col: usize) -> String {
         let agent = &self.agent;
         if style.tree {
             return super::printing::print_tree(
@@ -242,7 +247,7 @@ impl Interpreter {
             style.depth,
             style.internal,
             style.varprint,
-            self.print_column(),
+            col,
         )
     }
 
@@ -253,20 +258,49 @@ impl Interpreter {
             Ok(p) => p,
             Err(message) => return format!("{message}\n"),
         };
+        // 9.6 walks its WMEs in the order they entered its matcher.
+        let agent = &self.agent;
+        let mut found: Vec<(u64, &Wme)> = agent
+            .wm
+            .all()
+            .into_iter()
+            .filter_map(|w| {
+                let wme = agent.wm.get(w).filter(|wme| pattern.matches(wme))?;
+                Some((agent.rete.entry_order(w).unwrap_or(u64::MAX), wme))
+            })
+            .collect();
+        found.sort_by_key(|f| f.0);
         let mut out = String::new();
-        for w in self.agent.wm.all() {
-            let Some(wme) = self.agent.wm.get(w) else {
-                continue;
-            };
-            if !pattern.matches(wme) {
+        if !style.exact {
+            // Each object after the first starts a line.
+            for (i, (_, wme)) in found.into_iter().enumerate() {
+                let col = if i == 0 { self.print_column() } else { 0 };
+                out.push_str(&self.print_id_at(wme.id, style, col));
+            }
+            return out;
+        }
+        // `--exact` groups the WMEs by object, the objects in the order their identifiers
+        // were made (9.6 orders them by address, which follows that order in a fresh run).
+        found.sort_by_key(|f| f.1.id);
+        for group in found.chunk_by(|a, b| a.1.id == b.1.id) {
+            if style.internal {
+                for (_, wme) in group {
+                    out.push_str(&wme_line(agent, wme, true, style.varprint));
+                    out.push('\n');
+                }
                 continue;
             }
-            if style.exact {
-                out.push_str(&wme_line(&self.agent, wme, style.internal, style.varprint));
-                out.push('\n');
-            } else {
-                out.push_str(&self.print_id(wme.id, style));
+            out.push('(');
+            out.push_str(&sym_shown(agent, group[0].1.id, style.varprint));
+            for (_, wme) in group {
+                out.push_str(&format!(
+                    " ^{} {}{}",
+                    sym_shown(agent, wme.attr, style.varprint),
+                    sym_shown(agent, wme.value, style.varprint),
+                    if wme.acceptable { " +" } else { "" }
+                ));
             }
+            out.push_str(")\n");
         }
         out
     }
@@ -538,19 +572,33 @@ fn gds_listing(agent: &AgentCore) -> String {
     let mut s = String::from(
         "********************* Current GDS **************************\nstepping thru all wmes in rete, looking for any that are in a gds...\n",
     );
-    let mut members: Vec<(Wme, Sym)> = agent
+    // 9.6 steps through its WMEs newest in its matcher first, then lists each set newest
+    // member first.
+    let members: Vec<(Wme, Sym, WmeId)> = agent
         .decider
         .gds
         .iter()
-        .filter_map(|(w, g)| agent.wm.get(*w).map(|x| (*x, *g)))
+        .filter_map(|(w, g)| agent.wm.get(*w).map(|x| (*x, *g, *w)))
         .collect();
-    members.sort_by_key(|(w, _)| w.timetag);
-    for (w, g) in &members {
-        s.push_str(&format!(
-            "  For Goal  {}  {}\n",
-            agent.symbols.text(*g),
-            wme_line(agent, w, true, false)
-        ));
+    let mut stepped: Vec<(Option<u64>, String)> = members
+        .iter()
+        .map(|(w, g, id)| {
+            let line = format!(
+                "  For Goal  {}  {}\n",
+                agent.symbols.text(*g),
+                wme_line(agent, w, true, false)
+            );
+            (agent.rete.entry_order(*id), line)
+        })
+        .collect();
+    stepped.extend(agent.decider.gds_orphans.iter().filter_map(|&id| {
+        let w = agent.wm.get(id)?;
+        let line = format!("  Old GDS value {}\n", wme_line(agent, w, true, false));
+        Some((agent.rete.entry_order(id), line))
+    }));
+    stepped.sort_by_key(|m| std::cmp::Reverse(m.0));
+    for (_, line) in stepped {
+        s.push_str(&line);
     }
     s.push_str("************************************************************\n");
     let goals: Vec<Sym> = if agent.decider.goals.is_empty() {
@@ -559,17 +607,18 @@ fn gds_listing(agent: &AgentCore) -> String {
         agent.decider.goals.iter().map(|g| g.state).collect()
     };
     for g in goals {
-        let mine: Vec<&Wme> = members
+        let mut mine: Vec<(&Wme, WmeId)> = members
             .iter()
-            .filter(|(_, x)| *x == g)
-            .map(|(w, _)| w)
+            .filter(|m| m.1 == g)
+            .map(|m| (&m.0, m.2))
             .collect();
+        mine.sort_by_key(|m| std::cmp::Reverse(agent.decider.gds_joined.get(&m.1).copied()));
         let name = agent.symbols.text(g);
         if !agent.decider.gds_sizes.contains_key(&g) {
             s.push_str(&format!("  For Goal  {name}  : No GDS for this goal.\n"));
         } else {
             s.push_str(&format!("  For Goal  {name}  \n"));
-            for w in mine {
+            for (w, _) in mine {
                 s.push_str(&format!("                {}\n", wme_line(agent, w, true, false)));
             }
         }

@@ -267,6 +267,11 @@ impl AgentCore {
             self.leave_gds(had);
         }
         self.decider.gds.insert(w, goal);
+        if !self.decider.gds_orphans.is_empty() {
+            self.decider.gds_orphans.remove(&w);
+        }
+        self.decider.gds_joins += 1;
+        self.decider.gds_joined.insert(w, self.decider.gds_joins);
         *self.decider.gds_sizes.entry(goal).or_insert(0) += 1;
         if self.settings.trace.gds_wmes {
             if let Some(wme) = self.wm.get(w).copied() {

@@ -6,7 +6,7 @@ pub use super::slot::{Slot, Slots};
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
-use rustc_hash::FxHashMap;
+use rustc_hash::{FxHashMap, FxHashSet};
 
 /// A state's WMEs that the architecture makes (9.6's impasse WMEs, kept out of slots).
 pub(crate) const STATE_ARCH_ATTRS: [&str; 10] = [
@@ -270,6 +270,15 @@ pub struct DecideState {
     pub spare_goal_made: Vec<MadePrefs>,
     /// Each WME in a goal dependency set, with the highest goal that depends on it.
     pub gds: FxHashMap<WmeId, Sym>,
+    /// When each WME last joined a goal dependency set (a count of joins), for `print
+    /// --gds`, which lists a set newest member first as 9.6 does. A WME's entry is
+    /// overwritten when it joins again; one that left keeps a stale entry.
+    pub gds_joined: FxHashMap<WmeId, u64>,
+    pub gds_joins: u64,
+    /// WMEs still in the set of a goal that is gone, until they leave working memory or
+    /// join another set: 9.6 keeps such a set and `print --gds` lists them as old values.
+    /// They are in no set as far as the goal dependency set goes.
+    pub gds_orphans: FxHashSet<WmeId>,
     /// Garbage collection is taking WMEs out (9.6 checks no goal dependency set then).
     pub collecting_garbage: bool,
     /// The goals with a goal dependency set, with the number of WMEs in it.

@@ -479,7 +479,16 @@ impl AgentCore {
                 }
             }
             self.decider.gc_candidates.push(g.state);
-            self.decider.gds.retain(|_, goal| *goal != g.state);
+            if self.decider.gds_sizes.contains_key(&g.state) {
+                let orphans = &mut self.decider.gds_orphans;
+                self.decider.gds.retain(|&w, goal| {
+                    let stays = *goal != g.state;
+                    if !stays {
+                        orphans.insert(w);
+                    }
+                    stays
+                });
+            }
             self.decider.gds_sizes.remove(&g.state);
             let mut made = g.made;
             made.clear();

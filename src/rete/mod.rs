@@ -198,6 +198,8 @@ pub(crate) struct RWme {
     pub neg_results: u32,
     /// Whether the batch of changes in progress removes it (see `doomed.rs`).
     pub doomed: bool,
+    /// Its place in the order WMEs entered the matcher (see [`Rete::entry_order`]).
+    pub entered: u64,
 }
 
 #[derive(Debug, Clone, PartialEq)]
@@ -496,6 +498,8 @@ pub struct Rete {
     pub right_activations: u64,
     pub left_activations: u64,
     pub tokens_made: u64,
+    /// WMEs added so far: the next one's [`RWme::entered`].
+    wmes_entered: u64,
     /// When set, `add_wme` notes before each alpha memory it activates that memory's
     /// 9.6 alpha table (`attr constant` × 2 + `value constant`) and the sink's retraction
     /// count, in `alpha_marks`: justifications are not in our network, and 9.6 reaches
@@ -558,6 +562,7 @@ impl Rete {
             right_activations: 0,
             left_activations: 0,
             tokens_made: 0,
+            wmes_entered: 0,
             mark_alphas: false,
             token_budget: 0,
             fill_aborted: false,
@@ -759,6 +764,13 @@ impl Rete {
 
     // ---------------------------------------------------------------- working memory
 
+    /// Where WME `w` stands in the order WMEs entered the matcher, which is the order 9.6
+    /// keeps its WMEs in (`print` of a pattern lists them so); `None` for a WME it does not
+    /// hold.
+    pub fn entry_order(&self, w: WmeId) -> Option<u64> {
+        self.wmes.get(w.0 as usize)?.as_ref().map(|r| r.entered)
+    }
+
     /// Adds a WME and propagates its matches (Doorenbos `add-wme`).
     pub fn add_wme(
         &mut self,
@@ -781,7 +793,9 @@ impl Rete {
             tokens: TokId::NONE,
             neg_results: NIL,
             doomed: false,
+            entered: self.wmes_entered,
         });
+        self.wmes_entered += 1;
         // Up to four alpha memories can hold it: attribute and value constant or not. They
         // are activated least specific first, as 9.6 walks its alpha hash tables; the order
         // decides which left-unlinked joins relink first, so the order of new matches and
