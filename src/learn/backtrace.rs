@@ -169,6 +169,10 @@ impl Backtrace {
                     } else {
                         self.add_ground(c, &trace, agent);
                     }
+                    // The prohibit preferences of a higher state's operator slot that
+                    // this firing tested are backtraced too (their firings' conditions
+                    // come in as they are: a top-state firing's with its identifiers).
+                    self.push_osk(c, &mut stack);
                     continue;
                 }
                 if c.wme.attr == quiescence && c.wme.value == t {
@@ -185,13 +189,7 @@ impl Backtrace {
                     }
                     // The knowledge that selected a tested operator goes with its
                     // proposal, without joining identities (`chunk add-osk`).
-                    if let Some(osk) = &c.osk {
-                        for o in osk.iter() {
-                            if o.trace.backtraced.load(Relaxed) != self.number {
-                                stack.push(Pending::Firing(o.trace.clone()));
-                            }
-                        }
-                    }
+                    self.push_osk(c, &mut stack);
                 }
             }
             if let Some(prod) = &trace.prod {
@@ -206,6 +204,17 @@ impl Backtrace {
             }
         }
         self.stack = stack;
+    }
+
+    /// The firings behind condition `c`'s operator selection knowledge, to be backtraced.
+    fn push_osk(&self, c: &TraceCond, stack: &mut Vec<Pending>) {
+        if let Some(osk) = &c.osk {
+            for o in osk.iter() {
+                if o.trace.backtraced.load(Relaxed) != self.number {
+                    stack.push(Pending::Firing(o.trace.clone()));
+                }
+            }
+        }
     }
 
     /// Where a local condition met the action that made its WME: identities on both
@@ -282,10 +291,14 @@ impl Backtrace {
 
     /// Identifiers are always variables, and one identifier is one variable: identities
     /// that matched the same identifier are joined (so the conditions stay connected).
+    /// The conditions of a superstate's firing that operator selection knowledge brought
+    /// in keep their own identities: 9.6 gives that state's firings identities of their
+    /// own, and the chunk tests them with variables of their own.
     pub fn join_same_identifiers(&mut self, symbols: &crate::symbols::Symbols) {
         let mut first: FxHashMap<Sym, Ident> = FxHashMap::default();
         let mut pairs = Vec::new();
-        for g in &self.grounds {
+        let level = self.level;
+        for g in self.grounds.iter().filter(|g| g.trace.level >= level) {
             let w = g.cond.wme;
             for (s, i) in [w.id, w.attr, w.value].into_iter().zip(g.cond.ids) {
                 if i != 0 && symbols.is_id(s) {

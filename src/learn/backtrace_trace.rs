@@ -130,10 +130,16 @@ impl Walk<'_> {
         // A firing that tested a selected operator goes through the prohibit preferences
         // behind the selection, then (with `add-osk`) all of the knowledge, the prohibit
         // preferences again among it; the firing that proposed it, through the knowledge.
-        if let Some(osk) = trace.conds.iter().find_map(|c| c.osk.clone()) {
+        // A test of another state's operator slot brings its prohibit preferences alone.
+        // 9.6 lists each condition's, the last condition's first.
+        let mut passes: Vec<Arc<PrefOrigin>> = Vec::new();
+        for c in trace.conds.iter().rev() {
+            let Some(osk) = &c.osk else { continue };
             let prohibits = osk.iter().filter(|o| pref_kind(o) == Some(PrefKind::Prohibit));
-            let all = osk.iter().filter(|_| add_osk);
-            let passes: Vec<Arc<PrefOrigin>> = prohibits.chain(all).cloned().collect();
+            let all = osk.iter().filter(|_| add_osk && c.osk_local);
+            passes.extend(prohibits.chain(all).cloned());
+        }
+        if !passes.is_empty() {
             self.through_knowledge(&passes);
         }
         if let Some(osk) = self.proposals.get(&Arc::as_ptr(trace)).filter(|_| add_osk) {

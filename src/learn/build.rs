@@ -552,7 +552,9 @@ impl AgentCore {
             bt.grounds.iter().collect()
         };
         let mut conditions = Vec::new();
-        let mut goal_tested: FxHashSet<Sym> = FxHashSet::default();
+        // The identifiers marked as states, by the term that tests them (one state can
+        // be tested through two variables, see `join_same_identifiers`).
+        let mut goal_tested: Vec<Term> = Vec::new();
         for &g in &grounds {
             let w = g.cond.wme;
             let orig =
@@ -597,8 +599,9 @@ impl AgentCore {
             // 9.6 marks the state the rule will match in (the learning goal's superstate).
             let goal = if self.symbols.is_goal(w.id)
                 && self.sym_level(w.id) + 1 == bt.level
-                && goal_tested.insert(w.id)
+                && !goal_tested.contains(&id)
             {
+                goal_tested.push(id.clone());
                 Head::State
             } else {
                 Head::None

@@ -121,6 +121,7 @@ impl AgentCore {
                     support,
                     via_item: false,
                     osk: None,
+                    osk_local: false,
                 }
             })
             .collect();

@@ -47,8 +47,11 @@ pub struct TraceCond {
     /// The acceptable preference an impasse's `^item` stands for (see `record.rs`).
     pub via_item: bool,
     /// For a test of the match goal's selected operator: the knowledge that selected it
-    /// (`chunk add-osk`), backtraced with the operator's proposal.
+    /// (`chunk add-osk`), backtraced with the operator's proposal; for any other WME of
+    /// an operator slot, that slot's prohibit preferences alone.
     pub osk: Option<Osk>,
+    /// `osk` is the whole knowledge that selected the match goal's operator.
+    pub osk_local: bool,
 }
 
 /// What a firing in a substate looked like, kept as long as its preferences need it (the

@@ -107,15 +107,18 @@ impl AgentCore {
                         cond: None,
                         support: None,
                         via_item: true,
-                        osk: None,
+                        osk: self.prohibit_knowledge_of(&aw, made),
+                        osk_local: false,
                     });
                 }
             }
-            let osk = if wme_level == level {
+            let local = if wme_level == level {
                 self.selection_knowledge_of(&wme)
             } else {
                 None
             };
+            let osk_local = local.is_some();
+            let osk = local.or_else(|| self.prohibit_knowledge_of(&wme, made));
             conds.push(TraceCond {
                 wme,
                 wme_id: w,
@@ -125,6 +128,7 @@ impl AgentCore {
                 support,
                 via_item: false,
                 osk,
+                osk_local,
             });
         }
         let trace = Arc::new(InstTrace {
@@ -208,6 +212,33 @@ impl AgentCore {
             Some((o, _)) if o == wme.value => goal.osk.clone(),
             _ => None,
         }
+    }
+
+    /// For a WME of a state's operator slot (its selected operator, or a `+` WME): the
+    /// origins of the slot's prohibit preferences but those the firing `made`, newest
+    /// first. 9.6 backtraces through them whatever the WME's level and the `add-osk`
+    /// setting, where the rest of the selection knowledge goes only with the firing's own
+    /// state's selected operator. (The top state's firings record nothing: its prohibit
+    /// preferences have no origin, see conformance.md.)
+    fn prohibit_knowledge_of(
+        &self,
+        wme: &crate::wm::Wme,
+        made: &[(PrefId, usize)],
+    ) -> Option<super::Osk> {
+        if wme.attr != self.symbols.known.operator || !self.symbols.is_goal(wme.id) {
+            return None;
+        }
+        let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        let origins: Vec<Arc<PrefOrigin>> = slot
+            .prefs
+            .iter()
+            .rev()
+            .filter(|&&pid| !made.iter().any(|m| m.0 == pid))
+            .map(|&pid| &self.decider.prefs[pid])
+            .filter(|pref| pref.kind == PrefType::Prohibit)
+            .filter_map(|pref| pref.origin.clone())
+            .collect();
+        (!origins.is_empty()).then(|| origins.into())
     }
 
     /// For `(G ^item X)` of a tie or conflict substate G: the WME `(S ^operator X +)` of
