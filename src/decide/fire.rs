@@ -240,7 +240,7 @@ impl AgentCore {
         }
         if level >= 2 {
             let recorded = match self.production_by_id(p) {
-                Some(prod) => self.record_firing(p, t, &prod, &new_ids, &made),
+                Some(prod) => self.record_firing(p, t, &prod, &new_ids, &made, true),
                 None => None,
             };
             if let Some(trace) = recorded {

@@ -402,10 +402,11 @@ impl AgentCore {
         // (9.6 names the chunk when an o-reject takes it: agent learn-negation, trace 5).
         let chunk_rule = chunk_match.as_ref().map(|(pid, _, _)| *pid);
         // A chunk's instantiation is recorded like any firing of it (its own variables and
-        // tests carry on to a learning episode one level up); a justification keeps the
-        // grounds, a literalized identity becoming a literal.
+        // tests carry on to a learning episode one level up), but without operator
+        // selection knowledge (9.6 builds it from the rule, not from a match); a
+        // justification keeps the grounds, a literalized identity becoming a literal.
         let recorded = chunk_match.and_then(|(pid, tok, prod)| {
-            let trace = self.record_firing(pid, tok, &prod, &[], &[])?;
+            let trace = self.record_firing(pid, tok, &prod, &[], &[], false)?;
             Some((trace, prod))
         });
         let trace = match &recorded {
