@@ -376,3 +376,19 @@ fn slam_ekf_outputs_are_byte_identical_for_the_same_seed() {
     assert!(md.contains("| EKF |"), "{md}");
     let _ = std::fs::remove_dir_all(&base);
 }
+
+#[test]
+fn exit_and_quit_end_the_commands() {
+    for word in ["exit", "quit"] {
+        let out = rusoar(&["-c", "echo before", "-c", word, "-c", "echo after"]);
+        assert!(out.status.success(), "{word}: {:?}", out.status);
+        let stdout = text(&out.stdout);
+        assert!(stdout.contains("before"), "{word}: {stdout}");
+        assert!(!stdout.contains("after"), "{word}: {stdout}");
+        let piped = rusoar_stdin(format!("echo before\n{word}\necho after\n").as_bytes());
+        assert!(
+            !text(&piped.stdout).contains("after"),
+            "{word}, standard input"
+        );
+    }
+}

@@ -229,13 +229,14 @@ impl AgentCore {
         if phase == Phase::Output && self.decider.phase == Some(Phase::Input) {
             self.end_cycle_stats();
         }
-        // 9.6 samples the WM size once per phase, at its end (a phase left mid-way by
-        // `run -e` is sampled when it ends).
-        if self.decider.phase != Some(phase) {
+        // 9.6 samples the WM size each time it leaves its phase function: at the end of
+        // each phase, and under `run -e` after each elaboration cycle as well.
+        let phase_ended = self.decider.phase != Some(phase);
+        if phase_ended || one_cycle {
             self.sample_wm_size();
-            if self.events.any() {
-                self.events.send(&AgentEvent::AfterPhase(phase));
-            }
+        }
+        if phase_ended && self.events.any() {
+            self.events.send(&AgentEvent::AfterPhase(phase));
         }
     }
 
