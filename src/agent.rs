@@ -996,7 +996,7 @@ impl AgentCore {
         }
         // Most removals happen with no substate, so with an empty GDS: no hash probe then.
         if !self.decider.gds.is_empty() {
-            if let Some(goal) = self.decider.gds.remove(&w) {
+            if let Some(goal) = self.decider.gds.remove(&w).map(|m| m.goal) {
                 self.leave_gds(goal);
                 if self.gds_watches_removal(&wme) {
                     self.decider.gds_invalid.push(goal);
@@ -1008,7 +1008,7 @@ impl AgentCore {
         }
         // What it pointed at may now be unlinked: garbage collection looks there. A WME
         // is no link to a goal, which only its own removal unlinks (as in 9.6).
-        if self.symbols.is_id(wme.value) && !self.symbols.is_goal(wme.value) {
+        if self.symbols.id_data(wme.value).is_some_and(|d| !d.is_goal) {
             self.decider.gc_candidates.push(wme.value);
         }
         Some(wme)

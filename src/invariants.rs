@@ -34,7 +34,7 @@ impl AgentCore {
     }
 
     fn check_gds(&self, out: &mut Vec<String>) {
-        for (&w, &goal) in self.decider.gds.iter() {
+        for (&w, &crate::decide::state::GdsMember { goal, .. }) in self.decider.gds.iter() {
             let Some(wme) = self.wm.get(w) else {
                 out.push(format!(
                     "goal dependency set of {}: holds a WME no longer in working memory",
@@ -213,7 +213,11 @@ mod tests {
     fn a_dependency_charged_to_the_top_state_is_named() {
         let mut core = AgentCore::new("t");
         let w = core.wm.of_id(core.top.state).next().expect("S1 has WMEs");
-        core.decider.gds.insert(w, core.top.state);
+        let member = crate::decide::state::GdsMember {
+            goal: core.top.state,
+            joined: 1,
+        };
+        core.decider.gds.insert(w, member);
         let found = core.invariant_violations();
         assert_eq!(found.len(), 1, "{found:?}");
         assert!(found[0].contains("charged to S1, which is not a substate"));

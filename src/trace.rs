@@ -649,7 +649,7 @@ impl AgentCore {
             else {
                 continue;
             };
-            let Some(&goal) = self.decider.gds.get(&w) else {
+            let Some(goal) = self.decider.gds.get(&w).map(|m| m.goal) else {
                 continue;
             };
             let level = self.symbols.id_data(goal).map_or(0, |d| d.level);

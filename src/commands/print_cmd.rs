@@ -574,15 +574,15 @@ fn gds_listing(agent: &AgentCore) -> String {
     );
     // 9.6 steps through its WMEs newest in its matcher first, then lists each set newest
     // member first.
-    let members: Vec<(Wme, Sym, WmeId)> = agent
+    let members: Vec<(Wme, Sym, WmeId, u64)> = agent
         .decider
         .gds
         .iter()
-        .filter_map(|(w, g)| agent.wm.get(*w).map(|x| (*x, *g, *w)))
+        .filter_map(|(w, m)| agent.wm.get(*w).map(|x| (*x, m.goal, *w, m.joined)))
         .collect();
     let mut stepped: Vec<(Option<u64>, String)> = members
         .iter()
-        .map(|(w, g, id)| {
+        .map(|(w, g, id, _)| {
             let line = format!(
                 "  For Goal  {}  {}\n",
                 agent.symbols.text(*g),
@@ -607,12 +607,12 @@ fn gds_listing(agent: &AgentCore) -> String {
         agent.decider.goals.iter().map(|g| g.state).collect()
     };
     for g in goals {
-        let mut mine: Vec<(&Wme, WmeId)> = members
+        let mut mine: Vec<(&Wme, u64)> = members
             .iter()
             .filter(|m| m.1 == g)
-            .map(|m| (&m.0, m.2))
+            .map(|m| (&m.0, m.3))
             .collect();
-        mine.sort_by_key(|m| std::cmp::Reverse(agent.decider.gds_joined.get(&m.1).copied()));
+        mine.sort_by_key(|m| std::cmp::Reverse(m.1));
         let name = agent.symbols.text(g);
         if !agent.decider.gds_sizes.contains_key(&g) {
             s.push_str(&format!("  For Goal  {name}  : No GDS for this goal.\n"));

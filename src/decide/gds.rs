@@ -7,7 +7,7 @@
 //! the next decision can make the impasse again.
 
 use super::procedure::PrefType;
-use super::state::{InstId, PrefId};
+use super::state::{GdsMember, InstId, PrefId};
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
 use crate::wm::WmeId;
@@ -260,18 +260,18 @@ impl AgentCore {
     /// is charged to the highest goal that depends on it, as removing that goal removes the
     /// lower ones too. A lower goal's set that it leaves empty is no more.
     fn join_gds(&mut self, w: WmeId, goal: Sym, level: u32) {
-        if let Some(&had) = self.decider.gds.get(&w) {
+        if let Some(had) = self.decider.gds.get(&w).map(|m| m.goal) {
             if self.sym_level(had) <= level {
                 return;
             }
             self.leave_gds(had);
         }
-        self.decider.gds.insert(w, goal);
+        self.decider.gds_joins += 1;
+        let joined = self.decider.gds_joins;
+        self.decider.gds.insert(w, GdsMember { goal, joined });
         if !self.decider.gds_orphans.is_empty() {
             self.decider.gds_orphans.remove(&w);
         }
-        self.decider.gds_joins += 1;
-        self.decider.gds_joined.insert(w, self.decider.gds_joins);
         *self.decider.gds_sizes.entry(goal).or_insert(0) += 1;
         if self.settings.trace.gds_wmes {
             if let Some(wme) = self.wm.get(w).copied() {
@@ -315,15 +315,14 @@ impl AgentCore {
         }
         let top_index = removes
             .iter()
-            .filter(|&&(w, tt)| {
-                self.decider.gds.contains_key(&w)
-                    && self
-                        .wm
-                        .get(w)
-                        .is_some_and(|x| x.timetag == tt && self.gds_watches_removal(x))
+            .filter_map(|&(w, tt)| {
+                let goal = self.decider.gds.get(&w)?.goal;
+                let watched = self.wm.get(w);
+                watched
+                    .is_some_and(|x| x.timetag == tt && self.gds_watches_removal(x))
+                    .then_some(goal)
             })
-            .filter_map(|(w, _)| self.decider.gds.get(w))
-            .filter_map(|g| self.decider.goals.iter().position(|x| x.state == *g))
+            .filter_map(|g| self.decider.goals.iter().position(|x| x.state == g))
             .min();
         if let Some(top_index) = top_index.filter(|&i| i > 0) {
             if self.settings.trace.wmes && self.removed_wmes.is_some() {
@@ -334,7 +333,7 @@ impl AgentCore {
                         self.wm
                             .get(w)
                             .is_some_and(|x| x.timetag == tt && self.gds_watches_removal(x))
-                            && self.decider.gds.get(&w) == Some(&goal)
+                            && self.decider.gds.get(&w).map(|m| m.goal) == Some(goal)
                     })
                     .map(|&(_, tt)| tt);
                 self.collect_substate_removals(top_index - 1);

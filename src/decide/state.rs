@@ -161,6 +161,16 @@ pub enum Phase {
     Output,
 }
 
+/// A WME's place in a goal dependency set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct GdsMember {
+    /// The highest goal that depends on the WME.
+    pub goal: Sym,
+    /// When it joined (a count of joins): `print --gds` lists a set newest member first,
+    /// as 9.6 does.
+    pub joined: u64,
+}
+
 #[derive(Debug, Default)]
 pub struct DecideState {
     pub insts: Vec<Instantiation>,
@@ -268,12 +278,9 @@ pub struct DecideState {
     pub rhs_own_prefs: Vec<PrefId>,
     /// Emptied lists of removed goals' preferences, for new goals to reuse.
     pub spare_goal_made: Vec<MadePrefs>,
-    /// Each WME in a goal dependency set, with the highest goal that depends on it.
-    pub gds: FxHashMap<WmeId, Sym>,
-    /// When each WME last joined a goal dependency set (a count of joins), for `print
-    /// --gds`, which lists a set newest member first as 9.6 does. A WME's entry is
-    /// overwritten when it joins again; one that left keeps a stale entry.
-    pub gds_joined: FxHashMap<WmeId, u64>,
+    /// Each WME in a goal dependency set, with its place there.
+    pub gds: FxHashMap<WmeId, GdsMember>,
+    /// Joins to goal dependency sets so far (each member's [`GdsMember::joined`]).
     pub gds_joins: u64,
     /// WMEs still in the set of a goal that is gone, until they leave working memory or
     /// join another set: 9.6 keeps such a set and `print --gds` lists them as old values.

@@ -481,8 +481,8 @@ impl AgentCore {
             self.decider.gc_candidates.push(g.state);
             if self.decider.gds_sizes.contains_key(&g.state) {
                 let orphans = &mut self.decider.gds_orphans;
-                self.decider.gds.retain(|&w, goal| {
-                    let stays = *goal != g.state;
+                self.decider.gds.retain(|&w, member| {
+                    let stays = member.goal != g.state;
                     if !stays {
                         orphans.insert(w);
                     }

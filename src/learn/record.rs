@@ -24,7 +24,7 @@ pub(crate) fn equality_var(t: &Test) -> Option<&str> {
 impl AgentCore {
     /// Records a firing in a substate and gives each preference it made (with the index of
     /// its make action) an origin. `new_ids` holds what each variable the actions make was
-    /// bound to, in the order of the compiled rule's list. With `osk`, the operator
+    /// bound to, in the order of the compiled rule's list. With `with_osk`, the operator
     /// selection knowledge of the operator slots it tested goes with it.
     pub(crate) fn record_firing(
         &mut self,
@@ -33,7 +33,7 @@ impl AgentCore {
         prod: &Arc<Production>,
         new_ids: &[Option<Sym>],
         made: &[(PrefId, usize)],
-        osk: bool,
+        with_osk: bool,
     ) -> Option<Arc<InstTrace>> {
         let names = self.trace_names(p, prod);
         let table = &names.vars;
@@ -109,18 +109,22 @@ impl AgentCore {
                         cond: None,
                         support: None,
                         via_item: true,
-                        osk: self.prohibit_knowledge_of(&aw, made).filter(|_| osk),
+                        osk: if with_osk { self.prohibit_knowledge_of(&aw, made) } else { None },
                         osk_local: false,
                     });
                 }
             }
-            let local = if wme_level == level && osk {
+            let local = if wme_level == level && with_osk {
                 self.selection_knowledge_of(&wme)
             } else {
                 None
             };
             let osk_local = local.is_some();
-            let osk = local.or_else(|| self.prohibit_knowledge_of(&wme, made).filter(|_| osk));
+            let osk = match local {
+                Some(k) => Some(k),
+                None if with_osk => self.prohibit_knowledge_of(&wme, made),
+                None => None,
+            };
             conds.push(TraceCond {
                 wme,
                 wme_id: w,
