@@ -629,7 +629,11 @@ impl AgentCore {
             .get(&key)
             .and_then(|s| s.wmes.get(&(op, true)))
             .and_then(|w| self.wm.get(w).copied());
-        self.emit(&TraceEvent::OperatorRemoval { wme: w.as_ref() });
+        let activation = w.as_ref().and_then(|w| self.wme_activation(w));
+        self.emit(&TraceEvent::OperatorRemoval {
+            wme: w.as_ref(),
+            activation,
+        });
     }
 }
 
@@ -657,7 +661,12 @@ impl AgentCore {
                 continue;
             }
             reported = Some(level);
-            self.emit(&TraceEvent::GdsRemoval { goal, wme: &wme });
+            let activation = self.wme_activation(&wme);
+            self.emit(&TraceEvent::GdsRemoval {
+                goal,
+                wme: &wme,
+                activation,
+            });
         }
     }
 }

@@ -79,11 +79,24 @@ pub(crate) enum TraceEvent<'a> {
     },
     /// A selected operator leaves its slot because its proposal no longer matches
     /// (`trace --consistency`).
-    OperatorRemoval { wme: Option<&'a Wme> },
+    /// Each WME with its activation when working-memory activation is on, as 9.6 prints a
+    /// WME in every trace line.
+    OperatorRemoval {
+        wme: Option<&'a Wme>,
+        activation: Option<f64>,
+    },
     /// A substate goes because a WME of its goal dependency set changed (`trace --gds`).
-    GdsRemoval { goal: Sym, wme: &'a Wme },
+    GdsRemoval {
+        goal: Sym,
+        wme: &'a Wme,
+        activation: Option<f64>,
+    },
     /// A WME joins a substate's goal dependency set (`trace --gds-wmes`).
-    GdsAdd { goal: Sym, wme: &'a Wme },
+    GdsAdd {
+        goal: Sym,
+        wme: &'a Wme,
+        activation: Option<f64>,
+    },
     /// An operator is selected for the goal at `level` in decision `cycle` (`trace
     /// --decisions`), with its `^name` values.
     Operator {

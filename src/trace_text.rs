@@ -135,26 +135,34 @@ impl TraceText96 {
                 }
                 out.push_str(" -->\n");
             }
-            TraceEvent::OperatorRemoval { wme } => {
+            TraceEvent::OperatorRemoval { wme, activation } => {
                 out.push_str(
                     "\n        REMOVING: Operator from context slot (proposal no longer matches): ",
                 );
                 if let Some(w) = wme {
-                    wme_text(out, symbols, w);
+                    wme_text_activated(out, symbols, w, activation);
                 }
                 out.push('\n');
             }
-            TraceEvent::GdsAdd { goal, wme } => {
+            TraceEvent::GdsAdd {
+                goal,
+                wme,
+                activation,
+            } => {
                 let _ = write!(out, "Adding to GDS for {}: ", symbols.text(goal));
-                wme_text(out, symbols, wme);
+                wme_text_activated(out, symbols, wme, activation);
                 out.push('\n');
             }
-            TraceEvent::GdsRemoval { goal, wme } => {
+            TraceEvent::GdsRemoval {
+                goal,
+                wme,
+                activation,
+            } => {
                 let g = symbols.text(goal);
                 let _ = write!(out, "Removing state {g} because element in GDS changed. WME: ");
-                wme_text(out, symbols, wme);
+                wme_text_activated(out, symbols, wme, activation);
                 let _ = write!(out, "\n\n    REMOVING GOAL [{g}] due to change in GDS WME ");
-                wme_text(out, symbols, wme);
+                wme_text_activated(out, symbols, wme, activation);
                 out.push('\n');
             }
             TraceEvent::Operator {

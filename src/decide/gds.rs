@@ -275,7 +275,12 @@ impl AgentCore {
         *self.decider.gds_sizes.entry(goal).or_insert(0) += 1;
         if self.settings.trace.gds_wmes {
             if let Some(wme) = self.wm.get(w).copied() {
-                self.emit(&crate::trace_events::TraceEvent::GdsAdd { goal, wme: &wme });
+                let activation = self.wme_activation(&wme);
+                self.emit(&crate::trace_events::TraceEvent::GdsAdd {
+                    goal,
+                    wme: &wme,
+                    activation,
+                });
             }
         }
     }

@@ -81,6 +81,14 @@ impl AgentCore {
         if wme.acceptable {
             return;
         }
+        if self.decider.last_wave_o_support && self.o_supported_recall(&wme) {
+            // An o-supported memory result has its decay element from the start, with no
+            // references until the memory's firing is counted (`wma_memory_results`): 9.6
+            // prints its `=>WM:` line with the low activation of an element without any.
+            self.wma.create(wme.timetag, 0);
+            self.wma_trace_add(&wme);
+            return;
+        }
         let Some(n) = self
             .wma
             .take_value_references((wme.id, wme.attr, wme.value))
@@ -91,6 +99,19 @@ impl AgentCore {
             self.wma_ensure_element(&wme);
             self.wma.reference(wme.timetag, n);
         }
+    }
+
+    /// Whether an o-supported preference of a memory's retrieval supports the WME.
+    fn o_supported_recall(&self, wme: &Wme) -> bool {
+        self.decider
+            .slots
+            .get(&(wme.id, wme.attr))
+            .is_some_and(|s| {
+                s.prefs_for(wme.value).any(|pid| {
+                    let p = &self.decider.prefs[pid];
+                    p.alive && p.recall && p.o_support && p.kind == PrefType::Acceptable
+                })
+            })
     }
 
     /// A WME left working memory.
@@ -359,12 +380,18 @@ impl AgentCore {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };
-            if self.wma.element(wme.timetag).is_some() {
-                continue;
+            // Its element came with it, empty (`wma_wme_created`); one with references or
+            // a history is another's.
+            let fresh = self.wma.element(wme.timetag).map(|e| {
+                e.just_created && e.buffered == 0 && e.history.is_empty()
+            });
+            match fresh {
+                Some(false) => continue,
+                Some(true) => {}
+                None => self.wma_trace_add(&wme),
             }
             self.wma.create(wme.timetag, boost);
             self.wma.reference(wme.timetag, 1);
-            self.wma_trace_add(&wme);
         }
     }
 
