@@ -169,6 +169,11 @@ pub struct Interpreter {
     /// The line of marks holds only `smem --add`'s `@` marks (a nested `source` goes on on
     /// it, as in 9.6).
     after_at_marks: bool,
+    /// A `gp` is loading its rules: their marks are a run of their own.
+    in_gp: bool,
+    /// The line's last marks came from a `gp`: 9.6 ends the line (with a space) where
+    /// the marks of a `gp` and those of other rules meet.
+    gp_marks: bool,
     /// The `output log` file, when one is open.
     log: Option<output::OutputLog>,
     /// Set from outside (the REPL's Ctrl-C handler) to stop a `run` at the next decision.
@@ -246,6 +251,8 @@ impl Interpreter {
             timed_depth: 0,
             after_star: false,
             after_at_marks: false,
+            in_gp: false,
+            gp_marks: false,
             log: None,
             interrupt: None,
             run_interrupted_in_source: false,
@@ -527,11 +534,19 @@ impl Interpreter {
         }
         if self.after_star && this_is_star {
             self.after_at_marks &= result.chars().all(|c| c == '@');
+            let meet = self.gp_marks != self.in_gp;
+            self.gp_marks = self.in_gp;
             // One event per line of marks, not one per rule.
             if let Some(Event::Text(t)) = self.events.last_mut() {
+                if meet {
+                    t.push_str(" \n");
+                }
                 t.push_str(&result);
                 return;
             }
+        }
+        if this_is_star {
+            self.gp_marks = self.in_gp;
         }
         let at_marks = result.chars().all(|c| c == '@');
         self.after_at_marks = this_is_star && at_marks && (!self.after_star || self.after_at_marks);
