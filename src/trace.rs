@@ -285,10 +285,44 @@ pub fn pending_matches(agent: &AgentCore) -> String {
         }
     }
     let mut r = String::from("Retractions:\n");
-    for &(p, _) in &agent.matches.retractions {
-        r.push_str(&format!("  {}\n", agent.production_name(p)));
+    let retractions = &agent.matches.retractions;
+    let end = retractions.len();
+    // Justifications that lost a WME, each in its place among the rules' retractions (the
+    // order the next elaboration cycle takes them in).
+    let mut justified = agent.decider.justification_retractions.clone();
+    justified.sort_by_key(|&(_, _, at)| at.min(end));
+    let mut next = justified.iter().peekable();
+    let mut listed = Vec::new();
+    for at in 0..=end {
+        while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(end) <= at) {
+            let inst = &agent.decider.insts[i];
+            if !inst.alive || inst.serial != serial || listed.contains(&i) {
+                continue;
+            }
+            listed.push(i);
+            if let Some(j) = agent.learn.justifications.iter().find(|j| j.serial == serial) {
+                r.push_str(&format!("  {}  [{}] \n", j.name(), inst_goal_text(agent, i)));
+            }
+        }
+        let Some(&(p, t)) = retractions.get(at) else {
+            continue;
+        };
+        // The goal of the firing it takes back; `NIL` once that goal is gone.
+        let goal = agent
+            .decider
+            .inst_by_token
+            .get(&(p, t))
+            .map_or_else(|| "NIL".to_string(), |&i| inst_goal_text(agent, i));
+        r.push_str(&format!("  {}  [{goal}] \n", agent.production_name(p)));
     }
     format!("{o}{i}{r}")
+}
+
+fn inst_goal_text(agent: &AgentCore, i: crate::decide::state::InstId) -> String {
+    match agent.decider.insts[i].goal.filter(|&g| agent.symbols.is_goal(g)) {
+        Some(g) => agent.symbols.text(g),
+        None => "NIL".into(),
+    }
 }
 
 fn goal_text(agent: &AgentCore, p: crate::rete::ProdId, t: crate::rete::TokId) -> String {

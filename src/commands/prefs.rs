@@ -304,7 +304,8 @@ impl Interpreter {
                     // 9.6 keeps the WMEs of substate matches alive and prints them whole;
                     // of a top-state match it keeps only the timetags.
                     out.push(' ');
-                    crate::trace_text::wme_text(&mut out, &agent.symbols, &w);
+                    let activation = agent.wme_activation(&w);
+                    crate::trace_text::wme_text_activated(&mut out, &agent.symbols, &w, activation);
                     out.push('\n');
                 } else {
                     out.push_str(&format!("WME with time tag {}\n", w.timetag));
@@ -354,7 +355,8 @@ impl Interpreter {
         let text = self.agent.symbols.text(o);
         let names = self.agent.name_values(o);
         if names.is_empty() {
-            text
+            // 9.6 writes an object as `%id %ifdef[(%v[name])]`: the space stays.
+            format!("{text} ")
         } else {
             format!("{text} ({})", names.join(" "))
         }

@@ -283,7 +283,8 @@ impl Interpreter {
             list.sort_by_key(|w| std::cmp::Reverse(w.timetag));
             out.push_str(&format!("{heading} for {id_text} :\n"));
             for w in list {
-                crate::trace_text::wme_text(&mut out, &agent.symbols, &w);
+                let activation = agent.wme_activation(&w);
+                crate::trace_text::wme_text_activated(&mut out, &agent.symbols, &w, activation);
                 out.push('\n');
             }
         }
