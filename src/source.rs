@@ -70,6 +70,7 @@ impl PackedSpan {
 }
 
 mod packed;
+mod read;
 mod view;
 
 pub(crate) use packed::{PackedText, BLOCK as PACKED_BLOCK};
@@ -199,8 +200,11 @@ impl SourceMap {
         } else {
             FileText::Plain(Arc::new(text))
         };
+        self.push_file(name.into(), text)
+    }
+    fn push_file(&mut self, name: String, text: FileText) -> FileId {
         self.files.push(SourceFile {
-            name: name.into(),
+            name,
             text,
             unpacked: OnceLock::new(),
             line_starts: OnceLock::new(),

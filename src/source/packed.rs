@@ -13,8 +13,10 @@ const LEVEL: u8 = 1;
 #[derive(Debug)]
 struct Block {
     start: usize,
-    /// The line ends before it, so that a line number is known without unpacking.
+    /// The line ends before it and in it, so that a line number is known without
+    /// unpacking.
     lines_before: usize,
+    lines: usize,
     /// Whether it starts a line (the text's start, or just after a line end).
     starts_line: bool,
     packed: Box<[u8]>,
@@ -38,29 +40,86 @@ pub(crate) struct Lines {
     pub text: String,
 }
 
+/// Packs a text given piece by piece (a file as it is read), so that the whole text is
+/// never in memory at once.
+pub(crate) struct Packer {
+    block: usize,
+    /// Text not yet packed: less than two blocks' worth between calls.
+    pending: String,
+    /// Whether the text packed so far ends a line.
+    after_line_end: bool,
+    text: PackedText,
+}
+
+impl Packer {
+    /// A packer for blocks of about `block` bytes.
+    pub fn new(block: usize) -> Self {
+        Packer {
+            block: block.max(1),
+            pending: String::new(),
+            after_line_end: true,
+            text: PackedText {
+                len: 0,
+                first_nul: None,
+                blocks: Vec::new(),
+            },
+        }
+    }
+
+    /// Appends `piece` to the text.
+    pub fn push(&mut self, piece: &str) {
+        if self.text.first_nul.is_none() {
+            if let Some(n) = piece.find('\0') {
+                self.text.first_nul = Some(self.text.len + self.pending.len() + n);
+            }
+        }
+        self.pending.push_str(piece);
+        let mut start = 0;
+        while self.pending.len() - start > 2 * self.block {
+            let end = block_end(&self.pending, start, self.block);
+            self.pack_block(start, end);
+            start = end;
+        }
+        self.pending.drain(..start);
+    }
+
+    /// The text packed.
+    pub fn finish(mut self) -> PackedText {
+        let mut start = 0;
+        while start < self.pending.len() {
+            let end = block_end(&self.pending, start, self.block);
+            self.pack_block(start, end);
+            start = end;
+        }
+        self.text
+    }
+
+    /// Packs `pending[start..end]` as the next block.
+    fn pack_block(&mut self, start: usize, end: usize) {
+        let piece = &self.pending[start..end];
+        let lines_before = self
+            .text
+            .blocks
+            .last()
+            .map_or(0, |b| b.lines_before + b.lines);
+        self.text.blocks.push(Block {
+            start: self.text.len,
+            lines_before,
+            lines: piece.bytes().filter(|&b| b == b'\n').count(),
+            starts_line: self.after_line_end,
+            packed: miniz_oxide::deflate::compress_to_vec(piece.as_bytes(), LEVEL).into(),
+        });
+        self.after_line_end = piece.ends_with('\n');
+        self.text.len += piece.len();
+    }
+}
+
 impl PackedText {
     /// Packs `text` in blocks of about `block` bytes.
     pub fn pack(text: &str, block: usize) -> PackedText {
-        let block = block.max(1);
-        let mut blocks = Vec::with_capacity(text.len() / block + 1);
-        let (mut start, mut lines) = (0, 0);
-        while start < text.len() {
-            let end = block_end(text, start, block);
-            let piece = &text[start..end];
-            blocks.push(Block {
-                start,
-                lines_before: lines,
-                starts_line: start == 0 || text.as_bytes()[start - 1] == b'\n',
-                packed: miniz_oxide::deflate::compress_to_vec(piece.as_bytes(), LEVEL).into(),
-            });
-            lines += piece.bytes().filter(|&b| b == b'\n').count();
-            start = end;
-        }
-        PackedText {
-            len: text.len(),
-            first_nul: text.find('\0'),
-            blocks,
-        }
+        let mut p = Packer::new(block);
+        p.push(text);
+        p.finish()
     }
 
     /// The length of the whole text in bytes.
@@ -187,6 +246,7 @@ mod tests {
                 Just("\n".to_string()),
                 Just("é".to_string()),
                 Just("日本".to_string()),
+                Just("\0".to_string()),
                 "[a-z {}\\\\]{0,12}",
             ],
             0..40,
@@ -196,10 +256,30 @@ mod tests {
 
     proptest! {
         #[test]
-        fn unpacks_to_the_text(text in texts(), block in 1usize..20) {
+        fn unpacks_to_the_text(text in texts(), block in 1usize..20, cuts in proptest::collection::vec(0usize..400, 0..6)) {
             let p = PackedText::pack(&text, block);
             prop_assert_eq!(p.unpack(), text.clone());
             prop_assert_eq!(p.len(), text.len());
+            prop_assert_eq!(p.first_nul(), text.find('\0'));
+            // Given in pieces, the same text.
+            let mut packer = Packer::new(block);
+            let mut at = 0;
+            for c in cuts {
+                let mut c = c.min(text.len());
+                while !text.is_char_boundary(c) {
+                    c -= 1;
+                }
+                if c > at {
+                    packer.push(&text[at..c]);
+                    at = c;
+                }
+            }
+            packer.push(&text[at..]);
+            let q = packer.finish();
+            prop_assert_eq!(q.unpack(), text.clone());
+            prop_assert_eq!(q.first_nul(), text.find('\0'));
+            let lines = q.lines(0, text.len());
+            prop_assert_eq!(lines.first_line, 0);
         }
 
         #[test]
