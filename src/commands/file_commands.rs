@@ -41,6 +41,12 @@ impl FileCommands {
         }
     }
 
+    /// Where the next command is looked for, where the commands end, and whether the text
+    /// is a large one (packed).
+    pub fn progress(&self) -> (usize, usize, bool) {
+        (self.pos, self.end, matches!(self.text, FileText::Packed(_)))
+    }
+
     fn next_packed(&mut self, packed: &PackedText) -> Option<Result<Command, Diagnostic>> {
         let mut more = 1;
         loop {

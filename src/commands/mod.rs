@@ -13,6 +13,7 @@ mod file_commands;
 mod files;
 mod gp;
 mod limits;
+mod load_forecast;
 pub mod help;
 mod memory;
 mod memory_usage;
@@ -465,7 +466,13 @@ impl Interpreter {
     /// Runs a registered text; a failure also gives the span of the command that failed in
     /// this text (for `source`'s "while sourcing FILE:LINE" trail).
     fn run_file_id_at(&mut self, file: usize) -> Result<(), (Diagnostic, Span)> {
-        for cmd in self.commands_of(file) {
+        let mut commands = self.commands_of(file);
+        let (pos, len, large) = commands.progress();
+        let mut forecast = load_forecast::LoadForecast::new(len - pos, large, self.report.added);
+        while let Some(cmd) = commands.next() {
+            if let Some(rules) = forecast.rules_to_come(commands.progress().0, self.report.added) {
+                self.agent.reserve_for_rules(rules);
+            }
             let cmd = match cmd {
                 Ok(c) => c,
                 Err(d) => {

@@ -20,6 +20,7 @@ mod hash;
 mod id_index;
 mod names;
 pub mod reorder;
+mod reserve;
 mod small_list;
 mod successors;
 pub(crate) mod stats;
