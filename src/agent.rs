@@ -867,6 +867,14 @@ impl AgentCore {
         self.productions.values().map(|l| &*l.production)
     }
 
+    /// Reserves room for `rules` more rules in the tables that grow with them (see
+    /// `commands/load_forecast.rs`).
+    pub(crate) fn reserve_for_rules(&mut self, rules: usize) {
+        self.rete.reserve_for_rules(rules);
+        self.productions.reserve(rules);
+        self.by_id.reserve(rules);
+    }
+
     pub fn production_count(&self) -> usize {
         self.productions.len()
     }

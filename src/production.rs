@@ -6,7 +6,7 @@
 use crate::ast::{self, Constant, Head, Pref, Relation};
 use crate::printer::constants::constant_text;
 use crate::rhs::table::{self, Use};
-use crate::source::{Diagnostic, PackedSpan, Span};
+use crate::source::{Diagnostic, FileId, PackedSpan, Span};
 use rustc_hash::{FxHashMap, FxHashSet};
 
 /// Declared support and other `:flags` (Soar manual, chapter 3, "Production type (optional)").
@@ -78,7 +78,7 @@ pub enum Condition {
 }
 
 // A loaded rule keeps its conditions: 100,000 rules of six conditions hold 600,000.
-const _: () = assert!(std::mem::size_of::<Condition>() == 72);
+const _: () = assert!(std::mem::size_of::<Condition>() == 64);
 
 /// One `(id ^attr value)` condition after flattening.
 #[derive(Debug, Clone, PartialEq)]
@@ -326,7 +326,7 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
         actions,
         span: p.span,
     };
-    drop_unbound_relational(std::sync::Arc::<Vec<Condition>>::make_mut(&mut prod.conditions).as_mut_slice(), &FxHashSet::default(), &prod.name)?;
+    drop_unbound_relational(std::sync::Arc::<Vec<Condition>>::make_mut(&mut prod.conditions).as_mut_slice(), &FxHashSet::default(), (&prod.name, p.span.file))?;
     check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
     Ok(prod)
@@ -1024,7 +1024,7 @@ fn check_roots(
     ast: &ast::Production,
     out: &mut CompileOutput,
 ) -> Result<(), Diagnostic> {
-    let roots = root_variables(&p.conditions, &FxHashSet::default(), &p.name, out);
+    let roots = root_variables(&p.conditions, &FxHashSet::default(), (&p.name, ast.span.file), out);
     if !roots.is_empty() {
         return Ok(());
     }
@@ -1047,7 +1047,7 @@ fn check_roots(
 fn root_variables<'a>(
     conds: &'a [Condition],
     outside: &FxHashSet<&'a str>,
-    name: &str,
+    (name, file): (&str, FileId),
     out: &mut CompileOutput,
 ) -> Vec<&'a str> {
     let positives: Vec<&Cond> = conds
@@ -1081,7 +1081,7 @@ fn root_variables<'a>(
                 Diagnostic::warning(format!(
                     "Warning: On the LHS of production {name}, identifier {root} is not connected to any goal or impasse."
                 ))
-                .at(c.span.span())
+                .at(c.span.in_file(file))
                 .with_label("no chain of conditions links this identifier to a state"),
             );
         }
@@ -1099,7 +1099,7 @@ fn root_variables<'a>(
     }
     for c in conds {
         if let Condition::Ncc(inner) = c {
-            root_variables(inner, &bound, name, out);
+            root_variables(inner, &bound, (name, file), out);
         }
     }
     roots
@@ -1112,7 +1112,7 @@ fn root_variables<'a>(
 fn drop_unbound_relational(
     conds: &mut [Condition],
     outside: &FxHashSet<String>,
-    name: &str,
+    (name, file): (&str, FileId),
 ) -> Result<(), Diagnostic> {
     // Most lists have no relational test on a variable: nothing to check, no set to build.
     let relational = |t: &Test| match t {
@@ -1165,13 +1165,13 @@ fn drop_unbound_relational(
                             "Error: production {name} has an unbound referent in negated relational test {}.",
                             test_text(rel)
                         ))
-                        .at(c.span.span())
+                        .at(c.span.in_file(file))
                         .with_label("no positive condition binds this variable")
                         .with_note("Attempted to add an invalid rule:\n      Unbound relational test in negative condition of rule"));
                     }
                 }
             }
-            Condition::Ncc(inner) => drop_unbound_relational(inner, &bound, name)?,
+            Condition::Ncc(inner) => drop_unbound_relational(inner, &bound, (name, file))?,
         }
     }
     Ok(())
@@ -1289,7 +1289,7 @@ fn check_grounded(p: &Production, ast: &ast::Production) -> Result<(), Diagnosti
     for (a, _) in p.actions.iter().zip(&placed).filter(|(_, done)| !**done) {
         // The text only for the message: printing every action of every rule costs.
         let (text, span) = match a {
-            Action::Make(m) => (make_text(m), m.span.span()),
+            Action::Make(m) => (make_text(m), m.span.in_file(p.span.file)),
             Action::Call(f) => (call_text(f), f.span),
         };
         if seen.insert(text.clone()) {

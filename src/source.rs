@@ -5,7 +5,7 @@ use codespan_reporting::diagnostic::{Diagnostic as CsDiagnostic, Label};
 use codespan_reporting::files::{self as cs_files, Files};
 use codespan_reporting::term::{self, termcolor::NoColor};
 use std::ops::Range;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
 
 /// Index of a file in a [`SourceMap`].
 pub type FileId = usize;
@@ -36,52 +36,77 @@ impl Span {
     }
 }
 
-/// A [`Span`] in half the bytes, for the parts of a loaded rule that keep one (each of
-/// its conditions and actions): 100,000 rules keep about 700,000. Offsets past 4 GiB
-/// saturate.
+/// A place in a rule's text in 6 bytes, for the parts of a loaded rule that keep one (each
+/// of its conditions and actions): 100,000 rules keep about 700,000, and in 6 bytes a
+/// condition fits in 56 with its tests. The file is the rule's own, so it is not kept.
+/// Offsets past 4 GiB and lengths past 64 KiB saturate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
 pub struct PackedSpan {
-    file: u32,
-    start: u32,
-    end: u32,
+    /// The start's low and high halves, and the length.
+    start_len: [u16; 3],
 }
 
 impl From<Span> for PackedSpan {
     fn from(s: Span) -> Self {
-        let small = |x: usize| u32::try_from(x).unwrap_or(u32::MAX);
+        let start = u32::try_from(s.start).unwrap_or(u32::MAX);
+        let len = u16::try_from(s.end.saturating_sub(s.start)).unwrap_or(u16::MAX);
         PackedSpan {
-            file: small(s.file),
-            start: small(s.start),
-            end: small(s.end),
+            start_len: [start as u16, (start >> 16) as u16, len],
         }
     }
 }
 
-impl From<PackedSpan> for Span {
-    fn from(s: PackedSpan) -> Self {
-        Span::new(s.file as usize, s.start as usize, s.end as usize)
-    }
-}
-
 impl PackedSpan {
-    pub fn span(self) -> Span {
-        self.into()
+    /// The span in `file`.
+    pub fn in_file(self, file: FileId) -> Span {
+        let [lo, hi, len] = self.start_len.map(usize::from);
+        let start = hi << 16 | lo;
+        Span::new(file, start, start + len)
     }
 }
 
-/// A registered text, shared (running a file's commands needs it while the map grows).
-/// Its line starts are found only when a diagnostic is rendered in it: most sourced files
-/// never need them, and for a large rule file they are megabytes.
+mod packed;
+mod read;
+mod view;
+
+pub(crate) use packed::{PackedText, BLOCK as PACKED_BLOCK};
+
+/// The text of a registered file: as it is, or packed when it is large (see
+/// `packed.rs`). Shared either way: running a file's commands needs it while the map grows.
+#[derive(Clone)]
+pub(crate) enum FileText {
+    Plain(Arc<String>),
+    Packed(Arc<PackedText>),
+}
+
+/// A registered text. Its line starts are found only when a diagnostic is rendered in it:
+/// most sourced files never need them, and for a large rule file they are megabytes.
 struct SourceFile {
     name: String,
-    text: std::sync::Arc<String>,
+    text: FileText,
+    /// A packed text unpacked whole, for the callers that ask for all of it (`text`).
+    unpacked: OnceLock<String>,
     line_starts: OnceLock<Vec<usize>>,
 }
 
 impl SourceFile {
+    fn text(&self) -> &str {
+        match &self.text {
+            FileText::Plain(t) => t,
+            FileText::Packed(p) => self.unpacked.get_or_init(|| p.unpack()),
+        }
+    }
+
+    fn len(&self) -> usize {
+        match &self.text {
+            FileText::Plain(t) => t.len(),
+            FileText::Packed(p) => p.len(),
+        }
+    }
+
     fn line_starts(&self) -> &[usize] {
         self.line_starts
-            .get_or_init(|| cs_files::line_starts(&self.text).collect())
+            .get_or_init(|| cs_files::line_starts(self.text()).collect())
     }
 
     /// The start of line `i`, or the end of the text for the line after the last.
@@ -89,7 +114,7 @@ impl SourceFile {
         let starts = self.line_starts();
         match starts.get(i) {
             Some(&s) => Ok(s),
-            None if i == starts.len() => Ok(self.text.len()),
+            None if i == starts.len() => Ok(self.len()),
             None => Err(cs_files::Error::LineTooLarge {
                 given: i,
                 max: starts.len() - 1,
@@ -98,10 +123,25 @@ impl SourceFile {
     }
 }
 
+/// Texts of at least this many bytes are kept packed (a rule file of about 6,000 rules).
+pub(crate) const PACK_AT: usize = 1 << 20;
+
 /// All text the kernel has read: sourced files, `-c` commands, REPL lines.
-#[derive(Default)]
 pub struct SourceMap {
     files: Vec<SourceFile>,
+    /// Texts this long or longer are packed, in blocks of `block` bytes.
+    pack_at: usize,
+    block: usize,
+}
+
+impl Default for SourceMap {
+    fn default() -> Self {
+        SourceMap {
+            files: Vec::new(),
+            pack_at: PACK_AT,
+            block: packed::BLOCK,
+        }
+    }
 }
 
 impl<'a> Files<'a> for SourceMap {
@@ -114,7 +154,7 @@ impl<'a> Files<'a> for SourceMap {
     }
 
     fn source(&'a self, id: FileId) -> Result<&'a str, cs_files::Error> {
-        self.get(id).map(|f| f.text.as_str())
+        self.get(id).map(|f| f.text())
     }
 
     fn line_index(&'a self, id: FileId, byte_index: usize) -> Result<usize, cs_files::Error> {
@@ -135,25 +175,71 @@ impl SourceMap {
     pub fn new() -> Self {
         Self::default()
     }
+    /// An empty map that packs texts of `pack_at` bytes or more in blocks of `block`
+    /// bytes (the tests pack small texts in small blocks).
+    #[cfg(test)]
+    pub(crate) fn packing(pack_at: usize, block: usize) -> Self {
+        SourceMap {
+            files: Vec::new(),
+            pack_at,
+            block,
+        }
+    }
     fn get(&self, file: FileId) -> Result<&SourceFile, cs_files::Error> {
         self.files.get(file).ok_or(cs_files::Error::FileMissing)
     }
     /// Registers a text under a display name and returns its id.
     pub fn add(&mut self, name: impl Into<String>, text: impl Into<String>) -> FileId {
+        let text: String = text.into();
+        let text = if text.len() >= self.pack_at {
+            FileText::Packed(Arc::new(PackedText::pack(&text, self.block)))
+        } else {
+            FileText::Plain(Arc::new(text))
+        };
+        self.push_file(name.into(), text)
+    }
+    fn push_file(&mut self, name: String, text: FileText) -> FileId {
         self.files.push(SourceFile {
-            name: name.into(),
-            text: std::sync::Arc::new(text.into()),
+            name,
+            text,
+            unpacked: OnceLock::new(),
             line_starts: OnceLock::new(),
         });
         self.files.len() - 1
     }
-    /// The text registered as `file` (empty for an unknown id).
+    /// The text registered as `file` (empty for an unknown id). A packed text is unpacked
+    /// for it, and kept so.
     pub fn text(&self, file: FileId) -> &str {
-        self.get(file).map(|f| f.text.as_str()).unwrap_or("")
+        self.get(file).map(|f| f.text()).unwrap_or("")
     }
-    /// The text itself, shared, not copied.
-    pub fn shared_text(&self, file: FileId) -> std::sync::Arc<String> {
-        self.get(file).map(|f| f.text.clone()).unwrap_or_default()
+    /// The text itself, shared, not copied (a packed text unpacked).
+    pub fn shared_text(&self, file: FileId) -> Arc<String> {
+        match self.get(file).map(|f| &f.text) {
+            Ok(FileText::Plain(t)) => t.clone(),
+            Ok(FileText::Packed(p)) => Arc::new(p.unpack()),
+            Err(_) => Arc::default(),
+        }
+    }
+    /// The text of `file` as it is kept, shared (empty for an unknown id).
+    pub(crate) fn file_text(&self, file: FileId) -> FileText {
+        self.get(file)
+            .map(|f| f.text.clone())
+            .unwrap_or_else(|_| FileText::Plain(Arc::default()))
+    }
+    /// The text under a span (empty where there is none).
+    pub fn snippet(&self, span: Span) -> String {
+        match self.get(span.file).map(|f| &f.text) {
+            Ok(FileText::Plain(t)) => t.get(span.start..span.end).unwrap_or_default().to_string(),
+            Ok(FileText::Packed(p)) => {
+                let lines = p.lines(span.start, span.end);
+                let at = |o: usize| o.checked_sub(lines.start);
+                match (at(span.start), at(span.end)) {
+                    (Some(a), Some(b)) => lines.text.get(a..b).unwrap_or_default().to_string(),
+                    _ => String::new(),
+                }
+            }
+            Err(_) => String::new(),
+        }
     }
     /// The display name of `file`.
     pub fn name(&self, file: FileId) -> &str {
@@ -163,10 +249,17 @@ impl SourceMap {
     }
     /// 1-based line and column of a byte offset.
     pub fn line_col(&self, file: FileId, offset: usize) -> (usize, usize) {
-        let text = self.text(file);
-        let offset = clamp_to_char_boundary(text, offset);
+        let (text, offset, lines_before) = match self.get(file).map(|f| &f.text) {
+            Ok(FileText::Packed(p)) => {
+                let lines = p.lines(offset, offset);
+                let local = offset.min(p.len()) - lines.start;
+                (std::borrow::Cow::Owned(lines.text), local, lines.first_line)
+            }
+            _ => (std::borrow::Cow::Borrowed(self.text(file)), offset, 0),
+        };
+        let offset = clamp_to_char_boundary(&text, offset);
         let before = &text[..offset];
-        let line = before.matches('\n').count() + 1;
+        let line = lines_before + before.matches('\n').count() + 1;
         let col = before
             .rsplit('\n')
             .next()
@@ -183,23 +276,18 @@ impl SourceMap {
             Severity::Note => CsDiagnostic::note(),
         }
         .with_message(&diag.message);
+        let view = view::View::new(self, diag);
         let mut labels = Vec::new();
         if let Some(span) = diag.span {
-            let text = self.text(span.file);
-            let start = clamp_to_char_boundary(text, span.start);
-            let end = clamp_to_char_boundary(text, span.end.max(start));
-            labels.push(Label::primary(span.file, start..end).with_message(&diag.label));
+            labels.push(Label::primary(span.file, view.range(span)).with_message(&diag.label));
         }
         for (span, msg) in &diag.secondary {
-            let text = self.text(span.file);
-            let start = clamp_to_char_boundary(text, span.start);
-            let end = clamp_to_char_boundary(text, span.end.max(start));
-            labels.push(Label::secondary(span.file, start..end).with_message(msg));
+            labels.push(Label::secondary(span.file, view.range(*span)).with_message(msg));
         }
         cs = cs.with_labels(labels).with_notes(diag.notes.clone());
         let mut buf = NoColor::new(Vec::new());
         let config = term::Config::default();
-        if term::emit_to_write_style(&mut buf, &config, self, &cs).is_err() {
+        if term::emit_to_write_style(&mut buf, &config, &view, &cs).is_err() {
             return format!("{}: {}", diag.severity.word(), diag.message);
         }
         String::from_utf8_lossy(&buf.into_inner()).into_owned()

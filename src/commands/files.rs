@@ -180,16 +180,13 @@ impl Interpreter {
             return result;
         }
         let path = self.resolve(name);
-        let bytes = std::fs::read(&path).map_err(|e| {
+        let shown = path.display().to_string();
+        let file = self.sources.read_file(shown, &path).map_err(|e| {
             Diagnostic::error(format!("Failed to open file for reading: {name}"))
                 .at(ctx.arg_span(0))
                 .with_label(format!("{e}"))
                 .with_note(format!("looked for {}", path.display()))
         })?;
-        let text = String::from_utf8(bytes)
-            .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned());
-        let shown = path.display().to_string();
-        let file = self.sources.add(shown, text);
         // `source dir/f` runs in `dir`, as in 9.6: push it now, pop it afterwards, even on
         // error.
         let changes_dir = name.contains('/');

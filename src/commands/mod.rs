@@ -9,9 +9,11 @@ mod chunk_listing;
 mod chunk_stats;
 mod debug;
 mod decide;
+mod file_commands;
 mod files;
 mod gp;
 mod limits;
+mod load_forecast;
 pub mod help;
 mod memory;
 mod memory_usage;
@@ -43,7 +45,7 @@ mod wm_activation;
 mod wm_watch;
 
 use crate::agent::{AgentCore, PhaseCallback};
-use crate::commands::tokenizer::{Command, Tokenizer, WordKind};
+use crate::commands::tokenizer::{Command, WordKind};
 use crate::source::{Diagnostic, SourceMap, Span};
 use aliases::Aliases;
 use indexmap::IndexMap;
@@ -431,9 +433,8 @@ impl Interpreter {
     /// cannot be read as commands (an unclosed brace) ends it. Returns how many failed.
     pub fn run_text_keep_going(&mut self, name: &str, text: &str) -> usize {
         let file = self.sources.add(name, text);
-        let text = self.sources.shared_text(file);
         let mut failed = 0;
-        for cmd in Tokenizer::new(&text, file) {
+        for cmd in self.commands_of(file) {
             let cmd = match cmd {
                 Ok(c) => c,
                 Err(d) => {
@@ -460,6 +461,11 @@ impl Interpreter {
         failed
     }
 
+    /// The commands of a registered text.
+    fn commands_of(&self, file: usize) -> file_commands::FileCommands {
+        file_commands::FileCommands::new(file, self.sources.file_text(file))
+    }
+
     fn run_file_id(&mut self, file: usize) -> Result<(), Diagnostic> {
         self.run_file_id_at(file).map_err(|(d, _)| d)
     }
@@ -467,8 +473,13 @@ impl Interpreter {
     /// Runs a registered text; a failure also gives the span of the command that failed in
     /// this text (for `source`'s "while sourcing FILE:LINE" trail).
     fn run_file_id_at(&mut self, file: usize) -> Result<(), (Diagnostic, Span)> {
-        let text = self.sources.shared_text(file);
-        for cmd in Tokenizer::new(&text, file) {
+        let mut commands = self.commands_of(file);
+        let (pos, len, large) = commands.progress();
+        let mut forecast = load_forecast::LoadForecast::new(len - pos, large, self.report.added);
+        while let Some(cmd) = commands.next() {
+            if let Some(rules) = forecast.rules_to_come(commands.progress().0, self.report.added) {
+                self.agent.reserve_for_rules(rules);
+            }
             let cmd = match cmd {
                 Ok(c) => c,
                 Err(d) => {
@@ -571,8 +582,7 @@ impl Interpreter {
         if let Ok(r) = &result {
             printed.push_str(r);
         }
-        let text = self.sources.shared_text(cmd.span.file);
-        let line = text.get(cmd.span.start..cmd.span.end).unwrap_or_default().to_string();
+        let line = self.sources.snippet(cmd.span);
         self.log_command(&line, &printed);
         result
     }

@@ -54,8 +54,11 @@ pub struct Tokenizer<'a> {
     bytes: &'a [u8],
     pos: usize,
     file: FileId,
+    /// Where `text` starts in the file (spans are file offsets).
+    base: usize,
     failed: bool,
-    /// Offset of the first NUL byte: Soar's tokenizer reads a C string, so the text ends there.
+    /// File offset of the first NUL byte: Soar's tokenizer reads a C string, so the text
+    /// ends there.
     nul_at: Option<usize>,
 }
 
@@ -63,27 +66,53 @@ impl<'a> Tokenizer<'a> {
     /// Commands of `text`, whose spans name `file`.
     pub fn new(text: &'a str, file: FileId) -> Self {
         let nul_at = text.find('\0');
-        let text = &text[..nul_at.unwrap_or(text.len())];
+        Tokenizer::resume(&text[..nul_at.unwrap_or(text.len())], file, 0, 0, nul_at)
+    }
+
+    /// Commands of a piece of a file from `pos` on: `text` starts at file offset `base` and
+    /// ends at the file's end or first NUL byte (`nul_at`), or earlier, where its reader
+    /// then gives it more and starts again (see `file_commands.rs`).
+    pub(crate) fn resume(
+        text: &'a str,
+        file: FileId,
+        base: usize,
+        pos: usize,
+        nul_at: Option<usize>,
+    ) -> Self {
         Tokenizer {
             text,
             bytes: text.as_bytes(),
-            pos: 0,
+            pos,
             file,
+            base,
             failed: false,
             nul_at,
         }
     }
 
+    /// Where in `text` the next command is looked for.
+    pub(crate) fn pos(&self) -> usize {
+        self.pos
+    }
+
+    /// Whether tokenizing stopped at an error.
+    pub(crate) fn failed(&self) -> bool {
+        self.failed
+    }
+
     /// An end-of-text error, pointing also at the NUL byte that ended the text early.
     fn at_eof(&self, d: Diagnostic) -> Diagnostic {
         match self.nul_at {
-            Some(n) => d.with_secondary(self.span(n, n + 1), "the text ends at this NUL byte"),
+            Some(n) => d.with_secondary(
+                Span::new(self.file, n, n + 1),
+                "the text ends at this NUL byte",
+            ),
             None => d,
         }
     }
 
     fn span(&self, start: usize, end: usize) -> Span {
-        Span::new(self.file, start, end)
+        Span::new(self.file, self.base + start, self.base + end)
     }
 
     fn peek(&self) -> Option<u8> {
@@ -310,7 +339,7 @@ impl<'a> Tokenizer<'a> {
         })
     }
 
-    fn next_command(&mut self) -> Option<Result<Command, Diagnostic>> {
+    pub(crate) fn next_command(&mut self) -> Option<Result<Command, Diagnostic>> {
         // Skip empty commands: blank lines, `;`, comments.
         loop {
             self.skip_blanks();
@@ -320,7 +349,7 @@ impl<'a> Tokenizer<'a> {
                     let n = self.nul_at?;
                     self.failed = true;
                     return Some(Err(Diagnostic::error("unexpected NUL byte")
-                        .at(self.span(n, n + 1))
+                        .at(Span::new(self.file, n, n + 1))
                         .with_label("Soar reads no further than this NUL byte")
                         .with_note("the rest of the text is ignored")));
                 }

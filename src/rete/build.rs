@@ -195,14 +195,13 @@ impl Rete {
         let pid = ProdId(self.prods.len() as u32);
         self.fill_aborted = false;
         let mut bindings = Bindings::default();
-        let mut cond_nodes = vec![NodeId::NONE; p.conditions.len()];
         let mut positives = 0;
         let cur = self.build_conditions(
             &p.conditions,
             Cur::Holder(self.root),
             &mut bindings,
             syms,
-            Some((&mut cond_nodes, &mut positives)),
+            Some(&mut positives),
         );
         let parent = cur_node(cur);
         // A rule whose conditions share every node with another rule, and whose actions are
@@ -229,7 +228,6 @@ impl Rete {
             pnode,
             positives,
             bindings: super::VarBindings::new(bindings, &mut self.var_names),
-            cond_nodes: cond_nodes.into(),
             action_key: action_key.into(),
         }));
         self.fill_new_node(pnode, syms, sink);
@@ -355,11 +353,11 @@ impl Rete {
         mut cur: Cur,
         bindings: &mut Bindings<'a>,
         syms: &mut Symbols,
-        mut record: Option<(&mut Vec<NodeId>, &mut u32)>,
+        mut positives: Option<&mut u32>,
     ) -> Cur {
         // Conditions come in join order: `reorder` put them there.
-        for i in 0..conds.len() {
-            match &conds[i] {
+        for cond in conds {
+            match cond {
                 Condition::Positive(c) => {
                     // The depth its WME will have: one below the holder it joins from.
                     let depth = match cur {
@@ -375,9 +373,8 @@ impl Rete {
                     let j = self.share_or_build_join(h, key, &tests, syms);
                     self.test_buf = tests;
                     cur = Cur::Join(j);
-                    if let Some((nodes, positives)) = record.as_mut() {
-                        nodes[i] = j;
-                        **positives += 1;
+                    if let Some(count) = positives.as_mut() {
+                        **count += 1;
                     }
                 }
                 Condition::Negative(c) => {
@@ -389,9 +386,6 @@ impl Rete {
                     let n = self.share_or_build_negative(parent, depth, key, &tests, syms);
                     self.test_buf = tests;
                     cur = Cur::Holder(n);
-                    if let Some((nodes, _)) = record.as_mut() {
-                        nodes[i] = n;
-                    }
                 }
                 Condition::Ncc(inner) => {
                     let h = self.holder_under(cur, None, syms);
@@ -420,9 +414,6 @@ impl Rete {
                     self.fill_new_node(ncc, syms, &mut super::NullSink);
                     self.fill_new_node(partner, syms, &mut super::NullSink);
                     cur = Cur::Holder(ncc);
-                    if let Some((nodes, _)) = record.as_mut() {
-                        nodes[i] = ncc;
-                    }
                 }
             }
         }

@@ -20,6 +20,7 @@ mod hash;
 mod id_index;
 mod names;
 pub mod reorder;
+mod reserve;
 mod small_list;
 mod successors;
 pub(crate) mod stats;
@@ -413,8 +414,6 @@ pub struct ProdInfo {
     pub(crate) positives: u32,
     /// Where each variable of the positive conditions is first bound: token depth and field.
     pub bindings: VarBindings,
-    /// The beta node of each top-level condition (for `matches <rule>` counts).
-    pub(crate) cond_nodes: Box<[NodeId]>,
     /// The actions with variables as binding places: equal keys under one parent node mean
     /// duplicate rules.
     pub(crate) action_key: Box<str>,
@@ -1256,12 +1255,29 @@ impl Rete {
         self.free_rows[len].push(row);
     }
 
+    /// The beta node of each top-level condition of a production, in the rule's order: the
+    /// join, negative and NCC nodes above its production node (a condition's node is never
+    /// moved, so they are found rather than kept with every rule).
+    pub(crate) fn cond_nodes(&self, info: &ProdInfo) -> Vec<NodeId> {
+        let mut nodes = Vec::new();
+        let mut n = self.nodes[info.pnode].parent;
+        while n != NodeId::NONE && n != self.root {
+            let node = &self.nodes[n];
+            if matches!(node.kind, Kind::Join { .. } | Kind::Negative { .. } | Kind::Ncc { .. }) {
+                nodes.push(n);
+            }
+            n = node.parent;
+        }
+        nodes.reverse();
+        nodes
+    }
+
     /// Where a production's matches hold their distinct condition identifiers (see
     /// `CompiledRule::id_places`): each positive condition's identifier is its WME's, or the
     /// binding its join is hashed on when it has one (an equal symbol read once).
     pub(crate) fn condition_id_places(&self, info: &ProdInfo) -> Vec<(u32, tests::Field)> {
         let mut places = Vec::new();
-        for &n in info.cond_nodes.iter() {
+        for n in self.cond_nodes(info) {
             let node = &self.nodes[n];
             if !matches!(node.kind, Kind::Join { .. }) {
                 continue;
@@ -1326,10 +1342,10 @@ impl Rete {
         let Some(info) = self.production(p) else {
             return Vec::new();
         };
-        info.cond_nodes
-            .iter()
+        self.cond_nodes(info)
+            .into_iter()
             .enumerate()
-            .map(|(i, &n)| (i, self.count_matches_at(n, syms)))
+            .map(|(i, n)| (i, self.count_matches_at(n, syms)))
             .collect()
     }
 
@@ -1342,13 +1358,13 @@ impl Rete {
         let Some(info) = self.production(p) else {
             return 0;
         };
-        let counts: Vec<u64> = info
-            .cond_nodes
+        let cond_nodes = self.cond_nodes(info);
+        let counts: Vec<u64> = cond_nodes
             .iter()
             .map(|&n| self.count_matches_at(n, syms) as u64)
             .collect();
         let mut total = 1;
-        for (j, &n) in info.cond_nodes.iter().enumerate() {
+        for (j, &n) in cond_nodes.iter().enumerate() {
             let entering = if j == 0 { 1 } else { counts[j - 1] };
             if j + 1 < counts.len() {
                 total += counts[j];
