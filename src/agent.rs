@@ -871,8 +871,9 @@ impl AgentCore {
     /// `commands/load_forecast.rs`).
     pub(crate) fn reserve_for_rules(&mut self, rules: usize) {
         self.rete.reserve_for_rules(rules);
-        self.productions.reserve(rules);
-        self.by_id.reserve(rules);
+        // Too large a forecast to reserve: the tables grow as they go.
+        let _ = self.productions.try_reserve(rules);
+        let _ = self.by_id.try_reserve(rules);
     }
 
     pub fn production_count(&self) -> usize {

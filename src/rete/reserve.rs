@@ -13,7 +13,8 @@ impl Rete {
         }
         let room = |count: usize| rules.saturating_mul(count) / present / 4 * 5;
         let (nodes, amems) = (room(self.nodes.len()), room(self.amems.len()));
-        self.nodes.reserve_exact(nodes);
-        self.amems.reserve_exact(amems);
+        // A forecast too large to reserve leaves the tables to grow as they go.
+        let _ = self.nodes.try_reserve_exact(nodes);
+        let _ = self.amems.try_reserve_exact(amems);
     }
 }
