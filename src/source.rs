@@ -212,14 +212,6 @@ impl SourceMap {
     pub fn text(&self, file: FileId) -> &str {
         self.get(file).map(|f| f.text()).unwrap_or("")
     }
-    /// The text itself, shared, not copied (a packed text unpacked).
-    pub fn shared_text(&self, file: FileId) -> Arc<String> {
-        match self.get(file).map(|f| &f.text) {
-            Ok(FileText::Plain(t)) => t.clone(),
-            Ok(FileText::Packed(p)) => Arc::new(p.unpack()),
-            Err(_) => Arc::default(),
-        }
-    }
     /// The text of `file` as it is kept, shared (empty for an unknown id).
     pub(crate) fn file_text(&self, file: FileId) -> FileText {
         self.get(file)

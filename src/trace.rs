@@ -4,6 +4,7 @@
 
 use rustc_hash::FxHashSet;
 use crate::agent::AgentCore;
+use crate::decide::PendingRetraction;
 use crate::decide::state::SubstateLine;
 use crate::printer::{cond_text, cond_text_with};
 use crate::production::{test_text, Condition};
@@ -284,36 +285,29 @@ pub fn pending_matches(agent: &AgentCore) -> String {
             i.push_str(&line);
         }
     }
+    // In the order the next elaboration cycle takes them, each with the goal of the
+    // firing it takes back (`NIL` once that goal is gone).
     let mut r = String::from("Retractions:\n");
     let retractions = &agent.matches.retractions;
-    let end = retractions.len();
-    // Justifications that lost a WME, each in its place among the rules' retractions (the
-    // order the next elaboration cycle takes them in).
-    let mut justified = agent.decider.justification_retractions.clone();
-    justified.sort_by_key(|&(_, _, at)| at.min(end));
-    let mut next = justified.iter().peekable();
-    let mut listed = Vec::new();
-    for at in 0..=end {
-        while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(end) <= at) {
-            let inst = &agent.decider.insts[i];
-            if !inst.alive || inst.serial != serial || listed.contains(&i) {
-                continue;
+    let justified = &agent.decider.justification_retractions;
+    for pending in agent.pending_retractions(retractions.len(), justified) {
+        let (name, inst) = match pending {
+            PendingRetraction::Rule(at) => {
+                let (p, t) = retractions[at];
+                let inst = agent.decider.inst_by_token.get(&(p, t)).copied();
+                (agent.production_name(p).to_string(), inst)
             }
-            listed.push(i);
-            if let Some(j) = agent.learn.justifications.iter().find(|j| j.serial == serial) {
-                r.push_str(&format!("  {}  [{}] \n", j.name(), inst_goal_text(agent, i)));
+            PendingRetraction::Justification(i) => {
+                let serial = agent.decider.insts[i].serial;
+                let Some(j) = agent.learn.justifications.iter().find(|j| j.serial == serial)
+                else {
+                    continue;
+                };
+                (j.name().to_string(), Some(i))
             }
-        }
-        let Some(&(p, t)) = retractions.get(at) else {
-            continue;
         };
-        // The goal of the firing it takes back; `NIL` once that goal is gone.
-        let goal = agent
-            .decider
-            .inst_by_token
-            .get(&(p, t))
-            .map_or_else(|| "NIL".to_string(), |&i| inst_goal_text(agent, i));
-        r.push_str(&format!("  {}  [{goal}] \n", agent.production_name(p)));
+        let goal = inst.map_or_else(|| "NIL".to_string(), |i| inst_goal_text(agent, i));
+        r.push_str(&format!("  {name}  [{goal}] \n"));
     }
     format!("{o}{i}{r}")
 }

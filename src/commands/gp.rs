@@ -115,18 +115,13 @@ impl Interpreter {
         let max = usize::try_from(self.agent.settings.max_gp).unwrap_or(0);
         let bodies = expand(&body.text, max).map_err(|m| ctx.error(m))?;
         let outer = std::mem::replace(&mut self.in_gp, true);
-        let mut loaded = Ok(());
-        for (n, b) in bodies.iter().enumerate() {
+        let loaded = bodies.iter().enumerate().try_for_each(|(n, b)| {
             // Each rule's name is its body's first word (alternatives in it expanded).
             let b = b.trim_start();
             let name_end = b.find(char::is_whitespace).unwrap_or(b.len());
             let (name, rest) = b.split_at(name_end);
-            let rule = format!("sp {{{name}*{}{rest}}}", n + 1);
-            loaded = self.run_text("gp", &rule).map(|_| ());
-            if loaded.is_err() {
-                break;
-            }
-        }
+            self.run_text("gp", &format!("sp {{{name}*{}{rest}}}", n + 1))
+        });
         self.in_gp = outer;
         loaded.map(|()| String::new())
     }

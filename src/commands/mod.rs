@@ -474,8 +474,8 @@ impl Interpreter {
     /// this text (for `source`'s "while sourcing FILE:LINE" trail).
     fn run_file_id_at(&mut self, file: usize) -> Result<(), (Diagnostic, Span)> {
         let mut commands = self.commands_of(file);
-        let (pos, len, large) = commands.progress();
-        let mut forecast = load_forecast::LoadForecast::new(len - pos, large, self.report.added);
+        let (_, len, large) = commands.progress();
+        let mut forecast = load_forecast::LoadForecast::new(len, large, self.report.added);
         while let Some(cmd) = commands.next() {
             if let Some(rules) = forecast.rules_to_come(commands.progress().0, self.report.added) {
                 self.agent.reserve_for_rules(rules);
@@ -543,10 +543,10 @@ impl Interpreter {
         if self.after_star && !this_is_star && !self.after_at_marks {
             self.events.push(Event::Text("\n".into()));
         }
+        // Whether these marks meet another kind's on their line (see `gp_marks`).
+        let meet = this_is_star && std::mem::replace(&mut self.gp_marks, self.in_gp) != self.in_gp;
         if self.after_star && this_is_star {
             self.after_at_marks &= result.chars().all(|c| c == '@');
-            let meet = self.gp_marks != self.in_gp;
-            self.gp_marks = self.in_gp;
             // One event per line of marks, not one per rule.
             if let Some(Event::Text(t)) = self.events.last_mut() {
                 if meet {
@@ -555,9 +555,6 @@ impl Interpreter {
                 t.push_str(&result);
                 return;
             }
-        }
-        if this_is_star {
-            self.gp_marks = self.in_gp;
         }
         let at_marks = result.chars().all(|c| c == '@');
         self.after_at_marks = this_is_star && at_marks && (!self.after_star || self.after_at_marks);

@@ -123,7 +123,7 @@ impl AgentCore {
                     .filter_map(|k| self.decider.inst_by_token.remove(k)),
             );
         } else {
-            self.merge_justification_retractions(&retractions, &mut justified, &mut retracted);
+            self.merge_justification_retractions(&retractions, &justified, &mut retracted);
         }
         justified.clear();
         self.decider.justification_retractions = justified;
@@ -306,31 +306,57 @@ impl AgentCore {
     }
 
     /// The rules' retractions (`retractions`, as the matcher reported them) with the
-    /// justifications' (`justified`: each with the place it goes before, past the end for
-    /// after them all), as instantiations in that order, after those already in `retracted`.
+    /// justifications' (`justified`), as instantiations in the order of
+    /// [`Self::pending_retractions`], after those already in `retracted`.
     fn merge_justification_retractions(
         &mut self,
         retractions: &[(ProdId, TokId)],
-        justified: &mut [(InstId, u64, usize)],
+        justified: &[(InstId, u64, usize)],
         retracted: &mut Vec<InstId>,
     ) {
-        let end = retractions.len();
-        justified.sort_by_key(|&(_, _, at)| at.min(end));
-        let mut next = justified.iter().peekable();
-        for at in 0..=end {
-            while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(end) <= at) {
-                let inst = &self.decider.insts[i];
-                if inst.alive && inst.serial == serial && !retracted.contains(&i) {
-                    retracted.push(i);
+        for pending in self.pending_retractions(retractions.len(), justified) {
+            match pending {
+                PendingRetraction::Justification(i) => {
+                    if !retracted.contains(&i) {
+                        retracted.push(i);
+                    }
+                }
+                PendingRetraction::Rule(at) => {
+                    if let Some(i) = self.decider.inst_by_token.remove(&retractions[at]) {
+                        retracted.push(i);
+                    }
                 }
             }
-            if let Some(i) = retractions
-                .get(at)
-                .and_then(|k| self.decider.inst_by_token.remove(k))
-            {
-                retracted.push(i);
+        }
+    }
+
+    /// The order the next elaboration cycle takes its retractions in: the `rules` the
+    /// matcher reported (by their place in `MatchSet::retractions`), with each
+    /// justification that lost a WME (`justified`: its instantiation, the serial it was
+    /// made with, and the place it goes before, past the end for after them all) in its
+    /// place, once, while its instantiation is still the one recorded.
+    pub(crate) fn pending_retractions(
+        &self,
+        rules: usize,
+        justified: &[(InstId, u64, usize)],
+    ) -> Vec<PendingRetraction> {
+        let mut justified = justified.to_vec();
+        justified.sort_by_key(|&(_, _, at)| at.min(rules));
+        let mut order = Vec::with_capacity(rules + justified.len());
+        let mut next = justified.iter().peekable();
+        for at in 0..=rules {
+            while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(rules) <= at) {
+                let inst = &self.decider.insts[i];
+                let listed = order.contains(&PendingRetraction::Justification(i));
+                if inst.alive && inst.serial == serial && !listed {
+                    order.push(PendingRetraction::Justification(i));
+                }
+            }
+            if at < rules {
+                order.push(PendingRetraction::Rule(at));
             }
         }
+        order
     }
 
     /// One pass of the waterfall over a goal level (`None`: no active goal): counted for
@@ -442,4 +468,13 @@ impl AgentCore {
         }
         waits.is_some()
     }
+}
+
+/// A retraction the next elaboration cycle takes (see `AgentCore::pending_retractions`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PendingRetraction {
+    /// The rule retraction at this place in `MatchSet::retractions`.
+    Rule(usize),
+    /// A justification's instantiation.
+    Justification(InstId),
 }

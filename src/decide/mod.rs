@@ -14,6 +14,7 @@ pub mod cycle;
 pub mod cycle_stats;
 mod decision;
 mod elaborate;
+pub(crate) use elaborate::PendingRetraction;
 mod fire;
 pub mod functions;
 mod gc;
