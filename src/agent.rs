@@ -698,7 +698,7 @@ impl AgentCore {
         // 9.6 creates a rule's constants as it parses it, then reorders its conditions
         // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&mut p, &mut self.symbols);
-        let conds = std::sync::Arc::unwrap_or_clone(std::mem::take(&mut p.conditions));
+        let conds = p.take_conditions();
         let mut conds =
             crate::rete::reorder::reorder_owned(conds, &self.symbols, &self.multi_attributes);
         if p.flags.chunk || p.flags.justification {
@@ -708,7 +708,6 @@ impl AgentCore {
         self.rete.share_action_var_names(&mut p.actions);
         // Kept for the rule's lifetime: no spare room (100,000 rules, 10 % less memory).
         conds.shrink_to_fit();
-        p.actions.shrink_to_fit();
         p.conditions = conds.into();
         let replaced = self.excise(&p.name);
         let value = p.rl_value().filter(|_| by_value);
@@ -723,7 +722,10 @@ impl AgentCore {
             })
         };
         self.rete.token_budget = usize::try_from(self.settings.limits.tokens).unwrap_or(usize::MAX);
-        let added = self.rete.add_production(&p, &mut self.symbols, &mut self.matches, &apart);
+        let rule_of = |id: ProdId| by_id.get(id.0 as usize).and_then(|t| t.as_deref());
+        let added =
+            self.rete
+                .add_production(&p, &mut self.symbols, &mut self.matches, &rule_of, &apart);
         self.rete.token_budget = 0;
         let id = match added {
             Ok(id) => id,
@@ -801,7 +803,7 @@ impl AgentCore {
     }
 
     pub fn excise_all(&mut self) -> usize {
-        let names: Vec<String> = self.productions.keys().map(|k| k.0.name.clone()).collect();
+        let names: Vec<String> = self.productions.keys().map(|k| k.0.name.to_string()).collect();
         for n in &names {
             self.excise(n);
         }
@@ -819,11 +821,11 @@ impl AgentCore {
         /// What stands in the rule's other places while it changes.
         static SET_ASIDE: LazyLock<Arc<Production>> = LazyLock::new(|| {
             Arc::new(Production {
-                name: String::new(),
+                name: arcstr::ArcStr::new(),
                 doc: None,
                 flags: crate::production::Flags::default(),
-                conditions: Arc::new(Vec::new()),
-                actions: Vec::new(),
+                conditions: Arc::new([]),
+                actions: Box::new([]),
                 span: crate::source::Span::default(),
             })
         });

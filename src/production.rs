@@ -25,16 +25,28 @@ pub struct Flags {
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Production {
-    pub name: String,
-    pub doc: Option<String>,
+    /// (Shared with the symbol table once the rule is loaded: a rule's name is a symbol.)
+    pub name: arcstr::ArcStr,
+    pub doc: Option<Box<str>>,
     pub flags: Flags,
     /// Shared between a rule and its changed copies (an RL rule with a new value).
-    pub conditions: std::sync::Arc<Vec<Condition>>,
-    pub actions: Vec<Action>,
+    pub conditions: std::sync::Arc<[Condition]>,
+    pub actions: Box<[Action]>,
     pub span: Span,
 }
 
 impl Production {
+    /// Takes the conditions out as a list of their own, moved when nothing else shares
+    /// them (a rule being loaded), copied when something does; leaves none behind.
+    pub fn take_conditions(&mut self) -> Vec<Condition> {
+        let mut shared = std::mem::replace(&mut self.conditions, std::sync::Arc::new([]));
+        match std::sync::Arc::get_mut(&mut shared) {
+            // (An empty conjunctive negation allocates nothing.)
+            Some(own) => own.iter_mut().map(|c| std::mem::replace(c, Condition::Ncc(Vec::new()))).collect(),
+            None => shared.to_vec(),
+        }
+    }
+
     /// The kind of rule, as the listings of 9.6's commands name it: `chunks`, `defaults`,
     /// `template` or `user` (justifications are never loaded rules).
     pub fn kind_word(&self) -> &'static str {
@@ -56,7 +68,7 @@ impl Production {
         if self.flags.template || self.flags.justification {
             return None;
         }
-        let [Action::Make(m)] = self.actions.as_slice() else {
+        let [Action::Make(m)] = &*self.actions else {
             return None;
         };
         if m.pref != PrefKind::NumericIndifferent {
@@ -318,15 +330,15 @@ pub fn compile(p: &ast::Production, out: &mut CompileOutput) -> Result<Productio
     }
     // Kept for the rule's lifetime: no spare capacity (the reorderer sizes the conditions).
     actions.shrink_to_fit();
-    let mut prod = Production {
-        name: p.name.clone(),
-        doc: p.doc.clone(),
+    drop_unbound_relational(&mut conditions, &FxHashSet::default(), (&p.name, p.span.file))?;
+    let prod = Production {
+        name: p.name.as_str().into(),
+        doc: p.doc.as_deref().map(Box::from),
         flags,
         conditions: conditions.into(),
-        actions,
+        actions: actions.into(),
         span: p.span,
     };
-    drop_unbound_relational(std::sync::Arc::<Vec<Condition>>::make_mut(&mut prod.conditions).as_mut_slice(), &FxHashSet::default(), (&prod.name, p.span.file))?;
     check_roots(&prod, p, out)?;
     check_grounded(&prod, p)?;
     Ok(prod)

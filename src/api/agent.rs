@@ -580,7 +580,7 @@ impl Agent {
         self.interp
             .agent
             .productions()
-            .map(|p| p.name.clone())
+            .map(|p| p.name.to_string())
             .collect()
     }
 

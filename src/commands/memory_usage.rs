@@ -74,7 +74,7 @@ impl Interpreter {
                 .filter(|p| p.kind_word() == kind)
                 .collect();
             for p in rules {
-                rows.push((self.tokens_held(p), p.name.clone()));
+                rows.push((self.tokens_held(p), p.name.to_string()));
             }
         }
         if rows.is_empty() {

@@ -387,7 +387,7 @@ impl Interpreter {
             let name = if self.agent.production(&p.name).is_some() {
                 crate::printer::rereadable(&p.name)
             } else {
-                p.name.clone()
+                p.name.to_string()
             };
             // An RL rule shows what it learned (Soar manual, ch. 5, "Reinforcement
             // Learning").

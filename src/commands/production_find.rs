@@ -83,7 +83,7 @@ impl Interpreter {
                 .agent
                 .productions()
                 .rev()
-                .filter(|p| self.agent.break_rules.contains_key(&p.name))
+                .filter(|p| self.agent.break_rules.contains_key(p.name.as_str()))
                 .map(|p| format!("{}\n", p.name))
                 .collect());
         };

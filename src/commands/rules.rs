@@ -177,7 +177,7 @@ impl Interpreter {
         ];
         let parsed = options::parse(&args, &specs).map_err(|m| ctx.error(m))?;
         if parsed.has("all") {
-            let names: Vec<String> = self.agent.productions().map(|p| p.name.clone()).collect();
+            let names: Vec<String> = self.agent.productions().map(|p| p.name.to_string()).collect();
             // 9.6 excises the templates too but leaves them out of its count.
             let templates = self.agent.productions().filter(|p| p.flags.template).count();
             let n = self.agent.excise_all();
@@ -202,7 +202,7 @@ impl Interpreter {
                         .loaded(&p.name)
                         .is_some_and(|l| self.agent.rl.is_rl_rule(l.id))
                 })
-                .map(|p| p.name.clone())
+                .map(|p| p.name.to_string())
                 .collect();
             for name in &names {
                 self.agent.excise(name);
@@ -239,7 +239,7 @@ impl Interpreter {
                         .is_some_and(|l| self.agent.firing_count(l.id) > 0);
                     wanted.iter().any(|k| k(&p.flags)) || (never_fired && !fired)
                 })
-                .map(|p| p.name.clone())
+                .map(|p| p.name.to_string())
                 .collect();
             for name in &names {
                 self.agent.excise(name);

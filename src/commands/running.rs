@@ -244,10 +244,10 @@ impl Interpreter {
         let mut rows: Vec<(u64, String)> = self
             .agent
             .productions()
-            .filter(|p| names.is_empty() || names.contains(&p.name))
+            .filter(|p| names.is_empty() || names.iter().any(|n| *n == *p.name))
             .map(|p| {
                 let id = self.agent.loaded(&p.name).map(|l| l.id);
-                (id.map_or(0, |i| self.agent.firing_count(i)), p.name.clone())
+                (id.map_or(0, |i| self.agent.firing_count(i)), p.name.to_string())
             })
             .collect();
         if rows.is_empty() {

@@ -46,7 +46,7 @@ impl AgentCore {
             let Some(name) = self.production_by_id(id).map(|p| p.name.clone()) else {
                 continue;
             };
-            let Some(count) = self.break_rules.get_mut(&name) else {
+            let Some(count) = self.break_rules.get_mut(name.as_str()) else {
                 continue;
             };
             *count += 1;

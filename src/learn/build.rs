@@ -735,7 +735,7 @@ impl AgentCore {
             );
         }
         Production {
-            name,
+            name: name.into(),
             doc: None,
             flags: Flags {
                 chunk: variablize,
@@ -743,7 +743,7 @@ impl AgentCore {
                 ..Flags::default()
             },
             conditions: conditions.into(),
-            actions,
+            actions: actions.into(),
             span: Default::default(),
         }
     }

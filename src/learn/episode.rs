@@ -376,7 +376,7 @@ impl AgentCore {
                     let wmes = self.match_wme_list(*pid, tok);
                     self.decider.traced_match_wmes.insert(id, wmes);
                 }
-                (id, o, prod.name.clone())
+                (id, o, prod.name.to_string())
             }
             _ => {
                 // A justification: named unless a chunk was learned (and only failed to
@@ -386,7 +386,7 @@ impl AgentCore {
                 let name = if named {
                     self.justification_name(source, level)
                 } else {
-                    chunk.as_ref().map(|c| c.1.name.clone()).unwrap_or_default()
+                    chunk.as_ref().map(|c| c.1.name.to_string()).unwrap_or_default()
                 };
                 let id = self.add_justification(bt, &results, &name, named, o);
                 // 9.6's explainer records nothing while learning is off.

@@ -63,7 +63,7 @@ impl Sketch {
             })
             .collect();
         Production {
-            name: self.name.clone(),
+            name: self.name.as_str().into(),
             doc: None,
             flags: Flags {
                 justification: true,

@@ -90,12 +90,14 @@ fn unbound_relational(conds: &[Condition], bound: &mut FxHashSet<String>) -> Opt
 
 /// The actions and flags of a rule with each variable replaced by where the conditions bind
 /// it (or by its order of appearance, for variables the actions create).
-fn action_key(p: &Production, bindings: &Bindings) -> String {
+/// `bound` tells where a variable is bound.
+fn action_key(p: &Production, bound: &dyn Fn(&str) -> Option<(u32, Field)>) -> String {
     use crate::production::{Action, FuncCall, RhsTerm};
     use std::fmt::Write;
-    fn term<'a>(t: &'a RhsTerm, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
+    type Bound<'b> = &'b dyn Fn(&str) -> Option<(u32, Field)>;
+    fn term<'a>(t: &'a RhsTerm, b: Bound, fresh: &mut Vec<&'a str>, out: &mut String) {
         match t {
-            RhsTerm::Var(v) => match b.get(v.as_str()) {
+            RhsTerm::Var(v) => match b(v.as_str()) {
                 Some((d, f)) => {
                     let _ = write!(out, "@{d}.{f:?}");
                 }
@@ -111,7 +113,7 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
             RhsTerm::Call(f) => call(f, b, fresh, out),
         }
     }
-    fn call<'a>(f: &'a FuncCall, b: &Bindings, fresh: &mut Vec<&'a str>, out: &mut String) {
+    fn call<'a>(f: &'a FuncCall, b: Bound, fresh: &mut Vec<&'a str>, out: &mut String) {
         out.push('(');
         out.push_str(&f.name);
         for a in &f.args {
@@ -141,20 +143,28 @@ fn action_key(p: &Production, bindings: &Bindings) -> String {
         match a {
             Action::Make(m) => {
                 for t in [&m.id, &m.attr, &m.value] {
-                    term(t, bindings, &mut fresh, &mut out);
+                    term(t, bound, &mut fresh, &mut out);
                     out.push(' ');
                 }
                 out.push_str(m.pref.symbol());
                 // An RL rule's value is what it learns, not what it does: two RL rules that
                 // differ only in it are duplicates (observed on 9.6).
                 if let Some(r) = m.referent.as_ref().filter(|_| p.rl_value().is_none()) {
-                    term(r, bindings, &mut fresh, &mut out);
+                    term(r, bound, &mut fresh, &mut out);
                 }
             }
-            Action::Call(f) => call(f, bindings, &mut fresh, &mut out),
+            Action::Call(f) => call(f, bound, &mut fresh, &mut out),
         }
     }
     out
+}
+
+/// A hash of an [`action_key`], kept with each rule in its place.
+fn action_key_hash(key: &str) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    key.hash(&mut h);
+    h.finish()
 }
 
 /// Where the next node attaches: under a token holder, or under a join (whose matches the
@@ -170,17 +180,19 @@ type Bindings<'a> = FxHashMap<&'a str, (u32, Field)>;
 
 impl Rete {
     /// Adds a production; its matches against current working memory are reported at once.
-    /// A rule that would be a duplicate of `twin` is not one when `apart(twin)` says so (an
-    /// RL rule whose value differs, with `rl --set chunk-stop off`).
-    pub fn add_production(
+    /// `rule_of` gives a loaded rule by its id (to compare a would-be duplicate's actions
+    /// with). A rule that would be a duplicate of `twin` is not one when `apart(twin)` says
+    /// so (an RL rule whose value differs, with `rl --set chunk-stop off`).
+    pub fn add_production<'r>(
         &mut self,
         p: &Production,
         syms: &mut Symbols,
         sink: &mut dyn MatchSink,
+        rule_of: &dyn Fn(ProdId) -> Option<&'r Production>,
         apart: &dyn Fn(ProdId) -> bool,
     ) -> Result<ProdId, BuildError> {
         if p.conditions.is_empty() {
-            return Err(BuildError::NoConditions(p.name.clone()));
+            return Err(BuildError::NoConditions(p.name.to_string()));
         }
         let negated = p
             .conditions
@@ -206,13 +218,21 @@ impl Rete {
         let parent = cur_node(cur);
         // A rule whose conditions share every node with another rule, and whose actions are
         // the same up to variable names, is a duplicate, which Soar ignores with a message.
-        let action_key = action_key(p, &bindings);
+        // (A rule keeps its key's hash; an equal hash is confirmed on the rules themselves.)
+        let key = action_key(p, &|v| bindings.get(v).copied());
+        let key_hash = action_key_hash(&key);
         let twin = self
             .all_children(parent)
             .find_map(|c| match self.nodes[c].kind {
                 Kind::Production { prod } => self
                     .production(prod)
-                    .filter(|i| *i.action_key == *action_key && !apart(prod))
+                    .filter(|i| {
+                        i.action_key_hash == key_hash
+                            && rule_of(prod).is_some_and(|r| {
+                                action_key(r, &|v| i.bindings.get(v).copied()) == key
+                            })
+                            && !apart(prod)
+                    })
                     .map(|_| prod),
                 _ => None,
             });
@@ -227,8 +247,8 @@ impl Rete {
         self.prods.push(Some(ProdInfo {
             pnode,
             positives,
-            bindings: super::VarBindings::new(bindings, &mut self.var_names),
-            action_key: action_key.into(),
+            bindings: super::VarBindings::new(bindings, &mut self.var_names, &mut self.binding_lists),
+            action_key_hash: key_hash,
         }));
         self.fill_new_node(pnode, syms, sink);
         if std::mem::take(&mut self.fill_aborted) {

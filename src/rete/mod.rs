@@ -414,9 +414,9 @@ pub struct ProdInfo {
     pub(crate) positives: u32,
     /// Where each variable of the positive conditions is first bound: token depth and field.
     pub bindings: VarBindings,
-    /// The actions with variables as binding places: equal keys under one parent node mean
-    /// duplicate rules.
-    pub(crate) action_key: Box<str>,
+    /// A hash of the actions with variables as binding places: equal keys under one parent
+    /// node mean duplicate rules.
+    pub(crate) action_key_hash: u64,
 }
 
 pub struct Rete {
@@ -468,6 +468,8 @@ pub struct Rete {
     /// The names of the variables only actions use (those a rule's actions make), each
     /// stored once; kept apart, so that `debug internal-symbols` lists what it did.
     pub(crate) action_var_names: VarNames,
+    /// The rules' lists of where their variables are bound, each once.
+    binding_lists: names::BindingLists,
     pub(crate) root: NodeId,
     root_token: TokId,
     /// Alpha-memory entries by identifier: the head of each list (Soar's right hash table).
@@ -545,6 +547,7 @@ impl Rete {
             test_buf: Vec::new(),
             var_names: VarNames::default(),
             action_var_names: VarNames::default(),
+            binding_lists: names::BindingLists::default(),
             amem_by_id: id_index::IdIndex::default(),
             tok_by_key: FxHashMap::default(),
             hentries: Vec::new(),

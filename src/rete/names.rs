@@ -6,12 +6,20 @@ use super::tests::Field;
 use super::Rete;
 use crate::production::{Action, Condition, RhsTerm, Term, Test};
 use rustc_hash::FxHashMap;
+use std::sync::Arc;
 
 /// Variables and where they are bound, sorted by name: kept for every rule, where a hash
 /// map would cost several times the memory. The names are shared among all rules
-/// ([`VarNames`]): thousands of rules use the same few.
-#[derive(Debug, Clone, Default)]
-pub struct VarBindings(Box<[Binding]>);
+/// ([`VarNames`]): thousands of rules use the same few; and so are whole lists
+/// ([`BindingLists`]): rules of one shape bind the same variables in the same places.
+#[derive(Debug, Clone)]
+pub struct VarBindings(Arc<[Binding]>);
+
+impl Default for VarBindings {
+    fn default() -> Self {
+        VarBindings(Arc::new([]))
+    }
+}
 
 /// A variable's name and where it is bound.
 type Binding = (arcstr::ArcStr, (u32, Field));
@@ -39,12 +47,26 @@ impl VarBindings {
         self.0.len()
     }
 
-    pub(super) fn new(map: FxHashMap<&str, (u32, Field)>, names: &mut VarNames) -> Self {
+    pub(super) fn new(
+        map: FxHashMap<&str, (u32, Field)>,
+        names: &mut VarNames,
+        lists: &mut BindingLists,
+    ) -> Self {
         let mut v: Vec<_> = map.into_iter().collect();
         v.sort_unstable_by(|a, b| a.0.cmp(b.0));
-        VarBindings(v.into_iter().map(|(k, b)| (names.get(k), b)).collect())
+        let list: Vec<Binding> = v.into_iter().map(|(k, b)| (names.get(k), b)).collect();
+        if let Some(shared) = lists.0.get(list.as_slice()) {
+            return VarBindings(shared.clone());
+        }
+        let shared: Arc<[Binding]> = list.into();
+        lists.0.insert(shared.clone());
+        VarBindings(shared)
     }
 }
+
+/// The binding lists of the rules in the network, each stored once (see [`VarBindings`]).
+#[derive(Debug, Default)]
+pub(crate) struct BindingLists(rustc_hash::FxHashSet<Arc<[Binding]>>);
 
 /// The variable names of the rules in the network, each stored once.
 #[derive(Debug, Default)]

@@ -212,7 +212,7 @@ impl AgentCore {
             n += 1;
         };
         let rule = Production {
-            name: name.clone(),
+            name: name.as_str().into(),
             doc: None,
             flags: Flags::default(),
             conditions: conditions.into(),

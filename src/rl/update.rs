@@ -420,7 +420,7 @@ impl AgentCore {
                 m.referent = Some(RhsTerm::Const(Constant::Float(value)));
             }
             if doc.is_some() {
-                p.doc = doc;
+                p.doc = doc.map(Box::from);
             }
         });
         if !loaded {

@@ -212,7 +212,7 @@ fn build(name: &str, gen: &[CondKind]) -> Production {
         doc: None,
         flags: Flags::default(),
         conditions: conditions.into(),
-        actions: Vec::new(),
+        actions: Box::new([]),
         span: Span::default(),
     }
 }
@@ -585,7 +585,8 @@ fn run(steps: &[Step]) -> Result<(), TestCaseError> {
                 let mut joined = p.clone();
                 reorder::intern_in_text_order(&mut joined, &mut syms);
                 joined.conditions = reorder::reorder(&joined.conditions, &syms).into();
-                match rete.add_production(&joined, &mut syms, &mut sink, &|_| false) {
+                let rule_of = |id| prods.iter().find(|(i, _, _)| *i == id).map(|(_, _, j)| j);
+                match rete.add_production(&joined, &mut syms, &mut sink, &rule_of, &|_| false) {
                     Ok(id) => prods.push((id, p, joined)),
                     // Identical to a rule already there: not added, as in Soar.
                     Err(crate::rete::BuildError::Duplicate(_)) => {}

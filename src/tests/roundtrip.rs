@@ -1110,7 +1110,7 @@ fn zero_conds(cs: &mut [Condition]) {
 fn strip(p: &Production) -> Production {
     let mut p = p.clone();
     p.span = Span::default();
-    zero_conds(std::sync::Arc::<Vec<Condition>>::make_mut(&mut p.conditions).as_mut_slice());
+    zero_conds(std::sync::Arc::make_mut(&mut p.conditions));
     for a in &mut p.actions {
         match a {
             Action::Make(m) => {
@@ -1282,7 +1282,7 @@ fn round_trip(src: &str) -> Result<(), String> {
     let (g1, s2) = (strip(&p1), strip(&p2));
     let expected = Production {
         conditions: regroup(&g1.conditions).into(),
-        actions: regroup_actions(&g1.actions),
+        actions: regroup_actions(&g1.actions).into(),
         ..g1
     };
     if s2 != expected {

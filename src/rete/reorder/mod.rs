@@ -138,7 +138,11 @@ pub fn intern_in_text_order(p: &mut crate::production::Production, syms: &mut Sy
         syms.str(&f.name);
         f.args.iter_mut().for_each(|a| rhs(a, syms));
     }
-    syms.str(&p.name);
+    // The rule keeps the symbol's text as its name rather than a copy.
+    let name = syms.str(&p.name);
+    if let SymData::Str(shared) = syms.get(name) {
+        p.name = shared.clone();
+    }
     std::sync::Arc::make_mut(&mut p.conditions)
         .iter_mut()
         .for_each(|c| cond(c, syms));
