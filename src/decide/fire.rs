@@ -79,9 +79,12 @@ impl AgentCore {
             inst.o_support = false;
         }
         // An o-supported preference outlives its firing's match: keep what the match held
-        // (a substate firing's record keeps it already).
+        // (a substate firing's record keeps it already). So does an i-supported one while
+        // activation is on: a reference to its WME goes to what the firing matched, also
+        // once the match is gone (see `wma_pref_conditions`).
         // (Gathered in a buffer kept for its room: one allocation, the record's own.)
-        let matched: Option<std::sync::Arc<[crate::wm::Wme]>> = (inst.o_support && level < 2)
+        let kept = if inst.o_support { level < 2 } else { self.wma.on() };
+        let matched: Option<std::sync::Arc<[crate::wm::Wme]>> = kept
             .then(|| {
                 let mut held = std::mem::take(&mut self.decider.matched_scratch);
                 held.clear();

@@ -233,8 +233,17 @@ impl AgentCore {
     }
 
     /// The WMEs the firing that made a preference matched, while that match is known.
+    /// An i-supported preference's are those its firing recorded that are still in working
+    /// memory: 9.6's instantiation keeps its conditions' WMEs, so the answer stands when
+    /// the match is gone (its retraction pending in the same elaboration cycle).
     fn wma_pref_conditions(&self, pid: PrefId) -> Vec<WmeId> {
         let p = &self.decider.prefs[pid];
+        if let (false, Some(recorded)) = (p.o_support, p.matched.as_deref()) {
+            return recorded
+                .iter()
+                .filter_map(|w| self.wm.by_timetag(w.timetag))
+                .collect();
+        }
         if let Some(i) = p.inst {
             let inst = &self.decider.insts[i];
             // A justification's conditions are the WMEs it was built on.
