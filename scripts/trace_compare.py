@@ -6,6 +6,7 @@ For each agent and level, both kernels get, in a fresh agent:
 
     srand 1
     source AGENT
+    BEFORE               (with --before, e.g. 'wm activation --set activation on')
     trace LEVEL          (or the --trace options given)
     run RUN              (default: run 50)
 
@@ -14,7 +15,7 @@ followed by run's result, in a process of its own for each agent and level; ruso
 that command. They are compared line for line; the first difference is shown.
 
 usage: python3 scripts/trace_compare.py [--levels 2,3,4,5] [--run 'run 50']
-                                        [--trace '-p -w'] [--show] [AGENT ...]
+                                        [--trace '-p -w'] [--before CMD] [--show] [AGENT ...]
   AGENT     names in tests/agents/ (default: all) or paths to .soar files
   --show    print both texts in full for one agent (with --levels N)
 The exit status is 1 if any compared text differs.
@@ -33,23 +34,25 @@ BINARY = os.path.join(ROOT, "target", "release", "rusoar")
 MARK = "@@trace-compare@@"
 
 
-def official(path, trace_cmd, run_cmd):
+def official(path, trace_cmd, run_cmd, before):
     """The official kernel's text, from a process of its own: 9.6 orders some structures
     by memory address, so an agent run after others in one process can list them in
     another order than it does alone."""
     args = [sys.executable, os.path.abspath(__file__), "--official-one", path, trace_cmd, run_cmd]
+    args.append(before)
     return subprocess.run(args, capture_output=True, text=True, cwd=ROOT).stdout
 
 
-def official_here(kernel, path, trace_cmd, run_cmd):
+def official_here(kernel, path, trace_cmd, run_cmd, before):
     agent = kernel.CreateAgent("compare")
     printed = []
     cb = agent.RegisterForPrintEvent(
         sml.smlEVENT_PRINT, lambda _id, _ud, _agent, msg: printed.append(msg), None
     )
     try:
-        for c in ["srand 1", "source %s" % path, trace_cmd]:
-            agent.ExecuteCommandLine(c)
+        for c in ["srand 1", "source %s" % path, before, trace_cmd]:
+            if c:
+                agent.ExecuteCommandLine(c)
         printed.clear()
         result = agent.ExecuteCommandLine(run_cmd)
         text = "".join(printed) + result
@@ -59,8 +62,10 @@ def official_here(kernel, path, trace_cmd, run_cmd):
         kernel.DestroyAgent(agent)
 
 
-def ours(path, trace_cmd, run_cmd):
-    args = [BINARY, "-c", "srand 1", "--source", path, "-c", trace_cmd]
+def ours(path, trace_cmd, run_cmd, before):
+    args = [BINARY, "-c", "srand 1", "--source", path]
+    args += ["-c", before] if before else []
+    args += ["-c", trace_cmd]
     args += ["-c", "echo " + MARK, "-c", run_cmd, "-c", "echo " + MARK]
     out = subprocess.run(args, capture_output=True, text=True, cwd=ROOT).stdout
     parts = out.split(MARK + "\n")
@@ -73,23 +78,24 @@ def agent_path(name):
     return os.path.join(AGENTS, name + ".soar")
 
 
-def official_one(path, trace_cmd, run_cmd):
+def official_one(path, trace_cmd, run_cmd, before):
     kernel = sml.Kernel.CreateKernelInCurrentThread(True, 0)
     try:
-        sys.stdout.write(official_here(kernel, path, trace_cmd, run_cmd))
+        sys.stdout.write(official_here(kernel, path, trace_cmd, run_cmd, before))
     finally:
         kernel.Shutdown()
 
 
 def main():
     if sys.argv[1:2] == ["--official-one"]:
-        official_one(*sys.argv[2:5])
+        official_one(*sys.argv[2:6])
         return 0
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("agents", nargs="*")
     p.add_argument("--levels", default="2,3,4,5")
     p.add_argument("--run", default="run 50")
     p.add_argument("--trace", help="trace options instead of levels, e.g. '-p -w'")
+    p.add_argument("--before", default="", help="a command after the source, before the trace")
     p.add_argument("--show", action="store_true")
     p.add_argument("--context", type=int, default=3)
     args = p.parse_args()
@@ -106,8 +112,8 @@ def main():
         path = agent_path(name)
         row = []
         for t in traces:
-            a = official(path, t, args.run)
-            b = ours(path, t, args.run)
+            a = official(path, t, args.run, args.before)
+            b = ours(path, t, args.run, args.before)
             if args.show:
                 print("=== official: %s, %s" % (name, t))
                 sys.stdout.write(a)

@@ -1000,6 +1000,11 @@ impl AgentCore {
         let wme = self.wm.remove(w)?;
         if self.wma.on() {
             self.wma_wme_removed(&wme);
+            // (A working-memory phase lets its removals go at its end: `trace_removed_wmes`.)
+            if self.removed_wmes.is_none() {
+                let next = self.wm.next_timetag();
+                self.wma.addresses.freed(wme.timetag, next);
+            }
         }
         if self.events.any() {
             self.events

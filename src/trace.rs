@@ -852,8 +852,14 @@ impl AgentCore {
         }
         // Within a slot, oldest first (a stable sort: the rest keep the order listed).
         lines.sort_by_key(|(r, w)| (*r, if r.0 == 4 && by_gds { w.timetag } else { 0 }));
+        // 9.6 lets the phase's removed WMEs go in this order too, after the phase's new
+        // ones were made (the WMA trace's order of addresses follows).
+        let next = self.wm.next_timetag();
         for (_, w) in lines {
             self.trace_wme(false, &w);
+            if self.wma.on() {
+                self.wma.addresses.freed(w.timetag, next);
+            }
         }
     }
 }

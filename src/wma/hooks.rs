@@ -534,6 +534,8 @@ impl AgentCore {
         if self.settings.trace.wma {
             let mut counts = Vec::new();
             self.wma.record_decision(now, Some(&mut counts));
+            let next = self.wm.next_timetag();
+            self.wma.addresses.sort(&mut counts, next);
             self.wma_trace_activations(&counts);
         } else {
             self.wma.record_decision(now, None);

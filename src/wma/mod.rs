@@ -9,6 +9,7 @@
 //! cycle, `decay.rs` holds the decay arithmetic (shared with reinforcement learning's
 //! apoptosis) and `params.rs` the settings.
 
+mod addresses;
 pub mod decay;
 mod hooks;
 pub mod params;
@@ -67,6 +68,8 @@ pub struct Wma {
     elements: BTreeMap<u64, Element>,
     /// Elements referenced in the current decision, by timetag.
     touched: BTreeSet<u64>,
+    /// The order of 9.6's WME addresses, for the `activate` lines of the WMA trace.
+    pub(crate) addresses: addresses::AddressOrder,
     /// Elements by the decision at which forgetting checks them.
     queue: BTreeMap<u64, BTreeSet<u64>>,
     /// References to values of non-context slots made before the value's WME exists, by
@@ -152,6 +155,8 @@ impl Wma {
         self.decided.clear();
         self.removal_lines.clear();
         self.removed.clear();
+        // (Working memory starts again, or is no longer followed: the places start afresh.)
+        self.addresses = Default::default();
     }
 
     /// `init-soar`: working memory goes, and with it every element; the count of

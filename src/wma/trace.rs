@@ -1,8 +1,8 @@
 //! The WMA trace (`trace -a`, 9.6's `TRACE_WMA_SYSPARAM`): a line when a WME gets a decay
 //! element (`add`), when it loses it (`remove`, right after the WME's `<=WM:` line), and,
 //! at the end of each decision, one per element referenced in it with its count of
-//! references (`activate`). 9.6 prints those in the order of the WMEs' memory addresses;
-//! rusoar prints them in timetag order.
+//! references (`activate`). 9.6 prints those in the order of the WMEs' memory addresses,
+//! which `addresses.rs` replays.
 
 use crate::agent::AgentCore;
 use crate::symbols::{Sym, SymData};
