@@ -1001,7 +1001,7 @@ impl AgentCore {
         if self.wma.on() {
             self.wma_wme_removed(&wme);
             // (A working-memory phase lets its removals go at its end: `trace_removed_wmes`.)
-            if self.removed_wmes.is_none() {
+            if self.removed_wmes.is_none() && !self.wma.held_out.contains(&wme.timetag) {
                 let next = self.wm.next_timetag();
                 self.wma.addresses.freed(wme.timetag, next);
             }

@@ -857,9 +857,12 @@ impl AgentCore {
         let next = self.wm.next_timetag();
         for (_, w) in lines {
             self.trace_wme(false, &w);
-            if self.wma.on() {
+            if self.wma.on() && !self.wma.held_out.contains(&w.timetag) {
                 self.wma.addresses.freed(w.timetag, next);
             }
+        }
+        if self.wma.on() {
+            self.wma_release_holders();
         }
     }
 }

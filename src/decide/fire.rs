@@ -232,6 +232,9 @@ impl AgentCore {
             own_prefs.extend_from_slice(&inst.prefs);
         }
         self.decider.insts[inst_id] = inst;
+        if level >= 2 && self.wma.on() {
+            self.wma_hold_firing(inst_id);
+        }
         if traced {
             self.trace_instantiation_prefs(&own_prefs);
         }

@@ -114,11 +114,15 @@ impl AgentCore {
             })
     }
 
-    /// A WME left working memory.
+    /// A WME left working memory; an activation set may hold it a while longer.
     pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
-        self.wma_trace_removal(wme.timetag);
         self.wma.decided.remove(&wme.timetag);
         self.wma.memory_results.remove(&wme.timetag);
+        if self.wma.holds.contains_key(&wme.timetag) {
+            self.wma.held_out.insert(wme.timetag);
+            return;
+        }
+        self.wma_trace_removal(wme.timetag);
         self.wma.remove(wme.timetag);
     }
 
@@ -450,9 +454,157 @@ impl AgentCore {
         let mut visiting = FxHashSet::default();
         self.wma_collect_o_set(pid, &mut out, &mut visiting);
         let set: Vec<u64> = out.into_iter().collect();
-        let serial = self.decider.pref_serial(pid);
-        self.wma.o_sets.insert(pid, (serial, set.clone()));
+        self.wma_store_o_set(pid, set.clone());
         set
+    }
+
+    /// Keeps a preference's activation set, which holds its members (see `Wma::holders`).
+    fn wma_store_o_set(&mut self, pid: PrefId, set: Vec<u64>) {
+        let serial = self.decider.pref_serial(pid);
+        let p = &self.decider.prefs[pid];
+        let key = (p.id, p.attr, p.value);
+        if !self.wma.holders.contains_key(&(pid, serial)) {
+            let members = self.wma_holdable(set.iter().copied());
+            for &tt in &members {
+                *self.wma.holds.entry(tt).or_insert(0) += 1;
+            }
+            self.wma.holders.insert((pid, serial), super::Holder { key, members });
+        }
+        self.wma.o_sets.insert(pid, (serial, set));
+    }
+
+    /// The activation sets whose preference 9.6 has freed by now (gone, and no WME of its
+    /// value left) let their WMEs go, oldest preference first; a WME out of working memory
+    /// that nothing holds any more is freed: its element goes, with its `remove` line.
+    pub(crate) fn wma_release_holders(&mut self) {
+        self.wma_release_firings();
+        if self.wma.holders.is_empty() {
+            return;
+        }
+        let mut dead: Vec<(PrefId, u64)> = self
+            .wma
+            .holders
+            .iter()
+            .filter(|&(&(pid, serial), h)| {
+                let gone = self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive;
+                gone && !self.wma_value_in_memory(h.key)
+            })
+            .map(|(&k, _)| k)
+            .collect();
+        dead.sort_unstable_by_key(|&(_, serial)| serial);
+        let next = self.wm.next_timetag();
+        for k in dead {
+            let Some(holder) = self.wma.holders.remove(&k) else {
+                continue;
+            };
+            // (9.6's set lets its members go in the order of their addresses.)
+            self.wma_let_go(&holder.members, next);
+        }
+    }
+
+    /// A holder lets these WMEs go (in the order of their addresses); one out of working
+    /// memory that nothing holds any more is freed.
+    fn wma_let_go(&mut self, members: &[u64], next: u64) {
+        let mut members: Vec<(u64, ())> = members.iter().map(|&tt| (tt, ())).collect();
+        self.wma.addresses.sort(&mut members, next);
+        for (tt, ()) in members {
+            let Some(n) = self.wma.holds.get_mut(&tt) else {
+                continue;
+            };
+            *n -= 1;
+            if *n > 0 {
+                continue;
+            }
+            self.wma.holds.remove(&tt);
+            if self.wma.held_out.remove(&tt) {
+                if self.settings.trace.wma && self.wma.element(tt).is_some_and(|e| !e.removed) {
+                    self.wma_removal_line(tt);
+                }
+                self.wma.remove(tt);
+                self.wma.addresses.freed(tt, next);
+            }
+        }
+    }
+
+    /// The WMEs a holder holds among these: 9.6 counts such references only for WMEs of
+    /// substates' objects (its `wme_add_ref` skips the top state's level), so a top-level
+    /// WME goes as it leaves working memory.
+    fn wma_holdable(&self, timetags: impl Iterator<Item = u64>) -> Vec<u64> {
+        timetags
+            .filter(|&tt| {
+                self.wm
+                    .by_timetag(tt)
+                    .and_then(|w| self.wm.get(w))
+                    .and_then(|w| self.symbols.id_data(w.id))
+                    .is_some_and(|d| d.level > 1)
+            })
+            .collect()
+    }
+
+    /// A substate firing (instantiation `i`, just made) holds the WMEs it matched.
+    pub(crate) fn wma_hold_firing(&mut self, i: crate::decide::ids::InstId) {
+        let inst = &self.decider.insts[i];
+        let (prod, token) = (inst.prod, inst.token);
+        let prefs: Vec<_> = inst
+            .prefs
+            .iter()
+            .map(|&pid| {
+                let p = &self.decider.prefs[pid];
+                (pid, self.decider.pref_serial(pid), (p.id, p.attr, p.value))
+            })
+            .collect();
+        let matched: Vec<u64> = self
+            .rete
+            .match_row(prod, token)
+            .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
+            .collect();
+        let members = self.wma_holdable(matched.into_iter());
+        for &tt in &members {
+            *self.wma.holds.entry(tt).or_insert(0) += 1;
+        }
+        self.wma.firing_holds.push(super::FiringHold {
+            inst: i,
+            prod,
+            token,
+            prefs,
+            members,
+        });
+    }
+
+    /// The substate firings 9.6 has deallocated by now (retracted, and each of their
+    /// preferences gone with the WME it supported) let their WMEs go, oldest first.
+    fn wma_release_firings(&mut self) {
+        if self.wma.firing_holds.is_empty() {
+            return;
+        }
+        let next = self.wm.next_timetag();
+        let mut k = 0;
+        while k < self.wma.firing_holds.len() {
+            let h = &self.wma.firing_holds[k];
+            let inst = &self.decider.insts[h.inst];
+            let live = inst.alive && inst.prod == h.prod && inst.token == h.token;
+            let prefs_gone = h.prefs.iter().all(|&(pid, serial, key)| {
+                (self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive)
+                    && !self.wma_value_in_memory(key)
+            });
+            if live || !prefs_gone {
+                k += 1;
+                continue;
+            }
+            let h = self.wma.firing_holds.remove(k);
+            self.wma_let_go(&h.members, next);
+        }
+    }
+
+    /// Whether the WME a preference for `(id ^attr value)` supports is in working memory:
+    /// an operator's `+` WME (the selected operator's WME is the decision's own), else the
+    /// WME of the value.
+    fn wma_value_in_memory(&self, (id, attr, value): (Sym, Sym, Sym)) -> bool {
+        let acceptable = self.wma_context_slot(id, attr);
+        self.decider
+            .slots
+            .get(&(id, attr))
+            .is_some_and(|s| s.wmes.get(&(value, acceptable)).is_some())
     }
 
     fn wma_collect_o_set(
@@ -491,9 +643,8 @@ impl AgentCore {
                         let mut sub = std::collections::BTreeSet::new();
                         self.wma_collect_o_set(p2, &mut sub, visiting);
                         let set: Vec<u64> = sub.into_iter().collect();
-                        let serial = self.decider.pref_serial(p2);
-                        self.wma.o_sets.insert(p2, (serial, set.clone()));
-                        out.extend(set);
+                        out.extend(set.iter().copied());
+                        self.wma_store_o_set(p2, set);
                     }
                 },
                 Support::Architecture => {
@@ -530,6 +681,7 @@ impl AgentCore {
         let now = self.decider.d_cycle_count;
         // A `remove` line whose `<=WM:` line never came is not lost.
         self.wma_flush_removal_lines();
+        self.wma_release_holders();
         self.wma.purge_removed();
         if self.settings.trace.wma {
             let mut counts = Vec::new();

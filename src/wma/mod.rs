@@ -40,6 +40,29 @@ const FORGOTTEN: u64 = 0;
 /// A preference's allocation number, and the timetags of the WMEs its support rests on.
 pub(crate) type OSet = (u64, Vec<u64>);
 
+/// A substate firing that holds the WMEs it matched (see `Wma::firing_holds`).
+#[derive(Debug, Clone)]
+pub(crate) struct FiringHold {
+    /// The instantiation, with its rule and match to tell a reused handle.
+    pub inst: crate::decide::ids::InstId,
+    pub prod: crate::rete::ProdId,
+    pub token: crate::rete::TokId,
+    /// Its preferences, each with its allocation number and `(id, attr, value)`.
+    pub prefs: Vec<(PrefId, u64, (Sym, Sym, Sym))>,
+    /// The WMEs held, by timetag.
+    pub members: Vec<u64>,
+}
+
+/// An activation set that holds its WMEs (see `Wma::holders`).
+#[derive(Debug, Clone)]
+pub(crate) struct Holder {
+    /// The preference's `(id, attr, value)`: while such a WME is in working memory, the
+    /// preference is taken to support it still.
+    pub key: (Sym, Sym, Sym),
+    /// The WMEs held, by timetag.
+    pub members: Vec<u64>,
+}
+
 /// The decay element of one o-supported WME.
 #[derive(Debug, Clone)]
 pub(crate) struct Element {
@@ -70,6 +93,18 @@ pub struct Wma {
     touched: BTreeSet<u64>,
     /// The order of 9.6's WME addresses, for the `activate` lines of the WMA trace.
     pub(crate) addresses: addresses::AddressOrder,
+    /// The activation sets (`o_sets`) that hold WMEs, by preference and its allocation
+    /// number: 9.6 frees a WME only when nothing holds it, and a preference's set holds
+    /// its members until the preference is freed, once gone and the WME it supported gone.
+    pub(crate) holders: FxHashMap<(PrefId, u64), Holder>,
+    /// Substate firings, each holding the WMEs it matched (9.6 keeps them with the
+    /// instantiation until it is retracted and its preferences are gone).
+    pub(crate) firing_holds: Vec<FiringHold>,
+    /// How many activation sets and firings hold each WME, by timetag.
+    pub(crate) holds: FxHashMap<u64, u32>,
+    /// WMEs out of working memory that a set still holds: their elements stay (and can be
+    /// referenced) until the last holder goes, when the trace prints their `remove` line.
+    pub(crate) held_out: rustc_hash::FxHashSet<u64>,
     /// Elements by the decision at which forgetting checks them.
     queue: BTreeMap<u64, BTreeSet<u64>>,
     /// References to values of non-context slots made before the value's WME exists, by
@@ -157,6 +192,10 @@ impl Wma {
         self.removed.clear();
         // (Working memory starts again, or is no longer followed: the places start afresh.)
         self.addresses = Default::default();
+        self.holders.clear();
+        self.firing_holds.clear();
+        self.holds.clear();
+        self.held_out.clear();
     }
 
     /// `init-soar`: working memory goes, and with it every element; the count of

@@ -64,7 +64,7 @@ impl AgentCore {
         }
     }
 
-    fn wma_removal_line(&mut self, timetag: u64) {
+    pub(super) fn wma_removal_line(&mut self, timetag: u64) {
         let d = self.decider.d_cycle_count;
         self.output.push_str(&format!("WMA @{d}: remove {timetag}\n"));
     }
