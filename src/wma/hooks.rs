@@ -196,11 +196,20 @@ impl AgentCore {
     /// the proposals rest on).
     fn wma_candidate(&self, wme: &Wme) -> Option<PrefId> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
+        // A selected operator is supported by its candidate preference: its require when
+        // it has one (9.6's candidates are the requires then), else its proposal.
+        let required = !wme.acceptable
+            && self.wma_context_slot(wme.id, wme.attr)
+            && slot.prefs_for(wme.value).any(|pid| {
+                let p = &self.decider.prefs[pid];
+                p.alive && p.kind == PrefType::Require
+            });
+        let kind = if required { PrefType::Require } else { PrefType::Acceptable };
         let mut best: Option<(u32, PrefId)> = None;
         for pid in slot.prefs_for(wme.value) {
             let p = &self.decider.prefs[pid];
             // A memory's retrieval is not a decision's: its WMEs keep their own support.
-            if p.alive && p.kind == PrefType::Acceptable && !p.recall {
+            if p.alive && p.kind == kind && !p.recall {
                 let level = p
                     .inst
                     .and_then(|i| self.decider.insts[i].goal)
