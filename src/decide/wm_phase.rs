@@ -214,6 +214,9 @@ impl AgentCore {
         // Operators whose proposal went are removed before the `+` WMEs change (9.6's
         // REMOVING lines come first, and its removals are buffered in that order).
         let goals_before = self.decider.goals.len();
+        if self.wma.on() {
+            self.wma_release_holders();
+        }
         if self.settings.trace.wmes || self.settings.trace.wma {
             self.removed_wmes = Some(Vec::new());
         }

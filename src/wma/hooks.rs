@@ -473,7 +473,7 @@ impl AgentCore {
         let p = &self.decider.prefs[pid];
         let key = (p.id, p.attr, p.value);
         if !self.wma.holders.contains_key(&(pid, serial)) {
-            let members = self.wma_holdable(set.iter().copied());
+            let members = set.clone();
             for &tt in &members {
                 *self.wma.holds.entry(tt).or_insert(0) += 1;
             }
@@ -482,8 +482,8 @@ impl AgentCore {
         self.wma.o_sets.insert(pid, (serial, set));
     }
 
-    /// The activation sets whose preference 9.6 has freed by now (gone, and no WME of its
-    /// value left) let their WMEs go, oldest preference first; a WME out of working memory
+    /// The activation sets whose preference 9.6 has freed by now (gone, and an operator
+    /// proposal's operator no longer selected) let their WMEs go, oldest preference first; a WME out of working memory
     /// that nothing holds any more is freed: its element goes, with its `remove` line.
     pub(crate) fn wma_release_holders(&mut self) {
         self.wma_release_firings();
@@ -496,7 +496,7 @@ impl AgentCore {
             .iter()
             .filter(|&(&(pid, serial), h)| {
                 let gone = self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive;
-                gone && !self.wma_value_in_memory(h.key)
+                gone && !self.wma_operator_still_selected(h.key)
             })
             .map(|(&k, _)| k)
             .collect();
@@ -535,21 +535,6 @@ impl AgentCore {
         }
     }
 
-    /// The WMEs a holder holds among these: 9.6 counts such references only for WMEs of
-    /// substates' objects (its `wme_add_ref` skips the top state's level), so a top-level
-    /// WME goes as it leaves working memory.
-    fn wma_holdable(&self, timetags: impl Iterator<Item = u64>) -> Vec<u64> {
-        timetags
-            .filter(|&tt| {
-                self.wm
-                    .by_timetag(tt)
-                    .and_then(|w| self.wm.get(w))
-                    .and_then(|w| self.symbols.id_data(w.id))
-                    .is_some_and(|d| d.level > 1)
-            })
-            .collect()
-    }
-
     /// A substate firing (instantiation `i`, just made) holds the WMEs it matched.
     pub(crate) fn wma_hold_firing(&mut self, i: crate::decide::ids::InstId) {
         let inst = &self.decider.insts[i];
@@ -562,12 +547,11 @@ impl AgentCore {
                 (pid, self.decider.pref_serial(pid), (p.id, p.attr, p.value))
             })
             .collect();
-        let matched: Vec<u64> = self
+        let members: Vec<u64> = self
             .rete
             .match_row(prod, token)
             .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
             .collect();
-        let members = self.wma_holdable(matched.into_iter());
         for &tt in &members {
             *self.wma.holds.entry(tt).or_insert(0) += 1;
         }
@@ -594,7 +578,7 @@ impl AgentCore {
             let live = inst.alive && inst.prod == h.prod && inst.token == h.token;
             let prefs_gone = h.prefs.iter().all(|&(pid, serial, key)| {
                 (self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive)
-                    && !self.wma_value_in_memory(key)
+                    && !self.wma_operator_still_selected(key)
             });
             if live || !prefs_gone {
                 k += 1;
@@ -605,15 +589,16 @@ impl AgentCore {
         }
     }
 
-    /// Whether the WME a preference for `(id ^attr value)` supports is in working memory:
-    /// an operator's `+` WME (the selected operator's WME is the decision's own), else the
-    /// WME of the value.
-    fn wma_value_in_memory(&self, (id, attr, value): (Sym, Sym, Sym)) -> bool {
-        let acceptable = self.wma_context_slot(id, attr);
-        self.decider
-            .slots
-            .get(&(id, attr))
-            .is_some_and(|s| s.wmes.get(&(value, acceptable)).is_some())
+    /// Whether a gone preference for `(id ^attr value)` is still held by a WME: an operator
+    /// proposal's by the selected operator's WME (9.6 frees the proposal when its operator
+    /// leaves the slot); others are freed once gone.
+    fn wma_operator_still_selected(&self, (id, attr, value): (Sym, Sym, Sym)) -> bool {
+        self.wma_context_slot(id, attr)
+            && self
+                .decider
+                .slots
+                .get(&(id, attr))
+                .is_some_and(|s| s.wmes.get(&(value, false)).is_some())
     }
 
     fn wma_collect_o_set(

@@ -56,8 +56,8 @@ pub(crate) struct FiringHold {
 /// An activation set that holds its WMEs (see `Wma::holders`).
 #[derive(Debug, Clone)]
 pub(crate) struct Holder {
-    /// The preference's `(id, attr, value)`: while such a WME is in working memory, the
-    /// preference is taken to support it still.
+    /// The preference's `(id, attr, value)`: an operator proposal stays while its operator
+    /// is selected.
     pub key: (Sym, Sym, Sym),
     /// The WMEs held, by timetag.
     pub members: Vec<u64>,
@@ -95,7 +95,7 @@ pub struct Wma {
     pub(crate) addresses: addresses::AddressOrder,
     /// The activation sets (`o_sets`) that hold WMEs, by preference and its allocation
     /// number: 9.6 frees a WME only when nothing holds it, and a preference's set holds
-    /// its members until the preference is freed, once gone and the WME it supported gone.
+    /// its members until the preference is freed (see `wma_release_holders`).
     pub(crate) holders: FxHashMap<(PrefId, u64), Holder>,
     /// Substate firings, each holding the WMEs it matched (9.6 keeps them with the
     /// instantiation until it is retracted and its preferences are gone).
