@@ -289,8 +289,10 @@ pub fn pending_matches(agent: &AgentCore) -> String {
     // firing it takes back (`NIL` once that goal is gone).
     let mut r = String::from("Retractions:\n");
     let retractions = &agent.matches.retractions;
-    let justified = &agent.decider.justification_retractions;
-    for pending in agent.pending_retractions(retractions.len(), justified) {
+    let mut justified = agent.decider.justification_retractions.clone();
+    let mut order = Vec::new();
+    agent.pending_retractions(retractions.len(), &mut justified, &mut order);
+    for pending in order {
         let (name, inst) = match pending {
             PendingRetraction::Rule(at) => {
                 let (p, t) = retractions[at];

@@ -48,6 +48,7 @@ impl Interpreter {
                 match wma.params.set(&words[0], &words[1]) {
                     Ok(()) => {
                         wma.sync();
+                        self.agent.decider.log_freed_prefs = self.agent.wma.on();
                         Ok(String::new())
                     }
                     Err(SetError::Name) => Err(ctx.error("Invalid activation setting.")),

@@ -515,6 +515,7 @@ impl AgentCore {
         self.epmem.present_trace.clear();
         self.epmem.timers.reset();
         self.wma.reinitialize();
+        self.decider.freed_prefs_log.clear();
         self.symbols.reset_id_counters();
         self.wm.reset_timetags();
         let old = self.top;

@@ -123,7 +123,12 @@ impl AgentCore {
                     .filter_map(|k| self.decider.inst_by_token.remove(k)),
             );
         } else {
-            self.merge_justification_retractions(&retractions, &justified, &mut retracted);
+            self.merge_justification_retractions(
+                &retractions,
+                &mut justified,
+                &mut retracted,
+                &mut sc.pending_retractions,
+            );
         }
         justified.clear();
         self.decider.justification_retractions = justified;
@@ -311,10 +316,12 @@ impl AgentCore {
     fn merge_justification_retractions(
         &mut self,
         retractions: &[(ProdId, TokId)],
-        justified: &[(InstId, u64, usize)],
+        justified: &mut [(InstId, u64, usize)],
         retracted: &mut Vec<InstId>,
+        order: &mut Vec<PendingRetraction>,
     ) {
-        for pending in self.pending_retractions(retractions.len(), justified) {
+        self.pending_retractions(retractions.len(), justified, order);
+        for &pending in order.iter() {
             match pending {
                 PendingRetraction::Justification(i) => {
                     if !retracted.contains(&i) {
@@ -334,15 +341,16 @@ impl AgentCore {
     /// matcher reported (by their place in `MatchSet::retractions`), with each
     /// justification that lost a WME (`justified`: its instantiation, the serial it was
     /// made with, and the place it goes before, past the end for after them all) in its
-    /// place, once, while its instantiation is still the one recorded.
+    /// place, once, while its instantiation is still the one recorded. `justified` is
+    /// sorted here by its places; `order` receives the result.
     pub(crate) fn pending_retractions(
         &self,
         rules: usize,
-        justified: &[(InstId, u64, usize)],
-    ) -> Vec<PendingRetraction> {
-        let mut justified = justified.to_vec();
+        justified: &mut [(InstId, u64, usize)],
+        order: &mut Vec<PendingRetraction>,
+    ) {
         justified.sort_by_key(|&(_, _, at)| at.min(rules));
-        let mut order = Vec::with_capacity(rules + justified.len());
+        order.clear();
         let mut next = justified.iter().peekable();
         for at in 0..=rules {
             while let Some(&(i, serial, _)) = next.next_if(|j| j.2.min(rules) <= at) {
@@ -356,7 +364,6 @@ impl AgentCore {
                 order.push(PendingRetraction::Rule(at));
             }
         }
-        order
     }
 
     /// One pass of the waterfall over a goal level (`None`: no active goal): counted for

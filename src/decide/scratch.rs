@@ -81,6 +81,8 @@ pub(crate) struct CycleScratch {
     pub(super) to_fire_insts: Vec<InstId>,
     pub(super) retracted: Vec<InstId>,
     pub(super) new_prefs: Vec<PrefId>,
+    /// The order of the cycle's retractions when justifications retract with them.
+    pub(super) pending_retractions: Vec<super::PendingRetraction>,
 }
 
 /// A match pending at the start of an elaboration cycle.

@@ -315,6 +315,10 @@ pub struct DecideState {
     /// Retracted instantiations and dead preferences, for reuse (a long run must not grow).
     pub free_insts: Vec<InstId>,
     pub free_prefs: Vec<PrefId>,
+    /// Preferences freed, each with its allocation number, while `log_freed_prefs` is on
+    /// (working-memory activation lets the sets they held go: `wma_release_holders`).
+    pub freed_prefs_log: Vec<(PrefId, u64)>,
+    pub log_freed_prefs: bool,
     /// Each preference handle's allocation number: a reused handle gets a new one, so
     /// what is kept about a preference (working-memory activation's o-sets) can tell it
     /// from the one that held the handle before.
@@ -447,6 +451,9 @@ impl DecideState {
             if let Some(pos) = inst.prefs.iter().position(|x| *x == pid) {
                 inst.prefs.remove(pos);
             }
+        }
+        if self.log_freed_prefs {
+            self.freed_prefs_log.push((pid, self.pref_serials[pid.index()]));
         }
         self.free_prefs.push(pid);
     }

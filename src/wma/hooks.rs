@@ -445,11 +445,11 @@ impl AgentCore {
     }
 
     fn wma_cached_o_set(&self, pid: PrefId) -> Option<Vec<u64>> {
-        let serial = self.decider.pref_serial(pid);
-        match self.wma.o_sets.get(&pid) {
-            Some((s, set)) if *s == serial && self.decider.prefs[pid].alive => Some(set.clone()),
-            _ => None,
+        if !self.decider.prefs[pid].alive {
+            return None;
         }
+        let serial = self.decider.pref_serial(pid);
+        Some(self.wma.holders.get(&(pid, serial))?.members.clone())
     }
 
     /// The o-supported and architectural WMEs an i-supported preference's support rests
@@ -472,14 +472,16 @@ impl AgentCore {
         let serial = self.decider.pref_serial(pid);
         let p = &self.decider.prefs[pid];
         let key = (p.id, p.attr, p.value);
-        if !self.wma.holders.contains_key(&(pid, serial)) {
-            let members = set.clone();
-            for &tt in &members {
+        if let std::collections::hash_map::Entry::Vacant(e) = self.wma.holders.entry((pid, serial)) {
+            for &tt in &set {
                 *self.wma.holds.entry(tt).or_insert(0) += 1;
             }
-            self.wma.holders.insert((pid, serial), super::Holder { key, members });
+            e.insert(super::Holder { key, members: set });
+            // (A set found for a preference already freed waits for the next release.)
+            if !p.alive {
+                self.wma.waiting_holders.push((pid, serial));
+            }
         }
-        self.wma.o_sets.insert(pid, (serial, set));
     }
 
     /// The activation sets whose preference 9.6 has freed by now (gone, and an operator
@@ -487,19 +489,20 @@ impl AgentCore {
     /// that nothing holds any more is freed: its element goes, with its `remove` line.
     pub(crate) fn wma_release_holders(&mut self) {
         self.wma_release_firings();
-        if self.wma.holders.is_empty() {
+        let mut freed = std::mem::take(&mut self.decider.freed_prefs_log);
+        let mut dead = std::mem::take(&mut self.wma.waiting_holders);
+        dead.extend(freed.drain(..).filter(|k| self.wma.holders.contains_key(k)));
+        self.decider.freed_prefs_log = freed;
+        if dead.is_empty() {
             return;
         }
-        let mut dead: Vec<(PrefId, u64)> = self
-            .wma
-            .holders
-            .iter()
-            .filter(|&(&(pid, serial), h)| {
-                let gone = self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive;
-                gone && !self.wma_operator_still_selected(h.key)
-            })
-            .map(|(&k, _)| k)
-            .collect();
+        let (waiting, mut dead): (Vec<_>, Vec<_>) = dead.into_iter().partition(|k| {
+            self.wma
+                .holders
+                .get(k)
+                .is_some_and(|h| self.wma_operator_still_selected(h.key))
+        });
+        self.wma.waiting_holders = waiting;
         dead.sort_unstable_by_key(|&(_, serial)| serial);
         let next = self.wm.next_timetag();
         for k in dead {
@@ -571,20 +574,18 @@ impl AgentCore {
             return;
         }
         let next = self.wm.next_timetag();
-        let mut k = 0;
-        while k < self.wma.firing_holds.len() {
-            let h = &self.wma.firing_holds[k];
+        let holds = std::mem::take(&mut self.wma.firing_holds);
+        let (released, kept): (Vec<_>, Vec<_>) = holds.into_iter().partition(|h| {
             let inst = &self.decider.insts[h.inst];
             let live = inst.alive && inst.prod == h.prod && inst.token == h.token;
-            let prefs_gone = h.prefs.iter().all(|&(pid, serial, key)| {
-                (self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive)
-                    && !self.wma_operator_still_selected(key)
-            });
-            if live || !prefs_gone {
-                k += 1;
-                continue;
-            }
-            let h = self.wma.firing_holds.remove(k);
+            !live
+                && h.prefs.iter().all(|&(pid, serial, key)| {
+                    (self.decider.pref_serial(pid) != serial || !self.decider.prefs[pid].alive)
+                        && !self.wma_operator_still_selected(key)
+                })
+        });
+        self.wma.firing_holds = kept;
+        for h in released {
             self.wma_let_go(&h.members, next);
         }
     }

@@ -37,9 +37,6 @@ const NOT_QUEUED: u64 = u64::MAX;
 /// The forgetting decision of an element found below the threshold.
 const FORGOTTEN: u64 = 0;
 
-/// A preference's allocation number, and the timetags of the WMEs its support rests on.
-pub(crate) type OSet = (u64, Vec<u64>);
-
 /// A substate firing that holds the WMEs it matched (see `Wma::firing_holds`).
 #[derive(Debug, Clone)]
 pub(crate) struct FiringHold {
@@ -53,7 +50,7 @@ pub(crate) struct FiringHold {
     pub members: Vec<u64>,
 }
 
-/// An activation set that holds its WMEs (see `Wma::holders`).
+/// An activation set (`o_set`) that holds its WMEs (see `Wma::holders`).
 #[derive(Debug, Clone)]
 pub(crate) struct Holder {
     /// The preference's `(id, attr, value)`: an operator proposal stays while its operator
@@ -93,10 +90,14 @@ pub struct Wma {
     touched: BTreeSet<u64>,
     /// The order of 9.6's WME addresses, for the `activate` lines of the WMA trace.
     pub(crate) addresses: addresses::AddressOrder,
-    /// The activation sets (`o_sets`) that hold WMEs, by preference and its allocation
-    /// number: 9.6 frees a WME only when nothing holds it, and a preference's set holds
-    /// its members until the preference is freed (see `wma_release_holders`).
+    /// For an i-supported preference, by its handle and allocation number: the
+    /// o-supported and architectural WMEs its support rests on, found once, at its first
+    /// reference (9.6's `wma_o_set`). The set holds its members: 9.6 frees a WME only when
+    /// nothing holds it, and a preference's set holds them until the preference is freed
+    /// (see `wma_release_holders`).
     pub(crate) holders: FxHashMap<(PrefId, u64), Holder>,
+    /// Holders whose preference is freed but whose operator is still selected.
+    pub(crate) waiting_holders: Vec<(PrefId, u64)>,
     /// Substate firings, each holding the WMEs it matched (9.6 keeps them with the
     /// instantiation until it is retracted and its preferences are gone).
     pub(crate) firing_holds: Vec<FiringHold>,
@@ -110,10 +111,6 @@ pub struct Wma {
     /// References to values of non-context slots made before the value's WME exists, by
     /// slot, then value: the WME starts with them (9.6's `wma_val_references`).
     val_refs: FxHashMap<(Sym, Sym), FxHashMap<Sym, u64>>,
-    /// For an i-supported preference: the o-supported and architectural WMEs its support
-    /// rests on, found once, at its first reference (9.6's `wma_o_set`), with the
-    /// preference's allocation number to tell a reused handle.
-    pub(crate) o_sets: FxHashMap<PrefId, OSet>,
     /// For a WME of a non-context slot: the preference its slot's last decision gave it
     /// (9.6's `w->preference`, set whenever the slot is decided). References made before
     /// the slot is decided again, as by a new preference for the same value, go through
@@ -185,7 +182,6 @@ impl Wma {
         self.touched.clear();
         self.queue.clear();
         self.val_refs.clear();
-        self.o_sets.clear();
         self.memory_results.clear();
         self.decided.clear();
         self.removal_lines.clear();
@@ -193,6 +189,7 @@ impl Wma {
         // (Working memory starts again, or is no longer followed: the places start afresh.)
         self.addresses = Default::default();
         self.holders.clear();
+        self.waiting_holders.clear();
         self.firing_holds.clear();
         self.holds.clear();
         self.held_out.clear();
