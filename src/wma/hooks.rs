@@ -117,7 +117,15 @@ impl AgentCore {
     /// A WME left working memory; an activation set may hold it a while longer.
     pub(crate) fn wma_wme_removed(&mut self, wme: &Wme) {
         self.wma.decided.remove(&wme.timetag);
-        self.wma.memory_results.remove(&wme.timetag);
+        // A memory result's activation set lets its members go with it.
+        if let Some(set) = self
+            .wma
+            .memory_results
+            .remove(&wme.timetag)
+            .and_then(|r| r.o_set)
+        {
+            self.wma.released_memory_sets.push(set);
+        }
         if self.wma.holds.contains_key(&wme.timetag) {
             self.wma.held_out.insert(wme.timetag);
             return;
@@ -196,10 +204,10 @@ impl AgentCore {
     /// the proposals rest on).
     fn wma_candidate(&self, wme: &Wme) -> Option<PrefId> {
         let slot = self.decider.slots.get(&(wme.id, wme.attr))?;
-        // A selected operator is supported by its candidate preference: its require when
-        // it has one (9.6's candidates are the requires then), else its proposal.
-        let required = !wme.acceptable
-            && self.wma_context_slot(wme.id, wme.attr)
+        // An operator slot's WME, the selected operator or a `+` one, is supported by its
+        // value's require when it has one (9.6 marks the requires first), else its
+        // proposal.
+        let required = self.wma_context_slot(wme.id, wme.attr)
             && slot.prefs_for(wme.value).any(|pid| {
                 let p = &self.decider.prefs[pid];
                 p.alive && p.kind == PrefType::Require
@@ -439,6 +447,10 @@ impl AgentCore {
         self.wma_collect_conditions(&conditions, &mut out, &mut FxHashSet::default());
         let set: Vec<u64> = out.into_iter().collect();
         if let Some(result) = self.wma.memory_results.get_mut(&timetag) {
+            // It holds its members, as a preference's set does.
+            for &tt in &set {
+                *self.wma.holds.entry(tt).or_insert(0) += 1;
+            }
             result.o_set = Some(set.clone());
         }
         set
@@ -485,10 +497,15 @@ impl AgentCore {
     }
 
     /// The activation sets whose preference 9.6 has freed by now (gone, and an operator
-    /// proposal's operator no longer selected) let their WMEs go, oldest preference first; a WME out of working memory
-    /// that nothing holds any more is freed: its element goes, with its `remove` line.
+    /// proposal's operator no longer selected) and of memory results gone let their WMEs
+    /// go, oldest preference first; a WME out of working memory that nothing holds any
+    /// more is freed: its element goes, with its `remove` line.
     pub(crate) fn wma_release_holders(&mut self) {
         self.wma_release_firings();
+        let next = self.wm.next_timetag();
+        for set in std::mem::take(&mut self.wma.released_memory_sets) {
+            self.wma_let_go(&set, next);
+        }
         let mut freed = std::mem::take(&mut self.decider.freed_prefs_log);
         let mut dead = std::mem::take(&mut self.wma.waiting_holders);
         dead.extend(freed.drain(..).filter(|k| self.wma.holders.contains_key(k)));
@@ -504,7 +521,6 @@ impl AgentCore {
         });
         self.wma.waiting_holders = waiting;
         dead.sort_unstable_by_key(|&(_, serial)| serial);
-        let next = self.wm.next_timetag();
         for k in dead {
             let Some(holder) = self.wma.holders.remove(&k) else {
                 continue;

@@ -96,6 +96,9 @@ pub struct Wma {
     /// nothing holds it, and a preference's set holds them until the preference is freed
     /// (see `wma_release_holders`).
     pub(crate) holders: FxHashMap<(PrefId, u64), Holder>,
+    /// The activation sets of memory results that left working memory, to let go at the
+    /// next release.
+    pub(crate) released_memory_sets: Vec<Vec<u64>>,
     /// Holders whose preference is freed but whose operator is still selected.
     pub(crate) waiting_holders: Vec<(PrefId, u64)>,
     /// Substate firings, each holding the WMEs it matched (9.6 keeps them with the
@@ -190,6 +193,7 @@ impl Wma {
         self.addresses = Default::default();
         self.holders.clear();
         self.waiting_holders.clear();
+        self.released_memory_sets.clear();
         self.firing_holds.clear();
         self.holds.clear();
         self.held_out.clear();
