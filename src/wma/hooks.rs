@@ -663,6 +663,10 @@ impl AgentCore {
                 }
                 Support::Memory(tt) => out.extend(self.wma_memory_o_set(tt)),
                 Support::Item(plus) => {
+                    // The item itself is in the set as an architecture WME (it counts in
+                    // a new WME's first references: command golden
+                    // `wma-impasse-item-boost`), and what its candidate rests on too.
+                    out.insert(c.timetag);
                     let Some(p) = self.wm.get(plus).copied() else {
                         continue;
                     };
