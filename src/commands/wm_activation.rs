@@ -48,7 +48,12 @@ impl Interpreter {
                 match wma.params.set(&words[0], &words[1]) {
                     Ok(()) => {
                         wma.sync();
-                        self.agent.decider.log_freed_prefs = self.agent.wma.on();
+                        // Freed preferences are logged only while activation sets exist.
+                        let on = self.agent.wma.on();
+                        self.agent.decider.log_freed_prefs = on;
+                        if !on {
+                            self.agent.decider.freed_prefs_log.clear();
+                        }
                         Ok(String::new())
                     }
                     Err(SetError::Name) => Err(ctx.error("Invalid activation setting.")),
