@@ -1001,9 +1001,9 @@ impl AgentCore {
         if self.wma.on() {
             self.wma_wme_removed(&wme);
             // (A working-memory phase lets its removals go at its end: `trace_removed_wmes`.)
-            if self.removed_wmes.is_none() && !self.wma.held_out.contains(&wme.timetag) {
+            if self.removed_wmes.is_none() {
                 let next = self.wm.next_timetag();
-                self.wma.addresses.freed(wme.timetag, next);
+                self.wma.address_freed(wme.timetag, next);
             }
         }
         if self.events.any() {

@@ -859,8 +859,8 @@ impl AgentCore {
         let next = self.wm.next_timetag();
         for (_, w) in lines {
             self.trace_wme(false, &w);
-            if self.wma.on() && !self.wma.held_out.contains(&w.timetag) {
-                self.wma.addresses.freed(w.timetag, next);
+            if self.wma.on() {
+                self.wma.address_freed(w.timetag, next);
             }
         }
         if self.wma.on() {

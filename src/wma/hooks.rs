@@ -447,11 +447,9 @@ impl AgentCore {
         self.wma_collect_conditions(&conditions, &mut out, &mut FxHashSet::default());
         let set: Vec<u64> = out.into_iter().collect();
         if let Some(result) = self.wma.memory_results.get_mut(&timetag) {
-            // It holds its members, as a preference's set does.
-            for &tt in &set {
-                *self.wma.holds.entry(tt).or_insert(0) += 1;
-            }
             result.o_set = Some(set.clone());
+            // It holds its members, as a preference's set does.
+            self.wma.hold(&set);
         }
         set
     }
@@ -484,11 +482,10 @@ impl AgentCore {
         let serial = self.decider.pref_serial(pid);
         let p = &self.decider.prefs[pid];
         let key = (p.id, p.attr, p.value);
-        if let std::collections::hash_map::Entry::Vacant(e) = self.wma.holders.entry((pid, serial)) {
-            for &tt in &set {
-                *self.wma.holds.entry(tt).or_insert(0) += 1;
-            }
-            e.insert(super::Holder { key, members: set });
+        if !self.wma.holders.contains_key(&(pid, serial)) {
+            self.wma.hold(&set);
+            let holder = super::Holder { key, members: set };
+            self.wma.holders.insert((pid, serial), holder);
             // (A set found for a preference already freed waits for the next release.)
             if !p.alive {
                 self.wma.waiting_holders.push((pid, serial));
@@ -549,7 +546,7 @@ impl AgentCore {
                     self.wma_removal_line(tt);
                 }
                 self.wma.remove(tt);
-                self.wma.addresses.freed(tt, next);
+                self.wma.address_freed(tt, next);
             }
         }
     }
@@ -571,9 +568,7 @@ impl AgentCore {
             .match_row(prod, token)
             .filter_map(|w| self.wm.get(w).map(|x| x.timetag))
             .collect();
-        for &tt in &members {
-            *self.wma.holds.entry(tt).or_insert(0) += 1;
-        }
+        self.wma.hold(&members);
         self.wma.firing_holds.push(super::FiringHold {
             inst: i,
             prod,

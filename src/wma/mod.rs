@@ -160,6 +160,22 @@ impl Wma {
         self.params.activation
     }
 
+    /// A set or firing holds these WMEs (by timetag), each once more.
+    pub(crate) fn hold(&mut self, members: &[u64]) {
+        for &tt in members {
+            *self.holds.entry(tt).or_insert(0) += 1;
+        }
+    }
+
+    /// The WME `timetag` left working memory while `next_timetag` was the next to be
+    /// made: its place is free for the next WME, unless a set still holds it (its place
+    /// goes when the last holder lets it go).
+    pub(crate) fn address_freed(&mut self, timetag: u64, next_timetag: u64) {
+        if !self.held_out.contains(&timetag) {
+            self.addresses.freed(timetag, next_timetag);
+        }
+    }
+
     /// Builds or drops the decay tables as activation turns on or off (9.6's `wma_init`
     /// and `wma_deinit`).
     pub fn sync(&mut self) {
