@@ -707,6 +707,9 @@ impl AgentCore {
             return;
         }
         let lti_only = self.wma.params.forget_lti_only;
+        // 9.6 forgets a long-term identifier's WMEs all together only when forgetting is
+        // queued; a naive sweep takes each of its WMEs below the threshold on its own.
+        let whole_objects = lti_only && self.wma.params.forgetting.queued();
         let mut forgot = false;
         for tt in due {
             let Some(w) = self.wm.by_timetag(tt) else {
@@ -715,8 +718,10 @@ impl AgentCore {
             let Some(wme) = self.wm.get(w).copied() else {
                 continue;
             };
-            if lti_only {
+            if whole_objects {
                 forgot |= self.wma_forget_lti_object(wme.id);
+            } else if lti_only && self.symbols.lti(wme.id).is_none() {
+                continue;
             } else {
                 forgot |= self.wma_forget_wme(&wme);
             }
@@ -737,8 +742,9 @@ impl AgentCore {
         }
     }
 
-    /// `forget-wme lti`: a long-term identifier's WMEs go all together, once every
-    /// o-supported one is below the threshold; other identifiers' never.
+    /// `forget-wme lti` with queued forgetting: a long-term identifier's WMEs go all
+    /// together, once every o-supported one is below the threshold; other identifiers'
+    /// never.
     fn wma_forget_lti_object(&mut self, id: Sym) -> bool {
         if self.symbols.lti(id).is_none() {
             return false;
