@@ -203,6 +203,7 @@ impl AgentCore {
                         origin: None,
                         matched: matched.clone(),
                         recall: false,
+                        links_filed: false,
                     };
                     let pid = self.decider.alloc_pref(pref);
                     inst.prefs.push(pid);

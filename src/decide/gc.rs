@@ -28,6 +28,7 @@ impl AgentCore {
     /// object may now be unlinked, and the first link to go places it in the collection
     /// order.
     pub(crate) fn pref_link_removed(&mut self, pid: PrefId) {
+        self.decider.forget_pref_links(pid);
         let p = &self.decider.prefs[pid];
         let linked = [Some(p.value), p.referent];
         for s in linked.into_iter().flatten() {
@@ -96,6 +97,23 @@ impl AgentCore {
                     if self.symbols.is_id(v) && !gc.dead.contains(&v) && !self.linked(v, &mut gc)
                     {
                         gc.stack.push(v);
+                    }
+                }
+                // Its slots' preferences go with it, and the links they made.
+                for &attr in self.decider.slots.attrs_of(x) {
+                    let Some(slot) = self.decider.slots.get(&(x, attr)) else {
+                        continue;
+                    };
+                    for &pid in &slot.prefs {
+                        let p = &self.decider.prefs[pid];
+                        for v in [Some(p.value), p.referent].into_iter().flatten() {
+                            if self.symbols.is_id(v)
+                                && !gc.dead.contains(&v)
+                                && !self.linked(v, &mut gc)
+                            {
+                                gc.stack.push(v);
+                            }
+                        }
                     }
                 }
             }
@@ -311,9 +329,16 @@ impl AgentCore {
         gc.path.push((x, 0));
         let mut found = false;
         'search: while let Some(&(y, start)) = gc.path.last() {
+            // The objects of the WMEs that point at it, then of the preferences (9.6
+            // counts both as links).
             let parents = self.wm.parent_wmes(y);
-            for (i, &w) in parents.iter().enumerate().skip(start) {
-                let Some(p) = self.wm.get(w).map(|wme| wme.id) else {
+            let by_prefs = self.decider.pref_link_count(y);
+            for i in start..parents.len() + by_prefs {
+                let parent = match parents.get(i) {
+                    Some(&w) => self.wm.get(w).map(|wme| wme.id),
+                    None => self.decider.pref_link_parent(y, i - parents.len()),
+                };
+                let Some(p) = parent else {
                     continue;
                 };
                 match gc.memo.get(&p) {

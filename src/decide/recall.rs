@@ -47,6 +47,7 @@ impl AgentCore {
                 origin: None,
                 matched: matched.clone(),
                 recall: true,
+                links_filed: false,
             });
             made.push((pid, self.decider.pref_serial(pid)));
             self.assert_preference(pid, tracing);

@@ -3,6 +3,7 @@
 pub use super::ids::{InstId, PrefId};
 use super::procedure::PrefType;
 pub use super::slot::{Slot, Slots};
+use crate::rete::small_list::SmallList;
 use crate::rete::{ProdId, TokId};
 use crate::symbols::Sym;
 use crate::wm::WmeId;
@@ -71,6 +72,9 @@ pub struct Preference {
     /// Made by a memory's retrieval (9.6's `|Memory System Recall|` instantiation): no
     /// rule's firing holds it; the memory removes it when its next command comes.
     pub recall: bool,
+    /// Filed in [`DecideState::pref_links`] (its value or referent is an identifier and it
+    /// is in its slot).
+    pub links_filed: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -255,6 +259,11 @@ pub struct DecideState {
     pub cycle_stats: super::cycle_stats::CycleStats,
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
+    /// The preferences in their slots whose value (or binary referent) is an identifier,
+    /// by that identifier, each with its allocation number: 9.6 counts them as links to
+    /// the object, as it counts WMEs, so an object only a preference points at stays in
+    /// working memory (garbage collection, `gc.rs`).
+    pub(crate) pref_links: FxHashMap<Sym, SmallList<(PrefId, u64)>>,
     /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the
     /// garbage collection after it does not list them again.
     pub(crate) prefs_traced_gone: Vec<PrefId>,
@@ -345,6 +354,50 @@ pub struct DecideState {
 }
 
 impl DecideState {
+    /// Files a preference that went into its slot under the identifiers it links to
+    /// (`is_id` tells identifiers).
+    pub(crate) fn note_pref_links(&mut self, pid: PrefId, is_id: impl Fn(Sym) -> bool) {
+        let p = &self.prefs[pid];
+        let serial = self.pref_serials[pid.index()];
+        let mut filed = false;
+        for s in [Some(p.value), p.referent].into_iter().flatten() {
+            if is_id(s) {
+                self.pref_links.entry(s).or_default().push((pid, serial));
+                filed = true;
+            }
+        }
+        self.prefs[pid].links_filed = filed;
+    }
+
+    /// A preference left its slot (or was freed): it links to nothing any more.
+    pub(crate) fn forget_pref_links(&mut self, pid: PrefId) {
+        let p = &mut self.prefs[pid];
+        if !std::mem::replace(&mut p.links_filed, false) {
+            return;
+        }
+        for s in [Some(p.value), p.referent].into_iter().flatten() {
+            if let Some(list) = self.pref_links.get_mut(&s) {
+                list.retain(|&(q, _)| q != pid);
+                if list.is_empty() {
+                    self.pref_links.remove(&s);
+                }
+            }
+        }
+    }
+
+    /// How many preferences are filed as linking to `x` (see [`Self::pref_link_parent`]).
+    pub(crate) fn pref_link_count(&self, x: Sym) -> usize {
+        self.pref_links.get(&x).map_or(0, SmallList::len)
+    }
+
+    /// The identifier of the `k`th preference filed as linking to `x`, if it is still the
+    /// preference filed and in its slot.
+    pub(crate) fn pref_link_parent(&self, x: Sym, k: usize) -> Option<Sym> {
+        let &(pid, serial) = self.pref_links.get(&x)?.as_slice().get(k)?;
+        let p = &self.prefs[pid];
+        (p.alive && !p.freed && self.pref_serials[pid.index()] == serial).then_some(p.id)
+    }
+
     /// A fresh decider: the first decision cycle is number 1.
     pub fn new() -> Self {
         DecideState {
@@ -433,10 +486,11 @@ impl DecideState {
 
     /// Frees a preference already out of its slot: it leaves its instantiation's list too.
     pub fn free_pref(&mut self, pid: PrefId) {
-        let pref = &mut self.prefs[pid];
-        if pref.freed {
+        if self.prefs[pid].freed {
             return;
         }
+        self.forget_pref_links(pid);
+        let pref = &mut self.prefs[pid];
         pref.freed = true;
         pref.alive = false;
         pref.origin = None;

@@ -109,6 +109,8 @@ impl AgentCore {
         }
         let slot = self.decider.slots.entry_id(key);
         self.decider.slots.slot_mut(slot).push(pid, value);
+        let symbols = &self.symbols;
+        self.decider.note_pref_links(pid, |s| symbols.is_id(s));
         // A memory's retrieval references nothing (its WMEs' activation starts apart).
         let wma = self.wma.on() && !self.decider.prefs[pid].recall;
         if wma && !self.decider.slots.slot(slot).changed {

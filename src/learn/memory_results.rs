@@ -215,6 +215,7 @@ impl AgentCore {
                     origin: Some(origin),
                     matched: None,
                     recall: false,
+                    links_filed: false,
                 })
             })
             .collect()

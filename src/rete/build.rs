@@ -367,6 +367,29 @@ impl Rete {
         }
     }
 
+    /// The hash key of an NCC's first condition when it is positive: its subnetwork
+    /// starts from the memory that condition would join from, shared with the other
+    /// conditions hashed alike below `cur`, as in Soar.
+    fn first_hash_key<'a>(
+        &mut self,
+        inner: &'a [Condition],
+        cur: Cur,
+        bindings: &Bindings<'a>,
+        syms: &mut Symbols,
+    ) -> Option<(u32, Field)> {
+        let Some(Condition::Positive(c)) = inner.first() else {
+            return None;
+        };
+        let depth = match cur {
+            Cur::Holder(h) => self.nodes[h].depth + 1,
+            Cur::Join(_) => self.next_depth(cur) + 1,
+        };
+        let mut local = bindings.clone();
+        let mut tests = Vec::new();
+        cond_tests(c, depth, &mut local, syms, &mut tests);
+        hash_key_of(&tests, depth)
+    }
+
     fn build_conditions<'a>(
         &mut self,
         conds: &'a [Condition],
@@ -408,7 +431,8 @@ impl Rete {
                     cur = Cur::Holder(n);
                 }
                 Condition::Ncc(inner) => {
-                    let h = self.holder_under(cur, None, syms);
+                    let key = self.first_hash_key(inner, cur, bindings, syms);
+                    let h = self.holder_under(cur, key, syms);
                     let owner_depth = self.nodes[h].depth + 1;
                     let mut local = bindings.clone();
                     let sub = self.build_conditions(inner, Cur::Holder(h), &mut local, syms, None);
@@ -433,6 +457,9 @@ impl Rete {
                     }
                     self.fill_new_node(ncc, syms, &mut super::NullSink);
                     self.fill_new_node(partner, syms, &mut super::NullSink);
+                    // Soar moves the subnetwork's top node to the head of its parent's
+                    // children, with the NCC node right behind it.
+                    self.move_memory_to_head(h);
                     cur = Cur::Holder(ncc);
                 }
             }

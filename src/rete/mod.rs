@@ -21,7 +21,7 @@ mod id_index;
 mod names;
 pub mod reorder;
 mod reserve;
-mod small_list;
+pub(crate) mod small_list;
 mod successors;
 pub(crate) mod stats;
 mod test_lists;
