@@ -93,26 +93,28 @@ pub fn match_support(agent: &AgentCore, p: ProdId, t: TokId) -> MatchSupport {
     if proposes {
         return i_support;
     }
-    let wmes = agent.rete.match_wmes(p, t);
-    let Some(goal) = goal_of(agent, wmes.iter().copied()) else {
-        return i_support;
+    let operator = agent.top.operator;
+    let on_operator = |op: Sym| -> Vec<bool> {
+        prod.actions
+            .iter()
+            .filter_map(|a| match a {
+                Action::Make(m) => Some(match &m.id {
+                    RhsTerm::Var(v) => agent.rete.binding(p, t, v) == Some(op),
+                    _ => false,
+                }),
+                Action::Call(_) => None,
+            })
+            .collect()
     };
-    let operator = agent.symbols.find_str("operator");
-    let selected = wmes.iter().find_map(|&w| {
-        let wme = agent.wm.get(w)?;
-        (wme.id == goal && Some(wme.attr) == operator && !wme.acceptable).then_some(wme.value)
-    });
-    let Some(op) = selected else {
-        return i_support;
+    let selected = |u: TokId| {
+        let wmes = agent.rete.match_wmes(p, u);
+        let goal = goal_of(agent, wmes.iter().copied())?;
+        wmes.iter().find_map(|&w| {
+            let wme = agent.wm.get(w)?;
+            (wme.id == goal && wme.attr == operator && !wme.acceptable).then_some(wme.value)
+        })
     };
-    let on_operator = prod.actions.iter().filter_map(|a| match a {
-        Action::Make(m) => Some(match &m.id {
-            RhsTerm::Var(v) => agent.rete.binding(p, t, v) == Some(op),
-            _ => false,
-        }),
-        Action::Call(_) => None,
-    });
-    support_of_actions(agent, on_operator)
+    support_over_matches(agent, t, selected, |op| on_operator(op).into_iter())
 }
 
 impl AgentCore {
@@ -125,23 +127,69 @@ impl AgentCore {
     }
 }
 
-/// The o-support test's last step, given for each make action whether it is on the selected
-/// operator: applications are O, operator elaborations I, both I (with 9.6's warning).
-fn support_of_actions(agent: &AgentCore, on_operator: impl Iterator<Item = bool>) -> MatchSupport {
-    let (mut elaborates, mut applies) = (false, false);
-    for on in on_operator {
-        if on {
-            elaborates = true;
-        } else {
-            applies = true;
+/// The o-support test's last step, as 9.6's matcher takes it when it queues a new match
+/// `t`: over every complete match of the rule, `t` first, then the older ones (9.6 walks its
+/// production node's tokens, the newest at the head). For each that tests its goal's
+/// selected operator (`selected`), each make action is an elaboration when its object, as
+/// the new match binds it, is that operator, and an application otherwise; one application
+/// makes the new match O. A match that both elaborates and applies turns it back to I
+/// (with 9.6's warning, when warnings are on). So a rule that only elaborates an operator
+/// gets O for a new match while another of its matches holds another goal's operator, as in
+/// 9.6 (observed on the official kernel with the default selection rules in stacked
+/// substates).
+fn support_over_matches<I: Iterator<Item = bool>>(
+    agent: &AgentCore,
+    t: TokId,
+    selected: impl Fn(TokId) -> Option<Sym>,
+    on_operator: impl Fn(Sym) -> I,
+) -> MatchSupport {
+    let mut support = MatchSupport {
+        o_support: false,
+        mixed: false,
+    };
+    let mut u = t;
+    let mut looked = 0;
+    while u != TokId::NONE {
+        if let Some(op) = selected(u) {
+            let mut elaborates = false;
+            for on in on_operator(op) {
+                if on {
+                    elaborates = true;
+                } else {
+                    support.o_support = true;
+                }
+            }
+            if support.o_support && elaborates {
+                support.mixed = true;
+                if agent.settings.warnings {
+                    support.o_support = false;
+                }
+            }
         }
+        // An O match stays O unless a later match elaborates its own operator, which
+        // needs one of the new match's objects to be some goal's selected operator.
+        if u == t
+            && support.o_support
+            && !agent.decider.goals.iter().any(|g| {
+                g.operator
+                    .is_some_and(|(op, _)| on_operator(op).any(|on| on))
+            })
+        {
+            return support;
+        }
+        // (A rule with thousands of matches is not walked for each new one: past this
+        // many, the older matches are left out.)
+        looked += 1;
+        if looked == MATCHES_LOOKED_AT {
+            break;
+        }
+        u = agent.rete.older_in_node(u);
     }
-    let mixed = elaborates && applies;
-    MatchSupport {
-        o_support: applies && !(mixed && agent.settings.warnings),
-        mixed,
-    }
+    support
 }
+
+/// How many of a rule's matches [`support_over_matches`] looks at for a new one.
+const MATCHES_LOOKED_AT: usize = 256;
 
 /// [`match_support`] for a rule whose actions are compiled: the same test without names.
 fn compiled_support(agent: &AgentCore, rule: &CompiledRule, t: TokId) -> MatchSupport {
@@ -161,23 +209,22 @@ fn compiled_support(agent: &AgentCore, rule: &CompiledRule, t: TokId) -> MatchSu
     if t == TokId::NONE {
         return i_support;
     }
-    let row = agent.rete.token_row(t);
-    let Some(goal) = compiled_goal(agent, rule, row) else {
-        return i_support;
-    };
     let operator = agent.top.operator;
-    let selected = row.iter().find_map(|&w| {
-        let wme = agent.wm.get(w)?;
-        (wme.id == goal && wme.attr == operator && !wme.acceptable).then_some(wme.value)
-    });
-    let Some(op) = selected else {
-        return i_support;
-    };
-    let on_operator = rule.make_ids.iter().map(|b| {
-        b.is_some_and(|(depth, field)| {
-            let w = agent.rete.wme_at_depth(t, depth);
-            w != crate::rete::NIL_WME && agent.rete.field(w, field) == op
+    let selected = |u: TokId| {
+        let row = agent.rete.token_row(u);
+        let goal = compiled_goal(agent, rule, row)?;
+        row.iter().find_map(|&w| {
+            let wme = agent.wm.get(w)?;
+            (wme.id == goal && wme.attr == operator && !wme.acceptable).then_some(wme.value)
         })
-    });
-    support_of_actions(agent, on_operator)
+    };
+    let on_operator = |op: Sym| {
+        rule.make_ids.iter().map(move |b| {
+            b.is_some_and(|(depth, field)| {
+                let w = agent.rete.wme_at_depth(t, depth);
+                w != crate::rete::NIL_WME && agent.rete.field(w, field) == op
+            })
+        })
+    };
+    support_over_matches(agent, t, selected, on_operator)
 }

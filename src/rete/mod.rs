@@ -1331,6 +1331,11 @@ impl Rete {
         Some(self.field(w, field))
     }
 
+    /// The token made before `t` in the same node (`TokId::NONE` after the oldest).
+    pub(crate) fn older_in_node(&self, t: TokId) -> TokId {
+        self.tokens[t].next_in_node
+    }
+
     /// The complete matches of a production: its production node's tokens, newest first.
     pub fn matches_of(&self, p: ProdId) -> Vec<TokId> {
         match self.production(p) {
