@@ -89,31 +89,22 @@ impl AgentCore {
                 }
                 for w in self.wm.of_id(x) {
                     garbage.push(w);
-                    let Some(wme) = self.wm.get(w).copied() else {
-                        continue;
-                    };
                     // Only values link: an identifier used as an attribute stays, as in 9.6.
-                    let v = wme.value;
-                    if self.symbols.is_id(v) && !gc.dead.contains(&v) && !self.linked(v, &mut gc)
-                    {
-                        gc.stack.push(v);
+                    if let Some(wme) = self.wm.get(w) {
+                        self.follow_lost_link(wme.value, &mut gc);
                     }
                 }
                 // Its slots' preferences go with it, and the links they made.
-                for &attr in self.decider.slots.attrs_of(x) {
-                    let Some(slot) = self.decider.slots.get(&(x, attr)) else {
-                        continue;
-                    };
-                    for &pid in &slot.prefs {
-                        let p = &self.decider.prefs[pid];
-                        for v in [Some(p.value), p.referent].into_iter().flatten() {
-                            if self.symbols.is_id(v)
-                                && !gc.dead.contains(&v)
-                                && !self.linked(v, &mut gc)
-                            {
-                                gc.stack.push(v);
-                            }
-                        }
+                let slots = &self.decider.slots;
+                let prefs = slots
+                    .attrs_of(x)
+                    .iter()
+                    .filter_map(|&attr| slots.get(&(x, attr)))
+                    .flat_map(|slot| slot.prefs.iter().copied());
+                for pid in prefs {
+                    let p = &self.decider.prefs[pid];
+                    for v in [Some(p.value), p.referent].into_iter().flatten() {
+                        self.follow_lost_link(v, &mut gc);
                     }
                 }
             }
@@ -308,6 +299,14 @@ impl AgentCore {
             self.wm.of_id(object).filter_map(|w| self.wm.get(w).copied()).collect();
         wmes.sort_by_key(|w| (collection_rank(slots, w.attr), std::cmp::Reverse(w.timetag)));
         wmes
+    }
+
+    /// A garbage object linked to `v`: when `v` is an identifier no goal reaches any more,
+    /// it is garbage too.
+    fn follow_lost_link(&self, v: Sym, gc: &mut GcScratch) {
+        if self.symbols.is_id(v) && !gc.dead.contains(&v) && !self.linked(v, gc) {
+            gc.stack.push(v);
+        }
     }
 
     /// Is `x` reachable from a goal? An upward search through the WMEs that point at it; a

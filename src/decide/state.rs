@@ -260,10 +260,10 @@ pub struct DecideState {
     /// Identifiers that lost a link (or a goal) since the last garbage collection.
     pub gc_candidates: Vec<Sym>,
     /// The preferences in their slots whose value (or binary referent) is an identifier,
-    /// by that identifier, each with its allocation number: 9.6 counts them as links to
-    /// the object, as it counts WMEs, so an object only a preference points at stays in
-    /// working memory (garbage collection, `gc.rs`).
-    pub(crate) pref_links: FxHashMap<Sym, SmallList<(PrefId, u64)>>,
+    /// by that identifier: 9.6 counts them as links to the object, as it counts WMEs, so
+    /// an object only a preference points at stays in working memory (garbage collection,
+    /// `gc.rs`). A preference leaves these lists as it leaves its slot or is freed.
+    pub(crate) pref_links: FxHashMap<Sym, SmallList<PrefId>>,
     /// Preferences a removed substate's trace has just listed as gone (`trace -r`): the
     /// garbage collection after it does not list them again.
     pub(crate) prefs_traced_gone: Vec<PrefId>,
@@ -358,11 +358,10 @@ impl DecideState {
     /// (`is_id` tells identifiers).
     pub(crate) fn note_pref_links(&mut self, pid: PrefId, is_id: impl Fn(Sym) -> bool) {
         let p = &self.prefs[pid];
-        let serial = self.pref_serials[pid.index()];
         let mut filed = false;
         for s in [Some(p.value), p.referent].into_iter().flatten() {
             if is_id(s) {
-                self.pref_links.entry(s).or_default().push((pid, serial));
+                self.pref_links.entry(s).or_default().push(pid);
                 filed = true;
             }
         }
@@ -377,7 +376,7 @@ impl DecideState {
         }
         for s in [Some(p.value), p.referent].into_iter().flatten() {
             if let Some(list) = self.pref_links.get_mut(&s) {
-                list.retain(|&(q, _)| q != pid);
+                list.retain(|&q| q != pid);
                 if list.is_empty() {
                     self.pref_links.remove(&s);
                 }
@@ -390,12 +389,10 @@ impl DecideState {
         self.pref_links.get(&x).map_or(0, SmallList::len)
     }
 
-    /// The identifier of the `k`th preference filed as linking to `x`, if it is still the
-    /// preference filed and in its slot.
+    /// The identifier of the `k`th preference filed as linking to `x`.
     pub(crate) fn pref_link_parent(&self, x: Sym, k: usize) -> Option<Sym> {
-        let &(pid, serial) = self.pref_links.get(&x)?.as_slice().get(k)?;
-        let p = &self.prefs[pid];
-        (p.alive && !p.freed && self.pref_serials[pid.index()] == serial).then_some(p.id)
+        let &pid = self.pref_links.get(&x)?.as_slice().get(k)?;
+        Some(self.prefs[pid].id)
     }
 
     /// A fresh decider: the first decision cycle is number 1.
