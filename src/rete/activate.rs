@@ -8,7 +8,7 @@
 //! The copy keeps the old snapshot semantics exactly (a list that changes during the
 //! activation is still walked as it was), which keeps every iteration order as it was.
 
-use super::tests::{relation_holds, Field, JoinTest, Operand};
+use super::tests::{relation_holds, Field, JoinTest, Op, Operand};
 use super::{AmemId, Kind, MatchSink, NodeId, Rete, TokId, NIL, NIL_WME};
 use crate::symbols::{SymData, Symbols};
 use crate::wm::WmeId;
@@ -60,7 +60,11 @@ impl Rete {
                             }
                         }
                     };
-                    relation_holds(syms, *op, a, b)
+                    // Equality, nearly every join test, without the call.
+                    match op {
+                        Op::Eq => a == b,
+                        _ => relation_holds(syms, *op, a, b),
+                    }
                 }
                 JoinTest::Disjunction { field, items } => items.contains(&self.field(w, *field)),
                 JoinTest::IsGoal => syms.is_goal(self.wme(w).id),

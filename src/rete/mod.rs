@@ -1224,24 +1224,32 @@ impl Rete {
         &self.rows[start..=start + tok.depth as usize]
     }
 
-    /// Takes a row for a new token at `depth`: its parent's row, then `wme`.
-    pub(crate) fn alloc_row(&mut self, parent: TokId, depth: u32, wme: WmeId) -> u32 {
+    /// Takes a row for a new token at `depth`: its parent's row (at `parent_row`), then
+    /// `wme`.
+    pub(crate) fn alloc_row(&mut self, parent_row: u32, depth: u32, wme: WmeId) -> u32 {
         let len = depth as usize + 1;
         let row = match self.free_rows.get_mut(len).and_then(Vec::pop) {
-            Some(r) => r,
+            Some(r) => r as usize,
             None => {
                 let r = self.rows.len();
                 self.rows.resize(r + len, NIL_WME);
-                r as u32
+                r
             }
         };
-        if parent != TokId::NONE {
-            let from = self.tokens[parent].row as usize;
-            self.rows
-                .copy_within(from..from + depth as usize, row as usize);
+        let from = parent_row as usize;
+        let d = depth as usize;
+        if d > 0 {
+            let (src, dst) = if from < row {
+                let (a, b) = self.rows.split_at_mut(row);
+                (&a[from..from + d], &mut b[..d])
+            } else {
+                let (a, b) = self.rows.split_at_mut(from);
+                (&b[..d], &mut a[row..row + d])
+            };
+            dst.copy_from_slice(src);
         }
-        self.rows[row as usize + depth as usize] = wme;
-        row
+        self.rows[row + d] = wme;
+        row as u32
     }
 
     /// The tokens the matcher holds (partial and complete matches).

@@ -13,65 +13,75 @@ use crate::wm::WmeId;
 
 impl Rete {
     pub(crate) fn new_token(&mut self, node: NodeId, parent: TokId, wme: WmeId) -> TokId {
-        let depth = if parent == TokId::NONE {
-            0
-        } else {
-            self.tokens[parent].depth + 1
+        // The root token alone has no parent (`TokId::NONE` is past every token).
+        let (depth, parent_row, parent_doomed) = match self.tokens.get(parent.index()) {
+            Some(p) => (p.depth + 1, p.row, p.doomed),
+            None => (0, 0, false),
         };
         self.tokens_made += 1;
         let head = self.nodes[node].first_token;
-        let doomed = self.doom.active
-            && ((parent != TokId::NONE && self.tokens[parent].doomed)
-                || (wme != NIL_WME && self.wme_doomed(wme)));
+        let doomed =
+            self.doom.active && (parent_doomed || (wme != NIL_WME && self.wme_doomed(wme)));
+        let row = self.alloc_row(parent_row, depth, wme);
+        let mut next_of_wme = TokId::NONE;
+        let mut rw_tokens = None;
+        if let Some(rw) = self.wmes.get_mut(wme.0 as usize).and_then(Option::as_mut) {
+            next_of_wme = rw.tokens;
+            rw_tokens = Some(&mut rw.tokens);
+        }
+        let first_sib = match self.tokens.get(parent.index()) {
+            Some(p) => p.first_child,
+            None => TokId::NONE,
+        };
         let tok = Token {
             node,
             parent,
             wme,
             depth,
             first_child: TokId::NONE,
-            next_sib: TokId::NONE,
+            next_sib: first_sib,
             prev_sib: TokId::NONE,
             next_in_node: head,
             prev_in_node: TokId::NONE,
-            next_of_wme: TokId::NONE,
+            next_of_wme,
             prev_of_wme: TokId::NONE,
             hfirst: NIL,
-            row: 0,
+            row,
             key: NO_VALUE,
             alive: true,
             doomed,
         };
-        let row = self.alloc_row(parent, depth, wme);
-        let t = alloc(&mut self.tokens, &mut self.free_tokens, tok);
-        if self.links.len() <= t.index() {
-            self.links.resize(t.index() + 1, ResultLinks::NONE);
+        // The token's place: a freed one (whose result links were left empty), or a new
+        // one at the end, with its result links beside it.
+        let t = match self.free_tokens.pop() {
+            Some(t) => t,
+            None => TokId::new(self.tokens.len() as u32),
+        };
+        if let Some(slot) = rw_tokens {
+            *slot = t;
         }
-        self.tokens[t].row = row;
+        if t.index() == self.tokens.len() {
+            self.tokens.push(tok);
+            self.links.push(ResultLinks::NONE);
+        } else {
+            self.tokens[t] = tok;
+        }
         if head != TokId::NONE {
             self.tokens[head].prev_in_node = t;
+        }
+        if next_of_wme != TokId::NONE {
+            self.tokens[next_of_wme].prev_of_wme = t;
+        }
+        if parent != TokId::NONE {
+            if first_sib != TokId::NONE {
+                self.tokens[first_sib].prev_sib = t;
+            }
+            self.tokens[parent].first_child = t;
         }
         let n = &mut self.nodes[node];
         n.first_token = t;
         n.token_count += 1;
-        if parent != TokId::NONE {
-            let first = self.tokens[parent].first_child;
-            self.tokens[t].next_sib = first;
-            if first != TokId::NONE {
-                self.tokens[first].prev_sib = t;
-            }
-            self.tokens[parent].first_child = t;
-        }
-        if wme != NIL_WME {
-            if let Some(rw) = self.wmes[wme.0 as usize].as_mut() {
-                let first = rw.tokens;
-                rw.tokens = t;
-                self.tokens[t].next_of_wme = first;
-                if first != TokId::NONE {
-                    self.tokens[first].prev_of_wme = t;
-                }
-            }
-        }
-        if !self.nodes[node].left_keys.is_empty() {
+        if !n.left_keys.is_empty() {
             self.token_added_to_holder(node, t);
         }
         t
@@ -103,14 +113,35 @@ impl Rete {
         }
     }
 
-    /// Removes a token and everything built on it, reporting retracted matches.
+    /// Removes a token and everything built on it, reporting retracted matches: children
+    /// before their parent, each token's children newest first (the order of Doorenbos'
+    /// recursive removal), walked without recursion, so that a long chain of conditions
+    /// needs no call-stack depth. A token's children are read again after each removal,
+    /// as removing one can give another token new children (an NCC's owner).
     pub(crate) fn delete_token_and_descendants(
         &mut self,
         t: TokId,
         syms: &Symbols,
         sink: &mut dyn MatchSink,
     ) {
-        self.delete_descendants(t, syms, sink);
+        let mut cur = t;
+        loop {
+            let c = self.tokens[cur].first_child;
+            if c != TokId::NONE {
+                cur = c;
+                continue;
+            }
+            let parent = self.tokens[cur].parent;
+            self.delete_token(cur, syms, sink);
+            if cur == t {
+                return;
+            }
+            cur = parent;
+        }
+    }
+
+    /// Removes one token without children.
+    fn delete_token(&mut self, t: TokId, syms: &Symbols, sink: &mut dyn MatchSink) {
         let tok = self.tokens[t];
         let node = tok.node;
         if tok.hfirst != NIL {
