@@ -241,9 +241,9 @@ impl Rete {
         Some((k.0, k.1))
     }
 
-    /// Caches a new token's key and keeps its holder's [`LeftMode`] true.
+    /// Keeps a holder's [`LeftMode`] true as it takes a new token.
+    /// (The token's key is cached already: `new_token` reads it off the new row.)
     pub(crate) fn token_added_to_holder(&mut self, holder: NodeId, t: TokId) {
-        self.cache_key(t, self.first_key(holder));
         let h = &self.nodes[holder];
         match h.left_mode {
             LeftMode::Indexed => self.index_token(holder, t),

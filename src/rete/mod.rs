@@ -203,6 +203,16 @@ pub(crate) struct RWme {
     pub entered: u64,
 }
 
+impl RWme {
+    pub(crate) fn field(&self, f: Field) -> Sym {
+        match f {
+            Field::Id => self.id,
+            Field::Attr => self.attr,
+            Field::Value => self.value,
+        }
+    }
+}
+
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Kind {
     Root,
@@ -923,12 +933,7 @@ impl Rete {
     }
 
     pub(crate) fn field(&self, w: WmeId, f: Field) -> Sym {
-        let rw = self.wme(w);
-        match f {
-            Field::Id => rw.id,
-            Field::Attr => rw.attr,
-            Field::Value => rw.value,
-        }
+        self.wme(w).field(f)
     }
 
     // ------------------------------------------------------------------ unlinking

@@ -23,6 +23,18 @@ impl Rete {
         let doomed =
             self.doom.active && (parent_doomed || (wme != NIL_WME && self.wme_doomed(wme)));
         let row = self.alloc_row(parent_row, depth, wme);
+        // The value at the holder's first index key, read off the row just written.
+        let keyed = !self.nodes[node].left_keys.is_empty();
+        let key = match self.nodes[node].left_keys.as_slice().first() {
+            Some(&(d, f, _)) if d <= depth => {
+                let w = self.rows[(row + d) as usize];
+                match self.wmes.get(w.0 as usize).and_then(Option::as_ref) {
+                    Some(rw) => rw.field(f),
+                    None => NO_VALUE,
+                }
+            }
+            _ => NO_VALUE,
+        };
         let mut next_of_wme = TokId::NONE;
         let mut rw_tokens = None;
         if let Some(rw) = self.wmes.get_mut(wme.0 as usize).and_then(Option::as_mut) {
@@ -47,7 +59,7 @@ impl Rete {
             prev_of_wme: TokId::NONE,
             hfirst: NIL,
             row,
-            key: NO_VALUE,
+            key,
             alive: true,
             doomed,
         };
@@ -81,7 +93,7 @@ impl Rete {
         let n = &mut self.nodes[node];
         n.first_token = t;
         n.token_count += 1;
-        if !n.left_keys.is_empty() {
+        if keyed {
             self.token_added_to_holder(node, t);
         }
         t
