@@ -319,53 +319,23 @@ impl AgentCore {
             gc.memo.insert(x, true);
             return true;
         }
-        // Depth first, each identifier's oldest parent first: a wall pointed at by hundreds
-        // of comparison objects is found linked through the `^Wall` WME it was made with,
-        // without a look at the others.
-        gc.visited.clear();
-        gc.path.clear();
-        gc.visited.insert(x);
-        gc.path.push((x, 0));
-        let mut found = false;
-        'search: while let Some(&(y, start)) = gc.path.last() {
-            // The objects of the WMEs that point at it, then of the preferences (9.6
-            // counts both as links).
-            let parents = self.wm.parent_wmes(y);
-            let by_prefs = self.decider.pref_link_count(y);
-            for i in start..parents.len() + by_prefs {
-                let parent = match parents.get(i) {
-                    Some(&w) => self.wm.get(w).map(|wme| wme.id),
-                    None => self.decider.pref_link_parent(y, i - parents.len()),
-                };
-                let Some(p) = parent else {
-                    continue;
-                };
-                match gc.memo.get(&p) {
-                    Some(true) => {
-                        found = true;
-                        break 'search;
-                    }
-                    Some(false) => continue,
-                    None => {}
-                }
-                if gc.roots.contains(&p) {
-                    found = true;
-                    break 'search;
-                }
-                if gc.visited.insert(p) {
-                    if let Some(top) = gc.path.last_mut() {
-                        top.1 = i + 1;
-                    }
-                    gc.path.push((p, 0));
-                    continue 'search;
-                }
-            }
-            gc.path.pop();
-        }
+        // Depth first, each object's parents in the order they linked: a wall pointed at
+        // by hundreds of comparison objects is found linked through the map it was made
+        // in, without a look at the others. A search that goes deep is made again with
+        // each object's few parents tried oldest object first: structure grows outward
+        // from the states, so an older object is nearer one, and a chain of thousands of
+        // items whose newest was also put in the store is found linked through the store,
+        // not through the whole chain.
+        let found = match self.upward_search(x, gc, false) {
+            Some(found) => found,
+            None => self
+                .upward_search(x, gc, true)
+                .expect("an uncapped search ends"),
+        };
         if found {
             // Everything on the path hangs off the root found.
-            for &(y, _) in &gc.path {
-                gc.memo.insert(y, true);
+            for frame in &gc.path {
+                gc.memo.insert(frame.node, true);
             }
         } else {
             for &v in &gc.visited {
@@ -374,6 +344,124 @@ impl AgentCore {
         }
         found
     }
+
+    /// [`Self::linked`]'s search from `x`, leaving its path (to the root found) and what
+    /// it visited in `gc`. In link order it gives up past [`SHALLOW_SEARCH`] steps (`None`);
+    /// oldest first, it does not.
+    fn upward_search(&self, x: Sym, gc: &mut GcScratch, oldest_first: bool) -> Option<bool> {
+        gc.visited.clear();
+        gc.path.clear();
+        gc.parents.clear();
+        gc.visited.insert(x);
+        let first = self.search_frame(x, &mut gc.parents, oldest_first);
+        gc.path.push(first);
+        while let Some(&frame) = gc.path.last() {
+            let by_wmes = if frame.in_place {
+                self.wm.parent_wmes(frame.node)
+            } else {
+                &[]
+            };
+            let mut up = None;
+            for i in frame.next..frame.end {
+                let p = if !frame.in_place {
+                    gc.parents[i]
+                } else if let Some(&w) = by_wmes.get(i) {
+                    match self.wm.get(w) {
+                        Some(wme) => wme.id,
+                        None => continue,
+                    }
+                } else {
+                    // Past the last preference: no more parents.
+                    match self.decider.pref_link_parent(frame.node, i - by_wmes.len()) {
+                        Some(p) => p,
+                        None => break,
+                    }
+                };
+                match gc.memo.get(&p) {
+                    Some(true) => return Some(true),
+                    Some(false) => continue,
+                    None => {}
+                }
+                if gc.roots.contains(&p) {
+                    return Some(true);
+                }
+                if gc.visited.insert(p) {
+                    up = Some((i, p));
+                    break;
+                }
+            }
+            match up {
+                Some((i, p)) => {
+                    if !oldest_first && gc.path.len() >= SHALLOW_SEARCH {
+                        return None;
+                    }
+                    if let Some(top) = gc.path.last_mut() {
+                        top.next = i + 1;
+                    }
+                    let frame = self.search_frame(p, &mut gc.parents, oldest_first);
+                    gc.path.push(frame);
+                }
+                None => {
+                    // Its parents all tried: their list goes with it.
+                    if let Some(done) = gc.path.pop() {
+                        gc.parents.truncate(done.start);
+                    }
+                }
+            }
+        }
+        Some(false)
+    }
+
+    /// The upward search's step to `y`: its parents read in place, or, `oldest_first`
+    /// when they are few, listed at the end of `parents`, oldest object first.
+    fn search_frame(&self, y: Sym, parents: &mut Vec<Sym>, oldest_first: bool) -> SearchFrame {
+        let start = parents.len();
+        let in_place = SearchFrame {
+            node: y,
+            next: 0,
+            // (Read until its lists end.)
+            end: usize::MAX,
+            start,
+            in_place: true,
+        };
+        if !oldest_first {
+            return in_place;
+        }
+        let by_wmes = self.wm.parent_wmes(y);
+        let by_prefs = self.decider.pref_link_parents(y);
+        const LISTED: usize = 16;
+        if !(2..=LISTED).contains(&(by_wmes.len() + by_prefs.len())) {
+            return in_place;
+        }
+        parents.extend(by_wmes.iter().filter_map(|&w| self.wm.get(w).map(|wme| wme.id)));
+        parents.extend(by_prefs.iter().map(|&pid| self.decider.prefs[pid].id));
+        parents[start..].sort_unstable();
+        SearchFrame {
+            node: y,
+            next: start,
+            end: parents.len(),
+            start,
+            in_place: false,
+        }
+    }
+}
+
+/// How deep [`AgentCore::linked`]'s first search goes before it starts again oldest
+/// object first.
+const SHALLOW_SEARCH: usize = 32;
+
+/// One identifier on the garbage collector's upward search path (see `linked`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SearchFrame {
+    pub node: Sym,
+    /// Its next parent to try, and the end of its parents: places in the search's list of
+    /// parents, or, read in place, indexes of its parent WMEs then preferences (the end
+    /// then found as they are read).
+    pub next: usize,
+    pub end: usize,
+    /// Where its parents start in the search's list (its length before them, when in place).
+    pub start: usize,
+    pub in_place: bool,
 }
 
 /// Where an object's WME with attribute `attr` goes when 9.6's garbage collection takes the

@@ -55,8 +55,11 @@ pub(crate) struct GcScratch {
     pub(super) memo: FxHashMap<Sym, bool>,
     pub(super) dead: FxHashSet<Sym>,
     pub(super) visited: FxHashSet<Sym>,
-    /// The upward search's path: each identifier with the index of its next parent.
-    pub(super) path: Vec<(Sym, usize)>,
+    /// The upward search's path.
+    pub(super) path: Vec<super::gc::SearchFrame>,
+    /// The parent objects of the identifiers on `path`, each one's after those of the one
+    /// below it.
+    pub(super) parents: Vec<Sym>,
     pub(super) stack: Vec<Sym>,
 }
 
@@ -67,6 +70,7 @@ impl GcScratch {
         self.dead.clear();
         self.visited.clear();
         self.path.clear();
+        self.parents.clear();
         self.stack.clear();
     }
 }

@@ -384,9 +384,9 @@ impl DecideState {
         }
     }
 
-    /// How many preferences are filed as linking to `x` (see [`Self::pref_link_parent`]).
-    pub(crate) fn pref_link_count(&self, x: Sym) -> usize {
-        self.pref_links.get(&x).map_or(0, SmallList::len)
+    /// The preferences filed as linking to `x`.
+    pub(crate) fn pref_link_parents(&self, x: Sym) -> &[PrefId] {
+        self.pref_links.get(&x).map_or(&[], SmallList::as_slice)
     }
 
     /// The identifier of the `k`th preference filed as linking to `x`.

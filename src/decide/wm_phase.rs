@@ -141,10 +141,8 @@ impl AgentCore {
             return false;
         };
         let prefs = &self.decider.prefs;
-        let duplicate = slot
-            .prefs
-            .iter()
-            .any(|&x| prefs[x].value == value && top_level(&prefs[x]));
+        // The value's own preferences (a large slot finds them by value, not by a scan).
+        let duplicate = slot.prefs_for(value).any(|x| top_level(&prefs[x]));
         duplicate && !self.is_context_slot(key)
     }
 
