@@ -2,7 +2,7 @@
 //! linked to a state are removed): after working memory changes, the identifiers that lost a
 //! link are searched upward for a goal, and the structure below one that has none goes.
 
-use super::scratch::GcScratch;
+use super::scratch::{GcScratch, SearchFrame};
 use super::state::PrefId;
 use crate::agent::AgentCore;
 use crate::symbols::Sym;
@@ -450,19 +450,6 @@ impl AgentCore {
 /// object first.
 const SHALLOW_SEARCH: usize = 32;
 
-/// One identifier on the garbage collector's upward search path (see `linked`).
-#[derive(Debug, Clone, Copy)]
-pub(crate) struct SearchFrame {
-    pub node: Sym,
-    /// Its next parent to try, and the end of its parents: places in the search's list of
-    /// parents, or, read in place, indexes of its parent WMEs then preferences (the end
-    /// then found as they are read).
-    pub next: usize,
-    pub end: usize,
-    /// Where its parents start in the search's list (its length before them, when in place).
-    pub start: usize,
-    pub in_place: bool,
-}
 
 /// Where an object's WME with attribute `attr` goes when 9.6's garbage collection takes the
 /// object (`slots`: the object's slot attributes, oldest first): the WMEs without a slot

@@ -56,11 +56,25 @@ pub(crate) struct GcScratch {
     pub(super) dead: FxHashSet<Sym>,
     pub(super) visited: FxHashSet<Sym>,
     /// The upward search's path.
-    pub(super) path: Vec<super::gc::SearchFrame>,
+    pub(super) path: Vec<SearchFrame>,
     /// The parent objects of the identifiers on `path`, each one's after those of the one
     /// below it.
     pub(super) parents: Vec<Sym>,
     pub(super) stack: Vec<Sym>,
+}
+
+/// One identifier on the garbage collector's upward search path (see `AgentCore::linked`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct SearchFrame {
+    pub node: Sym,
+    /// Its next parent to try, and the end of its parents: places in the search's list of
+    /// parents, or, read in place, indexes of its parent WMEs then preferences (the end
+    /// then found as they are read).
+    pub next: usize,
+    pub end: usize,
+    /// Where its parents start in the search's list (its length before them, when in place).
+    pub start: usize,
+    pub in_place: bool,
 }
 
 impl GcScratch {
