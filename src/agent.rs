@@ -699,6 +699,10 @@ impl AgentCore {
         // (`production_reorder.cpp` in the official kernel); the network joins them in that order and `print` shows it.
         crate::rete::reorder::intern_in_text_order(&mut p, &mut self.symbols);
         let conds = p.take_conditions();
+        // A learned rule's actions come in its results' order, as 9.6 makes them.
+        if !(p.flags.chunk || p.flags.justification) {
+            crate::rete::reorder::reorder_actions(&conds, &mut p.actions);
+        }
         let mut conds =
             crate::rete::reorder::reorder_owned(conds, &self.symbols, &self.multi_attributes);
         if p.flags.chunk || p.flags.justification {

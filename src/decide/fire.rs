@@ -159,12 +159,15 @@ impl AgentCore {
                         continue;
                     }
                     let id = id_sym;
-                    let attr = self.term_value(&rule, &wmes, attr, level, &mut new_ids, &mut args);
-                    let value =
-                        self.term_value(&rule, &wmes, value, level, &mut new_ids, &mut args);
+                    // A new identifier made here takes the level of the object it is put
+                    // on, as 9.6 makes it: one a substate puts on its superstate is the
+                    // superstate's from the start.
+                    let on = self.sym_level(id);
+                    let attr = self.term_value(&rule, &wmes, attr, on, &mut new_ids, &mut args);
+                    let value = self.term_value(&rule, &wmes, value, on, &mut new_ids, &mut args);
                     let referent = match referent {
                         Some(r) => {
-                            match self.term_value(&rule, &wmes, r, level, &mut new_ids, &mut args) {
+                            match self.term_value(&rule, &wmes, r, on, &mut new_ids, &mut args) {
                                 Some(x) => Some(x),
                                 None => continue,
                             }

@@ -451,6 +451,13 @@ impl AgentCore {
         results: &[PrefId],
         name: String,
     ) -> super::sketch::Sketch {
+        // Its actions in the order 9.6's loader gives them (see `learned_action_order`).
+        let ordered: Vec<PrefId> = self
+            .learned_action_order(bt, results)
+            .into_iter()
+            .map(|k| results[k])
+            .collect();
+        let results = ordered.as_slice();
         let mut marked: FxHashSet<Sym> = FxHashSet::default();
         let conditions = bt
             .grounds
@@ -492,6 +499,32 @@ impl AgentCore {
         }
     }
 
+    /// The order of a learned rule's actions, as indexes into its `results`: 9.6 orders a
+    /// learned rule's actions as it orders any rule's when it loads it (see
+    /// `rete::reorder::reorder_actions`): again and again the first result whose object the
+    /// conditions test, or an action taken before names, goes next. So the result on the
+    /// superstate comes before the results on the objects it links.
+    pub(crate) fn learned_action_order(&self, bt: &Backtrace, results: &[PrefId]) -> Vec<usize> {
+        let mut named: FxHashSet<Sym> = bt
+            .grounds
+            .iter()
+            .flat_map(|g| [g.cond.wme.id, g.cond.wme.attr, g.cond.wme.value])
+            .collect();
+        let prefs = &self.decider.prefs;
+        let mut taken = vec![false; results.len()];
+        let mut order = Vec::with_capacity(results.len());
+        while let Some(k) =
+            (0..results.len()).find(|&k| !taken[k] && named.contains(&prefs[results[k]].id))
+        {
+            taken[k] = true;
+            order.push(k);
+            let p = &prefs[results[k]];
+            named.extend([Some(p.attr), Some(p.value), p.referent].into_iter().flatten());
+        }
+        order.extend((0..results.len()).filter(|&k| !taken[k]));
+        order
+    }
+
     pub(crate) fn build_learned_rule(
         &self,
         bt: &Backtrace,
@@ -499,6 +532,13 @@ impl AgentCore {
         name: String,
         variablize: bool,
     ) -> Production {
+        // Its actions in the order 9.6's loader gives them (see `learned_action_order`).
+        let ordered: Vec<PrefId> = self
+            .learned_action_order(bt, results)
+            .into_iter()
+            .map(|k| results[k])
+            .collect();
+        let results = ordered.as_slice();
         let mut b = Builder {
             agent: self,
             bt,

@@ -68,70 +68,147 @@ fn action_idents(trace: &InstTrace, prod: &Production, k: usize) -> [super::Iden
 
 impl AgentCore {
     /// The results among a firing's preferences (Soar manual, ch. 2, "Results"): those for
-    /// objects of a higher level, and everything on new objects they link up, which move up
-    /// to that level.
+    /// objects of a higher level, and everything on the substate's objects they link up,
+    /// which move up to that level. They come in 9.6's order (its chunker's list of
+    /// results): the firing's preferences are looked at newest first, and each result is
+    /// followed at once into the substate object its value names, whose slots go newest
+    /// first, each slot's preferences newest first then its WMEs' values, then the firing's
+    /// own preferences for that object; each result found goes before those found earlier.
     pub(crate) fn find_results(&mut self, made: &[PrefId], level: u32) -> Vec<PrefId> {
-        let mut queue: Vec<PrefId> = made
-            .iter()
-            .copied()
-            .filter(|&p| {
-                let l = self.sym_level(self.decider.prefs[p].id);
-                l > 0 && l < level
-            })
-            .collect();
         // Most firings make no preference on an object above their state.
-        if queue.is_empty() {
+        let seeds = made.iter().rev().copied().filter(|&p| {
+            let l = self.sym_level(self.decider.prefs[p].id);
+            l > 0 && l < level
+        });
+        let seeds: Vec<PrefId> = seeds.collect();
+        if seeds.is_empty() {
             return Vec::new();
         }
-        // The set of preferences seen keeps its room from call to call.
-        let mut seen = std::mem::take(&mut self.learn.results_seen);
-        seen.clear();
-        let mut results = Vec::new();
-        // The identities of the retrieved objects that results link (see
-        // `retrieved_result_prefs`).
-        let mut retrieved_idents: FxHashMap<Sym, super::Ident> = FxHashMap::default();
-        let mut i = 0;
-        while i < queue.len() {
-            let r = queue[i];
-            i += 1;
-            if !seen.insert(r) {
-                continue;
+        let mut walk = ResultsWalk {
+            found: Vec::new(),
+            seen: std::mem::take(&mut self.learn.results_seen),
+            walked: FxHashSet::default(),
+            stack: Vec::new(),
+            retrieved_idents: FxHashMap::default(),
+        };
+        walk.seen.clear();
+        for p in seeds {
+            let id = self.decider.prefs[p].id;
+            if !walk.walked.contains(&id) {
+                self.add_result(&mut walk, p, made, level);
             }
-            results.push(r);
+        }
+        // The objects the results link move up to the level of the object each is put on.
+        for &r in &walk.found {
             let p = &self.decider.prefs[r];
             let target = self.sym_level(p.id);
-            let ids = p.origin.as_ref().map_or([0; 4], |o| o.ids);
-            let linked: Vec<(Sym, super::Ident)> = [Some((p.value, ids[2])), p.referent.map(|x| (x, ids[3]))]
-                .into_iter()
-                .flatten()
-                .collect();
-            for (x, ident) in linked {
-                // Only an object a memory retrieved needs its identity here.
-                if !self.learn.memory_results.is_empty() {
-                    retrieved_idents.entry(x).or_insert(ident);
-                }
-                for y in self.promote(x, target) {
-                    queue.extend(
-                        made.iter()
-                            .copied()
-                            .filter(|&q| self.decider.prefs[q].id == y),
-                    );
-                    let mut on_y = self.decider.slots.keys_of(y);
-                    on_y.sort();
-                    for k in on_y {
-                        // A retrieval's own preferences come as `retrieved_result_prefs`.
-                        if let Some(slot) = self.decider.slots.get(&k) {
-                            let prefs = &self.decider.prefs;
-                            queue.extend(slot.prefs.iter().copied().filter(|&q| !prefs[q].recall));
-                        }
+            for x in [Some(p.value), p.referent].into_iter().flatten() {
+                self.promote(x, target);
+            }
+        }
+        self.learn.results_seen = walk.seen;
+        walk.found.reverse();
+        walk.found
+    }
+
+    /// One result found (see [`Self::find_results`]), and what it leads to, depth first.
+    fn add_result(&mut self, walk: &mut ResultsWalk, first: PrefId, made: &[PrefId], level: u32) {
+        walk.stack.push(ResultStep::Pref(first));
+        while let Some(step) = walk.stack.pop() {
+            match step {
+                ResultStep::Pref(r) => {
+                    if !self.is_new_result(walk, r) {
+                        continue;
                     }
-                    let retrieved = self.retrieved_result_prefs(y, level, &mut retrieved_idents);
-                    queue.extend(retrieved);
+                    walk.found.push(r);
+                    walk.seen.insert(r);
+                    let p = &self.decider.prefs[r];
+                    let ids = p.origin.as_ref().map_or([0; 4], |o| o.ids);
+                    let mut linked = [Some((p.value, ids[2])), p.referent.map(|x| (x, ids[3]))];
+                    // The value first, then the referent: pushed last first.
+                    for (x, ident) in linked.iter_mut().rev().flatten() {
+                        if !self.learn.memory_results.is_empty() {
+                            walk.retrieved_idents.entry(*x).or_insert(*ident);
+                        }
+                        walk.stack.push(ResultStep::Object(*x));
+                    }
+                }
+                ResultStep::Object(x) => {
+                    if !self.symbols.is_id(x)
+                        || self.sym_level(x) < level
+                        || self.symbols.is_goal(x)
+                        || !walk.walked.insert(x)
+                    {
+                        continue;
+                    }
+                    let steps = self.object_steps(x, made, level, &mut walk.retrieved_idents);
+                    // Pushed last first, so that they are taken in order.
+                    walk.stack.extend(steps.into_iter().rev());
                 }
             }
         }
-        self.learn.results_seen = seen;
-        results
+    }
+
+    /// What 9.6 looks at on an object a result links: each slot, newest first, with its
+    /// preferences newest first and then its WMEs' values newest first; a memory's
+    /// retrievals on it; the firing's own preferences for it, newest first.
+    fn object_steps(
+        &mut self,
+        x: Sym,
+        made: &[PrefId],
+        level: u32,
+        retrieved_idents: &mut FxHashMap<Sym, super::Ident>,
+    ) -> Vec<ResultStep> {
+        let mut steps = Vec::new();
+        let slots = &self.decider.slots;
+        for &attr in slots.attrs_of(x).iter().rev() {
+            let Some(slot) = slots.get(&(x, attr)) else {
+                continue;
+            };
+            let prefs = &self.decider.prefs;
+            // A retrieval's own preferences come as `retrieved_result_prefs`.
+            steps.extend(
+                slot.prefs
+                    .iter()
+                    .rev()
+                    .filter(|&&q| !prefs[q].recall)
+                    .map(|&q| ResultStep::Pref(q)),
+            );
+            steps.extend(
+                slot.wmes
+                    .values()
+                    .rev()
+                    .filter_map(|w| self.wm.get(w))
+                    .map(|w| ResultStep::Object(w.value)),
+            );
+        }
+        // (`retrieved_result_prefs` lists them in the order the learned rule makes them,
+        // the reverse of the order they are found in.)
+        let retrieved = self.retrieved_result_prefs(x, level, retrieved_idents);
+        steps.extend(retrieved.into_iter().rev().map(ResultStep::Pref));
+        let prefs = &self.decider.prefs;
+        steps.extend(
+            made.iter()
+                .rev()
+                .filter(|&&q| prefs[q].id == x)
+                .map(|&q| ResultStep::Pref(q)),
+        );
+        steps
+    }
+
+    /// Whether `r` is a result not yet found: 9.6 takes one preference for each (object,
+    /// attribute, value, kind, referent).
+    fn is_new_result(&self, walk: &ResultsWalk, r: PrefId) -> bool {
+        if walk.seen.contains(&r) {
+            return false;
+        }
+        let prefs = &self.decider.prefs;
+        let p = &prefs[r];
+        let same = |q: &PrefId| {
+            let q = &prefs[*q];
+            (q.id, q.attr, q.value, q.kind, q.referent) == (p.id, p.attr, p.value, p.kind, p.referent)
+        };
+        !walk.found.iter().any(same)
     }
 
     /// Moves an identifier (and what hangs off it) up to `level`; returns those moved.
@@ -445,6 +522,11 @@ impl AgentCore {
                 .instantiations_made
                 .push((name.clone(), new_prefs.len()));
         }
+        // Where each result's action is in the learned rule (see `learned_action_order`).
+        let mut action_of = vec![0; results.len()];
+        for (j, k) in self.learned_action_order(bt, &results).into_iter().enumerate() {
+            action_of[k] = j;
+        }
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
             if self.is_retrieved_result(r) {
@@ -452,7 +534,7 @@ impl AgentCore {
             }
             let mut p = self.decider.prefs[r].clone();
             let ids = match &recorded {
-                Some((t, prod)) => action_idents(t, prod, k),
+                Some((t, prod)) => action_idents(t, prod, action_of[k]),
                 None => p
                     .origin
                     .as_ref()
@@ -473,7 +555,7 @@ impl AgentCore {
             p.origin = Some(Arc::new(PrefOrigin {
                 trace: trace.clone(),
                 ids,
-                action: recorded.as_ref().map(|_| k),
+                action: recorded.as_ref().map(|_| action_of[k]),
             }));
             let o_reject = p.kind == PrefType::Reject && p.o_support;
             let pid = self.decider.alloc_pref(p);
@@ -953,4 +1035,24 @@ impl AgentCore {
         self.learn.justification_names.remove(&serial);
         self.learn.justifications.retain(|j| j.serial != serial);
     }
+}
+
+/// The state of [`AgentCore::find_results`]' walk.
+struct ResultsWalk {
+    /// The results in the order found.
+    found: Vec<PrefId>,
+    seen: FxHashSet<PrefId>,
+    /// The objects walked.
+    walked: FxHashSet<Sym>,
+    stack: Vec<ResultStep>,
+    /// The identities of the retrieved objects that results link (see
+    /// `retrieved_result_prefs`).
+    retrieved_idents: FxHashMap<Sym, super::Ident>,
+}
+
+/// A step of the results walk: a preference to take, or an object to look into.
+#[derive(Debug, Clone, Copy)]
+enum ResultStep {
+    Pref(PrefId),
+    Object(Sym),
 }

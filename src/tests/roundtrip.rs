@@ -1259,8 +1259,13 @@ fn as_loaded(p: &Production) -> Production {
     if p.flags.chunk || p.flags.justification {
         reorder::equality_first(&mut conditions);
     }
+    let mut actions = p.actions.clone();
+    if !(p.flags.chunk || p.flags.justification) {
+        reorder::reorder_actions(&p.conditions, &mut actions);
+    }
     Production {
         conditions: conditions.into(),
+        actions,
         ..p.clone()
     }
 }

@@ -22,9 +22,12 @@
 //! ([`Symbols`] interns the kernel's start-up constants first, `src/initial_symbols.txt`,
 //! then each rule's constants in text order), which reproduces the kernel's tie breaks.
 
+mod actions;
 mod choose;
 mod multi;
 mod set_aside;
+
+pub use actions::reorder_actions;
 
 use crate::ast::{Constant, Head};
 use crate::production::{Condition, Term, Test};
