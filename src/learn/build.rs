@@ -505,17 +505,24 @@ impl AgentCore {
     /// conditions test, or an action taken before names, goes next. So the result on the
     /// superstate comes before the results on the objects it links.
     pub(crate) fn learned_action_order(&self, bt: &Backtrace, results: &[PrefId]) -> Vec<usize> {
-        let mut named: FxHashSet<Sym> = bt
-            .grounds
-            .iter()
-            .flat_map(|g| [g.cond.wme.id, g.cond.wme.attr, g.cond.wme.value])
-            .collect();
+        let mut order: Vec<usize> = (0..results.len()).collect();
+        if results.len() < 2 {
+            return order;
+        }
+        order.clear();
         let prefs = &self.decider.prefs;
+        let tested = |s: Sym| {
+            bt.grounds
+                .iter()
+                .any(|g| g.cond.wme.id == s || g.cond.wme.attr == s || g.cond.wme.value == s)
+        };
+        // What the actions taken so far name (a rule makes few results).
+        let mut named: Vec<Sym> = Vec::new();
         let mut taken = vec![false; results.len()];
-        let mut order = Vec::with_capacity(results.len());
-        while let Some(k) =
-            (0..results.len()).find(|&k| !taken[k] && named.contains(&prefs[results[k]].id))
-        {
+        while let Some(k) = (0..results.len()).find(|&k| {
+            let id = prefs[results[k]].id;
+            !taken[k] && (named.contains(&id) || tested(id))
+        }) {
             taken[k] = true;
             order.push(k);
             let p = &prefs[results[k]];

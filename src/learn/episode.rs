@@ -522,10 +522,13 @@ impl AgentCore {
                 .instantiations_made
                 .push((name.clone(), new_prefs.len()));
         }
-        // Where each result's action is in the learned rule (see `learned_action_order`).
-        let mut action_of = vec![0; results.len()];
-        for (j, k) in self.learned_action_order(bt, &results).into_iter().enumerate() {
-            action_of[k] = j;
+        // Where each result's action is in the learned rule (see `learned_action_order`),
+        // for the recorded firing of a chunk.
+        let mut action_of = vec![0; if recorded.is_some() { results.len() } else { 0 }];
+        if recorded.is_some() {
+            for (j, k) in self.learned_action_order(bt, &results).into_iter().enumerate() {
+                action_of[k] = j;
+            }
         }
         let mut clones = Vec::with_capacity(results.len());
         for (k, &r) in results.iter().enumerate() {
