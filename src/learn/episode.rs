@@ -124,9 +124,9 @@ impl AgentCore {
                     walk.seen.insert(r);
                     let p = &self.decider.prefs[r];
                     let ids = p.origin.as_ref().map_or([0; 4], |o| o.ids);
-                    let mut linked = [Some((p.value, ids[2])), p.referent.map(|x| (x, ids[3]))];
+                    let linked = [Some((p.value, ids[2])), p.referent.map(|x| (x, ids[3]))];
                     // The value first, then the referent: pushed last first.
-                    for (x, ident) in linked.iter_mut().rev().flatten() {
+                    for (x, ident) in linked.iter().rev().flatten() {
                         if !self.learn.memory_results.is_empty() {
                             walk.retrieved_idents.entry(*x).or_insert(*ident);
                         }
