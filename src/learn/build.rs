@@ -451,12 +451,7 @@ impl AgentCore {
         results: &[PrefId],
         name: String,
     ) -> super::sketch::Sketch {
-        // Its actions in the order 9.6's loader gives them (see `learned_action_order`).
-        let ordered: Vec<PrefId> = self
-            .learned_action_order(bt, results)
-            .into_iter()
-            .map(|k| results[k])
-            .collect();
+        let ordered = self.results_in_action_order(bt, results);
         let results = ordered.as_slice();
         let mut marked: FxHashSet<Sym> = FxHashSet::default();
         let conditions = bt
@@ -499,6 +494,14 @@ impl AgentCore {
         }
     }
 
+    /// A learned rule's results in the order of its actions (see `learned_action_order`).
+    fn results_in_action_order(&self, bt: &Backtrace, results: &[PrefId]) -> Vec<PrefId> {
+        self.learned_action_order(bt, results)
+            .into_iter()
+            .map(|k| results[k])
+            .collect()
+    }
+
     /// The order of a learned rule's actions, as indexes into its `results`: 9.6 orders a
     /// learned rule's actions as it orders any rule's when it loads it (see
     /// `rete::reorder::reorder_actions`): again and again the first result whose object the
@@ -539,12 +542,7 @@ impl AgentCore {
         name: String,
         variablize: bool,
     ) -> Production {
-        // Its actions in the order 9.6's loader gives them (see `learned_action_order`).
-        let ordered: Vec<PrefId> = self
-            .learned_action_order(bt, results)
-            .into_iter()
-            .map(|k| results[k])
-            .collect();
+        let ordered = self.results_in_action_order(bt, results);
         let results = ordered.as_slice();
         let mut b = Builder {
             agent: self,
